@@ -1,0 +1,293 @@
+//! The command line as a user meets it: exit codes, messages, outputs.
+
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
+
+fn rtprof(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_rtprof"))
+        .args(args)
+        .output()
+        .unwrap_or_else(|e| panic!("cannot run rtprof: {e}"))
+}
+
+fn stderr(out: &Output) -> String {
+    String::from_utf8_lossy(&out.stderr).into_owned()
+}
+
+fn spd(name: &str) -> String {
+    let path = PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+        .join("../shared/spd")
+        .join(format!("{name}.nff"));
+    assert!(
+        path.is_file(),
+        "{} missing: shared/ must sit beside the project",
+        path.display()
+    );
+    path.display().to_string()
+}
+
+/// A scratch directory unique to one test.
+fn scratch(test: &str) -> PathBuf {
+    let dir = std::env::temp_dir().join(format!("rtprof-cli-{}-{test}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap_or_else(|e| panic!("{e}"));
+    dir
+}
+
+const VIEW: &str = "v\nfrom 0 0 -5\nat 0 0 0\nup 0 1 0\nangle 45\nhither 0.01\nresolution 8 8\n";
+
+#[test]
+fn malformed_scenes_exit_2_with_file_and_line_and_never_panic() {
+    let dir = scratch("malformed");
+    // (scene text, line the error must name)
+    let cases: &[(&str, usize)] = &[
+        ("s 0 0 0\n", 8),                                    // missing number
+        ("s 0 0 x 1\n", 8),                                  // not a number
+        ("s 0 0 NaN 1\n", 8),                                // NaN
+        ("s 0 0 -inf 1\n", 8),                               // infinity
+        ("cube 0 0 0 1\n", 8),                               // unknown keyword
+        ("p 2\n0 0 0\n1 0 0\n", 8),                          // < 3 vertices
+        ("p 3\n0 0 0\n0 0 0\n1 1 1\n", 8),                   // degenerate
+        ("p 4000000000\n", 8),                               // absurd count
+        ("p 4\n0 0 0\n1 0 0\n1 1 0\n", 11),                  // truncated
+        ("c\n0 0 0 1\n0 0 0 1\n", 8),                        // zero-length axis
+        ("pp 3\n0 0 0 0 0 1\n1 0 0 0 0 1\n0 1 0 0 0\n", 11), // short patch line
+        ("f 1 1 1\n", 8),                                    // short material
+        ("l 1 2 3 4\n", 8),                                  // bad light
+        ("b 0 0 0 0\n", 8),                                  // extra number
+        ("s 0 0 0 1 # ok\ns 1 2\n", 9),                      // after a comment
+    ];
+    let view_cases: &[(&str, usize)] = &[
+        ("s 0 0 0 1\n", 1), // no v block
+        (
+            "v\nfrom 0 0 0\nat 0 0 1\nup 0 1 0\nangle 45\nresolution 100000000 100000000\n",
+            6,
+        ), // absurd size
+        (
+            "v\nfrom 0 0 0\nat 0 0 1\nup 0 1 0\nangle 45\nresolution 0 480\n",
+            6,
+        ), // non-positive
+        (
+            "v\nfrom 0 0 0\nat 0 0 1\nup 0 0 1\nangle 45\nresolution 8 8\n",
+            1,
+        ), // up parallel
+    ];
+    let all = cases
+        .iter()
+        .map(|(body, line)| (format!("{VIEW}{body}"), *line))
+        .chain(
+            view_cases
+                .iter()
+                .map(|(text, line)| (text.to_string(), *line)),
+        );
+    let mut n = 0;
+    for (i, (text, line)) in all.enumerate() {
+        let path = dir.join(format!("bad{i}.nff"));
+        std::fs::write(&path, &text).unwrap_or_else(|e| panic!("{e}"));
+        for command in ["render", "count"] {
+            let out = rtprof(
+                &[command, path.to_str().unwrap_or_default(), "-o", "x.png"]
+                    [..if command == "render" { 4 } else { 2 }],
+            );
+            let err = stderr(&out);
+            assert_eq!(out.status.code(), Some(2), "case {i} {text:?}: {err}");
+            assert!(
+                err.contains(&format!("bad{i}.nff:{line}:")),
+                "case {i}: expected line {line} in: {err}"
+            );
+            assert!(!err.contains("panicked"), "case {i}: {err}");
+            assert_eq!(
+                err.trim().lines().count(),
+                1,
+                "case {i}: one-line error expected: {err}"
+            );
+        }
+        n += 1;
+    }
+    assert!(n >= 15);
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+#[test]
+fn command_line_misuse_exits_2() {
+    let dir = scratch("misuse");
+    let rings = spd("rings");
+    let cases: Vec<Vec<String>> = vec![
+        vec!["render".into(), "no/such/file.nff".into()],
+        vec!["render".into(), dir.display().to_string()],
+        vec![
+            "count".into(),
+            rings.clone(),
+            "--variant".into(),
+            "warp-drive".into(),
+        ],
+        vec![
+            "count".into(),
+            rings.clone(),
+            "--size".into(),
+            "12by12".into(),
+        ],
+        vec![
+            "count".into(),
+            rings.clone(),
+            "--size".into(),
+            "0x10".into(),
+        ],
+        vec![
+            "count".into(),
+            rings.clone(),
+            "--threads".into(),
+            "0".into(),
+        ],
+        vec![
+            "render".into(),
+            rings.clone(),
+            "-o".into(),
+            dir.join("x.jpg").display().to_string(),
+        ],
+        vec!["render".into(), rings.clone(), "--no-such-flag".into()],
+    ];
+    for args in cases {
+        let args: Vec<&str> = args.iter().map(String::as_str).collect();
+        let out = rtprof(&args);
+        let err = stderr(&out);
+        assert_eq!(out.status.code(), Some(2), "{args:?}: {err}");
+        assert!(!err.contains("panicked"), "{args:?}: {err}");
+    }
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+fn read(path: &Path) -> Vec<u8> {
+    std::fs::read(path).unwrap_or_else(|e| panic!("{}: {e}", path.display()))
+}
+
+#[test]
+fn one_and_two_threads_give_byte_identical_images_and_counts() {
+    let dir = scratch("threads");
+    let rings = spd("rings");
+    let mut images = Vec::new();
+    let mut counts = Vec::new();
+    for threads in ["1", "2"] {
+        for ext in ["png", "ppm"] {
+            let img = dir.join(format!("rings{threads}.{ext}"));
+            let out = rtprof(&[
+                "render",
+                &rings,
+                "--size",
+                "24x18",
+                "--threads",
+                threads,
+                "-o",
+                img.to_str().unwrap_or_default(),
+            ]);
+            assert!(out.status.success(), "{}", stderr(&out));
+            images.push(read(&img));
+        }
+        let out = rtprof(&[
+            "count",
+            &rings,
+            "--size",
+            "24x18",
+            "--threads",
+            threads,
+            "--json",
+        ]);
+        assert!(out.status.success(), "{}", stderr(&out));
+        counts.push(out.stdout);
+    }
+    assert_eq!(images[0], images[2], "PNG differs between 1 and 2 threads");
+    assert_eq!(images[1], images[3], "PPM differs between 1 and 2 threads");
+    assert!(images[1].starts_with(b"P6\n24 18\n255\n"));
+    assert_eq!(images[1].len(), 13 + 24 * 18 * 3);
+    assert_eq!(&images[0][1..4], b"PNG");
+    assert_eq!(counts[0], counts[1]);
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+#[test]
+fn count_json_uses_the_counter_names_and_spd_corner_rays() {
+    let out = rtprof(&["count", &spd("tetra"), "--spd", "--size", "16x16", "--json"]);
+    assert!(out.status.success(), "{}", stderr(&out));
+    let json: serde_json::Value =
+        serde_json::from_slice(&out.stdout).unwrap_or_else(|e| panic!("{e}"));
+    assert_eq!(json["rays"]["primary"], 17 * 17);
+    for group in ["ops", "calls", "tests", "rays", "accel"] {
+        assert!(json[group].is_object(), "missing {group}");
+    }
+    for key in [
+        "dot",
+        "sub",
+        "add",
+        "cross",
+        "scale",
+        "normalize",
+        "sqrt",
+        "pow",
+    ] {
+        assert!(json["ops"][key].is_u64(), "ops.{key}");
+    }
+    for key in [
+        "trace",
+        "intersect",
+        "shade",
+        "color_contribution",
+        "primary_ray_setup",
+    ] {
+        assert!(json["calls"][key].is_u64(), "calls.{key}");
+    }
+    for kind in ["sphere", "cylinder", "cone", "polygon", "patch", "plane"] {
+        assert!(
+            json["tests"][kind]["tests"].is_u64() && json["tests"][kind]["hits"].is_u64(),
+            "tests.{kind}"
+        );
+    }
+    for key in [
+        "primary",
+        "primary_hit",
+        "shadow",
+        "shadow_blocked",
+        "reflection",
+        "refraction",
+    ] {
+        assert!(json["rays"][key].is_u64(), "rays.{key}");
+    }
+    assert!(json["accel"]["nodes_visited"].is_u64() && json["accel"]["leaves_visited"].is_u64());
+    // tetra: 4096 triangles, brute force.
+    assert!(json["tests"]["polygon"]["tests"].as_u64().unwrap_or(0) >= 4096 * 17 * 17);
+
+    let table = rtprof(&["count", &spd("tetra"), "--size", "8x8"]);
+    let text = String::from_utf8_lossy(&table.stdout);
+    assert!(
+        text.lines()
+            .next()
+            .is_some_and(|l| l.starts_with("name") && l.ends_with("calls")),
+        "{text}"
+    );
+    assert!(
+        text.lines()
+            .any(|l| l.starts_with("rays.primary ") && l.trim_end().ends_with(" 64")),
+        "{text}"
+    );
+}
+
+#[test]
+fn render_writes_an_image_and_reports_the_time_split() {
+    let dir = scratch("render");
+    let img = dir.join("jacks.png");
+    let out = rtprof(&[
+        "render",
+        &spd("jacks"),
+        "--size",
+        "32x32",
+        "--diffuse-only",
+        "-o",
+        img.to_str().unwrap_or_default(),
+    ]);
+    let err = stderr(&out);
+    assert!(out.status.success(), "{err}");
+    assert!(
+        err.contains("preprocessing") && err.contains("tracing") && err.contains("rays/s"),
+        "{err}"
+    );
+    assert!(read(&img).len() > 100);
+    std::fs::remove_dir_all(&dir).ok();
+}

@@ -1,0 +1,168 @@
+//! Cameras: eye rays from an NFF view.
+//!
+//! Perspective camera after the thesis's eq. 1-8: `w = normalize(at - from)`,
+//! `u = normalize(w × up)` (right), `v = u × w` (up), square samples, image rows
+//! from top to bottom. The sample pitch follows the NFF angle convention: the angle
+//! spans from the centre of the top sample row to the centre of the bottom one, so
+//! the extreme rows sit at ±tan(angle/2) and the pitch is `2 tan(angle/2) / (rows - 1)`.
+//! With [`Sampling::PixelCenters`] the samples are the W×H pixel centres; with
+//! [`Sampling::SpdCorners`] they are the (W+1)×(H+1) pixel corners of the SPD
+//! procedure, and the corner rows span the angle.
+
+use crate::counter::{Counter, Stat};
+use crate::nff::check_view_basis;
+use crate::ray::Ray;
+use crate::scene::View;
+use crate::vec3::Vec3;
+
+/// Where eye rays are shot.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
+pub enum Sampling {
+    /// One ray through each pixel centre (thesis).
+    #[default]
+    PixelCenters,
+    /// One ray through each pixel corner, each pixel the mean of its four (SPD).
+    SpdCorners,
+}
+
+/// A perspective pinhole camera.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Camera {
+    eye: Vec3,
+    forward: Vec3,
+    /// Right vector scaled by the sample pitch.
+    right: Vec3,
+    /// Up vector scaled by the sample pitch.
+    up: Vec3,
+    columns: u32,
+    rows: u32,
+}
+
+impl Camera {
+    /// Sets up the camera for a `width` × `height` image (counts one
+    /// `calls.primary_ray_setup`). Fails when the view defines no basis.
+    pub fn perspective<C: Counter>(
+        view: &View,
+        width: u32,
+        height: u32,
+        sampling: Sampling,
+        c: &mut C,
+    ) -> Result<Self, String> {
+        check_view_basis(view)?;
+        c.tally(Stat::PrimaryRaySetup);
+        let (columns, rows) = match sampling {
+            Sampling::PixelCenters => (width, height),
+            Sampling::SpdCorners => (width + 1, height + 1),
+        };
+        let view_dir = c.sub(view.at, view.from);
+        let w = c.normalize(view_dir);
+        let side = c.cross(w, view.up);
+        let u = c.normalize(side);
+        let v = c.cross(u, w);
+        let half_span = (view.angle_deg.to_radians() * 0.5).tan();
+        let pitch = 2.0 * half_span / (rows.max(2) - 1) as f32;
+        Ok(Self {
+            eye: view.from,
+            forward: w,
+            right: c.scale(u, pitch),
+            up: c.scale(v, pitch),
+            columns,
+            rows,
+        })
+    }
+
+    /// The sample grid: (columns, rows).
+    pub fn grid(&self) -> (u32, u32) {
+        (self.columns, self.rows)
+    }
+
+    /// The eye ray through sample `(column, row)`, row 0 at the top. Counts two
+    /// `scale`, two `add` and one `normalize`.
+    #[inline]
+    pub fn ray<C: Counter>(&self, column: u32, row: u32, c: &mut C) -> Ray {
+        let x = column as f32 - (self.columns - 1) as f32 * 0.5;
+        let y = (self.rows - 1) as f32 * 0.5 - row as f32;
+        let across = c.scale(self.right, x);
+        let down = c.scale(self.up, y);
+        let dir = c.add(self.forward, across);
+        let dir = c.add(dir, down);
+        Ray {
+            origin: self.eye,
+            dir: c.normalize(dir),
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::counter::{Count, NoCount};
+
+    fn view(width: u32, height: u32) -> View {
+        View {
+            from: Vec3::new(0.0, -5.0, 0.0),
+            at: Vec3::ZERO,
+            up: Vec3::new(0.0, 0.0, 1.0),
+            angle_deg: 90.0,
+            hither: 0.0,
+            width,
+            height,
+        }
+    }
+
+    #[test]
+    fn extreme_sample_rows_span_the_nff_angle() {
+        // 90°: the top row centre looks 45° up, the bottom row 45° down.
+        let cam = Camera::perspective(&view(5, 5), 5, 5, Sampling::PixelCenters, &mut NoCount)
+            .unwrap_or_else(|e| panic!("{e}"));
+        let top = cam.ray(2, 0, &mut NoCount).dir.to_array();
+        let h = std::f32::consts::FRAC_1_SQRT_2;
+        assert!(
+            (top[1] - h).abs() < 1e-6 && (top[2] - h).abs() < 1e-6,
+            "{top:?}"
+        );
+        let centre = cam.ray(2, 2, &mut NoCount).dir.to_array();
+        assert_eq!(centre, [0.0, 1.0, 0.0]);
+        // Right is view direction × up = +y × +z = +x.
+        let right = cam.ray(4, 2, &mut NoCount).dir.to_array();
+        assert!(
+            (right[0] - h).abs() < 1e-6 && right[2].abs() < 1e-6,
+            "{right:?}"
+        );
+    }
+
+    #[test]
+    fn spd_corners_are_one_more_per_side_and_span_the_angle() {
+        let cam = Camera::perspective(&view(4, 4), 4, 4, Sampling::SpdCorners, &mut NoCount)
+            .unwrap_or_else(|e| panic!("{e}"));
+        assert_eq!(cam.grid(), (5, 5));
+        let corner = cam.ray(0, 0, &mut NoCount).dir.to_array();
+        // Top-left corner: (-1, 1, 1)/sqrt3 in (x, z, y) terms.
+        let s = 1.0 / 3f32.sqrt();
+        assert!(
+            (corner[0] + s).abs() < 1e-6
+                && (corner[1] - s).abs() < 1e-6
+                && (corner[2] - s).abs() < 1e-6
+        );
+    }
+
+    #[test]
+    fn counts_one_setup_and_fixed_ops_per_ray() {
+        let mut c = Count::default();
+        let cam = Camera::perspective(&view(8, 8), 8, 8, Sampling::PixelCenters, &mut c)
+            .unwrap_or_else(|e| panic!("{e}"));
+        let setup = c;
+        cam.ray(3, 4, &mut c);
+        assert_eq!(setup.get(Stat::PrimaryRaySetup), 1);
+        assert_eq!(c.get(Stat::Scale) - setup.get(Stat::Scale), 2);
+        assert_eq!(c.get(Stat::Add) - setup.get(Stat::Add), 2);
+        assert_eq!(c.get(Stat::Normalize) - setup.get(Stat::Normalize), 1);
+    }
+
+    #[test]
+    fn up_parallel_to_view_is_refused() {
+        let mut v = view(8, 8);
+        v.up = Vec3::new(0.0, 3.0, 0.0);
+        assert!(Camera::perspective(&v, 8, 8, Sampling::PixelCenters, &mut NoCount).is_err());
+    }
+}

@@ -1,0 +1,54 @@
+//! `tracer`: an instrumented Whitted ray tracer for NFF scenes.
+//!
+//! It parses NFF scenes ([`nff`]), builds primitives ([`primitives`]), shoots eye rays
+//! ([`camera`]), answers intersection queries ([`accel`]), shades under the SPD rules
+//! ([`shading`]) and renders in parallel ([`render`]). Every vector operation, square
+//! root, power, intersection test and ray is counted exactly through the [`counter`]
+//! layer; with [`NoCount`] the counting compiles away, so one binary renders counted and
+//! uncounted. This crate depends on no other workspace crate.
+//!
+//! ```
+//! use tracer::{render, BruteForce, Count, RenderOptions};
+//! let scene = tracer::parse_nff(
+//!     "v\nfrom 0 0 -4\nat 0 0 0\nup 0 1 0\nangle 40\nhither 0\nresolution 8 8\n\
+//!      l 2 2 -5\nf 1 0 0 1 0 1 0 1\ns 0 0 0 1\n",
+//!     "doc.nff",
+//! ).unwrap();
+//! let accel = BruteForce::new(&scene);
+//! let out = render::<Count, _>(&scene, &accel, &RenderOptions::for_scene(&scene), &|_| {}).unwrap();
+//! let counts = out.counts().unwrap();
+//! assert_eq!(counts.rays.primary, 64);
+//! assert_eq!(counts.tests.sphere.tests, counts.calls.intersect); // one sphere per query
+//! ```
+
+// `!(x > y)` is written on purpose throughout: unlike `x <= y` it also rejects NaN.
+#![allow(clippy::neg_cmp_op_on_partial_ord)]
+// Tests compute expected values independently, outside the counting layer (the
+// non-test build is still checked by clippy --all-targets).
+#![cfg_attr(test, allow(clippy::disallowed_methods))]
+
+pub mod accel;
+pub mod camera;
+pub mod color;
+pub mod counter;
+pub mod image_io;
+pub mod nff;
+pub mod primitives;
+pub mod ray;
+pub mod render;
+pub mod scene;
+pub mod shading;
+pub mod variant;
+pub mod vec3;
+
+pub use accel::{BruteForce, Intersector};
+pub use camera::{Camera, Sampling};
+pub use color::Rgb;
+pub use counter::{Count, Counter, Counts, NoCount, RayCounts, Stat};
+pub use nff::{Limits, LoadError, NffError, load_nff, parse_nff};
+pub use ray::{Hit, PrimKind, PrimRef, Ray};
+pub use render::{Frame, RenderError, RenderOptions, Rendered, render};
+pub use scene::{Light, Material, Scene, View};
+pub use shading::{MAX_DEPTH, ShadingMode};
+pub use variant::{Variant, VariantSet};
+pub use vec3::Vec3;

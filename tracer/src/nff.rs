@@ -1,0 +1,745 @@
+//! NFF (Neutral File Format 3.x) parser.
+//!
+//! The format is line-oriented: one entity per keyword line, `c` followed by two lines
+//! (base, apex), `p n` / `pp n` followed by `n` vertex lines; `#` starts a comment.
+//! Blank lines, tabs and CRLF line ends are accepted anywhere. Every malformed input
+//! becomes an [`NffError`] naming the file, the line and what was expected; sizes that
+//! would need absurd allocations are refused by [`Limits`] before anything is allocated.
+
+use crate::color::Rgb;
+use crate::counter::{Counter, NoCount};
+use crate::primitives::{Cone, Cylinder, GeometryError, Patch, Polygon, Sphere};
+use crate::scene::{Light, Material, Scene, View};
+use crate::vec3::Vec3;
+use std::path::Path;
+
+/// A parse error at a place in a file.
+#[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
+#[error("{file}:{line}: {message}")]
+pub struct NffError {
+    pub file: String,
+    /// 1-based line number (the last line with content for errors found at the end of
+    /// the file).
+    pub line: usize,
+    pub message: String,
+}
+
+/// Why a scene file could not be loaded.
+#[derive(Debug, thiserror::Error)]
+pub enum LoadError {
+    #[error("cannot read {path}: {source}")]
+    Io {
+        path: String,
+        #[source]
+        source: std::io::Error,
+    },
+    #[error(transparent)]
+    Parse(#[from] NffError),
+}
+
+/// Sizes refused before allocating. The defaults are generous for real scenes.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Limits {
+    /// Largest accepted width or height, in pixels.
+    pub max_side: u32,
+    /// Largest accepted width × height.
+    pub max_pixels: u64,
+    /// Largest vertex count of one `p` or `pp`.
+    pub max_polygon_vertices: u64,
+}
+
+impl Default for Limits {
+    fn default() -> Self {
+        Self {
+            max_side: 16_384,
+            max_pixels: 64 * 1024 * 1024,
+            max_polygon_vertices: 1 << 16,
+        }
+    }
+}
+
+impl Limits {
+    /// Checks an image size against the limits; the error says what to do.
+    pub fn check_size(&self, width: u64, height: u64) -> Result<(), String> {
+        if width == 0 || height == 0 {
+            return Err(format!("image size {width}x{height} must be positive"));
+        }
+        if width > u64::from(self.max_side) || height > u64::from(self.max_side) {
+            return Err(format!(
+                "image size {width}x{height} exceeds the limit of {} pixels per side",
+                self.max_side
+            ));
+        }
+        if width * height > self.max_pixels {
+            return Err(format!(
+                "image size {width}x{height} exceeds the limit of {} pixels",
+                self.max_pixels
+            ));
+        }
+        Ok(())
+    }
+}
+
+/// Reads and parses an NFF file with the default limits.
+pub fn load_nff(path: &Path) -> Result<Scene, LoadError> {
+    let name = path.display().to_string();
+    let bytes = std::fs::read(path).map_err(|source| LoadError::Io {
+        path: name.clone(),
+        source,
+    })?;
+    let text = match String::from_utf8(bytes) {
+        Ok(text) => text,
+        Err(e) => {
+            let at = e.utf8_error().valid_up_to();
+            let line = 1 + e.as_bytes()[..at].iter().filter(|&&b| b == b'\n').count();
+            return Err(NffError {
+                file: name,
+                line,
+                message: "not a text file (invalid UTF-8); NFF scenes are plain ASCII".into(),
+            }
+            .into());
+        }
+    };
+    Ok(parse_nff(&text, &name)?)
+}
+
+/// Parses NFF text with the default limits; `file` names the source in errors.
+pub fn parse_nff(text: &str, file: &str) -> Result<Scene, NffError> {
+    parse_nff_with_limits(text, file, &Limits::default())
+}
+
+/// Parses NFF text, refusing sizes beyond `limits`.
+pub fn parse_nff_with_limits(text: &str, file: &str, limits: &Limits) -> Result<Scene, NffError> {
+    Parser {
+        lines: text.split('\n').enumerate().peekable(),
+        file,
+        limits,
+        last_line: 1,
+    }
+    .parse()
+}
+
+/// The entity keywords, for the unknown-keyword message.
+const KEYWORDS: &str = "v, b, l, f, c, s, p, pp";
+
+struct Parser<'a> {
+    lines: std::iter::Peekable<std::iter::Enumerate<std::str::Split<'a, char>>>,
+    file: &'a str,
+    limits: &'a Limits,
+    last_line: usize,
+}
+
+/// One significant line: its number and its tokens (comments removed).
+struct Line<'a> {
+    number: usize,
+    tokens: Vec<&'a str>,
+}
+
+fn tokens(raw: &str) -> Vec<&str> {
+    let code = raw.split('#').next().unwrap_or("");
+    code.split_whitespace().collect()
+}
+
+impl<'a> Parser<'a> {
+    fn error(&self, line: usize, message: impl Into<String>) -> NffError {
+        NffError {
+            file: self.file.to_string(),
+            line,
+            message: message.into(),
+        }
+    }
+
+    /// The next line with at least one token.
+    fn next_line(&mut self) -> Option<Line<'a>> {
+        for (index, raw) in self.lines.by_ref() {
+            let tokens = tokens(raw);
+            if !tokens.is_empty() {
+                self.last_line = index + 1;
+                return Some(Line {
+                    number: index + 1,
+                    tokens,
+                });
+            }
+        }
+        None
+    }
+
+    /// The first token of the next significant line, without consuming it.
+    fn peek_keyword(&mut self) -> Option<&'a str> {
+        while let Some((_, raw)) = self.lines.peek() {
+            if let Some(first) = tokens(raw).first() {
+                return Some(first);
+            }
+            self.lines.next();
+        }
+        None
+    }
+
+    /// A continuation line that must exist (vertex lines, cone ends).
+    fn required_line(&mut self, what: &str) -> Result<Line<'a>, NffError> {
+        self.next_line().ok_or_else(|| {
+            self.error(
+                self.last_line,
+                format!("unexpected end of file: expected {what}"),
+            )
+        })
+    }
+
+    fn number(&self, line: usize, token: &str, what: &str) -> Result<f32, NffError> {
+        let value: f32 = token.parse().map_err(|_| {
+            self.error(line, format!("'{token}' is not a number (expected {what})"))
+        })?;
+        if !value.is_finite() {
+            return Err(self.error(
+                line,
+                format!("'{token}' is not a finite number (expected {what})"),
+            ));
+        }
+        Ok(value)
+    }
+
+    /// Exactly `N` numbers in `tokens`.
+    fn numbers<const N: usize>(
+        &self,
+        line: usize,
+        tokens: &[&str],
+        what: &str,
+    ) -> Result<[f32; N], NffError> {
+        if tokens.len() != N {
+            return Err(self.error(
+                line,
+                format!(
+                    "expected {N} numbers ({what}), found {} values",
+                    tokens.len()
+                ),
+            ));
+        }
+        let mut out = [0.0; N];
+        for (slot, token) in out.iter_mut().zip(tokens) {
+            *slot = self.number(line, token, what)?;
+        }
+        Ok(out)
+    }
+
+    fn geometry(&self, line: usize, what: &str, e: GeometryError) -> NffError {
+        self.error(line, format!("invalid {what}: {e}"))
+    }
+
+    fn parse(mut self) -> Result<Scene, NffError> {
+        let mut view: Option<(usize, View)> = None;
+        let mut background = Rgb::BLACK;
+        let mut lights: Vec<Light> = Vec::new();
+        let mut materials: Vec<Material> = Vec::new();
+        let mut scene_parts = ScenePrimitives::default();
+
+        while let Some(line) = self.next_line() {
+            let n = line.number;
+            let args = &line.tokens[1..];
+            // The material of the next primitive: the last `f`, or the default one.
+            let current_material = |materials: &mut Vec<Material>| {
+                if materials.is_empty() {
+                    materials.push(Material::default());
+                }
+                (materials.len() - 1) as u32
+            };
+            match line.tokens[0] {
+                "v" => {
+                    if let Some((first, _)) = view {
+                        return Err(self.error(
+                            n,
+                            format!("second view block (the first is at line {first})"),
+                        ));
+                    }
+                    if !args.is_empty() {
+                        return Err(self.error(
+                            n,
+                            "unexpected text after 'v' (the view block starts on its own line)",
+                        ));
+                    }
+                    view = Some((n, self.view_block(n)?));
+                }
+                "b" => {
+                    let [r, g, b] = self.numbers(n, args, "background colour r g b")?;
+                    background = Rgb::new(r, g, b);
+                }
+                "l" => {
+                    let (position, color) = match args.len() {
+                        3 => (self.numbers::<3>(n, args, "light position x y z")?, None),
+                        6 => {
+                            let v = self.numbers::<6>(n, args, "light position and colour")?;
+                            ([v[0], v[1], v[2]], Some(Rgb::new(v[3], v[4], v[5])))
+                        }
+                        found => {
+                            return Err(self.error(
+                                n,
+                                format!("expected 3 numbers (light x y z) or 6 (x y z r g b), found {found} values"),
+                            ));
+                        }
+                    };
+                    lights.push(Light {
+                        position: Vec3::from_array(position),
+                        color: color.unwrap_or(Rgb::WHITE),
+                        color_given: color.is_some(),
+                    });
+                }
+                "f" => {
+                    let [r, g, b, kd, ks, shine, t, ior] =
+                        self.numbers(n, args, "material r g b Kd Ks Shine T index_of_refraction")?;
+                    // SPD files write ior 0 for opaque materials; only a transmitter uses it.
+                    if t > 0.0 && ior <= 0.0 {
+                        return Err(self.error(
+                            n,
+                            format!("index of refraction {ior} of a transmitting material (T = {t}) must be positive"),
+                        ));
+                    }
+                    materials.push(Material {
+                        color: Rgb::new(r, g, b),
+                        kd,
+                        ks,
+                        shine,
+                        t,
+                        ior,
+                    });
+                }
+                "s" => {
+                    let [x, y, z, r] = self.numbers(n, args, "sphere centre x y z and radius")?;
+                    let m = current_material(&mut materials);
+                    scene_parts
+                        .spheres
+                        .push(Sphere::new(Vec3::new(x, y, z), r, m));
+                }
+                "c" => {
+                    // Base and apex on the next two lines (NFF), or all eight numbers on
+                    // the `c` line itself (as the SPD generators write them).
+                    let [bx, by, bz, br, ax, ay, az, ar] = if args.is_empty() {
+                        let base = self.required_line("cone base line 'x y z radius'")?;
+                        let [bx, by, bz, br] =
+                            self.numbers(base.number, &base.tokens, "cone base x y z radius")?;
+                        let apex = self.required_line("cone apex line 'x y z radius'")?;
+                        let [ax, ay, az, ar] =
+                            self.numbers(apex.number, &apex.tokens, "cone apex x y z radius")?;
+                        [bx, by, bz, br, ax, ay, az, ar]
+                    } else {
+                        self.numbers(n, args, "cone base x y z radius and apex x y z radius")?
+                    };
+                    let m = current_material(&mut materials);
+                    let (b, a) = (Vec3::new(bx, by, bz), Vec3::new(ax, ay, az));
+                    if br == ar {
+                        let cyl = Cylinder::new(b, a, br, m)
+                            .map_err(|e| self.geometry(n, "cylinder", e))?;
+                        scene_parts.cylinders.push(cyl);
+                    } else {
+                        let cone =
+                            Cone::new(b, br, a, ar, m).map_err(|e| self.geometry(n, "cone", e))?;
+                        scene_parts.cones.push(cone);
+                    }
+                }
+                keyword @ ("p" | "pp") => {
+                    let patch = keyword == "pp";
+                    let what = if patch { "patch" } else { "polygon" };
+                    let count = self.vertex_count(n, args, what)?;
+                    let mut vertices = Vec::with_capacity(count.min(1024));
+                    let mut normals = Vec::new();
+                    for i in 0..count {
+                        let expect = if patch {
+                            format!("patch vertex {} of {count} 'x y z nx ny nz'", i + 1)
+                        } else {
+                            format!("polygon vertex {} of {count} 'x y z'", i + 1)
+                        };
+                        let v = self.required_line(&expect)?;
+                        if patch {
+                            let [x, y, z, nx, ny, nz] =
+                                self.numbers(v.number, &v.tokens, "patch vertex x y z nx ny nz")?;
+                            vertices.push(Vec3::new(x, y, z));
+                            normals.push(Vec3::new(nx, ny, nz));
+                        } else {
+                            let [x, y, z] =
+                                self.numbers(v.number, &v.tokens, "polygon vertex x y z")?;
+                            vertices.push(Vec3::new(x, y, z));
+                        }
+                    }
+                    let m = current_material(&mut materials);
+                    if patch {
+                        let p = Patch::new(vertices, normals, m)
+                            .map_err(|e| self.geometry(n, what, e))?;
+                        scene_parts.patches.push(p);
+                    } else {
+                        let p = Polygon::new(vertices, m).map_err(|e| self.geometry(n, what, e))?;
+                        scene_parts.polygons.push(p);
+                    }
+                }
+                other => {
+                    return Err(self.error(
+                        n,
+                        format!("unknown keyword '{other}' (expected one of {KEYWORDS})"),
+                    ));
+                }
+            }
+        }
+
+        let Some((_, view)) = view else {
+            return Err(self.error(
+                self.last_line,
+                "no view block: an NFF scene needs a 'v' line followed by from, at, up, angle, hither and resolution",
+            ));
+        };
+        let default_intensity = Scene::default_light_intensity(lights.len());
+        for light in lights.iter_mut().filter(|l| !l.color_given) {
+            light.color = Rgb::gray(default_intensity);
+        }
+        let mut scene = Scene::new(view);
+        scene.background = background;
+        scene.lights = lights;
+        scene.materials = materials;
+        scene.spheres = scene_parts.spheres;
+        scene.cylinders = scene_parts.cylinders;
+        scene.cones = scene_parts.cones;
+        scene.polygons = scene_parts.polygons;
+        scene.patches = scene_parts.patches;
+        Ok(scene)
+    }
+
+    fn vertex_count(&self, line: usize, args: &[&str], what: &str) -> Result<usize, NffError> {
+        let [token] = args else {
+            return Err(self.error(
+                line,
+                format!(
+                    "expected the {what}'s vertex count, found {} values",
+                    args.len()
+                ),
+            ));
+        };
+        let count: i64 = token.parse().map_err(|_| {
+            self.error(
+                line,
+                format!("'{token}' is not a whole number (expected the {what}'s vertex count)"),
+            )
+        })?;
+        if count < 3 {
+            return Err(self.error(
+                line,
+                format!("a {what} needs at least 3 vertices, found {count}"),
+            ));
+        }
+        if count as u64 > self.limits.max_polygon_vertices {
+            return Err(self.error(
+                line,
+                format!(
+                    "{what} vertex count {count} exceeds the limit of {}",
+                    self.limits.max_polygon_vertices
+                ),
+            ));
+        }
+        usize::try_from(count)
+            .map_err(|_| self.error(line, format!("{what} vertex count {count} is too large")))
+    }
+
+    /// The lines after `v`: from, at, up, angle, hither, resolution, in any order.
+    fn view_block(&mut self, v_line: usize) -> Result<View, NffError> {
+        const VIEW_KEYS: [&str; 6] = ["from", "at", "up", "angle", "hither", "resolution"];
+        let mut from = None;
+        let mut at = None;
+        let mut up = None;
+        let mut angle = None;
+        let mut hither = None;
+        let mut resolution = None;
+        while let Some(key) = self.peek_keyword() {
+            if !VIEW_KEYS.contains(&key) {
+                break;
+            }
+            let Some(line) = self.next_line() else { break };
+            let (n, args) = (line.number, &line.tokens[1..]);
+            let duplicate = |set: bool| -> Result<(), NffError> {
+                if set {
+                    Err(self.error(n, format!("'{key}' given twice in the view block")))
+                } else {
+                    Ok(())
+                }
+            };
+            match key {
+                "from" => {
+                    duplicate(from.is_some())?;
+                    from = Some(Vec3::from_array(self.numbers(
+                        n,
+                        args,
+                        "eye position x y z",
+                    )?));
+                }
+                "at" => {
+                    duplicate(at.is_some())?;
+                    at = Some(Vec3::from_array(self.numbers(
+                        n,
+                        args,
+                        "look-at point x y z",
+                    )?));
+                }
+                "up" => {
+                    duplicate(up.is_some())?;
+                    up = Some(Vec3::from_array(self.numbers(
+                        n,
+                        args,
+                        "up vector x y z",
+                    )?));
+                }
+                "angle" => {
+                    duplicate(angle.is_some())?;
+                    let [a] = self.numbers(n, args, "field of view in degrees")?;
+                    if !(a > 0.0 && a < 180.0) {
+                        return Err(
+                            self.error(n, format!("angle {a} must be between 0 and 180 degrees"))
+                        );
+                    }
+                    angle = Some(a);
+                }
+                "hither" => {
+                    duplicate(hither.is_some())?;
+                    let [h] = self.numbers(n, args, "hither distance")?;
+                    hither = Some(h);
+                }
+                _ => {
+                    duplicate(resolution.is_some())?;
+                    resolution = Some(self.resolution(n, args)?);
+                }
+            }
+        }
+        let missing =
+            |name: &str| self.error(v_line, format!("the view block has no '{name}' line"));
+        let view = View {
+            from: from.ok_or_else(|| missing("from"))?,
+            at: at.ok_or_else(|| missing("at"))?,
+            up: up.ok_or_else(|| missing("up"))?,
+            angle_deg: angle.ok_or_else(|| missing("angle"))?,
+            hither: hither.unwrap_or(0.0),
+            width: resolution.ok_or_else(|| missing("resolution"))?.0,
+            height: resolution.ok_or_else(|| missing("resolution"))?.1,
+        };
+        check_view_basis(&view).map_err(|message| self.error(v_line, message))?;
+        Ok(view)
+    }
+
+    fn resolution(&self, line: usize, args: &[&str]) -> Result<(u32, u32), NffError> {
+        let [w, h] = args else {
+            return Err(self.error(
+                line,
+                format!(
+                    "expected 2 whole numbers (resolution width height), found {} values",
+                    args.len()
+                ),
+            ));
+        };
+        let parse = |t: &str| -> Result<i64, NffError> {
+            t.parse().map_err(|_| {
+                self.error(
+                    line,
+                    format!("'{t}' is not a whole number (expected resolution width height)"),
+                )
+            })
+        };
+        let (w, h) = (parse(w)?, parse(h)?);
+        if w <= 0 || h <= 0 {
+            return Err(self.error(line, format!("resolution {w}x{h} must be positive")));
+        }
+        self.limits
+            .check_size(w as u64, h as u64)
+            .map_err(|m| self.error(line, m))?;
+        Ok((w as u32, h as u32))
+    }
+}
+
+/// Checks that `from`, `at` and `up` define a camera: distinct eye and target, and an
+/// up vector not parallel to the view direction.
+pub fn check_view_basis(view: &View) -> Result<(), String> {
+    let c = &mut NoCount;
+    let forward = c.sub(view.at, view.from);
+    let f_sq = c.dot(forward, forward);
+    if !(f_sq > 0.0) {
+        return Err("'from' and 'at' are the same point: the view has no direction".into());
+    }
+    let up_sq = c.dot(view.up, view.up);
+    let side = c.cross(forward, view.up);
+    // sin² of the angle between view direction and up must exceed 1e-10.
+    if !(c.dot(side, side) > 1e-10 * f_sq * up_sq) {
+        return Err("the 'up' vector is parallel to the view direction (or zero): choose an up vector across the line of sight".into());
+    }
+    Ok(())
+}
+
+#[derive(Default)]
+struct ScenePrimitives {
+    spheres: Vec<Sphere>,
+    cylinders: Vec<Cylinder>,
+    cones: Vec<Cone>,
+    polygons: Vec<Polygon>,
+    patches: Vec<Patch>,
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    const VIEW: &str =
+        "v\nfrom 0 0 -5\nat 0 0 0\nup 0 1 0\nangle 45\nhither 0.01\nresolution 64 48\n";
+
+    fn parse(body: &str) -> Result<Scene, NffError> {
+        parse_nff(&format!("{VIEW}{body}"), "t.nff")
+    }
+
+    fn err_line(body: &str) -> (usize, String) {
+        match parse(body) {
+            Ok(_) => panic!("expected an error for {body:?}"),
+            Err(e) => (e.line, e.message),
+        }
+    }
+
+    #[test]
+    fn parses_every_entity_with_comments_tabs_and_crlf() {
+        let text = "# header comment\r\nb 0.1 0.2 0.3\r\nv\r\nfrom\t0 0 -5\r\nat 0 0 0\r\nup 0 1 0\r\nangle 45\r\nhither 1\r\nresolution 32 16\r\n\r\n\
+                    l 1 2 3\r\nl 4 5 6 0.5 0.5 0.5 # coloured\r\nf 1 0 0 0.8 0.2 10 0 1\r\ns 0 0 0 1\r\nc\r\n0 0 0 1\r\n0 1 0 1\r\nc 0 0 0 1 0 1 0 0.5\r\n\
+                    f 0 1 0 0.5 0.5 3 0.5 1.5\r\np 3\r\n0 0 0\r\n1 0 0\r\n0 1 0\r\npp 3\r\n0 0 0 0 0 1\r\n1 0 0 0 0 1\r\n\r\n0 1 0 0 0 1\r\n";
+        let scene = parse_nff(text, "crlf.nff").unwrap_or_else(|e| panic!("{e}"));
+        assert_eq!((scene.view.width, scene.view.height), (32, 16));
+        assert_eq!(scene.view.hither, 1.0);
+        assert_eq!(scene.background, Rgb::new(0.1, 0.2, 0.3));
+        assert_eq!(scene.lights.len(), 2);
+        // One light without colour out of two: sqrt(2)/4 each.
+        assert!((scene.lights[0].color.r - 2f32.sqrt() / 4.0).abs() < 1e-6);
+        assert_eq!(scene.lights[1].color, Rgb::gray(0.5));
+        assert_eq!(
+            (
+                scene.spheres.len(),
+                scene.cylinders.len(),
+                scene.cones.len()
+            ),
+            (1, 1, 1)
+        );
+        assert_eq!((scene.polygons.len(), scene.patches.len()), (1, 1));
+        assert_eq!(scene.materials.len(), 2);
+        assert_eq!(scene.polygons[0].material, 1);
+        assert_eq!(scene.spheres[0].material, 0);
+        assert_eq!(scene.materials[1].ior, 1.5);
+    }
+
+    #[test]
+    fn malformed_inputs_name_the_line_and_the_expectation() {
+        let cases: &[(&str, usize, &str)] = &[
+            ("s 0 0 0\n", 8, "expected 4 numbers"),
+            ("s 0 0 zero 1\n", 8, "'zero' is not a number"),
+            ("s 0 0 nan 1\n", 8, "not a finite number"),
+            ("s 0 0 inf 1\n", 8, "not a finite number"),
+            ("s 0 0 1e40 1\n", 8, "not a finite number"),
+            ("sphere 0 0 0 1\n", 8, "unknown keyword 'sphere'"),
+            ("p 2\n0 0 0\n1 0 0\n", 8, "at least 3 vertices"),
+            ("p 3\n0 0 0\n1 1 1\n2 2 2\n", 8, "collinear"),
+            ("p 3\n0 0 0\n1 0 0\n", 10, "unexpected end of file"),
+            ("p 4000000000\n", 8, "exceeds the limit"),
+            ("p three\n", 8, "not a whole number"),
+            ("c\n1 1 1 0.5\n1 1 1 0.5\n", 8, "zero-length axis"),
+            ("c\n1 1 1 0.5\n", 9, "cone apex"),
+            ("c 1 1 1 0.5 2 2 2\n", 8, "expected 8 numbers"),
+            (
+                "pp 3\n0 0 0 0 0 1\n1 0 0 0 0 0\n0 1 0 0 0 1\n",
+                8,
+                "zero length",
+            ),
+            ("l 1 2\n", 8, "expected 3 numbers"),
+            ("f 1 1 1 1 0 0 0\n", 8, "expected 8 numbers"),
+            ("f 1 1 1 1 0 0 0.5 0\n", 8, "must be positive"),
+            ("f 1 1 1 1 0 0 0 0\nq\n", 9, "unknown keyword 'q'"),
+            ("b 1 1\n", 8, "background"),
+        ];
+        for (body, line, needle) in cases {
+            let (got_line, message) = err_line(body);
+            assert_eq!(got_line, *line, "{body:?}: {message}");
+            assert!(
+                message.contains(needle),
+                "{body:?}: '{message}' lacks '{needle}'"
+            );
+        }
+    }
+
+    #[test]
+    fn view_block_errors() {
+        let cases: &[(&str, usize, &str)] = &[
+            ("s 0 0 0 1\n", 1, "no view block"),
+            (
+                "v\nfrom 0 0 0\nat 0 0 1\nup 0 1 0\nangle 45\nresolution 0 10\n",
+                6,
+                "must be positive",
+            ),
+            (
+                "v\nfrom 0 0 0\nat 0 0 1\nup 0 1 0\nangle 45\nresolution 100000000 100000000\n",
+                6,
+                "exceeds the limit",
+            ),
+            (
+                "v\nfrom 0 0 0\nat 0 0 1\nup 0 1 0\nangle 45\nresolution -5 10\n",
+                6,
+                "must be positive",
+            ),
+            (
+                "v\nfrom 0 0 0\nat 0 0 1\nup 0 1 0\nangle 45\nresolution 1.5 10\n",
+                6,
+                "not a whole number",
+            ),
+            (
+                "v\nfrom 0 0 0\nat 0 0 1\nup 0 1 0\nangle 0\nresolution 8 8\n",
+                5,
+                "between 0 and 180",
+            ),
+            (
+                "v\nfrom 0 0 0\nat 0 0 1\nup 0 0 2\nangle 45\nresolution 8 8\n",
+                1,
+                "parallel",
+            ),
+            (
+                "v\nfrom 1 1 1\nat 1 1 1\nup 0 0 1\nangle 45\nresolution 8 8\n",
+                1,
+                "same point",
+            ),
+            (
+                "v\nfrom 0 0 0\nup 0 1 0\nangle 45\nresolution 8 8\n",
+                1,
+                "no 'at' line",
+            ),
+            ("v\nfrom 0 0 0\nfrom 0 0 0\n", 3, "given twice"),
+        ];
+        for (text, line, needle) in cases {
+            match parse_nff(text, "v.nff") {
+                Ok(_) => panic!("expected an error for {text:?}"),
+                Err(e) => {
+                    assert_eq!(e.line, *line, "{text:?}: {e}");
+                    assert!(
+                        e.message.contains(needle),
+                        "{text:?}: '{}' lacks '{needle}'",
+                        e.message
+                    );
+                    assert!(e.to_string().starts_with(&format!("v.nff:{line}: ")));
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn second_view_block_is_an_error() {
+        let (line, message) = err_line(VIEW);
+        assert_eq!(line, 8);
+        assert!(message.contains("second view block"), "{message}");
+    }
+
+    #[test]
+    fn utf8_errors_report_their_line() {
+        let dir = std::env::temp_dir().join(format!("rtprof-nff-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap_or_else(|e| panic!("{e}"));
+        let path = dir.join("bin.nff");
+        std::fs::write(&path, b"v\nfrom 0 0 0\n\xff\xfe\n").unwrap_or_else(|e| panic!("{e}"));
+        match load_nff(&path) {
+            Err(LoadError::Parse(e)) => assert_eq!(e.line, 3, "{e}"),
+            other => panic!("unexpected {other:?}"),
+        }
+        assert!(matches!(
+            load_nff(&dir.join("missing.nff")),
+            Err(LoadError::Io { .. })
+        ));
+        std::fs::remove_dir_all(&dir).ok();
+    }
+}

@@ -1,0 +1,44 @@
+//! Ray-primitive intersection tests, one primitive per file.
+//!
+//! Each test counts itself (`tests.<kind>.tests` on entry, `.hits` when it reports an
+//! intersection inside the ray's interval) next to the code it counts. A test returns
+//! only the distance (and, for quadrics, the axial coordinate); the surface normal is
+//! computed afterwards for the closest hit alone (the thesis's "hit body").
+
+mod cone;
+mod cylinder;
+mod patch;
+mod plane;
+mod polygon;
+mod sphere;
+
+pub use cone::Cone;
+pub use cylinder::Cylinder;
+pub use patch::Patch;
+pub use plane::PlanarOutline;
+pub use polygon::Polygon;
+pub use sphere::Sphere;
+
+/// Why a primitive could not be built from its description.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum GeometryError {
+    #[error("a polygon needs at least 3 vertices, found {0}")]
+    TooFewVertices(usize),
+    #[error("the first three polygon vertices are collinear or coincident (no plane normal)")]
+    DegeneratePolygon,
+    #[error("the cone/cylinder base and apex coincide (zero-length axis)")]
+    ZeroLengthAxis,
+    #[error("a patch vertex normal has zero length")]
+    ZeroNormal,
+    #[error("patch has {vertices} vertices but {normals} normals")]
+    NormalCountMismatch { vertices: usize, normals: usize },
+}
+
+/// The two roots of `a t² + 2 half_b t + c = 0` in ascending order, given the square
+/// root of the discriminant `half_b² - a c`. `a` must not be zero.
+#[inline(always)]
+pub(crate) fn ordered_roots(a: f32, half_b: f32, root: f32) -> [f32; 2] {
+    let t1 = (-half_b - root) / a;
+    let t2 = (-half_b + root) / a;
+    if t1 <= t2 { [t1, t2] } else { [t2, t1] }
+}

@@ -1,0 +1,227 @@
+//! Sphere: `d² + 2 (R·Voc) d + (|Voc|² - r²) = 0` (thesis ch. 1.3), `N = normalize(P - C)`.
+
+use crate::counter::{Counter, Stat};
+use crate::ray::Ray;
+use crate::vec3::Vec3;
+
+/// A sphere. A negative NFF radius means only the inside is visible.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Sphere {
+    pub center: Vec3,
+    /// The radius as written in the scene (negative: inside visible).
+    pub radius: f32,
+    pub material: u32,
+    radius_sq: f32,
+}
+
+impl Sphere {
+    /// Builds a sphere; `radius` keeps its NFF sign.
+    pub fn new(center: Vec3, radius: f32, material: u32) -> Self {
+        Self {
+            center,
+            radius,
+            material,
+            radius_sq: radius * radius,
+        }
+    }
+
+    /// Whether only the inside of the sphere is visible (negative radius).
+    pub fn inside_visible(&self) -> bool {
+        self.radius < 0.0
+    }
+
+    /// Distance to the first visible intersection in `(t_min, t_max)`.
+    ///
+    /// Counts one `sub`, two `dot` and, when the ray meets the sphere's
+    /// supporting quadric, one `sqrt`.
+    #[inline(always)]
+    pub fn intersect<C: Counter>(
+        &self,
+        ray: &Ray,
+        t_min: f32,
+        t_max: f32,
+        c: &mut C,
+    ) -> Option<f32> {
+        c.tally(Stat::SphereTest);
+        let voc = c.sub(ray.origin, self.center);
+        let half_b = c.dot(ray.dir, voc);
+        let cc = c.dot(voc, voc) - self.radius_sq;
+        let disc = half_b * half_b - cc;
+        // A tangent ray (disc = 0) and a zero-radius sphere are never hit: neither
+        // has an area that a pixel could see, and the normal would be undefined.
+        if disc <= 0.0 {
+            return None;
+        }
+        let root = c.sqrt(disc);
+        let near = -half_b - root;
+        let far = -half_b + root;
+        let t = if !self.inside_visible() && near > t_min && near < t_max {
+            near
+        } else if far > t_min && far < t_max {
+            far
+        } else {
+            return None;
+        };
+        c.tally(Stat::SphereHit);
+        Some(t)
+    }
+
+    /// The visible side's normal at surface point `p`: outward, or inward when
+    /// only the inside is visible.
+    #[inline]
+    pub fn normal<C: Counter>(&self, p: Vec3, c: &mut C) -> Vec3 {
+        let radial = c.sub(p, self.center);
+        let n = c.normalize(radial);
+        if self.inside_visible() {
+            n.flipped()
+        } else {
+            n
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::counter::{Count, NoCount};
+
+    fn ray(o: [f32; 3], d: [f32; 3]) -> Ray {
+        Ray {
+            origin: Vec3::from_array(o),
+            dir: Vec3::from_array(d),
+        }
+    }
+
+    #[test]
+    fn hits_front_of_unit_sphere_at_hand_computed_distance() {
+        // Eye at z = -5 looking +z at a sphere of radius 2 at (0, 0, 3): front at z = 1.
+        let s = Sphere::new(Vec3::new(0.0, 0.0, 3.0), 2.0, 0);
+        let t = s.intersect(
+            &ray([0.0, 0.0, -5.0], [0.0, 0.0, 1.0]),
+            0.0,
+            f32::INFINITY,
+            &mut NoCount,
+        );
+        assert_eq!(t, Some(6.0));
+        let n = s.normal(Vec3::new(0.0, 0.0, 1.0), &mut NoCount);
+        assert_eq!(n.to_array(), [0.0, 0.0, -1.0]);
+    }
+
+    #[test]
+    fn off_axis_hit_matches_pythagoras() {
+        // Ray along +x at height y = 1 through a sphere of radius 2 at the origin:
+        // enters at x = -sqrt(3), so t = 10 - sqrt(3) from x = -10.
+        let s = Sphere::new(Vec3::ZERO, 2.0, 0);
+        let t = s
+            .intersect(
+                &ray([-10.0, 1.0, 0.0], [1.0, 0.0, 0.0]),
+                0.0,
+                f32::INFINITY,
+                &mut NoCount,
+            )
+            .unwrap_or(f32::NAN);
+        assert!((t - (10.0 - 3f32.sqrt())).abs() < 1e-5, "t = {t}");
+    }
+
+    #[test]
+    fn misses_and_interval_limits() {
+        let s = Sphere::new(Vec3::ZERO, 1.0, 0);
+        assert_eq!(
+            s.intersect(
+                &ray([-5.0, 1.5, 0.0], [1.0, 0.0, 0.0]),
+                0.0,
+                100.0,
+                &mut NoCount
+            ),
+            None
+        );
+        // Sphere behind the origin of the ray.
+        assert_eq!(
+            s.intersect(
+                &ray([5.0, 0.0, 0.0], [1.0, 0.0, 0.0]),
+                0.0,
+                100.0,
+                &mut NoCount
+            ),
+            None
+        );
+        // Hit beyond t_max (a shadow ray stopping at the light) does not count.
+        assert_eq!(
+            s.intersect(
+                &ray([-5.0, 0.0, 0.0], [1.0, 0.0, 0.0]),
+                0.0,
+                3.0,
+                &mut NoCount
+            ),
+            None
+        );
+        // From inside, the far wall is hit.
+        assert_eq!(
+            s.intersect(
+                &ray([0.0, 0.0, 0.0], [1.0, 0.0, 0.0]),
+                0.0,
+                100.0,
+                &mut NoCount
+            ),
+            Some(1.0)
+        );
+    }
+
+    #[test]
+    fn negative_radius_shows_only_the_inside() {
+        let s = Sphere::new(Vec3::ZERO, -1.0, 0);
+        let t = s.intersect(
+            &ray([-5.0, 0.0, 0.0], [1.0, 0.0, 0.0]),
+            0.0,
+            100.0,
+            &mut NoCount,
+        );
+        assert_eq!(
+            t,
+            Some(6.0),
+            "the near (outer) wall is invisible; the far wall's inside is hit"
+        );
+        assert_eq!(
+            s.normal(Vec3::new(1.0, 0.0, 0.0), &mut NoCount).to_array(),
+            [-1.0, 0.0, 0.0]
+        );
+    }
+
+    #[test]
+    fn exact_counts_of_one_ray_against_one_sphere() {
+        let s = Sphere::new(Vec3::new(0.0, 0.0, 3.0), 2.0, 0);
+        let mut c = Count::default();
+        s.intersect(
+            &ray([0.0, 0.0, -5.0], [0.0, 0.0, 1.0]),
+            0.0,
+            f32::INFINITY,
+            &mut c,
+        );
+        assert_eq!(
+            (c.get(Stat::Sub), c.get(Stat::Dot), c.get(Stat::Sqrt)),
+            (1, 2, 1),
+            "hit: one O - C, R·Voc and Voc·Voc, one sqrt"
+        );
+        assert_eq!((c.get(Stat::SphereTest), c.get(Stat::SphereHit)), (1, 1));
+
+        let mut miss = Count::default();
+        s.intersect(
+            &ray([0.0, 5.0, -5.0], [0.0, 0.0, 1.0]),
+            0.0,
+            f32::INFINITY,
+            &mut miss,
+        );
+        assert_eq!(
+            (
+                miss.get(Stat::Sub),
+                miss.get(Stat::Dot),
+                miss.get(Stat::Sqrt)
+            ),
+            (1, 2, 0)
+        );
+        assert_eq!(
+            (miss.get(Stat::SphereTest), miss.get(Stat::SphereHit)),
+            (1, 0)
+        );
+    }
+}

@@ -1,0 +1,131 @@
+//! The scene: view, lights, materials and primitives, grouped by kind so that the
+//! brute-force loop (and later SIMD) walks each kind as one contiguous array.
+
+use crate::color::Rgb;
+use crate::primitives::{Cone, Cylinder, Patch, Polygon, Sphere};
+use crate::vec3::Vec3;
+
+/// The NFF `v` block.
+#[derive(Clone, Debug, PartialEq)]
+pub struct View {
+    pub from: Vec3,
+    pub at: Vec3,
+    pub up: Vec3,
+    /// Degrees from the centre of the top sample row to the centre of the bottom one.
+    pub angle_deg: f32,
+    /// Near distance as written; parsed and kept, not used to clip (SPD statistics
+    /// count every object in front of the eye).
+    pub hither: f32,
+    pub width: u32,
+    pub height: u32,
+}
+
+/// A positional light.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Light {
+    pub position: Vec3,
+    /// Intensity per channel.
+    pub color: Rgb,
+    /// Whether the NFF line gave a colour (otherwise `color` is the SPD default).
+    pub color_given: bool,
+}
+
+/// An NFF `f` material.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Material {
+    pub color: Rgb,
+    /// Diffuse coefficient.
+    pub kd: f32,
+    /// Specular coefficient: Phong highlight weight and reflection coefficient.
+    pub ks: f32,
+    /// Phong exponent.
+    pub shine: f32,
+    /// Transmittance; transmitters are two-sided and refract.
+    pub t: f32,
+    /// Index of refraction.
+    pub ior: f32,
+}
+
+impl Default for Material {
+    /// The material of objects that precede any `f` line: white, diffuse.
+    fn default() -> Self {
+        Self {
+            color: Rgb::WHITE,
+            kd: 1.0,
+            ks: 0.0,
+            shine: 1.0,
+            t: 0.0,
+            ior: 1.0,
+        }
+    }
+}
+
+/// A whole scene.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Scene {
+    pub view: View,
+    pub background: Rgb,
+    pub lights: Vec<Light>,
+    pub materials: Vec<Material>,
+    pub spheres: Vec<Sphere>,
+    pub cylinders: Vec<Cylinder>,
+    pub cones: Vec<Cone>,
+    pub polygons: Vec<Polygon>,
+    pub patches: Vec<Patch>,
+}
+
+impl Scene {
+    /// An empty scene with the given view and a black background.
+    pub fn new(view: View) -> Self {
+        Self {
+            view,
+            background: Rgb::BLACK,
+            lights: Vec::new(),
+            materials: Vec::new(),
+            spheres: Vec::new(),
+            cylinders: Vec::new(),
+            cones: Vec::new(),
+            polygons: Vec::new(),
+            patches: Vec::new(),
+        }
+    }
+
+    /// Number of primitives of every kind.
+    pub fn primitive_count(&self) -> usize {
+        self.spheres.len()
+            + self.cylinders.len()
+            + self.cones.len()
+            + self.polygons.len()
+            + self.patches.len()
+    }
+
+    /// The SPD intensity for lights given without a colour: `sqrt(n) / (2 n)` each for
+    /// `n` lights, so that the sum over lights grows like `sqrt(n) / 2`.
+    pub fn default_light_intensity(light_count: usize) -> f32 {
+        let n = light_count.max(1) as f32;
+        #[allow(clippy::disallowed_methods)] // scene set-up, not the counted render
+        let root = n.sqrt();
+        root / (2.0 * n)
+    }
+
+    /// A one-line summary such as `4200 spheres, 4200 cylinders, 1 polygon, 3 lights`.
+    pub fn summary(&self) -> String {
+        let mut parts = Vec::new();
+        let mut add = |n: usize, one: &str, many: &str| {
+            if n > 0 {
+                parts.push(format!("{n} {}", if n == 1 { one } else { many }));
+            }
+        };
+        add(self.spheres.len(), "sphere", "spheres");
+        add(self.cylinders.len(), "cylinder", "cylinders");
+        add(self.cones.len(), "cone", "cones");
+        add(self.polygons.len(), "polygon", "polygons");
+        add(self.patches.len(), "patch", "patches");
+        add(self.lights.len(), "light", "lights");
+        if parts.is_empty() {
+            "empty scene".to_string()
+        } else {
+            parts.join(", ")
+        }
+    }
+}
