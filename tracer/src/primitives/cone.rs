@@ -8,7 +8,7 @@
 //! zero or negative (rays steeper than the cone's half-angle), so roots are ordered
 //! explicitly. The outward normal is `normalize((P - Q) - k r(m) V)`.
 
-use super::cylinder::unit_axis;
+use super::cylinder::{AxialTerms, unit_axis};
 use super::{GeometryError, ordered_roots};
 use crate::counter::{Counter, Stat};
 use crate::ray::Ray;
@@ -76,11 +76,7 @@ impl Cone {
         c: &mut C,
     ) -> Option<(f32, f32)> {
         c.tally(Stat::ConeTest);
-        let voc = c.sub(ray.origin, self.base);
-        let rv = c.dot(ray.dir, self.axis);
-        let ov = c.dot(voc, self.axis);
-        let ro = c.dot(ray.dir, voc);
-        let oo = c.dot(voc, voc);
+        let AxialTerms { rv, ov, ro, oo } = AxialTerms::new(ray, self.base, self.axis, c);
         let (k, w, rb) = (self.slope, self.axial_weight, self.rb);
         let a = 1.0 - w * rv * rv;
         let half_b = ro - w * rv * ov - rb * k * rv;

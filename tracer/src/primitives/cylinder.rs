@@ -55,11 +55,7 @@ impl Cylinder {
         c: &mut C,
     ) -> Option<(f32, f32)> {
         c.tally(Stat::CylinderTest);
-        let voc = c.sub(ray.origin, self.base);
-        let rv = c.dot(ray.dir, self.axis);
-        let ov = c.dot(voc, self.axis);
-        let ro = c.dot(ray.dir, voc);
-        let oo = c.dot(voc, voc);
+        let AxialTerms { rv, ov, ro, oo } = AxialTerms::new(ray, self.base, self.axis, c);
         let a = 1.0 - rv * rv;
         let half_b = ro - rv * ov;
         let cc = oo - ov * ov - self.radius_sq;
@@ -96,6 +92,28 @@ impl Cylinder {
             n.flipped()
         } else {
             n
+        }
+    }
+}
+
+/// The dot products a ray-quadric test around an axis needs, with `Voc = O - base`:
+/// `R·V`, `Voc·V`, `R·Voc` and `Voc·Voc` (one `sub`, four `dot`).
+pub(super) struct AxialTerms {
+    pub rv: f32,
+    pub ov: f32,
+    pub ro: f32,
+    pub oo: f32,
+}
+
+impl AxialTerms {
+    #[inline(always)]
+    pub fn new<C: Counter>(ray: &Ray, base: Vec3, axis: Vec3, c: &mut C) -> Self {
+        let voc = c.sub(ray.origin, base);
+        Self {
+            rv: c.dot(ray.dir, axis),
+            ov: c.dot(voc, axis),
+            ro: c.dot(ray.dir, voc),
+            oo: c.dot(voc, voc),
         }
     }
 }

@@ -59,11 +59,7 @@ impl Patch {
         c: &mut C,
     ) -> Option<f32> {
         c.tally(Stat::PatchTest);
-        let t = self.outline.intersect_plane(ray, t_min, t_max, c)?;
-        let p = self.outline.hit_point(ray, t, c);
-        if !self.outline.contains(self.outline.project(p)) {
-            return None;
-        }
+        let t = self.outline.intersect(ray, t_min, t_max, c)?;
         c.tally(Stat::PatchHit);
         Some(t)
     }

@@ -79,6 +79,21 @@ impl PlanarOutline {
         Some(t)
     }
 
+    /// The plane test, then (when the plane is hit) the hit point (one `scale`, one
+    /// `add`) and the crossing test: the distance when the ray meets the outline.
+    #[inline(always)]
+    pub fn intersect<C: Counter>(
+        &self,
+        ray: &Ray,
+        t_min: f32,
+        t_max: f32,
+        c: &mut C,
+    ) -> Option<f32> {
+        let t = self.intersect_plane(ray, t_min, t_max, c)?;
+        let p = self.hit_point(ray, t, c);
+        self.contains(self.project(p)).then_some(t)
+    }
+
     /// The point at distance `t` along `ray` (one `scale`, one `add`).
     #[inline(always)]
     pub fn hit_point<C: Counter>(&self, ray: &Ray, t: f32, c: &mut C) -> Vec3 {

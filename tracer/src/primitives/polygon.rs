@@ -32,11 +32,7 @@ impl Polygon {
         c: &mut C,
     ) -> Option<f32> {
         c.tally(Stat::PolygonTest);
-        let t = self.outline.intersect_plane(ray, t_min, t_max, c)?;
-        let p = self.outline.hit_point(ray, t, c);
-        if !self.outline.contains(self.outline.project(p)) {
-            return None;
-        }
+        let t = self.outline.intersect(ray, t_min, t_max, c)?;
         c.tally(Stat::PolygonHit);
         Some(t)
     }
