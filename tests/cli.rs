@@ -145,6 +145,32 @@ fn command_line_misuse_exits_2() {
             dir.join("x.jpg").display().to_string(),
         ],
         vec!["render".into(), rings.clone(), "--no-such-flag".into()],
+        // Variants that make the same choice cannot combine.
+        vec![
+            "render".into(),
+            rings.clone(),
+            "--variant".into(),
+            "simd,bvh".into(),
+        ],
+        vec![
+            "count".into(),
+            rings.clone(),
+            "--variant".into(),
+            "baseline+ortho".into(),
+        ],
+        // compare: one image, a missing image, a scene without --variants.
+        vec!["compare".into(), dir.join("a.png").display().to_string()],
+        vec![
+            "compare".into(),
+            dir.join("a.png").display().to_string(),
+            dir.join("b.png").display().to_string(),
+        ],
+        vec![
+            "compare".into(),
+            rings.clone(),
+            "--variants".into(),
+            "baseline,fast-sqrt+fast-sqrt-tuned".into(),
+        ],
     ];
     for args in cases {
         let args: Vec<&str> = args.iter().map(String::as_str).collect();
@@ -290,4 +316,107 @@ fn render_writes_an_image_and_reports_the_time_split() {
     );
     assert!(read(&img).len() > 100);
     std::fs::remove_dir_all(&dir).ok();
+}
+
+#[test]
+fn compare_reports_metrics_of_two_images_and_of_variants() {
+    let dir = scratch("compare");
+    let scene = dir.join("one.nff");
+    std::fs::write(
+        &scene,
+        format!("{VIEW}l 2 3 -6\nf 1 0.5 0 1 0 1 0 1\ns 0 0 0 1.5\n"),
+    )
+    .unwrap_or_else(|e| panic!("{e}"));
+    let scene = scene.display().to_string();
+    let a = dir.join("a.png").display().to_string();
+    let b = dir.join("b.ppm").display().to_string();
+    for (img, variant) in [(&a, "baseline"), (&b, "bvh")] {
+        let out = rtprof(&["render", &scene, "--variant", variant, "-o", img]);
+        assert_eq!(out.status.code(), Some(0), "{}", stderr(&out));
+    }
+    let diff = dir.join("diff.png");
+    let out = rtprof(&[
+        "compare",
+        &a,
+        &b,
+        "--json",
+        "-o",
+        &diff.display().to_string(),
+    ]);
+    assert_eq!(out.status.code(), Some(0), "{}", stderr(&out));
+    let json: serde_json::Value =
+        serde_json::from_slice(&out.stdout).unwrap_or_else(|e| panic!("{e}"));
+    assert_eq!(json["rms"], 0.0);
+    assert_eq!(json["ssim"], 1.0);
+    assert!(json["psnr"].is_null(), "identical images: infinite PSNR");
+    // Method 2 (histograms from the P3 text) agrees with method 1 (binary image).
+    assert_eq!(json["p3_histograms_a"]["gray"], json["histogram_a"]);
+    let pixels: u64 = json["histogram_b"]
+        .as_array()
+        .map(|bins| bins.iter().filter_map(|v| v.as_u64()).sum())
+        .unwrap_or(0);
+    assert_eq!(pixels, 64);
+    assert!(diff.is_file());
+
+    let out = rtprof(&[
+        "compare",
+        &scene,
+        "--variants",
+        "baseline,bvh,pixel-avg",
+        "--repeats",
+        "2",
+        "--json",
+    ]);
+    assert_eq!(out.status.code(), Some(0), "{}", stderr(&out));
+    let json: serde_json::Value =
+        serde_json::from_slice(&out.stdout).unwrap_or_else(|e| panic!("{e}"));
+    let rows = json["variants"].as_array().cloned().unwrap_or_default();
+    assert_eq!(rows.len(), 3);
+    assert_eq!(rows[0]["name"], "baseline");
+    assert_eq!(rows[0]["speedup"], 1.0);
+    for row in &rows {
+        for key in [
+            "seconds", "speedup", "rms", "band", "psnr", "ssim", "counts",
+        ] {
+            assert!(row.get(key).is_some(), "{key} missing in {row}");
+        }
+        let s = &row["seconds"];
+        assert!(s["low"].as_f64() <= s["median"].as_f64());
+        assert!(s["median"].as_f64() <= s["high"].as_f64());
+    }
+    assert_eq!(rows[1]["counts"]["rays"], rows[0]["counts"]["rays"]);
+    assert_eq!(rows[1]["rms"], 0.0);
+    assert_eq!(rows[1]["band"], rows[0]["band"]);
+    assert_eq!(rows[2]["counts"]["rays"]["primary"], 32);
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+#[test]
+fn variants_lists_every_variant_with_measured_sqrt_errors() {
+    let out = rtprof(&["variants", "--json"]);
+    assert_eq!(out.status.code(), Some(0), "{}", stderr(&out));
+    let json: serde_json::Value =
+        serde_json::from_slice(&out.stdout).unwrap_or_else(|e| panic!("{e}"));
+    let list = json.as_array().cloned().unwrap_or_default();
+    let names: Vec<&str> = list.iter().filter_map(|v| v["name"].as_str()).collect();
+    for name in [
+        "baseline",
+        "fast-sqrt",
+        "fast-sqrt-tuned",
+        "fast-sqrt-newton",
+        "bounded",
+        "ortho",
+        "no-rsqrt-shading",
+        "pixel-avg",
+        "simd",
+        "bvh",
+    ] {
+        assert!(names.contains(&name), "{name} missing: {names:?}");
+    }
+    let fast = list.iter().find(|v| v["name"] == "fast-sqrt");
+    let max = fast
+        .and_then(|v| v["sqrt_max_rel_error"].as_f64())
+        .unwrap_or(0.0);
+    // (3/2)/sqrt(2) - 1, the analytic worst case of the thesis's bit trick.
+    assert!((max - 0.060_660_17).abs() < 1e-6, "{max}");
 }

@@ -1,8 +1,10 @@
 //! Command-line definition and dispatch (the stable contract of docs/design.md).
 
+mod compare;
 mod count;
 mod render;
 mod scene_args;
+mod variants;
 
 use clap::{Parser, Subcommand};
 
@@ -20,6 +22,10 @@ enum Command {
     Render(render::RenderArgs),
     /// Render an NFF scene counting every operation, test and ray.
     Count(count::CountArgs),
+    /// Compare two images, or run variants of one scene side by side.
+    Compare(compare::CompareArgs),
+    /// List the optimization variants and the measured accuracy of the approximate ones.
+    Variants(variants::VariantsArgs),
 }
 
 /// Runs one command.
@@ -27,5 +33,7 @@ pub fn run(cli: Cli) -> anyhow::Result<()> {
     match cli.command {
         Command::Render(args) => render::run(&args),
         Command::Count(args) => count::run(&args),
+        Command::Compare(args) => compare::run(&args),
+        Command::Variants(args) => variants::run(&args),
     }
 }

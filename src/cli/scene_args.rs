@@ -6,15 +6,15 @@ use indicatif::{ProgressBar, ProgressStyle};
 use std::path::PathBuf;
 use std::time::{Duration, Instant};
 use tracer::{
-    BruteForce, Counter, Limits, RenderOptions, Rendered, Sampling, Scene, ShadingMode, VariantSet,
-    load_nff,
+    Counter, Limits, RenderOptions, Rendered, Sampling, Scene, ShadingMode, VariantSet, load_nff,
+    render_variant,
 };
 
 #[derive(clap::Args, Debug)]
 pub struct SceneArgs {
     /// NFF scene file.
     pub scene: PathBuf,
-    /// Optimization variants, comma-separated.
+    /// Optimization variants, combined: e.g. bvh,fast-sqrt (`rtprof variants` lists them).
     #[arg(long, default_value = "baseline", value_name = "V")]
     pub variant: String,
     /// Image size WxH (default: the scene's resolution).
@@ -29,13 +29,22 @@ pub struct SceneArgs {
 }
 
 /// Parses `WxH` such as `640x480`.
-fn parse_size(text: &str) -> Result<(u32, u32), String> {
+pub fn parse_size(text: &str) -> Result<(u32, u32), String> {
     let bad = || format!("'{text}' is not a size: expected WxH such as 640x480");
     let (w, h) = text.split_once(['x', 'X']).ok_or_else(bad)?;
     let w: u64 = w.trim().parse().map_err(|_| bad())?;
     let h: u64 = h.trim().parse().map_err(|_| bad())?;
     Limits::default().check_size(w, h)?;
     Ok((w as u32, h as u32))
+}
+
+/// A rayon pool of `threads` workers (default: one per core).
+pub fn thread_pool(threads: Option<u16>) -> Result<rayon::ThreadPool> {
+    let mut pool = rayon::ThreadPoolBuilder::new();
+    if let Some(n) = threads {
+        pool = pool.num_threads(usize::from(n));
+    }
+    pool.build().context("cannot start the worker threads")
 }
 
 /// A finished render with its timings.
@@ -54,25 +63,16 @@ impl SceneArgs {
         let variants = VariantSet::parse(&self.variant)?;
         let start = Instant::now();
         let scene = load_nff(&self.scene)?;
-        let accel = BruteForce::new(&scene);
-        let preprocessing = start.elapsed();
+        let parsing = start.elapsed();
 
         let (width, height) = self.size.unwrap_or((scene.view.width, scene.view.height));
-        let options = RenderOptions {
-            width,
-            height,
-            sampling: if self.spd {
-                Sampling::SpdCorners
-            } else {
-                Sampling::PixelCenters
-            },
-            mode,
+        let sampling = if self.spd {
+            Sampling::SpdCorners
+        } else {
+            Sampling::PixelCenters
         };
-        let mut pool = rayon::ThreadPoolBuilder::new();
-        if let Some(n) = self.threads {
-            pool = pool.num_threads(usize::from(n));
-        }
-        let pool = pool.build().context("cannot start the worker threads")?;
+        let options = RenderOptions::new(width, height, sampling, mode);
+        let pool = thread_pool(self.threads)?;
         let threads = pool.current_num_threads();
 
         let bar = ProgressBar::new(options.sample_rows());
@@ -83,19 +83,18 @@ impl SceneArgs {
             .unwrap_or_else(|_| ProgressStyle::default_bar())
             .progress_chars("=> "),
         );
-        let start = Instant::now();
         let rendered =
-            pool.install(|| tracer::render::<C, _>(&scene, &accel, &options, &|n| bar.inc(n)));
+            pool.install(|| render_variant::<C>(&scene, &options, &variants, &|n| bar.inc(n)));
         bar.finish_and_clear();
-        let rendered = match rendered {
+        let out = match rendered {
             Ok(r) => r,
             Err(e) => bail!("{}: {e}", self.scene.display()),
         };
         Ok(Run {
             scene,
-            rendered,
-            preprocessing,
-            tracing: start.elapsed(),
+            rendered: out.rendered,
+            preprocessing: parsing + out.preprocessing,
+            tracing: out.tracing,
             threads,
             variants,
         })

@@ -8,6 +8,13 @@
 //! With [`Sampling::PixelCenters`] the samples are the W×H pixel centres; with
 //! [`Sampling::SpdCorners`] they are the (W+1)×(H+1) pixel corners of the SPD
 //! procedure, and the corner rows span the angle.
+//!
+//! Two variants change the projection ([`Projection`]): `ortho` moves the origin over
+//! the sample grid and keeps one direction for every ray (thesis 8.3.2: no per-ray
+//! normalization); `bounded` walks the screen row by row, the row's base direction
+//! `forward + y·up` computed once per row, so an eye ray costs one `scale`, one `add`
+//! and one `normalize`, and its tests use the scene's precomputed eye offsets. The
+//! perspective ray sums in the same order, so both give the same bits.
 
 use crate::counter::{Counter, Stat};
 use crate::nff::check_view_basis;
@@ -25,9 +32,24 @@ pub enum Sampling {
     SpdCorners,
 }
 
-/// A perspective pinhole camera.
+/// How eye rays leave the camera.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
+pub enum Projection {
+    /// Pinhole perspective from the NFF view (baseline).
+    #[default]
+    Perspective,
+    /// Parallel rays along the view direction from a grid of origins (variant `ortho`).
+    /// The grid covers what the perspective view shows at the look-at distance.
+    Orthographic,
+    /// Perspective walked row by row from a scene with eye offsets (variant `bounded`,
+    /// see [`crate::eye_space`]).
+    EyeRows,
+}
+
+/// A camera: eye rays for every sample of the grid.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Camera {
+    projection: Projection,
     eye: Vec3,
     forward: Vec3,
     /// Right vector scaled by the sample pitch.
@@ -39,13 +61,36 @@ pub struct Camera {
 }
 
 impl Camera {
-    /// Sets up the camera for a `width` × `height` image (counts one
-    /// `calls.primary_ray_setup`). Fails when the view defines no basis.
+    /// A perspective camera (see [`Camera::new`]).
     pub fn perspective<C: Counter>(
         view: &View,
         width: u32,
         height: u32,
         sampling: Sampling,
+        c: &mut C,
+    ) -> Result<Self, String> {
+        Self::new(
+            view,
+            width,
+            height,
+            sampling,
+            Projection::Perspective,
+            None,
+            c,
+        )
+    }
+
+    /// Sets up the camera for a `width` × `height` image (counts one
+    /// `calls.primary_ray_setup`). Fails when the view defines no basis. `ortho_focus`
+    /// is the distance at which the orthographic grid spans what the perspective view
+    /// spans (default `|at - from|`).
+    pub fn new<C: Counter>(
+        view: &View,
+        width: u32,
+        height: u32,
+        sampling: Sampling,
+        projection: Projection,
+        ortho_focus: Option<f32>,
         c: &mut C,
     ) -> Result<Self, String> {
         check_view_basis(view)?;
@@ -60,8 +105,19 @@ impl Camera {
         let u = c.normalize(side);
         let v = c.cross(u, w);
         let half_span = (view.angle_deg.to_radians() * 0.5).tan();
-        let pitch = 2.0 * half_span / (rows.max(2) - 1) as f32;
+        let mut pitch = 2.0 * half_span / (rows.max(2) - 1) as f32;
+        if projection == Projection::Orthographic {
+            // The grid spans, at the look-at distance, what the perspective view spans.
+            pitch *= match ortho_focus {
+                Some(focus) if focus > 0.0 && focus.is_finite() => focus,
+                _ => {
+                    let focus_sq = c.dot(view_dir, view_dir);
+                    c.sqrt(focus_sq)
+                }
+            };
+        }
         Ok(Self {
+            projection,
             eye: view.from,
             forward: w,
             right: c.scale(u, pitch),
@@ -76,16 +132,64 @@ impl Camera {
         (self.columns, self.rows)
     }
 
-    /// The eye ray through sample `(column, row)`, row 0 at the top. Counts two
-    /// `scale`, two `add` and one `normalize`.
-    #[inline]
-    pub fn ray<C: Counter>(&self, column: u32, row: u32, c: &mut C) -> Ray {
+    /// The projection in use.
+    pub fn projection(&self) -> Projection {
+        self.projection
+    }
+
+    /// Grid coordinates of sample `(column, row)` relative to the centre, y up.
+    #[inline(always)]
+    fn offsets(&self, column: u32, row: u32) -> (f32, f32) {
         let x = column as f32 - (self.columns - 1) as f32 * 0.5;
         let y = (self.rows - 1) as f32 * 0.5 - row as f32;
+        (x, y)
+    }
+
+    /// The eye ray through sample `(column, row)`, row 0 at the top. Perspective:
+    /// two `scale`, two `add`, one `normalize`; orthographic: two `scale`, two `add`
+    /// (the origin moves, the direction is fixed); camera space: use
+    /// [`Camera::ray_from_eye`].
+    #[inline]
+    pub fn ray<C: Counter>(&self, column: u32, row: u32, c: &mut C) -> Ray {
+        let (x, y) = self.offsets(column, row);
         let across = c.scale(self.right, x);
         let down = c.scale(self.up, y);
-        let dir = c.add(self.forward, across);
-        let dir = c.add(dir, down);
+        match self.projection {
+            Projection::Orthographic => {
+                let origin = c.add(self.eye, across);
+                Ray {
+                    origin: c.add(origin, down),
+                    dir: self.forward,
+                }
+            }
+            Projection::Perspective | Projection::EyeRows => {
+                let dir = c.add(self.forward, down);
+                let dir = c.add(dir, across);
+                Ray {
+                    origin: self.eye,
+                    dir: c.normalize(dir),
+                }
+            }
+        }
+    }
+
+    /// The base direction of sample row `row`, `forward + y·up` (one `scale`, one
+    /// `add`), for [`Camera::ray_from_eye`].
+    #[inline]
+    pub fn row_base<C: Counter>(&self, row: u32, c: &mut C) -> Vec3 {
+        let (_, y) = self.offsets(0, row);
+        let down = c.scale(self.up, y);
+        c.add(self.forward, down)
+    }
+
+    /// The eye ray through sample `column` of the row whose base direction is
+    /// `row_base`: one `scale`, one `add`, one `normalize`. Bit for bit the
+    /// perspective ray of that sample.
+    #[inline]
+    pub fn ray_from_eye<C: Counter>(&self, column: u32, row_base: Vec3, c: &mut C) -> Ray<true> {
+        let (x, _) = self.offsets(column, 0);
+        let across = c.scale(self.right, x);
+        let dir = c.add(row_base, across);
         Ray {
             origin: self.eye,
             dir: c.normalize(dir),
@@ -157,6 +261,62 @@ mod tests {
         assert_eq!(c.get(Stat::Scale) - setup.get(Stat::Scale), 2);
         assert_eq!(c.get(Stat::Add) - setup.get(Stat::Add), 2);
         assert_eq!(c.get(Stat::Normalize) - setup.get(Stat::Normalize), 1);
+    }
+
+    #[test]
+    fn orthographic_rays_are_parallel_and_never_normalized() {
+        let v = view(9, 9);
+        let mut c = Count::default();
+        let cam = Camera::new(
+            &v,
+            9,
+            9,
+            Sampling::PixelCenters,
+            Projection::Orthographic,
+            None,
+            &mut c,
+        )
+        .unwrap_or_else(|e| panic!("{e}"));
+        let setup = c;
+        let corner = cam.ray(0, 0, &mut c);
+        let centre = cam.ray(4, 4, &mut c);
+        assert_eq!(c.get(Stat::Normalize), setup.get(Stat::Normalize));
+        assert_eq!(corner.dir, centre.dir);
+        assert_eq!(centre.origin.to_array(), [0.0, -5.0, 0.0]);
+        // 90° at look-at distance 5: the extreme sample rows sit at ±5.
+        let o = corner.origin.to_array();
+        assert!(
+            (o[0] + 5.0).abs() < 1e-5 && (o[2] - 5.0).abs() < 1e-5,
+            "{o:?}"
+        );
+    }
+
+    #[test]
+    fn row_walk_gives_the_perspective_rays_bit_for_bit_with_fewer_ops() {
+        let v = view(7, 5);
+        let cam = Camera::new(
+            &v,
+            7,
+            5,
+            Sampling::PixelCenters,
+            Projection::EyeRows,
+            None,
+            &mut NoCount,
+        )
+        .unwrap_or_else(|e| panic!("{e}"));
+        let mut c = Count::default();
+        for row in 0..5 {
+            let base = cam.row_base(row, &mut c);
+            for column in 0..7 {
+                let walked = cam.ray_from_eye(column, base, &mut c);
+                let plain = cam.ray(column, row, &mut NoCount);
+                assert_eq!(walked.plain(), plain);
+            }
+        }
+        // Per row one scale + one add; per ray one scale, one add, one normalize.
+        assert_eq!(c.get(Stat::Scale), 5 + 35);
+        assert_eq!(c.get(Stat::Add), 5 + 35);
+        assert_eq!(c.get(Stat::Normalize), 35);
     }
 
     #[test]

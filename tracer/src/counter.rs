@@ -67,6 +67,22 @@ pub trait Counter: Default + Clone + Send + Sync {
     /// Records one occurrence of `stat`.
     fn tally(&mut self, stat: Stat);
 
+    /// Records `n` occurrences of `stat` (batched tests: one call per SIMD chunk).
+    #[inline(always)]
+    fn tally_n(&mut self, stat: Stat, n: u64) {
+        for _ in 0..n {
+            self.tally(stat);
+        }
+    }
+
+    /// The bare square root this counter's maths uses, uncounted: for batched code
+    /// that counts its roots with [`Counter::tally_n`].
+    #[inline(always)]
+    fn sqrt_kernel(x: f32) -> f32 {
+        #[allow(clippy::disallowed_methods)]
+        x.sqrt()
+    }
+
     /// Adds another counter's totals into this one (used after the parallel loop).
     fn merge(&mut self, other: &Self);
 
@@ -115,15 +131,15 @@ pub trait Counter: Default + Clone + Send + Sync {
     fn normalize(&mut self, a: Vec3) -> Vec3 {
         self.tally(Stat::Normalize);
         #[allow(clippy::disallowed_methods)]
-        Vec3(a.0 * (1.0 / a.0.dot(a.0).sqrt()))
+        let length_sq = a.0.dot(a.0);
+        Vec3(a.0 * (1.0 / Self::sqrt_kernel(length_sq)))
     }
 
     /// Square root of a scalar.
     #[inline(always)]
     fn sqrt(&mut self, x: f32) -> f32 {
         self.tally(Stat::Sqrt);
-        #[allow(clippy::disallowed_methods)]
-        x.sqrt()
+        Self::sqrt_kernel(x)
     }
 
     /// `x` raised to `e` (the Phong highlight).
@@ -144,6 +160,9 @@ impl Counter for NoCount {
 
     #[inline(always)]
     fn tally(&mut self, _stat: Stat) {}
+
+    #[inline(always)]
+    fn tally_n(&mut self, _stat: Stat, _n: u64) {}
 
     #[inline(always)]
     fn merge(&mut self, _other: &Self) {}
@@ -180,6 +199,11 @@ impl Counter for Count {
     #[inline(always)]
     fn tally(&mut self, stat: Stat) {
         self.values[stat as usize] += 1;
+    }
+
+    #[inline(always)]
+    fn tally_n(&mut self, stat: Stat, n: u64) {
+        self.values[stat as usize] += n;
     }
 
     fn merge(&mut self, other: &Self) {

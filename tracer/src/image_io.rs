@@ -46,34 +46,47 @@ impl ImageFormat {
 
 /// The frame as a binary PPM (P6) file.
 pub fn encode_ppm(frame: &Frame) -> Vec<u8> {
-    let mut out = format!("P6\n{} {}\n255\n", frame.width, frame.height).into_bytes();
-    out.extend(frame.to_rgb8());
+    encode_ppm_rgb8(frame.width, frame.height, &frame.to_rgb8())
+}
+
+/// Interleaved 8-bit RGB as a binary PPM (P6) file.
+pub fn encode_ppm_rgb8(width: u32, height: u32, rgb: &[u8]) -> Vec<u8> {
+    let mut out = format!("P6\n{width} {height}\n255\n").into_bytes();
+    out.extend_from_slice(rgb);
     out
 }
 
 /// The frame as a PNG file (8-bit RGB).
 pub fn encode_png(frame: &Frame) -> Result<Vec<u8>, String> {
+    encode_png_rgb8(frame.width, frame.height, &frame.to_rgb8())
+}
+
+/// Interleaved 8-bit RGB as a PNG file.
+pub fn encode_png_rgb8(width: u32, height: u32, rgb: &[u8]) -> Result<Vec<u8>, String> {
     use image::ImageEncoder;
     let mut out = Vec::new();
     image::codecs::png::PngEncoder::new(&mut out)
-        .write_image(
-            &frame.to_rgb8(),
-            frame.width,
-            frame.height,
-            image::ExtendedColorType::Rgb8,
-        )
+        .write_image(rgb, width, height, image::ExtendedColorType::Rgb8)
         .map_err(|e| e.to_string())?;
     Ok(out)
 }
 
 /// Writes `frame` to `path` in the format its extension names, atomically.
 pub fn write_image(path: &Path, frame: &Frame) -> Result<(), ImageError> {
+    write_rgb8(path, frame.width, frame.height, &frame.to_rgb8())
+}
+
+/// Writes interleaved 8-bit RGB to `path` in the format its extension names,
+/// atomically.
+pub fn write_rgb8(path: &Path, width: u32, height: u32, rgb: &[u8]) -> Result<(), ImageError> {
     let bytes = match ImageFormat::from_path(path)? {
-        ImageFormat::Ppm => encode_ppm(frame),
-        ImageFormat::Png => encode_png(frame).map_err(|message| ImageError::Encode {
-            path: path.display().to_string(),
-            message,
-        })?,
+        ImageFormat::Ppm => encode_ppm_rgb8(width, height, rgb),
+        ImageFormat::Png => {
+            encode_png_rgb8(width, height, rgb).map_err(|message| ImageError::Encode {
+                path: path.display().to_string(),
+                message,
+            })?
+        }
     };
     write_atomically(path, &bytes).map_err(|source| ImageError::Io {
         path: path.display().to_string(),

@@ -1,23 +1,168 @@
-//! Named optimization variants (`--variant a,b,…`). `baseline` is the thesis's
-//! software reference: brute force over all primitives, std sqrt, perspective camera.
+//! Named optimization variants (`--variant a,b,…`) and what a combination of them sets.
+//! `baseline` is the thesis's software reference: brute force over all primitives, std
+//! sqrt, perspective camera, Lambert diffuse, every sample traced. Each other variant
+//! changes one of those choices; variants that change the same choice cannot combine.
 
+use crate::camera::Projection;
+use crate::shading::DiffuseForm;
 use std::fmt;
 
 /// One named variant.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub enum Variant {
-    /// Brute force, std sqrt, perspective (the software reference).
     Baseline,
+    FastSqrt,
+    FastSqrtTuned,
+    FastSqrtNewton,
+    Bounded,
+    Ortho,
+    NoRsqrtShading,
+    PixelAvg,
+    Simd,
+    Bvh,
+}
+
+/// The square root every `sqrt` and `normalize` uses.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
+pub enum SqrtMethod {
+    #[default]
+    Std,
+    BitTrick,
+    TunedBitTrick,
+    NewtonBitTrick,
+}
+
+/// The structure that answers intersection queries.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
+pub enum Accelerator {
+    #[default]
+    BruteForce,
+    Simd,
+    Bvh,
+}
+
+/// The choices a set of variants makes.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
+pub struct VariantConfig {
+    pub sqrt: SqrtMethod,
+    pub accel: Accelerator,
+    pub projection: Projection,
+    pub diffuse: DiffuseForm,
+    pub checkerboard: bool,
+}
+
+/// Which choice a variant makes (variants with the same choice conflict).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Choice {
+    Nothing,
+    Sqrt,
+    Accel,
+    Projection,
+    Diffuse,
+    Sampling,
 }
 
 impl Variant {
     /// Every variant, in the order reports list them.
-    pub const ALL: [Variant; 1] = [Variant::Baseline];
+    pub const ALL: [Variant; 10] = [
+        Variant::Baseline,
+        Variant::FastSqrt,
+        Variant::FastSqrtTuned,
+        Variant::FastSqrtNewton,
+        Variant::Bounded,
+        Variant::Ortho,
+        Variant::NoRsqrtShading,
+        Variant::PixelAvg,
+        Variant::Simd,
+        Variant::Bvh,
+    ];
 
     /// The command-line name.
     pub fn name(self) -> &'static str {
         match self {
             Variant::Baseline => "baseline",
+            Variant::FastSqrt => "fast-sqrt",
+            Variant::FastSqrtTuned => "fast-sqrt-tuned",
+            Variant::FastSqrtNewton => "fast-sqrt-newton",
+            Variant::Bounded => "bounded",
+            Variant::Ortho => "ortho",
+            Variant::NoRsqrtShading => "no-rsqrt-shading",
+            Variant::PixelAvg => "pixel-avg",
+            Variant::Simd => "simd",
+            Variant::Bvh => "bvh",
+        }
+    }
+
+    /// One line saying what the variant does (and where the thesis has it).
+    pub fn description(self) -> &'static str {
+        match self {
+            Variant::Baseline => {
+                "brute force over all primitives, std sqrt, perspective camera (the software reference)"
+            }
+            Variant::FastSqrt => {
+                "every sqrt by the bit trick i = (i + 0x3F800000) >> 1 (thesis 8.3.1)"
+            }
+            Variant::FastSqrtTuned => {
+                "the same bit trick with the constant that minimises the maximum relative error"
+            }
+            Variant::FastSqrtNewton => "the bit trick followed by one Heron/Newton step",
+            Variant::Bounded => {
+                "observer offsets precomputed once (scene in eye coordinates): eye rays need no O - C subtraction, the screen is walked row by row (8.3.2)"
+            }
+            Variant::Ortho => {
+                "orthographic projection: origins walk the pixel grid, one direction, no per-ray normalize (8.3.2)"
+            }
+            Variant::NoRsqrtShading => {
+                "sphere diffuse term 1 - |I - M|²/2r², no normalize or sqrt (8.3.4, exact squared form)"
+            }
+            Variant::PixelAvg => {
+                "trace a checkerboard of samples, fill the rest with the mean of traced neighbours (8.3.5)"
+            }
+            Variant::Simd => {
+                "spheres and cylinders tested 8 at a time in SIMD lanes, then one minimum (8.3.3)"
+            }
+            Variant::Bvh => {
+                "bounding volume hierarchy (binned SAH) over all primitives, front-to-back traversal"
+            }
+        }
+    }
+
+    /// Whether the variant may change the picture (all others must match baseline).
+    pub fn changes_picture(self) -> bool {
+        matches!(
+            self,
+            Variant::FastSqrt
+                | Variant::FastSqrtTuned
+                | Variant::FastSqrtNewton
+                | Variant::Ortho
+                | Variant::NoRsqrtShading
+                | Variant::PixelAvg
+        )
+    }
+
+    fn choice(self) -> Choice {
+        match self {
+            Variant::Baseline => Choice::Nothing,
+            Variant::FastSqrt | Variant::FastSqrtTuned | Variant::FastSqrtNewton => Choice::Sqrt,
+            Variant::Bounded | Variant::Ortho => Choice::Projection,
+            Variant::NoRsqrtShading => Choice::Diffuse,
+            Variant::PixelAvg => Choice::Sampling,
+            Variant::Simd | Variant::Bvh => Choice::Accel,
+        }
+    }
+
+    fn apply(self, config: &mut VariantConfig) {
+        match self {
+            Variant::Baseline => {}
+            Variant::FastSqrt => config.sqrt = SqrtMethod::BitTrick,
+            Variant::FastSqrtTuned => config.sqrt = SqrtMethod::TunedBitTrick,
+            Variant::FastSqrtNewton => config.sqrt = SqrtMethod::NewtonBitTrick,
+            Variant::Bounded => config.projection = Projection::EyeRows,
+            Variant::Ortho => config.projection = Projection::Orthographic,
+            Variant::NoRsqrtShading => config.diffuse = DiffuseForm::Squared,
+            Variant::PixelAvg => config.checkerboard = true,
+            Variant::Simd => config.accel = Accelerator::Simd,
+            Variant::Bvh => config.accel = Accelerator::Bvh,
         }
     }
 }
@@ -28,15 +173,18 @@ impl fmt::Display for Variant {
     }
 }
 
-/// A variant name that is not known.
+/// A variant list that cannot be used.
 #[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
-#[error("unknown variant '{name}' (known: {known})")]
-pub struct UnknownVariant {
-    pub name: String,
-    pub known: String,
+pub enum VariantError {
+    #[error("unknown variant '{name}' (known: {known}; `rtprof variants` describes them)")]
+    Unknown { name: String, known: String },
+    #[error("variants '{0}' and '{1}' cannot be combined: both choose the {2}")]
+    Conflict(&'static str, &'static str, &'static str),
+    #[error("'baseline' means no optimization and cannot be combined with '{0}'")]
+    BaselineCombined(&'static str),
 }
 
-/// A combination of variants, parsed from a comma-separated list.
+/// A combination of variants, parsed from a list separated by `,` or `+`.
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct VariantSet(Vec<Variant>);
 
@@ -47,20 +195,47 @@ impl Default for VariantSet {
 }
 
 impl VariantSet {
-    /// Parses `"a,b"`; names are case-insensitive, duplicates collapse.
-    pub fn parse(list: &str) -> Result<Self, UnknownVariant> {
-        let mut out = Vec::new();
-        for name in list.split(',').map(str::trim).filter(|n| !n.is_empty()) {
+    /// Parses `"a,b"` or `"a+b"`; names are case-insensitive, duplicates collapse, an
+    /// empty list is `baseline`. Variants that make the same choice are refused.
+    pub fn parse(list: &str) -> Result<Self, VariantError> {
+        let mut out: Vec<Variant> = Vec::new();
+        for name in list
+            .split([',', '+'])
+            .map(str::trim)
+            .filter(|n| !n.is_empty())
+        {
             let variant = Variant::ALL
                 .into_iter()
                 .find(|v| v.name().eq_ignore_ascii_case(name))
-                .ok_or_else(|| UnknownVariant {
+                .ok_or_else(|| VariantError::Unknown {
                     name: name.to_string(),
                     known: Variant::ALL.map(Variant::name).join(", "),
                 })?;
-            if !out.contains(&variant) {
-                out.push(variant);
+            if out.contains(&variant) {
+                continue;
             }
+            for &earlier in &out {
+                if earlier == Variant::Baseline || variant == Variant::Baseline {
+                    let other = if earlier == Variant::Baseline {
+                        variant
+                    } else {
+                        earlier
+                    };
+                    return Err(VariantError::BaselineCombined(other.name()));
+                }
+                if earlier.choice() == variant.choice() {
+                    let what = match variant.choice() {
+                        Choice::Sqrt => "square-root method",
+                        Choice::Accel => "intersection structure",
+                        Choice::Projection => "camera projection",
+                        Choice::Diffuse => "diffuse term",
+                        Choice::Sampling => "sampling",
+                        Choice::Nothing => "nothing",
+                    };
+                    return Err(VariantError::Conflict(earlier.name(), variant.name(), what));
+                }
+            }
+            out.push(variant);
         }
         if out.is_empty() {
             out.push(Variant::Baseline);
@@ -72,12 +247,27 @@ impl VariantSet {
     pub fn variants(&self) -> &[Variant] {
         &self.0
     }
+
+    /// The choices the set makes.
+    pub fn config(&self) -> VariantConfig {
+        let mut config = VariantConfig::default();
+        for v in &self.0 {
+            v.apply(&mut config);
+        }
+        config
+    }
+
+    /// Whether any variant of the set may change the picture.
+    pub fn changes_picture(&self) -> bool {
+        self.0.iter().any(|v| v.changes_picture())
+    }
 }
 
 impl fmt::Display for VariantSet {
+    /// Names joined with `+` (the form `compare --variants` takes for combinations).
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         let names: Vec<_> = self.0.iter().map(|v| v.name()).collect();
-        f.write_str(&names.join(","))
+        f.write_str(&names.join("+"))
     }
 }
 
@@ -95,12 +285,53 @@ mod tests {
             VariantSet::parse(" Baseline, baseline ").map(|s| s.variants().len()),
             Ok(1)
         );
+        assert_eq!(
+            VariantSet::parse("bvh,fast-sqrt").map(|s| s.to_string()),
+            Ok("bvh+fast-sqrt".into())
+        );
         let err = VariantSet::parse("baseline,warp-drive")
             .err()
-            .map(|e| e.to_string());
+            .map(|e| e.to_string())
+            .unwrap_or_default();
+        assert!(err.starts_with("unknown variant 'warp-drive' (known: baseline, fast-sqrt,"));
+    }
+
+    #[test]
+    fn variants_choosing_the_same_thing_conflict() {
+        let conflict = |list: &str| VariantSet::parse(list).err();
         assert_eq!(
-            err.as_deref(),
-            Some("unknown variant 'warp-drive' (known: baseline)")
+            conflict("simd,bvh"),
+            Some(VariantError::Conflict(
+                "simd",
+                "bvh",
+                "intersection structure"
+            ))
         );
+        assert!(matches!(
+            conflict("fast-sqrt+fast-sqrt-newton"),
+            Some(VariantError::Conflict(..))
+        ));
+        assert!(matches!(
+            conflict("ortho,bounded"),
+            Some(VariantError::Conflict(..))
+        ));
+        assert_eq!(
+            conflict("baseline,bvh"),
+            Some(VariantError::BaselineCombined("bvh"))
+        );
+    }
+
+    #[test]
+    fn config_collects_every_choice() {
+        let set = VariantSet::parse("bvh,fast-sqrt-tuned,ortho,pixel-avg,no-rsqrt-shading")
+            .unwrap_or_default();
+        let config = set.config();
+        assert_eq!(config.accel, Accelerator::Bvh);
+        assert_eq!(config.sqrt, SqrtMethod::TunedBitTrick);
+        assert_eq!(config.projection, Projection::Orthographic);
+        assert_eq!(config.diffuse, DiffuseForm::Squared);
+        assert!(config.checkerboard && set.changes_picture());
+        assert_eq!(VariantSet::default().config(), VariantConfig::default());
+        assert!(!VariantSet::parse("bvh,simd").is_ok_and(|s| s.changes_picture()));
     }
 }

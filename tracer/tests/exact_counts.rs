@@ -13,12 +13,7 @@ fn one_pixel_one_sphere_one_light_counts_by_hand() {
     )
     .unwrap_or_else(|e| panic!("{e}"));
     let accel = BruteForce::new(&scene);
-    let opts = RenderOptions {
-        width: 1,
-        height: 1,
-        sampling: Sampling::PixelCenters,
-        mode: ShadingMode::Color,
-    };
+    let opts = RenderOptions::new(1, 1, Sampling::PixelCenters, ShadingMode::Color);
     let out = tracer::render::<Count, _>(&scene, &accel, &opts, &|_| {})
         .unwrap_or_else(|e| panic!("{e}"));
     let c: Counts = out.counts().unwrap_or_default();

@@ -30,6 +30,55 @@ fn prim(kind: PrimKind, index: usize) -> PrimRef {
 
 impl Intersector for BruteForce<'_> {
     fn closest_hit<C: Counter>(&self, ray: &Ray, t_min: f32, c: &mut C) -> Option<Hit> {
+        self.closest(ray, t_min, c)
+    }
+
+    fn closest_hit_from_eye<C: Counter>(&self, ray: &Ray<true>, c: &mut C) -> Option<Hit> {
+        self.closest(ray, 0.0, c)
+    }
+
+    fn occluded<C: Counter>(&self, ray: &Ray, t_min: f32, t_max: f32, c: &mut C) -> bool {
+        c.tally(Stat::Intersect);
+        let s = self.scene;
+        s.spheres
+            .iter()
+            .any(|p| p.intersect(ray, t_min, t_max, c).is_some())
+            || s.cylinders
+                .iter()
+                .any(|p| p.intersect(ray, t_min, t_max, c).is_some())
+            || occluded_by_cones_and_planars(s, ray, t_min, t_max, c)
+    }
+}
+
+/// Whether a cone, polygon or patch blocks `ray` in `(t_min, t_max)`, tested one by one
+/// (shared with the SIMD intersector, whose lanes hold only spheres and cylinders).
+pub(super) fn occluded_by_cones_and_planars<C: Counter>(
+    s: &Scene,
+    ray: &Ray,
+    t_min: f32,
+    t_max: f32,
+    c: &mut C,
+) -> bool {
+    s.cones
+        .iter()
+        .any(|p| p.intersect(ray, t_min, t_max, c).is_some())
+        || s.polygons
+            .iter()
+            .any(|p| p.intersect(ray, t_min, t_max, c).is_some())
+        || s.patches
+            .iter()
+            .any(|p| p.intersect(ray, t_min, t_max, c).is_some())
+}
+
+impl BruteForce<'_> {
+    /// The closest hit over every primitive, kind by kind.
+    #[inline(always)]
+    fn closest<C: Counter, const FROM_EYE: bool>(
+        &self,
+        ray: &Ray<FROM_EYE>,
+        t_min: f32,
+        c: &mut C,
+    ) -> Option<Hit> {
         c.tally(Stat::Intersect);
         let s = self.scene;
         let mut best: Option<Hit> = None;
@@ -85,25 +134,5 @@ impl Intersector for BruteForce<'_> {
             }
         }
         best
-    }
-
-    fn occluded<C: Counter>(&self, ray: &Ray, t_min: f32, t_max: f32, c: &mut C) -> bool {
-        c.tally(Stat::Intersect);
-        let s = self.scene;
-        s.spheres
-            .iter()
-            .any(|p| p.intersect(ray, t_min, t_max, c).is_some())
-            || s.cylinders
-                .iter()
-                .any(|p| p.intersect(ray, t_min, t_max, c).is_some())
-            || s.cones
-                .iter()
-                .any(|p| p.intersect(ray, t_min, t_max, c).is_some())
-            || s.polygons
-                .iter()
-                .any(|p| p.intersect(ray, t_min, t_max, c).is_some())
-            || s.patches
-                .iter()
-                .any(|p| p.intersect(ray, t_min, t_max, c).is_some())
     }
 }

@@ -1,19 +1,59 @@
 //! Closest-hit and occlusion queries over a scene. Brute force is the thesis's software
-//! reference; acceleration structures implement the same trait.
+//! reference; the SIMD batches ([`Simd`]) and the BVH ([`Bvh`]) answer the same
+//! queries faster.
 
 mod brute_force;
+mod bvh;
+mod simd;
 
 pub use brute_force::BruteForce;
+use brute_force::occluded_by_cones_and_planars;
+pub use bvh::{Bvh, BvhStats};
+pub use simd::Simd;
 
 use crate::counter::Counter;
-use crate::ray::{Hit, Ray};
+use crate::ray::{Hit, PrimKind, PrimRef, Ray};
+use crate::scene::Scene;
 
 /// Answers the two queries a Whitted tracer asks of its scene.
 pub trait Intersector: Sync {
     /// The closest intersection beyond `t_min` (counts one `calls.intersect`).
     fn closest_hit<C: Counter>(&self, ray: &Ray, t_min: f32, c: &mut C) -> Option<Hit>;
 
+    /// The closest hit of an eye ray that starts at the origin (the `bounded`
+    /// variant); the default forgets the marker and runs [`Intersector::closest_hit`].
+    fn closest_hit_from_eye<C: Counter>(&self, ray: &Ray<true>, c: &mut C) -> Option<Hit> {
+        self.closest_hit(&ray.plain(), 0.0, c)
+    }
+
     /// Whether anything lies in `(t_min, t_max)` (a shadow ray; counts one
     /// `calls.intersect`). May stop at the first blocker.
     fn occluded<C: Counter>(&self, ray: &Ray, t_min: f32, t_max: f32, c: &mut C) -> bool;
+}
+
+/// Tests one primitive of `scene` against `ray` in `(t_min, t_max)`: the distance and
+/// the hit's `aux` value. The one dispatch on primitive kind that the BVH leaves use.
+#[inline(always)]
+pub(crate) fn intersect_primitive<C: Counter, const FROM_EYE: bool>(
+    scene: &Scene,
+    prim: PrimRef,
+    ray: &Ray<FROM_EYE>,
+    t_min: f32,
+    t_max: f32,
+    c: &mut C,
+) -> Option<(f32, f32)> {
+    let i = prim.index as usize;
+    match prim.kind {
+        PrimKind::Sphere => scene.spheres[i]
+            .intersect(ray, t_min, t_max, c)
+            .map(|t| (t, 0.0)),
+        PrimKind::Cylinder => scene.cylinders[i].intersect(ray, t_min, t_max, c),
+        PrimKind::Cone => scene.cones[i].intersect(ray, t_min, t_max, c),
+        PrimKind::Polygon => scene.polygons[i]
+            .intersect(ray, t_min, t_max, c)
+            .map(|t| (t, 0.0)),
+        PrimKind::Patch => scene.patches[i]
+            .intersect(ray, t_min, t_max, c)
+            .map(|t| (t, 0.0)),
+    }
 }

@@ -28,6 +28,8 @@ pub struct Cone {
     pub axis: Vec3,
     /// Distance from base to apex.
     pub length: f32,
+    /// `eye - base`, set by [`crate::eye_space`] for the `bounded` variant.
+    pub eye_offset: Vec3,
     rb: f32,
     slope: f32,
     axial_weight: f32,
@@ -53,6 +55,7 @@ impl Cone {
             material,
             axis,
             length,
+            eye_offset: Vec3::ZERO,
             rb,
             slope,
             axial_weight: 1.0 + slope * slope,
@@ -68,15 +71,16 @@ impl Cone {
     ///
     /// Counts one `sub`, four `dot` and, when the ray meets the infinite cone, one `sqrt`.
     #[inline(always)]
-    pub fn intersect<C: Counter>(
+    pub fn intersect<C: Counter, const FROM_EYE: bool>(
         &self,
-        ray: &Ray,
+        ray: &Ray<FROM_EYE>,
         t_min: f32,
         t_max: f32,
         c: &mut C,
     ) -> Option<(f32, f32)> {
         c.tally(Stat::ConeTest);
-        let AxialTerms { rv, ov, ro, oo } = AxialTerms::new(ray, self.base, self.axis, c);
+        let AxialTerms { rv, ov, ro, oo } =
+            AxialTerms::new(ray, self.base, self.eye_offset, self.axis, c);
         let (k, w, rb) = (self.slope, self.axial_weight, self.rb);
         let a = 1.0 - w * rv * rv;
         let half_b = ro - w * rv * ov - rb * k * rv;

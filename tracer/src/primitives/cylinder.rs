@@ -19,6 +19,8 @@ pub struct Cylinder {
     pub axis: Vec3,
     /// Distance from base to apex (the thesis's Mmax).
     pub length: f32,
+    /// `eye - base`, set by [`crate::eye_space`] for the `bounded` variant.
+    pub eye_offset: Vec3,
     radius_sq: f32,
 }
 
@@ -33,6 +35,7 @@ impl Cylinder {
             material,
             axis,
             length,
+            eye_offset: Vec3::ZERO,
             radius_sq: radius * radius,
         })
     }
@@ -47,15 +50,16 @@ impl Cylinder {
     /// Counts one `sub`, four `dot` and, when the ray meets the infinite cylinder,
     /// one `sqrt`.
     #[inline(always)]
-    pub fn intersect<C: Counter>(
+    pub fn intersect<C: Counter, const FROM_EYE: bool>(
         &self,
-        ray: &Ray,
+        ray: &Ray<FROM_EYE>,
         t_min: f32,
         t_max: f32,
         c: &mut C,
     ) -> Option<(f32, f32)> {
         c.tally(Stat::CylinderTest);
-        let AxialTerms { rv, ov, ro, oo } = AxialTerms::new(ray, self.base, self.axis, c);
+        let AxialTerms { rv, ov, ro, oo } =
+            AxialTerms::new(ray, self.base, self.eye_offset, self.axis, c);
         let a = 1.0 - rv * rv;
         let half_b = ro - rv * ov;
         let cc = oo - ov * ov - self.radius_sq;
@@ -107,8 +111,14 @@ pub(super) struct AxialTerms {
 
 impl AxialTerms {
     #[inline(always)]
-    pub fn new<C: Counter>(ray: &Ray, base: Vec3, axis: Vec3, c: &mut C) -> Self {
-        let voc = c.sub(ray.origin, base);
+    pub fn new<C: Counter, const FROM_EYE: bool>(
+        ray: &Ray<FROM_EYE>,
+        base: Vec3,
+        eye_offset: Vec3,
+        axis: Vec3,
+        c: &mut C,
+    ) -> Self {
+        let voc = ray.offset_from(base, eye_offset, c);
         Self {
             rv: c.dot(ray.dir, axis),
             ov: c.dot(voc, axis),

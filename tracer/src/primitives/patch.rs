@@ -51,9 +51,9 @@ impl Patch {
 
     /// Distance to the patch in `(t_min, t_max)`; counted like a polygon test.
     #[inline(always)]
-    pub fn intersect<C: Counter>(
+    pub fn intersect<C: Counter, const FROM_EYE: bool>(
         &self,
-        ray: &Ray,
+        ray: &Ray<FROM_EYE>,
         t_min: f32,
         t_max: f32,
         c: &mut C,

@@ -18,6 +18,8 @@ pub struct PlanarOutline {
     axes: [usize; 2],
     /// The vertices projected onto `axes`.
     projected: Vec<[f32; 2]>,
+    /// `eye - vertices[0]`, set by [`crate::eye_space`] for the `bounded` variant.
+    pub eye_offset: Vec3,
 }
 
 impl PlanarOutline {
@@ -53,21 +55,22 @@ impl PlanarOutline {
             normal,
             axes,
             projected,
+            eye_offset: Vec3::ZERO,
         })
     }
 
     /// The plane test `d = -(Voc·N) / (R·N)`, `Voc = O - V0`: the distance to the plane
     /// when inside `(t_min, t_max)`. Counts one `sub` and two `dot`.
     #[inline(always)]
-    pub fn intersect_plane<C: Counter>(
+    pub fn intersect_plane<C: Counter, const FROM_EYE: bool>(
         &self,
-        ray: &Ray,
+        ray: &Ray<FROM_EYE>,
         t_min: f32,
         t_max: f32,
         c: &mut C,
     ) -> Option<f32> {
         c.tally(Stat::PlaneTest);
-        let voc = c.sub(ray.origin, self.vertices[0]);
+        let voc = ray.offset_from(self.vertices[0], self.eye_offset, c);
         let along = c.dot(ray.dir, self.normal);
         let offset = c.dot(voc, self.normal);
         // A ray parallel to the plane (along = 0) gives ±inf or NaN, rejected here.
@@ -82,9 +85,9 @@ impl PlanarOutline {
     /// The plane test, then (when the plane is hit) the hit point (one `scale`, one
     /// `add`) and the crossing test: the distance when the ray meets the outline.
     #[inline(always)]
-    pub fn intersect<C: Counter>(
+    pub fn intersect<C: Counter, const FROM_EYE: bool>(
         &self,
-        ray: &Ray,
+        ray: &Ray<FROM_EYE>,
         t_min: f32,
         t_max: f32,
         c: &mut C,
@@ -96,7 +99,12 @@ impl PlanarOutline {
 
     /// The point at distance `t` along `ray` (one `scale`, one `add`).
     #[inline(always)]
-    pub fn hit_point<C: Counter>(&self, ray: &Ray, t: f32, c: &mut C) -> Vec3 {
+    pub fn hit_point<C: Counter, const FROM_EYE: bool>(
+        &self,
+        ray: &Ray<FROM_EYE>,
+        t: f32,
+        c: &mut C,
+    ) -> Vec3 {
         let along = c.scale(ray.dir, t);
         c.add(ray.origin, along)
     }
@@ -180,7 +188,7 @@ mod tests {
             [0.0, 1.0, 2.0],
         ]);
         assert_eq!(square.normal.to_array(), [0.0, 0.0, 1.0]);
-        let down = Ray {
+        let down: Ray = Ray {
             origin: Vec3::new(0.5, 0.5, 7.0),
             dir: Vec3::new(0.0, 0.0, -1.0),
         };
@@ -188,7 +196,7 @@ mod tests {
             square.intersect_plane(&down, 0.0, 100.0, &mut NoCount),
             Some(5.0)
         );
-        let parallel = Ray {
+        let parallel: Ray = Ray {
             origin: Vec3::new(0.5, 0.5, 7.0),
             dir: Vec3::new(1.0, 0.0, 0.0),
         };
@@ -196,7 +204,7 @@ mod tests {
             square.intersect_plane(&parallel, 0.0, 100.0, &mut NoCount),
             None
         );
-        let in_plane = Ray {
+        let in_plane: Ray = Ray {
             origin: Vec3::new(0.5, 0.5, 2.0),
             dir: Vec3::new(1.0, 0.0, 0.0),
         };

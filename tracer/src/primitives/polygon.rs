@@ -24,9 +24,9 @@ impl Polygon {
     /// Distance to the polygon in `(t_min, t_max)`. Counts the plane test (one `sub`,
     /// two `dot`) and, when the plane is hit, the hit point (one `scale`, one `add`).
     #[inline(always)]
-    pub fn intersect<C: Counter>(
+    pub fn intersect<C: Counter, const FROM_EYE: bool>(
         &self,
-        ray: &Ray,
+        ray: &Ray<FROM_EYE>,
         t_min: f32,
         t_max: f32,
         c: &mut C,
@@ -60,9 +60,11 @@ mod tests {
             0,
         )
         .unwrap_or_else(|e| panic!("{e}"));
-        let down = |x: f32, y: f32| Ray {
-            origin: Vec3::new(x, y, 3.0),
-            dir: Vec3::new(0.0, 0.0, -1.0),
+        let down = |x: f32, y: f32| -> Ray {
+            Ray {
+                origin: Vec3::new(x, y, 3.0),
+                dir: Vec3::new(0.0, 0.0, -1.0),
+            }
         };
         let mut c = Count::default();
         assert_eq!(
@@ -86,7 +88,7 @@ mod tests {
             (2, 4, 2, 2)
         );
         // From below, the back face is hit too: sidedness is decided by the shader.
-        let up = Ray {
+        let up: Ray = Ray {
             origin: Vec3::new(1.0, 1.0, -2.0),
             dir: Vec3::new(0.0, 0.0, 1.0),
         };

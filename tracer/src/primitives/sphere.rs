@@ -11,6 +11,8 @@ pub struct Sphere {
     /// The radius as written in the scene (negative: inside visible).
     pub radius: f32,
     pub material: u32,
+    /// `eye - center`, set by [`crate::eye_space`] for the `bounded` variant.
+    pub eye_offset: Vec3,
     radius_sq: f32,
 }
 
@@ -21,6 +23,7 @@ impl Sphere {
             center,
             radius,
             material,
+            eye_offset: Vec3::ZERO,
             radius_sq: radius * radius,
         }
     }
@@ -35,15 +38,15 @@ impl Sphere {
     /// Counts one `sub`, two `dot` and, when the ray meets the sphere's
     /// supporting quadric, one `sqrt`.
     #[inline(always)]
-    pub fn intersect<C: Counter>(
+    pub fn intersect<C: Counter, const FROM_EYE: bool>(
         &self,
-        ray: &Ray,
+        ray: &Ray<FROM_EYE>,
         t_min: f32,
         t_max: f32,
         c: &mut C,
     ) -> Option<f32> {
         c.tally(Stat::SphereTest);
-        let voc = c.sub(ray.origin, self.center);
+        let voc = ray.offset_from(self.center, self.eye_offset, c);
         let half_b = c.dot(ray.dir, voc);
         let cc = c.dot(voc, voc) - self.radius_sq;
         let disc = half_b * half_b - cc;

@@ -21,12 +21,7 @@ pub fn load_spd(name: &str) -> Scene {
 }
 
 pub fn options(width: u32, height: u32, sampling: Sampling) -> RenderOptions {
-    RenderOptions {
-        width,
-        height,
-        sampling,
-        mode: ShadingMode::Color,
-    }
+    RenderOptions::new(width, height, sampling, ShadingMode::Color)
 }
 
 /// A counted render in a pool of `threads` workers.

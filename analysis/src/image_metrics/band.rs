@@ -1,0 +1,79 @@
+//! The thesis's verbal bands for an RMS difference on the 0-255 scale.
+
+use serde::{Deserialize, Serialize};
+
+/// How different two images look, judged from their RMS difference.
+///
+/// Serialized in snake case: `"visually_identical"`, `"similar"`, `"notable_changes"`,
+/// `"different"`; [`Band::name`] gives the human wording.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Band {
+    /// RMS in [0, 15).
+    VisuallyIdentical,
+    /// RMS in [15, 50).
+    Similar,
+    /// RMS in [50, 85).
+    NotableChanges,
+    /// RMS >= 85.
+    Different,
+}
+
+impl Band {
+    /// Each band includes its lower edge. A NaN RMS cannot be called alike, so it is
+    /// `Different`.
+    pub fn of(rms: f64) -> Band {
+        if rms < 15.0 {
+            Band::VisuallyIdentical
+        } else if rms < 50.0 {
+            Band::Similar
+        } else if rms < 85.0 {
+            Band::NotableChanges
+        } else {
+            Band::Different
+        }
+    }
+
+    pub fn name(self) -> &'static str {
+        match self {
+            Band::VisuallyIdentical => "visually identical",
+            Band::Similar => "similar",
+            Band::NotableChanges => "notable changes",
+            Band::Different => "different",
+        }
+    }
+}
+
+impl std::fmt::Display for Band {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(self.name())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn band_edges_belong_to_the_upper_band() {
+        assert_eq!(Band::of(0.0), Band::VisuallyIdentical);
+        assert_eq!(Band::of(14.999), Band::VisuallyIdentical);
+        assert_eq!(Band::of(15.0), Band::Similar);
+        assert_eq!(Band::of(49.999), Band::Similar);
+        assert_eq!(Band::of(50.0), Band::NotableChanges);
+        assert_eq!(Band::of(84.999), Band::NotableChanges);
+        assert_eq!(Band::of(85.0), Band::Different);
+        assert_eq!(Band::of(255.0), Band::Different);
+        assert_eq!(Band::of(f64::NAN), Band::Different);
+    }
+
+    #[test]
+    fn names_and_json_forms() {
+        assert_eq!(Band::NotableChanges.name(), "notable changes");
+        assert_eq!(Band::VisuallyIdentical.to_string(), "visually identical");
+        let json = serde_json::to_string(&Band::VisuallyIdentical).expect("serialize");
+        assert_eq!(json, "\"visually_identical\"");
+        let back: Band = serde_json::from_str("\"notable_changes\"").expect("deserialize");
+        assert_eq!(back, Band::NotableChanges);
+    }
+}

@@ -1,0 +1,23 @@
+//! The analysis stages of rtprof: they turn measurements (images, timings) into
+//! figures (image-quality metrics, confidence intervals). Plain data in, plain data out;
+//! nothing here renders.
+//!
+//! Modules:
+//! - [`image_metrics`]: method 1 of the thesis, pixel comparison of two renders (RMS
+//!   and its verbal band, PSNR, SSIM, difference statistics, heat map) and grayscale
+//!   histograms;
+//! - [`ppm_text`]: method 2 of the thesis, histograms from the plain-text PPM (P3) form,
+//!   with a P3 writer and parser;
+//! - [`timing`]: median run time with a seeded percentile-bootstrap interval;
+//! - [`error`]: the error types of the above.
+
+pub mod error;
+pub mod image_metrics;
+pub mod ppm_text;
+mod prng;
+pub mod timing;
+
+pub use error::{MetricsError, StatsError};
+pub use image_metrics::{Band, Comparison, RgbImage, compare, difference_heat_map, gray_histogram};
+pub use ppm_text::{MAX_P3_PIXELS, P3Histograms, p3_histograms, parse_p3, to_p3};
+pub use timing::{Estimate, median, median_with_bootstrap};

@@ -1,0 +1,174 @@
+//! Timing statistics: the median of repeated run times and a percentile-bootstrap
+//! confidence interval for it, reproducible from a seed.
+
+use serde::{Deserialize, Serialize};
+
+use crate::error::StatsError;
+use crate::prng::SplitMix64;
+
+/// A median run time with its confidence interval, all in seconds.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct Estimate {
+    pub median: f64,
+    pub low: f64,
+    pub high: f64,
+}
+
+/// Median of `xs` (mean of the two middle values for even lengths); `None` when `xs` is
+/// empty or holds a NaN, which has no place in an ordering.
+pub fn median(xs: &[f64]) -> Option<f64> {
+    if xs.is_empty() || xs.iter().any(|x| x.is_nan()) {
+        return None;
+    }
+    Some(median_of_sorted(&sorted(xs)))
+}
+
+/// Median of `samples` and the percentile bootstrap interval of the median: `resamples`
+/// resamples with replacement, interval ends at the `(1 - confidence) / 2` and
+/// `(1 + confidence) / 2` quantiles (linearly interpolated) of their medians.
+/// The same inputs and `seed` always give the same interval.
+pub fn median_with_bootstrap(
+    samples: &[f64],
+    resamples: usize,
+    confidence: f64,
+    seed: u64,
+) -> Result<Estimate, StatsError> {
+    if samples.is_empty() {
+        return Err(StatsError::Empty);
+    }
+    if let Some((index, &value)) = samples.iter().enumerate().find(|(_, x)| !x.is_finite()) {
+        return Err(StatsError::NotFinite { index, value });
+    }
+    // Written as a positive test so that a NaN confidence is refused too.
+    if !(confidence > 0.0 && confidence < 1.0) {
+        return Err(StatsError::Confidence(confidence));
+    }
+    if resamples == 0 {
+        return Err(StatsError::NoResamples);
+    }
+    let sorted = sorted(samples);
+    let mut rng = SplitMix64::new(seed);
+    let mut draw = vec![0.0; sorted.len()];
+    // Capped so that an absurd request fails by running long, not by a huge allocation.
+    let mut medians = Vec::with_capacity(resamples.min(1 << 20));
+    for _ in 0..resamples {
+        for slot in &mut draw {
+            *slot = sorted[rng.below(sorted.len())];
+        }
+        draw.sort_unstable_by(f64::total_cmp);
+        medians.push(median_of_sorted(&draw));
+    }
+    medians.sort_unstable_by(f64::total_cmp);
+    Ok(Estimate {
+        median: median_of_sorted(&sorted),
+        low: quantile_of_sorted(&medians, (1.0 - confidence) / 2.0),
+        high: quantile_of_sorted(&medians, (1.0 + confidence) / 2.0),
+    })
+}
+
+fn sorted(xs: &[f64]) -> Vec<f64> {
+    let mut copy = xs.to_vec();
+    copy.sort_unstable_by(f64::total_cmp);
+    copy
+}
+
+/// `sorted` must be non-empty and ascending.
+fn median_of_sorted(sorted: &[f64]) -> f64 {
+    let mid = sorted.len() / 2;
+    if sorted.len() % 2 == 1 {
+        sorted[mid]
+    } else {
+        f64::midpoint(sorted[mid - 1], sorted[mid])
+    }
+}
+
+/// Linear interpolation between order statistics (Hyndman & Fan type 7); `sorted`
+/// non-empty and ascending, `p` in [0, 1].
+fn quantile_of_sorted(sorted: &[f64], p: f64) -> f64 {
+    let position = (sorted.len() - 1) as f64 * p;
+    let below = position.floor() as usize;
+    let above = (below + 1).min(sorted.len() - 1);
+    let fraction = position - below as f64;
+    sorted[below] + fraction * (sorted[above] - sorted[below])
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn median_of_even_and_odd_lengths() {
+        assert_eq!(median(&[3.0, 1.0, 2.0, 4.0]), Some(2.5));
+        assert_eq!(median(&[5.0, 1.0, 3.0]), Some(3.0));
+        assert_eq!(median(&[]), None);
+        assert_eq!(median(&[1.0, f64::NAN]), None);
+    }
+
+    #[test]
+    fn constant_samples_give_a_degenerate_interval() {
+        let e = median_with_bootstrap(&[0.25; 9], 1000, 0.95, 1).expect("valid input");
+        assert_eq!(
+            e,
+            Estimate {
+                median: 0.25,
+                low: 0.25,
+                high: 0.25
+            }
+        );
+        let one = median_with_bootstrap(&[1.5], 100, 0.95, 1).expect("valid input");
+        assert_eq!(
+            one,
+            Estimate {
+                median: 1.5,
+                low: 1.5,
+                high: 1.5
+            }
+        );
+    }
+
+    #[test]
+    fn interval_for_one_to_hundred_and_one_surrounds_fifty_one() {
+        let samples: Vec<f64> = (1..=101).map(f64::from).collect();
+        let e = median_with_bootstrap(&samples, 10_000, 0.95, 7).expect("valid input");
+        assert_eq!(e.median, 51.0);
+        assert!(e.low <= 51.0 && 51.0 <= e.high, "{e:?}");
+        assert!(1.0 <= e.low && e.high <= 101.0, "{e:?}");
+        assert!(
+            e.low < e.high,
+            "101 distinct values must leave some spread: {e:?}"
+        );
+    }
+
+    #[test]
+    fn same_seed_same_interval_and_wider_confidence_nests() {
+        let samples = [0.91, 1.02, 0.97, 1.3, 0.88, 1.05, 0.99, 1.12];
+        let a = median_with_bootstrap(&samples, 2000, 0.9, 99).expect("valid input");
+        let b = median_with_bootstrap(&samples, 2000, 0.9, 99).expect("valid input");
+        assert_eq!(a, b);
+        // Same seed, same bootstrap medians: a higher confidence takes outer quantiles.
+        let wide = median_with_bootstrap(&samples, 2000, 0.99, 99).expect("valid input");
+        assert!(wide.low <= a.low && a.high <= wide.high);
+    }
+
+    #[test]
+    fn bad_input_is_an_error() {
+        assert_eq!(
+            median_with_bootstrap(&[], 10, 0.95, 0),
+            Err(StatsError::Empty)
+        );
+        assert!(matches!(
+            median_with_bootstrap(&[1.0, f64::NAN], 10, 0.95, 0),
+            Err(StatsError::NotFinite { index: 1, .. })
+        ));
+        for confidence in [0.0, 1.0, f64::NAN] {
+            assert!(matches!(
+                median_with_bootstrap(&[1.0], 10, confidence, 0),
+                Err(StatsError::Confidence(_))
+            ));
+        }
+        assert_eq!(
+            median_with_bootstrap(&[1.0], 0, 0.95, 0),
+            Err(StatsError::NoResamples)
+        );
+    }
+}

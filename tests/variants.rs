@@ -1,0 +1,157 @@
+//! The optimization variants against the baseline on the SPD scenes balls and rings:
+//! which must keep the picture and the ray counts, and what the others change.
+
+use analysis::{RgbImage, compare};
+use std::path::PathBuf;
+use tracer::{
+    Camera, Count, Counts, Frame, NoCount, Projection, RenderOptions, Sampling, Scene, ShadingMode,
+    Stat, VariantSet, load_nff, render_variant,
+};
+
+fn spd(name: &str) -> Scene {
+    let path = PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+        .join("../shared/spd")
+        .join(format!("{name}.nff"));
+    load_nff(&path).unwrap_or_else(|e| panic!("{e} (shared/ must sit beside the project)"))
+}
+
+fn render(scene: &Scene, variants: &str, options: &RenderOptions) -> (Frame, Counts) {
+    let set = VariantSet::parse(variants).unwrap_or_else(|e| panic!("{e}"));
+    let out = render_variant::<Count>(scene, options, &set, &|_| {})
+        .unwrap_or_else(|e| panic!("{variants}: {e}"));
+    let counts = out.rendered.counts().unwrap_or_default();
+    (out.rendered.frame, counts)
+}
+
+fn image(frame: &Frame) -> RgbImage {
+    RgbImage::new(frame.width, frame.height, frame.to_rgb8()).unwrap_or_else(|e| panic!("{e}"))
+}
+
+fn small(sampling: Sampling, mode: ShadingMode) -> RenderOptions {
+    RenderOptions::new(36, 30, sampling, mode)
+}
+
+#[test]
+fn bvh_simd_and_bounded_keep_the_baseline_picture_and_ray_counts() {
+    for name in ["balls", "rings"] {
+        let scene = spd(name);
+        let options = small(Sampling::PixelCenters, ShadingMode::Color);
+        let (base_frame, base) = render(&scene, "baseline", &options);
+        assert!(
+            base.rays.primary_hit > 0 && base.rays.shadow > 0,
+            "{name}: {base:?}"
+        );
+        for variant in ["bvh", "simd", "bounded", "bvh,bounded"] {
+            let (frame, counts) = render(&scene, variant, &options);
+            let m = compare(&image(&base_frame), &image(&frame)).unwrap_or_else(|e| panic!("{e}"));
+            assert!(m.rms <= 0.5, "{name} {variant}: RMS {}", m.rms);
+            assert_eq!(counts.rays, base.rays, "{name} {variant}");
+        }
+    }
+}
+
+#[test]
+fn bvh_moves_the_work_from_primitive_tests_to_node_visits() {
+    let scene = spd("balls");
+    let options = small(Sampling::PixelCenters, ShadingMode::Color);
+    let (_, base) = render(&scene, "baseline", &options);
+    let (_, bvh) = render(&scene, "bvh", &options);
+    assert_eq!(base.accel.nodes_visited, 0);
+    assert!(bvh.accel.nodes_visited > 0 && bvh.accel.leaves_visited > 0);
+    // 7381 spheres per query by brute force; a few per query through the tree.
+    assert!(
+        bvh.tests.sphere.tests * 100 < base.tests.sphere.tests,
+        "{} vs {}",
+        bvh.tests.sphere.tests,
+        base.tests.sphere.tests
+    );
+    assert!(bvh.accel.nodes_visited > bvh.tests.sphere.tests / 4);
+}
+
+#[test]
+fn ortho_eye_rays_need_no_normalization() {
+    for name in ["balls", "rings"] {
+        let scene = spd(name);
+        let (w, h) = (24, 20);
+        let normalizations = |projection| {
+            let mut c = Count::default();
+            let camera = Camera::new(
+                &scene.view,
+                w,
+                h,
+                Sampling::PixelCenters,
+                projection,
+                None,
+                &mut c,
+            )
+            .unwrap_or_else(|e| panic!("{e}"));
+            let setup = c.get(Stat::Normalize);
+            for row in 0..h {
+                for column in 0..w {
+                    camera.ray(column, row, &mut c);
+                }
+            }
+            c.get(Stat::Normalize) - setup
+        };
+        assert_eq!(normalizations(Projection::Perspective), u64::from(w * h));
+        assert_eq!(normalizations(Projection::Orthographic), 0, "{name}");
+        // Whole render: every normalization left belongs to shading.
+        let options = small(Sampling::PixelCenters, ShadingMode::Color);
+        let (_, ortho) = render(&scene, "ortho", &options);
+        assert_eq!(ortho.rays.primary, 36 * 30);
+    }
+}
+
+#[test]
+fn pixel_avg_traces_half_the_eye_rays() {
+    for name in ["balls", "rings"] {
+        let scene = spd(name);
+        let options = small(Sampling::PixelCenters, ShadingMode::Color);
+        let (frame, counts) = render(&scene, "pixel-avg", &options);
+        assert_eq!(counts.rays.primary, 36 * 30 / 2, "{name}");
+        assert!(frame.is_finite());
+        // SPD corners: a 37x31 grid, odd in both directions, traces the ceiling half.
+        let spd_options = small(Sampling::SpdCorners, ShadingMode::Color);
+        let (_, counts) = render(&scene, "pixel-avg", &spd_options);
+        assert_eq!(counts.rays.primary, (37u64 * 31).div_ceil(2));
+    }
+}
+
+#[test]
+fn no_rsqrt_shading_takes_no_root_in_the_sphere_diffuse_term() {
+    for name in ["balls", "rings"] {
+        let scene = spd(name);
+        // The hardware's diffuse-only shading: eye ray, hit body, diffuse term.
+        let options = small(Sampling::PixelCenters, ShadingMode::DiffuseOnly);
+        let (_, base) = render(&scene, "baseline", &options);
+        let (_, free) = render(&scene, "no-rsqrt-shading", &options);
+        assert_eq!(free.rays, base.rays);
+        // Same eye rays and tests, so every root left is an intersection root.
+        assert_eq!(free.ops.sqrt, base.ops.sqrt, "{name}");
+        // Lambert normalizes the normal and the light vector of each sphere hit; the
+        // squared form neither.
+        let saved = base.ops.normalize - free.ops.normalize;
+        assert!(saved > 0 && saved % 2 == 0, "{name}: {saved}");
+        assert!(free.ops.normalize >= free.rays.primary);
+    }
+}
+
+#[test]
+fn approximate_variants_render_finite_pictures() {
+    let scene = spd("rings");
+    let options = small(Sampling::PixelCenters, ShadingMode::Color);
+    for variant in [
+        "fast-sqrt",
+        "fast-sqrt-tuned",
+        "fast-sqrt-newton",
+        "ortho",
+        "pixel-avg",
+        "no-rsqrt-shading",
+        "bvh,fast-sqrt,ortho,pixel-avg,no-rsqrt-shading",
+    ] {
+        let set = VariantSet::parse(variant).unwrap_or_else(|e| panic!("{e}"));
+        let out = render_variant::<NoCount>(&scene, &options, &set, &|_| {})
+            .unwrap_or_else(|e| panic!("{variant}: {e}"));
+        assert!(out.rendered.frame.is_finite(), "{variant}");
+    }
+}

@@ -1,0 +1,551 @@
+//! Bounding volume hierarchy (variant `bvh`): axis-aligned boxes over every primitive
+//! kind, built once with the surface area heuristic (binned, as pbrt does), traversed
+//! front to back for closest hits and stopped at the first blocker for shadow rays.
+//!
+//! Counting: every node whose box is tested adds one `accel.nodes_visited`, every
+//! leaf whose primitives are tested one `accel.leaves_visited`; the primitive tests
+//! count themselves as in brute force. Box tests are not vector operations of the
+//! thesis's table (they use no dot product), so they add nothing to `ops.*`. With a
+//! BVH the bottleneck moves from the primitive tests to this traversal: compare
+//! `tests.*` and `accel.*` between `baseline` and `bvh`.
+
+use super::{Intersector, intersect_primitive};
+use crate::counter::{Counter, Stat};
+use crate::ray::{Hit, PrimKind, PrimRef, Ray};
+use crate::scene::Scene;
+use crate::vec3::Vec3;
+use glam::Vec3A;
+
+/// Bins per axis in the SAH sweep.
+const BINS: usize = 16;
+/// Leaves never hold more than this many primitives (unless they cannot be split).
+const MAX_LEAF: usize = 8;
+/// Cost of one traversal step relative to one primitive test, for the SAH.
+const TRAVERSAL_COST: f32 = 0.5;
+/// Traversal stack depth; the build stops splitting before the tree gets deeper.
+const MAX_DEPTH: usize = 48;
+
+/// An axis-aligned box.
+#[derive(Clone, Copy, Debug, PartialEq)]
+struct Aabb {
+    min: Vec3A,
+    max: Vec3A,
+}
+
+impl Aabb {
+    const EMPTY: Aabb = Aabb {
+        min: Vec3A::splat(f32::INFINITY),
+        max: Vec3A::splat(f32::NEG_INFINITY),
+    };
+
+    fn union(self, other: Aabb) -> Aabb {
+        Aabb {
+            min: self.min.min(other.min),
+            max: self.max.max(other.max),
+        }
+    }
+
+    fn grow(self, p: Vec3A) -> Aabb {
+        Aabb {
+            min: self.min.min(p),
+            max: self.max.max(p),
+        }
+    }
+
+    fn surface_area(self) -> f32 {
+        let d = (self.max - self.min).max(Vec3A::ZERO);
+        2.0 * (d.x * d.y + d.y * d.z + d.z * d.x)
+    }
+
+    fn centroid(self) -> Vec3A {
+        (self.min + self.max) * 0.5
+    }
+
+    /// The box grown by a relative margin so that rounding in the primitive tests can
+    /// never report a hit outside it.
+    fn padded(self) -> Aabb {
+        let pad = (self.max - self.min)
+            .max_element()
+            .max(self.max.abs().max_element())
+            * 1e-5
+            + f32::MIN_POSITIVE;
+        Aabb {
+            min: self.min - Vec3A::splat(pad),
+            max: self.max + Vec3A::splat(pad),
+        }
+    }
+}
+
+/// Half-extents of a disk of radius `r` around unit axis `a`: `r sqrt(1 - a_i²)`.
+fn disk_extent(axis: Vec3, r: f32) -> Vec3A {
+    let a = axis.0;
+    let one_minus = (Vec3A::ONE - a * a).max(Vec3A::ZERO);
+    #[allow(clippy::disallowed_methods)] // build time, not the counted render
+    let root = Vec3A::new(one_minus.x.sqrt(), one_minus.y.sqrt(), one_minus.z.sqrt());
+    root * r.abs()
+}
+
+fn disk_box(center: Vec3, axis: Vec3, r: f32) -> Aabb {
+    let e = disk_extent(axis, r);
+    Aabb {
+        min: center.0 - e,
+        max: center.0 + e,
+    }
+}
+
+/// The bounds of one primitive.
+fn bounds_of(scene: &Scene, prim: PrimRef) -> Aabb {
+    let i = prim.index as usize;
+    let outline = |vertices: &[Vec3]| vertices.iter().fold(Aabb::EMPTY, |b, v| b.grow(v.0));
+    let b = match prim.kind {
+        PrimKind::Sphere => {
+            let s = &scene.spheres[i];
+            let r = Vec3A::splat(s.radius.abs());
+            Aabb {
+                min: s.center.0 - r,
+                max: s.center.0 + r,
+            }
+        }
+        PrimKind::Cylinder => {
+            let cy = &scene.cylinders[i];
+            disk_box(cy.base, cy.axis, cy.radius).union(disk_box(cy.apex, cy.axis, cy.radius))
+        }
+        PrimKind::Cone => {
+            let co = &scene.cones[i];
+            disk_box(co.base, co.axis, co.base_radius).union(disk_box(
+                co.apex,
+                co.axis,
+                co.apex_radius,
+            ))
+        }
+        PrimKind::Polygon => outline(&scene.polygons[i].outline.vertices),
+        PrimKind::Patch => outline(&scene.patches[i].outline.vertices),
+    };
+    b.padded()
+}
+
+/// One node of the flattened tree. Interior nodes keep their first child right after
+/// themselves and the second at `offset`; leaves keep `count` primitives from `offset`.
+#[derive(Clone, Copy, Debug)]
+struct Node {
+    bounds: Aabb,
+    offset: u32,
+    /// Primitives in the leaf; 0 for interior nodes.
+    count: u16,
+    /// Split axis of an interior node (front-to-back order).
+    axis: u16,
+}
+
+/// Figures about a built tree (reported as preprocessing).
+#[derive(Clone, Copy, Debug, Default, PartialEq, serde::Serialize, serde::Deserialize)]
+pub struct BvhStats {
+    pub nodes: usize,
+    pub leaves: usize,
+    pub max_depth: usize,
+    pub max_leaf_size: usize,
+}
+
+/// A SAH bounding volume hierarchy over a scene.
+#[derive(Clone, Debug)]
+pub struct Bvh<'s> {
+    scene: &'s Scene,
+    nodes: Vec<Node>,
+    prims: Vec<PrimRef>,
+    stats: BvhStats,
+}
+
+struct BuildItem {
+    bounds: Aabb,
+    centroid: Vec3A,
+    prim: PrimRef,
+}
+
+impl<'s> Bvh<'s> {
+    /// Builds the tree over every primitive of `scene`.
+    pub fn build(scene: &'s Scene) -> Self {
+        let mut items = Vec::with_capacity(scene.primitive_count());
+        let kinds = [
+            (PrimKind::Sphere, scene.spheres.len()),
+            (PrimKind::Cylinder, scene.cylinders.len()),
+            (PrimKind::Cone, scene.cones.len()),
+            (PrimKind::Polygon, scene.polygons.len()),
+            (PrimKind::Patch, scene.patches.len()),
+        ];
+        for (kind, n) in kinds {
+            for index in 0..n {
+                let prim = PrimRef {
+                    kind,
+                    index: index as u32,
+                };
+                let bounds = bounds_of(scene, prim);
+                items.push(BuildItem {
+                    bounds,
+                    centroid: bounds.centroid(),
+                    prim,
+                });
+            }
+        }
+        let mut bvh = Self {
+            scene,
+            nodes: Vec::with_capacity(2 * items.len().max(1)),
+            prims: Vec::with_capacity(items.len()),
+            stats: BvhStats::default(),
+        };
+        if !items.is_empty() {
+            bvh.build_node(&mut items, 1);
+        }
+        bvh.stats.nodes = bvh.nodes.len();
+        bvh
+    }
+
+    /// Figures about the tree.
+    pub fn stats(&self) -> BvhStats {
+        self.stats
+    }
+
+    fn push_leaf(&mut self, bounds: Aabb, items: &[BuildItem]) {
+        self.nodes.push(Node {
+            bounds,
+            offset: self.prims.len() as u32,
+            count: items.len() as u16,
+            axis: 0,
+        });
+        self.prims.extend(items.iter().map(|it| it.prim));
+        self.stats.leaves += 1;
+        self.stats.max_leaf_size = self.stats.max_leaf_size.max(items.len());
+    }
+
+    fn build_node(&mut self, items: &mut [BuildItem], depth: usize) {
+        self.stats.max_depth = self.stats.max_depth.max(depth);
+        let bounds = items.iter().fold(Aabb::EMPTY, |b, it| b.union(it.bounds));
+        let centroids = items.iter().fold(Aabb::EMPTY, |b, it| b.grow(it.centroid));
+        let n = items.len();
+        let extent = centroids.max - centroids.min;
+        let axis = if extent.x >= extent.y && extent.x >= extent.z {
+            0
+        } else if extent.y >= extent.z {
+            1
+        } else {
+            2
+        };
+        let fits_leaf = n <= u16::MAX as usize;
+        if n == 1 || (fits_leaf && (!(extent[axis] > 0.0) || depth >= MAX_DEPTH)) {
+            self.push_leaf(bounds, items);
+            return;
+        }
+        if !(extent[axis] > 0.0) {
+            // Too many primitives with one centroid for a leaf: split by count.
+            self.push_interior(bounds, axis, items, n / 2, depth);
+            return;
+        }
+
+        // Binned SAH along the widest centroid axis.
+        let (lo, span) = (centroids.min[axis], extent[axis]);
+        let bin_of = |c: Vec3A| (((c[axis] - lo) / span * BINS as f32) as usize).min(BINS - 1);
+        let mut bin_bounds = [Aabb::EMPTY; BINS];
+        let mut bin_counts = [0usize; BINS];
+        for it in items.iter() {
+            let b = bin_of(it.centroid);
+            bin_bounds[b] = bin_bounds[b].union(it.bounds);
+            bin_counts[b] += 1;
+        }
+        let mut right_area = [0.0f32; BINS];
+        let mut right_count = [0usize; BINS];
+        let (mut acc, mut count) = (Aabb::EMPTY, 0);
+        for b in (1..BINS).rev() {
+            acc = acc.union(bin_bounds[b]);
+            count += bin_counts[b];
+            right_area[b] = acc.surface_area();
+            right_count[b] = count;
+        }
+        let (mut best_cost, mut best_split) = (f32::INFINITY, 0);
+        let (mut acc, mut count) = (Aabb::EMPTY, 0);
+        for split in 1..BINS {
+            acc = acc.union(bin_bounds[split - 1]);
+            count += bin_counts[split - 1];
+            if count == 0 || right_count[split] == 0 {
+                continue;
+            }
+            let cost =
+                acc.surface_area() * count as f32 + right_area[split] * right_count[split] as f32;
+            if cost < best_cost {
+                best_cost = cost;
+                best_split = split;
+            }
+        }
+        if best_split == 0 {
+            items.sort_by(|a, b| a.centroid[axis].total_cmp(&b.centroid[axis]));
+            self.push_interior(bounds, axis, items, n / 2, depth);
+            return;
+        }
+        let area = bounds.surface_area().max(f32::MIN_POSITIVE);
+        if n <= MAX_LEAF && TRAVERSAL_COST + best_cost / area >= n as f32 {
+            self.push_leaf(bounds, items);
+            return;
+        }
+        let mid = partition(items, |it| bin_of(it.centroid) < best_split);
+        self.push_interior(bounds, axis, items, mid, depth);
+    }
+
+    fn push_interior(
+        &mut self,
+        bounds: Aabb,
+        axis: usize,
+        items: &mut [BuildItem],
+        mid: usize,
+        depth: usize,
+    ) {
+        let at = self.nodes.len();
+        self.nodes.push(Node {
+            bounds,
+            offset: 0,
+            count: 0,
+            axis: axis as u16,
+        });
+        let (left, right) = items.split_at_mut(mid);
+        self.build_node(left, depth + 1);
+        self.nodes[at].offset = self.nodes.len() as u32;
+        self.build_node(right, depth + 1);
+    }
+
+    /// Front-to-back traversal; `visit` tests a leaf's primitives and returns whether
+    /// the search is over (a shadow ray found a blocker). `t_max` shrinks as hits are
+    /// found so farther boxes are skipped.
+    #[inline(always)]
+    fn traverse<C: Counter, const FROM_EYE: bool>(
+        &self,
+        ray: &Ray<FROM_EYE>,
+        t_min: f32,
+        t_max: &mut f32,
+        c: &mut C,
+        mut visit: impl FnMut(&[PrimRef], &mut f32, &mut C) -> bool,
+    ) {
+        if self.nodes.is_empty() {
+            return;
+        }
+        let origin = ray.origin.0;
+        let inv_dir = Vec3A::ONE / ray.dir.0;
+        let negative = [inv_dir.x < 0.0, inv_dir.y < 0.0, inv_dir.z < 0.0];
+        // Past MAX_DEPTH only count splits of > 65535 coincident centroids remain (< 17 levels).
+        let mut stack = [0u32; MAX_DEPTH + 20];
+        let mut top = 0usize;
+        let mut index = 0usize;
+        loop {
+            let node = &self.nodes[index];
+            c.tally(Stat::NodesVisited);
+            if slab_hit(&node.bounds, origin, inv_dir, t_min, *t_max) {
+                if node.count > 0 {
+                    c.tally(Stat::LeavesVisited);
+                    let first = node.offset as usize;
+                    let leaf = &self.prims[first..first + node.count as usize];
+                    if visit(leaf, t_max, c) {
+                        return;
+                    }
+                } else {
+                    // Near child first; the far one waits on the stack.
+                    let (near, far) = if negative[node.axis as usize] {
+                        (node.offset as usize, index + 1)
+                    } else {
+                        (index + 1, node.offset as usize)
+                    };
+                    stack[top] = far as u32;
+                    top += 1;
+                    index = near;
+                    continue;
+                }
+            }
+            if top == 0 {
+                return;
+            }
+            top -= 1;
+            index = stack[top] as usize;
+        }
+    }
+
+    #[inline(always)]
+    fn closest<C: Counter, const FROM_EYE: bool>(
+        &self,
+        ray: &Ray<FROM_EYE>,
+        t_min: f32,
+        c: &mut C,
+    ) -> Option<Hit> {
+        c.tally(Stat::Intersect);
+        let mut best: Option<Hit> = None;
+        let mut t_max = f32::INFINITY;
+        let scene = self.scene;
+        self.traverse(ray, t_min, &mut t_max, c, |leaf, t_max, c| {
+            for &prim in leaf {
+                if let Some((t, aux)) = intersect_primitive(scene, prim, ray, t_min, *t_max, c) {
+                    *t_max = t;
+                    best = Some(Hit { t, prim, aux });
+                }
+            }
+            false
+        });
+        best
+    }
+}
+
+/// Moves the items for which `left` holds to the front; returns how many there are.
+fn partition(items: &mut [BuildItem], left: impl Fn(&BuildItem) -> bool) -> usize {
+    let mut mid = 0;
+    for i in 0..items.len() {
+        if left(&items[i]) {
+            items.swap(i, mid);
+            mid += 1;
+        }
+    }
+    mid
+}
+
+/// The slab test: whether the ray meets the box inside `(t_min, t_max)`. A direction
+/// component of zero gives infinite slab distances, which `min`/`max` order correctly;
+/// a NaN (origin exactly on a slab of a flat box) is dropped by `min`/`max`.
+#[inline(always)]
+fn slab_hit(b: &Aabb, origin: Vec3A, inv_dir: Vec3A, t_min: f32, t_max: f32) -> bool {
+    let t0 = (b.min - origin) * inv_dir;
+    let t1 = (b.max - origin) * inv_dir;
+    let near = t0.min(t1).max_element().max(t_min);
+    let far = t0.max(t1).min_element().min(t_max);
+    near <= far
+}
+
+impl Intersector for Bvh<'_> {
+    fn closest_hit<C: Counter>(&self, ray: &Ray, t_min: f32, c: &mut C) -> Option<Hit> {
+        self.closest(ray, t_min, c)
+    }
+
+    fn closest_hit_from_eye<C: Counter>(&self, ray: &Ray<true>, c: &mut C) -> Option<Hit> {
+        self.closest(ray, 0.0, c)
+    }
+
+    fn occluded<C: Counter>(&self, ray: &Ray, t_min: f32, t_max: f32, c: &mut C) -> bool {
+        c.tally(Stat::Intersect);
+        let scene = self.scene;
+        let mut blocked = false;
+        let mut limit = t_max;
+        self.traverse(ray, t_min, &mut limit, c, |leaf, t_max, c| {
+            blocked = leaf
+                .iter()
+                .any(|&p| intersect_primitive(scene, p, ray, t_min, *t_max, c).is_some());
+            blocked
+        });
+        blocked
+    }
+}
+
+/// Checks, for tests, that every primitive's box contains sample points of its
+/// surface hits: brute force and BVH agree on closest hits of many rays.
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::accel::BruteForce;
+    use crate::counter::NoCount;
+    use crate::nff::parse_nff;
+
+    fn mixed_scene() -> Scene {
+        let mut text = String::from(
+            "v\nfrom 0 -12 3\nat 0 0 0\nup 0 0 1\nangle 50\nhither 0\nresolution 16 16\n\
+             l 4 -6 8\nf 1 0.5 0.2 0.7 0.3 8 0 1\n",
+        );
+        // A grid of spheres, cylinders, cones and polygons, including a flat one on the
+        // z = 0 plane (a zero-thickness box).
+        for i in 0..6 {
+            for j in 0..6 {
+                let (x, y) = (i as f32 * 1.5 - 4.0, j as f32 * 1.5 - 4.0);
+                match (i + j) % 4 {
+                    0 => text += &format!("s {x} {y} 0.5 0.6\n"),
+                    1 => text += &format!("c\n{x} {y} 0 0.3\n{x} {y} 1.2 0.3\n"),
+                    2 => text += &format!("c\n{x} {y} 0 0.5\n{} {y} 1 0.1\n", x + 0.2),
+                    _ => text += &format!("p 3\n{x} {y} 0\n{} {y} 0\n{x} {} 0\n", x + 1.0, y + 1.0),
+                }
+            }
+        }
+        parse_nff(&text, "mixed.nff").unwrap_or_else(|e| panic!("{e}"))
+    }
+
+    fn rays() -> Vec<Ray> {
+        let mut out = Vec::new();
+        let mut state = 12345u32;
+        let mut next = || {
+            state ^= state << 13;
+            state ^= state >> 17;
+            state ^= state << 5;
+            (state as f32 / u32::MAX as f32) * 2.0 - 1.0
+        };
+        for _ in 0..4000 {
+            let origin = Vec3::new(next() * 8.0, next() * 8.0 - 10.0, next() * 4.0 + 1.0);
+            let d = Vec3::new(next(), next() + 1.2, next() * 0.8 - 0.3);
+            let dir = NoCount.normalize(d);
+            out.push(Ray { origin, dir });
+        }
+        // Axis-parallel rays exercise infinite slab distances.
+        out.push(Ray {
+            origin: Vec3::new(-4.0, -20.0, 0.5),
+            dir: Vec3::new(0.0, 1.0, 0.0),
+        });
+        out.push(Ray {
+            origin: Vec3::new(-4.0, -4.0, 5.0),
+            dir: Vec3::new(0.0, 0.0, -1.0),
+        });
+        out
+    }
+
+    #[test]
+    fn bvh_finds_the_same_closest_hits_and_blockers_as_brute_force() {
+        let scene = mixed_scene();
+        let brute = BruteForce::new(&scene);
+        let bvh = Bvh::build(&scene);
+        assert!(bvh.stats().leaves > 1 && bvh.stats().max_leaf_size <= MAX_LEAF);
+        let mut hits = 0;
+        for ray in rays() {
+            let a = brute.closest_hit(&ray, 0.0, &mut NoCount);
+            let b = bvh.closest_hit(&ray, 0.0, &mut NoCount);
+            assert_eq!(a.map(|h| h.prim), b.map(|h| h.prim), "{ray:?}");
+            assert_eq!(a.map(|h| h.t), b.map(|h| h.t));
+            hits += usize::from(a.is_some());
+            for limit in [1.0, 5.0, f32::INFINITY] {
+                assert_eq!(
+                    brute.occluded(&ray, 0.0, limit, &mut NoCount),
+                    bvh.occluded(&ray, 0.0, limit, &mut NoCount)
+                );
+            }
+        }
+        assert!(hits > 300, "the test rays must hit something: {hits}");
+    }
+
+    #[test]
+    fn traversal_counts_nodes_and_tests_fewer_primitives() {
+        let scene = mixed_scene();
+        let bvh = Bvh::build(&scene);
+        let ray: Ray = Ray {
+            origin: Vec3::new(0.0, -12.0, 3.0),
+            dir: NoCount.normalize(Vec3::new(0.0, 12.0, -3.0)),
+        };
+        let mut c = crate::counter::Count::default();
+        bvh.closest_hit(&ray, 0.0, &mut c);
+        let tests = c.get(Stat::SphereTest)
+            + c.get(Stat::CylinderTest)
+            + c.get(Stat::ConeTest)
+            + c.get(Stat::PolygonTest);
+        assert!(c.get(Stat::NodesVisited) >= 1);
+        assert!(c.get(Stat::LeavesVisited) >= 1);
+        assert!(tests < scene.primitive_count() as u64 / 2, "{tests}");
+    }
+
+    #[test]
+    fn empty_scene_has_no_hits() {
+        let scene = parse_nff(
+            "v\nfrom 0 0 -4\nat 0 0 0\nup 0 1 0\nangle 40\nhither 0\nresolution 4 4\n",
+            "empty.nff",
+        )
+        .unwrap_or_else(|e| panic!("{e}"));
+        let bvh = Bvh::build(&scene);
+        let ray: Ray = Ray {
+            origin: Vec3::ZERO,
+            dir: Vec3::new(0.0, 0.0, 1.0),
+        };
+        assert!(bvh.closest_hit(&ray, 0.0, &mut NoCount).is_none());
+        assert!(!bvh.occluded(&ray, 0.0, 1.0, &mut NoCount));
+    }
+}

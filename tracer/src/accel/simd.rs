@@ -1,0 +1,538 @@
+//! SIMD brute force (variant `simd`): the thesis's "several intersection units in
+//! parallel, then one minimum" (8.3.3) in software.
+//!
+//! Spheres and cylinders are stored in structure-of-arrays chunks of [`LANES`]; one step
+//! tests a whole chunk with branch-free lane arithmetic that the compiler turns into
+//! vector instructions, and the closest lane is picked at the end of the step. The
+//! chunk loop is compiled twice: for the build's baseline target (SSE2 on any x86-64)
+//! and with AVX2 + FMA, chosen at run time when the CPU has them. Cones, polygons and
+//! patches are tested one by one as in brute force.
+//!
+//! Counts: every lane holding a primitive counts one test with the operations of the
+//! scalar test (`sub`, `dot`s, a `sqrt` where the discriminant is positive); a hit is a
+//! lane whose distance falls inside the interval known when its chunk started (brute
+//! force shrinks the interval after every primitive, so `hits` may differ slightly;
+//! `rays.*` and the picture do not).
+
+use super::{Intersector, intersect_primitive, occluded_by_cones_and_planars};
+use crate::counter::{Counter, Stat};
+use crate::ray::{Hit, PrimKind, PrimRef, Ray};
+use crate::scene::Scene;
+
+/// Primitives tested per step: one AVX register of f32.
+pub const LANES: usize = 8;
+
+/// A chunk of spheres in structure-of-arrays form.
+#[derive(Clone, Copy, Debug)]
+#[repr(C, align(32))]
+struct SphereLanes {
+    cx: [f32; LANES],
+    cy: [f32; LANES],
+    cz: [f32; LANES],
+    radius_sq: [f32; LANES],
+    /// 1.0 where only the inside is visible (negative radius).
+    inside: [f32; LANES],
+}
+
+/// A chunk of cylinders in structure-of-arrays form.
+#[derive(Clone, Copy, Debug)]
+#[repr(C, align(32))]
+struct CylinderLanes {
+    bx: [f32; LANES],
+    by: [f32; LANES],
+    bz: [f32; LANES],
+    ax: [f32; LANES],
+    ay: [f32; LANES],
+    az: [f32; LANES],
+    radius_sq: [f32; LANES],
+    length: [f32; LANES],
+    inside: [f32; LANES],
+}
+
+/// Brute force with SIMD lanes.
+#[derive(Clone, Debug)]
+pub struct Simd<'s> {
+    scene: &'s Scene,
+    spheres: Vec<SphereLanes>,
+    cylinders: Vec<CylinderLanes>,
+    avx2: bool,
+}
+
+impl<'s> Simd<'s> {
+    /// Packs the spheres and cylinders of `scene` into lanes and detects AVX2.
+    pub fn new(scene: &'s Scene) -> Self {
+        let spheres = scene
+            .spheres
+            .chunks(LANES)
+            .map(|chunk| {
+                // Empty lanes: a sphere of radius² -inf, never hit (disc = -inf).
+                let mut l = SphereLanes {
+                    cx: [0.0; LANES],
+                    cy: [0.0; LANES],
+                    cz: [0.0; LANES],
+                    radius_sq: [f32::NEG_INFINITY; LANES],
+                    inside: [0.0; LANES],
+                };
+                for (i, s) in chunk.iter().enumerate() {
+                    let [x, y, z] = s.center.to_array();
+                    (l.cx[i], l.cy[i], l.cz[i]) = (x, y, z);
+                    l.radius_sq[i] = s.radius * s.radius;
+                    l.inside[i] = f32::from(u8::from(s.inside_visible()));
+                }
+                l
+            })
+            .collect();
+        let cylinders = scene
+            .cylinders
+            .chunks(LANES)
+            .map(|chunk| {
+                // Empty lanes: axis 0 makes a = 1, radius² -inf makes disc = -inf.
+                let mut l = CylinderLanes {
+                    bx: [0.0; LANES],
+                    by: [0.0; LANES],
+                    bz: [0.0; LANES],
+                    ax: [0.0; LANES],
+                    ay: [0.0; LANES],
+                    az: [0.0; LANES],
+                    radius_sq: [f32::NEG_INFINITY; LANES],
+                    length: [0.0; LANES],
+                    inside: [0.0; LANES],
+                };
+                for (i, cy) in chunk.iter().enumerate() {
+                    let [x, y, z] = cy.base.to_array();
+                    (l.bx[i], l.by[i], l.bz[i]) = (x, y, z);
+                    let [x, y, z] = cy.axis.to_array();
+                    (l.ax[i], l.ay[i], l.az[i]) = (x, y, z);
+                    l.radius_sq[i] = cy.radius * cy.radius;
+                    l.length[i] = cy.length;
+                    l.inside[i] = f32::from(u8::from(cy.inside_visible()));
+                }
+                l
+            })
+            .collect();
+        Self {
+            scene,
+            spheres,
+            cylinders,
+            avx2: cpu_has_avx2_fma(),
+        }
+    }
+
+    /// Whether the AVX2 + FMA code path runs on this CPU.
+    pub fn uses_avx2(&self) -> bool {
+        self.avx2
+    }
+
+    /// The closest sphere and cylinder hits in `(t_min, t_max)`, or whether any exists
+    /// when `any` is set (then the search stops at the first chunk with a hit).
+    #[inline(always)]
+    fn quadric_pass<C: Counter>(
+        &self,
+        ray: &Ray,
+        t_min: f32,
+        t_max: f32,
+        any: bool,
+        c: &mut C,
+    ) -> Option<Hit> {
+        #[cfg(target_arch = "x86_64")]
+        if self.avx2 {
+            // SAFETY: `avx2` is true only when the CPU reported AVX2 and FMA.
+            return unsafe { quadric_pass_avx2(self, ray, t_min, t_max, any, c) };
+        }
+        quadric_pass_body(self, ray, t_min, t_max, any, c)
+    }
+}
+
+#[cfg(target_arch = "x86_64")]
+fn cpu_has_avx2_fma() -> bool {
+    std::is_x86_feature_detected!("avx2") && std::is_x86_feature_detected!("fma")
+}
+
+#[cfg(not(target_arch = "x86_64"))]
+fn cpu_has_avx2_fma() -> bool {
+    false
+}
+
+/// The quadric pass compiled with AVX2 + FMA (the caller checks the CPU has them).
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx2,fma")]
+fn quadric_pass_avx2<C: Counter>(
+    simd: &Simd,
+    ray: &Ray,
+    t_min: f32,
+    t_max: f32,
+    any: bool,
+    c: &mut C,
+) -> Option<Hit> {
+    quadric_pass_body(simd, ray, t_min, t_max, any, c)
+}
+
+/// Lanes of a chunk that hold a primitive.
+#[inline(always)]
+fn live_lanes(chunk: usize, count: usize) -> usize {
+    (count - chunk * LANES).min(LANES)
+}
+
+/// The closest hit found by each lane over all chunks so far. Each lane keeps its own
+/// shrinking interval, so the chunk loop never needs a horizontal minimum; the lanes
+/// are reduced once, at the end.
+struct LaneBest {
+    t: [f32; LANES],
+    chunk: [u32; LANES],
+    aux: [f32; LANES],
+}
+
+impl LaneBest {
+    fn new(t_max: f32) -> Self {
+        Self {
+            t: [t_max; LANES],
+            chunk: [u32::MAX; LANES],
+            aux: [0.0; LANES],
+        }
+    }
+
+    /// Keeps the lanes of `t` closer than the lane's best; whether any lane was kept.
+    #[inline(always)]
+    fn update(&mut self, chunk: usize, t: &[f32; LANES], aux: &[f32; LANES]) -> bool {
+        let mut kept = false;
+        for i in 0..LANES {
+            let closer = t[i] < self.t[i];
+            kept |= closer;
+            if closer {
+                self.t[i] = t[i];
+                self.chunk[i] = chunk as u32;
+                self.aux[i] = aux[i];
+            }
+        }
+        kept
+    }
+
+    /// The closest lane's hit as `(t, primitive index, aux)`; on equal distances the
+    /// lowest primitive index wins, as brute force keeps the first of equal hits.
+    fn closest(&self) -> Option<(f32, usize, f32)> {
+        let mut best: Option<(f32, usize, f32)> = None;
+        for i in 0..LANES {
+            if self.chunk[i] == u32::MAX {
+                continue;
+            }
+            let index = self.chunk[i] as usize * LANES + i;
+            let better = match best {
+                None => true,
+                Some((t, j, _)) => self.t[i] < t || (self.t[i] == t && index < j),
+            };
+            if better {
+                best = Some((self.t[i], index, self.aux[i]));
+            }
+        }
+        best
+    }
+}
+
+/// The closest sphere or cylinder hit in `(t_min, t_max)` (with `any`: the first found).
+#[inline(always)]
+fn quadric_pass_body<C: Counter>(
+    simd: &Simd,
+    ray: &Ray,
+    t_min: f32,
+    t_max: f32,
+    any: bool,
+    c: &mut C,
+) -> Option<Hit> {
+    let (sphere_count, cylinder_count) = (simd.scene.spheres.len(), simd.scene.cylinders.len());
+    let sphere = sphere_pass(&simd.spheres, sphere_count, ray, t_min, t_max, any, c);
+    let hit = |kind, (t, index, aux): (f32, usize, f32)| Hit {
+        t,
+        prim: PrimRef {
+            kind,
+            index: index as u32,
+        },
+        aux,
+    };
+    if any && sphere.is_some() {
+        return sphere.map(|s| hit(PrimKind::Sphere, s));
+    }
+    let limit = sphere.map_or(t_max, |(t, _, _)| t);
+    match cylinder_pass(&simd.cylinders, cylinder_count, ray, t_min, limit, any, c) {
+        Some(cy) => Some(hit(PrimKind::Cylinder, cy)),
+        None => sphere.map(|s| hit(PrimKind::Sphere, s)),
+    }
+}
+
+#[inline(always)]
+fn sphere_pass<C: Counter>(
+    chunks: &[SphereLanes],
+    count: usize,
+    ray: &Ray,
+    t_min: f32,
+    t_max: f32,
+    any: bool,
+    c: &mut C,
+) -> Option<(f32, usize, f32)> {
+    let [ox, oy, oz] = ray.origin.to_array();
+    let [dx, dy, dz] = ray.dir.to_array();
+    let mut best = LaneBest::new(t_max);
+    for (k, l) in chunks.iter().enumerate() {
+        // Step 1, every lane: the discriminant. Most chunks miss entirely and stop here.
+        let mut half_b = [0.0f32; LANES];
+        let mut disc = [0.0f32; LANES];
+        let mut disc_positive = [false; LANES];
+        let mut any_positive = false;
+        for i in 0..LANES {
+            let (vx, vy, vz) = (ox - l.cx[i], oy - l.cy[i], oz - l.cz[i]);
+            half_b[i] = dx * vx + dy * vy + dz * vz;
+            let cc = (vx * vx + vy * vy + vz * vz) - l.radius_sq[i];
+            disc[i] = half_b[i] * half_b[i] - cc;
+            disc_positive[i] = disc[i] > 0.0;
+            any_positive |= disc_positive[i];
+        }
+        if C::ENABLED {
+            count_lanes(
+                c,
+                live_lanes(k, count),
+                1,
+                2,
+                &disc_positive,
+                Stat::SphereTest,
+            );
+        }
+        if !any_positive {
+            continue;
+        }
+        // Step 2: roots and the lane's interval, branch-free per lane.
+        let mut t = [f32::INFINITY; LANES];
+        for i in 0..LANES {
+            let root = C::sqrt_kernel(disc[i].max(0.0));
+            let near = -half_b[i] - root;
+            let far = -half_b[i] + root;
+            let near_ok = l.inside[i] == 0.0 && near > t_min && near < best.t[i];
+            let far_ok = far > t_min && far < best.t[i];
+            let chosen = if near_ok { near } else { far };
+            t[i] = if disc_positive[i] && (near_ok || far_ok) {
+                chosen
+            } else {
+                f32::INFINITY
+            };
+        }
+        if C::ENABLED {
+            let hits = t.iter().filter(|x| x.is_finite()).count();
+            c.tally_n(Stat::SphereHit, hits as u64);
+        }
+        if best.update(k, &t, &[0.0; LANES]) && any {
+            break;
+        }
+    }
+    best.closest()
+}
+
+#[inline(always)]
+fn cylinder_pass<C: Counter>(
+    chunks: &[CylinderLanes],
+    count: usize,
+    ray: &Ray,
+    t_min: f32,
+    t_max: f32,
+    any: bool,
+    c: &mut C,
+) -> Option<(f32, usize, f32)> {
+    let [ox, oy, oz] = ray.origin.to_array();
+    let [dx, dy, dz] = ray.dir.to_array();
+    let mut best = LaneBest::new(t_max);
+    for (k, l) in chunks.iter().enumerate() {
+        // Step 1, every lane: the quadratic's coefficients and discriminant.
+        let mut rv = [0.0f32; LANES];
+        let mut ov = [0.0f32; LANES];
+        let mut a = [0.0f32; LANES];
+        let mut half_b = [0.0f32; LANES];
+        let mut disc = [0.0f32; LANES];
+        let mut disc_positive = [false; LANES];
+        let mut any_valid = false;
+        for i in 0..LANES {
+            let (vx, vy, vz) = (ox - l.bx[i], oy - l.by[i], oz - l.bz[i]);
+            rv[i] = dx * l.ax[i] + dy * l.ay[i] + dz * l.az[i];
+            ov[i] = vx * l.ax[i] + vy * l.ay[i] + vz * l.az[i];
+            let ro = dx * vx + dy * vy + dz * vz;
+            let oo = vx * vx + vy * vy + vz * vz;
+            a[i] = 1.0 - rv[i] * rv[i];
+            half_b[i] = ro - rv[i] * ov[i];
+            let cc = oo - ov[i] * ov[i] - l.radius_sq[i];
+            disc[i] = half_b[i] * half_b[i] - a[i] * cc;
+            disc_positive[i] = disc[i] > 0.0;
+            any_valid |= disc_positive[i] & (a[i] > 0.0);
+        }
+        if C::ENABLED {
+            count_lanes(
+                c,
+                live_lanes(k, count),
+                1,
+                4,
+                &disc_positive,
+                Stat::CylinderTest,
+            );
+        }
+        if !any_valid {
+            continue;
+        }
+        // Step 2: roots, the lane's interval and the axial bounds, branch-free per lane.
+        let mut t = [f32::INFINITY; LANES];
+        let mut m_at = [0.0f32; LANES];
+        for i in 0..LANES {
+            let valid = disc_positive[i] && a[i] > 0.0;
+            let root = C::sqrt_kernel(disc[i].max(0.0));
+            let near = (-half_b[i] - root) / a[i];
+            let far = (-half_b[i] + root) / a[i];
+            let m_near = ov[i] + near * rv[i];
+            let m_far = ov[i] + far * rv[i];
+            let near_ok = l.inside[i] == 0.0
+                && near > t_min
+                && near < best.t[i]
+                && m_near > 0.0
+                && m_near < l.length[i];
+            let far_ok = far > t_min && far < best.t[i] && m_far > 0.0 && m_far < l.length[i];
+            let (chosen, m) = if near_ok {
+                (near, m_near)
+            } else {
+                (far, m_far)
+            };
+            (t[i], m_at[i]) = if valid && (near_ok || far_ok) {
+                (chosen, m)
+            } else {
+                (f32::INFINITY, 0.0)
+            };
+        }
+        if C::ENABLED {
+            let hits = t.iter().filter(|x| x.is_finite()).count();
+            c.tally_n(Stat::CylinderHit, hits as u64);
+        }
+        if best.update(k, &t, &m_at) && any {
+            break;
+        }
+    }
+    best.closest()
+}
+
+/// Counts the tests of one chunk and the operations the scalar test would have run.
+#[inline(always)]
+fn count_lanes<C: Counter>(
+    c: &mut C,
+    live: usize,
+    subs: u64,
+    dots: u64,
+    disc_positive: &[bool; LANES],
+    test: Stat,
+) {
+    let n = live as u64;
+    c.tally_n(test, n);
+    c.tally_n(Stat::Sub, subs * n);
+    c.tally_n(Stat::Dot, dots * n);
+    c.tally_n(
+        Stat::Sqrt,
+        disc_positive[..live].iter().filter(|&&p| p).count() as u64,
+    );
+}
+
+impl Intersector for Simd<'_> {
+    fn closest_hit<C: Counter>(&self, ray: &Ray, t_min: f32, c: &mut C) -> Option<Hit> {
+        c.tally(Stat::Intersect);
+        let mut best = self.quadric_pass(ray, t_min, f32::INFINITY, false, c);
+        let mut t_max = best.map_or(f32::INFINITY, |h| h.t);
+        let s = self.scene;
+        let rest = [
+            (PrimKind::Cone, s.cones.len()),
+            (PrimKind::Polygon, s.polygons.len()),
+            (PrimKind::Patch, s.patches.len()),
+        ];
+        for (kind, n) in rest {
+            for index in 0..n as u32 {
+                let prim = PrimRef { kind, index };
+                if let Some((t, aux)) = intersect_primitive(s, prim, ray, t_min, t_max, c) {
+                    t_max = t;
+                    best = Some(Hit { t, prim, aux });
+                }
+            }
+        }
+        best
+    }
+
+    fn occluded<C: Counter>(&self, ray: &Ray, t_min: f32, t_max: f32, c: &mut C) -> bool {
+        c.tally(Stat::Intersect);
+        let s = self.scene;
+        self.quadric_pass(ray, t_min, t_max, true, c).is_some()
+            || occluded_by_cones_and_planars(s, ray, t_min, t_max, c)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::accel::BruteForce;
+    use crate::counter::{Count, NoCount};
+    use crate::nff::parse_nff;
+    use crate::vec3::Vec3;
+
+    fn scene() -> Scene {
+        // 19 spheres and 11 cylinders: partial last chunks on both, one inside-only
+        // sphere and one inside-only cylinder.
+        let mut text = String::from(
+            "v\nfrom 0 -12 3\nat 0 0 0\nup 0 0 1\nangle 50\nhither 0\nresolution 8 8\n\
+             l 4 -6 8\nf 1 1 1 1 0 1 0 1\ns 0 0 0 -6\nc\n0 0 -1 -7\n0 0 1 -7\n",
+        );
+        for i in 0..18 {
+            let x = i as f32 * 0.7 - 6.0;
+            text += &format!("s {x} {} 0.5 0.4\n", (i % 3) as f32);
+        }
+        for i in 0..10 {
+            let x = i as f32 * 1.1 - 5.0;
+            text += &format!("c\n{x} 1 -1 0.3\n{x} 1.5 1 0.3\n");
+        }
+        parse_nff(&text, "lanes.nff").unwrap_or_else(|e| panic!("{e}"))
+    }
+
+    #[test]
+    fn lanes_agree_with_brute_force_on_hits_and_blockers() {
+        let scene = scene();
+        let brute = BruteForce::new(&scene);
+        let simd = Simd::new(&scene);
+        let mut state = 7u32;
+        let mut next = || {
+            state = state.wrapping_mul(1_664_525).wrapping_add(1_013_904_223);
+            (state >> 8) as f32 / (1u32 << 24) as f32 * 2.0 - 1.0
+        };
+        let mut hits = 0;
+        for _ in 0..3000 {
+            let origin = Vec3::new(next() * 6.0, -10.0 + next(), next() * 2.0);
+            let dir = NoCount.normalize(Vec3::new(next() * 0.6, 1.0, next() * 0.4));
+            let ray: Ray = Ray { origin, dir };
+            let a = brute.closest_hit(&ray, 0.0, &mut NoCount);
+            let b = simd.closest_hit(&ray, 0.0, &mut NoCount);
+            assert_eq!(a.map(|h| h.prim), b.map(|h| h.prim), "{ray:?}");
+            if let (Some(a), Some(b)) = (a, b) {
+                assert!((a.t - b.t).abs() <= 1e-4 * a.t.max(1.0), "{a:?} {b:?}");
+                hits += 1;
+            }
+            for limit in [0.5, 4.0, 30.0] {
+                assert_eq!(
+                    brute.occluded(&ray, 0.0, limit, &mut NoCount),
+                    simd.occluded(&ray, 0.0, limit, &mut NoCount)
+                );
+            }
+        }
+        assert!(hits > 2000, "{hits}");
+    }
+
+    #[test]
+    fn counts_cover_live_lanes_only() {
+        let scene = scene();
+        let simd = Simd::new(&scene);
+        let ray: Ray = Ray {
+            origin: Vec3::new(0.0, -10.0, 0.0),
+            dir: Vec3::new(0.0, 1.0, 0.0),
+        };
+        let mut c = Count::default();
+        simd.closest_hit(&ray, 0.0, &mut c);
+        assert_eq!(c.get(Stat::SphereTest), 19);
+        assert_eq!(c.get(Stat::CylinderTest), 11);
+        assert_eq!(c.get(Stat::Sub), 30);
+        assert_eq!(c.get(Stat::Dot), 19 * 2 + 11 * 4);
+        assert_eq!(c.get(Stat::Intersect), 1);
+    }
+}

@@ -1,0 +1,177 @@
+//! Renders a scene with a set of variants: prepares the scene (eye offsets for
+//! `bounded`), builds the intersection structure, and runs the renderer with the chosen
+//! square root, projection, diffuse term and sampling. Everything the command line,
+//! the suite and the benchmarks render goes through [`render_variant`].
+
+use crate::accel::{BruteForce, Bvh, BvhStats, Intersector, Simd};
+use crate::camera::Projection;
+use crate::counter::{Counter, NoCount};
+use crate::eye_space::with_eye_offsets;
+use crate::fast_sqrt::{BitTrickSqrt, NewtonBitTrickSqrt, SquareRoot, TunedBitTrickSqrt, WithSqrt};
+use crate::render::{RenderError, RenderOptions, Rendered, render};
+use crate::scene::Scene;
+use crate::variant::{Accelerator, SqrtMethod, VariantSet};
+use crate::vec3::Vec3;
+use std::time::{Duration, Instant};
+
+/// A finished variant render with its phase timings.
+#[derive(Clone, Debug)]
+pub struct VariantRender<C> {
+    pub rendered: Rendered<C>,
+    /// Scene preparation and structure build (camera space, SIMD lanes, BVH).
+    pub preprocessing: Duration,
+    /// The render itself.
+    pub tracing: Duration,
+    /// The BVH's figures when the `bvh` variant ran.
+    pub bvh: Option<BvhStats>,
+}
+
+/// Renders `scene` with `variants`. `options` gives size, sampling and shading mode;
+/// its projection, diffuse form and checkerboard are set from the variants.
+pub fn render_variant<C: Counter>(
+    scene: &Scene,
+    options: &RenderOptions,
+    variants: &VariantSet,
+    progress: &(dyn Fn(u64) + Sync),
+) -> Result<VariantRender<C>, RenderError> {
+    let config = variants.config();
+    let start = Instant::now();
+    let moved;
+    let scene = if config.projection == Projection::EyeRows {
+        moved = with_eye_offsets(scene);
+        &moved
+    } else {
+        scene
+    };
+    let options = RenderOptions {
+        projection: config.projection,
+        diffuse: config.diffuse,
+        checkerboard: config.checkerboard,
+        ortho_focus: (config.projection == Projection::Orthographic)
+            .then(|| scene_depth(scene))
+            .flatten(),
+        ..*options
+    };
+    let job = Job {
+        scene,
+        options: &options,
+        progress,
+        start,
+    };
+    match config.accel {
+        Accelerator::BruteForce => job.with_sqrt(&BruteForce::new(scene), config.sqrt, None),
+        Accelerator::Simd => job.with_sqrt(&Simd::new(scene), config.sqrt, None),
+        Accelerator::Bvh => {
+            let bvh = Bvh::build(scene);
+            let stats = bvh.stats();
+            job.with_sqrt(&bvh, config.sqrt, Some(stats))
+        }
+    }
+}
+
+/// How far ahead of the eye the scene's centre lies (the centre of the box around the
+/// primitives' defining points): where the orthographic grid should span the
+/// perspective view, so `ortho` frames the scene as `baseline` does even when the
+/// NFF look-at point is close to the eye (as in rings.nff).
+fn scene_depth(scene: &Scene) -> Option<f32> {
+    let mut points = Vec::new();
+    points.extend(scene.spheres.iter().map(|s| s.center));
+    points.extend(scene.cylinders.iter().flat_map(|c| [c.base, c.apex]));
+    points.extend(scene.cones.iter().flat_map(|c| [c.base, c.apex]));
+    points.extend(
+        scene
+            .polygons
+            .iter()
+            .flat_map(|p| p.outline.vertices.iter().copied()),
+    );
+    points.extend(
+        scene
+            .patches
+            .iter()
+            .flat_map(|p| p.outline.vertices.iter().copied()),
+    );
+    let first = points.first()?.to_array();
+    let (mut lo, mut hi) = (first, first);
+    for p in &points {
+        for (axis, v) in p.to_array().into_iter().enumerate() {
+            lo[axis] = lo[axis].min(v);
+            hi[axis] = hi[axis].max(v);
+        }
+    }
+    let centre = Vec3::new(
+        0.5 * (lo[0] + hi[0]),
+        0.5 * (lo[1] + hi[1]),
+        0.5 * (lo[2] + hi[2]),
+    );
+    let c = &mut NoCount;
+    let ahead = c.sub(scene.view.at, scene.view.from);
+    if !(c.dot(ahead, ahead) > 0.0) {
+        return None;
+    }
+    let forward = c.normalize(ahead);
+    let to_centre = c.sub(centre, scene.view.from);
+    let depth = c.dot(to_centre, forward);
+    (depth > 0.0 && depth.is_finite()).then_some(depth)
+}
+
+struct Job<'a> {
+    scene: &'a Scene,
+    options: &'a RenderOptions,
+    progress: &'a (dyn Fn(u64) + Sync),
+    start: Instant,
+}
+
+impl Job<'_> {
+    fn with_sqrt<C: Counter, I: Intersector>(
+        &self,
+        accel: &I,
+        sqrt: SqrtMethod,
+        bvh: Option<BvhStats>,
+    ) -> Result<VariantRender<C>, RenderError> {
+        match sqrt {
+            SqrtMethod::Std => self.run::<C, I>(accel, bvh),
+            SqrtMethod::BitTrick => self.run_with::<C, BitTrickSqrt, I>(accel, bvh),
+            SqrtMethod::TunedBitTrick => self.run_with::<C, TunedBitTrickSqrt, I>(accel, bvh),
+            SqrtMethod::NewtonBitTrick => self.run_with::<C, NewtonBitTrickSqrt, I>(accel, bvh),
+        }
+    }
+
+    fn run<C: Counter, I: Intersector>(
+        &self,
+        accel: &I,
+        bvh: Option<BvhStats>,
+    ) -> Result<VariantRender<C>, RenderError> {
+        let preprocessing = self.start.elapsed();
+        let start = Instant::now();
+        let rendered = render::<C, I>(self.scene, accel, self.options, self.progress)?;
+        Ok(VariantRender {
+            rendered,
+            preprocessing,
+            tracing: start.elapsed(),
+            bvh,
+        })
+    }
+
+    fn run_with<C: Counter, S: SquareRoot, I: Intersector>(
+        &self,
+        accel: &I,
+        bvh: Option<BvhStats>,
+    ) -> Result<VariantRender<C>, RenderError> {
+        let out = self.run::<WithSqrt<C, S>, I>(accel, bvh)?;
+        let Rendered {
+            frame,
+            counter,
+            rays,
+        } = out.rendered;
+        Ok(VariantRender {
+            rendered: Rendered {
+                frame,
+                counter: counter.inner,
+                rays,
+            },
+            preprocessing: out.preprocessing,
+            tracing: out.tracing,
+            bvh: out.bvh,
+        })
+    }
+}
