@@ -420,3 +420,78 @@ fn variants_lists_every_variant_with_measured_sqrt_errors() {
     // (3/2)/sqrt(2) - 1, the analytic worst case of the thesis's bit trick.
     assert!((max - 0.060_660_17).abs() < 1e-6, "{max}");
 }
+
+#[test]
+fn profile_writes_gprof_text_flamegraphs_and_json() {
+    let dir = scratch("profile");
+    let rings = spd("rings");
+    let out_dir = dir.join("prof");
+    let out = rtprof(&[
+        "profile",
+        &rings,
+        "--size",
+        "40x30",
+        "--threads",
+        "1",
+        "--diff-with",
+        "bvh",
+        "--json",
+        "-o",
+        &out_dir.display().to_string(),
+    ]);
+    assert_eq!(out.status.code(), Some(0), "{}", stderr(&out));
+    for f in [
+        "flat.txt",
+        "callgraph.txt",
+        "folded.txt",
+        "flame.svg",
+        "flame-diff.svg",
+        "amdahl.txt",
+    ] {
+        let path = out_dir.join(f);
+        assert!(path.is_file(), "{} missing", path.display());
+    }
+    let flat = String::from_utf8_lossy(&read(&out_dir.join("flat.txt"))).into_owned();
+    let rows = analysis::profile::gprof::parse_flat_text(&flat).unwrap_or_else(|e| panic!("{e}"));
+    assert!(!rows.is_empty());
+    let graph = String::from_utf8_lossy(&read(&out_dir.join("callgraph.txt"))).into_owned();
+    let entries =
+        analysis::profile::gprof::parse_call_graph_text(&graph).unwrap_or_else(|e| panic!("{e}"));
+    assert!(!entries.is_empty());
+    let svg = String::from_utf8_lossy(&read(&out_dir.join("flame.svg"))).into_owned();
+    assert!(svg.contains("<svg") && svg.trim_end().ends_with("</svg>"));
+
+    let json: serde_json::Value =
+        serde_json::from_slice(&out.stdout).unwrap_or_else(|e| panic!("{e}"));
+    // Exact call counts from the counters: brute force tests every sphere per query.
+    let calls_of = |name: &str| {
+        json["profile"]["flat"]["rows"]
+            .as_array()
+            .and_then(|rows| rows.iter().find(|r| r["name"] == name))
+            .and_then(|r| r["calls"].as_u64())
+    };
+    let count = rtprof(&["count", &rings, "--size", "40x30", "--json"]);
+    let counts: serde_json::Value =
+        serde_json::from_slice(&count.stdout).unwrap_or_else(|e| panic!("{e}"));
+    // Whichever of the hot functions the samples caught carries the exact count.
+    let expected = [
+        ("Cylinder::intersect", &counts["tests"]["cylinder"]["tests"]),
+        ("Sphere::intersect", &counts["tests"]["sphere"]["tests"]),
+        ("dot", &counts["ops"]["dot"]),
+    ];
+    let mut seen = 0;
+    for (name, value) in expected {
+        if let Some(calls) = calls_of(name) {
+            assert_eq!(Some(calls), value.as_u64(), "{name}");
+            seen += 1;
+        }
+    }
+    assert!(seen > 0, "no intersection test in the flat profile");
+    assert_eq!(json["diff"]["variant"], "bvh");
+    assert!(
+        json["profile"]["amdahl"]
+            .as_array()
+            .is_some_and(|a| !a.is_empty())
+    );
+    std::fs::remove_dir_all(&dir).ok();
+}

@@ -1,6 +1,7 @@
-//! The analysis stages of rtprof: they turn measurements (images, timings) into
-//! figures (image-quality metrics, confidence intervals). Plain data in, plain data out;
-//! nothing here renders.
+//! The analysis stages of rtprof: they turn measurements (images, timings, sampled
+//! call stacks) into figures (image-quality metrics, confidence intervals, gprof
+//! tables, flamegraphs). Plain data in, plain data out; nothing here renders (the
+//! sampler runs a closure it is given).
 //!
 //! Modules:
 //! - [`image_metrics`]: method 1 of the thesis, pixel comparison of two renders (RMS
@@ -9,12 +10,15 @@
 //! - [`ppm_text`]: method 2 of the thesis, histograms from the plain-text PPM (P3) form,
 //!   with a P3 writer and parser;
 //! - [`timing`]: median run time with a seeded percentile-bootstrap interval;
+//! - [`profile`]: the sampling profiler (pprof) and what is made of its stacks: gprof
+//!   flat profile and call graph, folded stacks, flamegraphs, Amdahl projections;
 //! - [`error`]: the error types of the above.
 
 pub mod error;
 pub mod image_metrics;
 pub mod ppm_text;
 mod prng;
+pub mod profile;
 pub mod timing;
 
 pub use error::{MetricsError, StatsError};

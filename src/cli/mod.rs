@@ -2,6 +2,7 @@
 
 mod compare;
 mod count;
+mod profile;
 mod render;
 mod scene_args;
 mod variants;
@@ -22,6 +23,8 @@ enum Command {
     Render(render::RenderArgs),
     /// Render an NFF scene counting every operation, test and ray.
     Count(count::CountArgs),
+    /// Sample a render: gprof flat profile and call graph, flamegraphs, Amdahl table.
+    Profile(profile::ProfileArgs),
     /// Compare two images, or run variants of one scene side by side.
     Compare(compare::CompareArgs),
     /// List the optimization variants and the measured accuracy of the approximate ones.
@@ -33,6 +36,7 @@ pub fn run(cli: Cli) -> anyhow::Result<()> {
     match cli.command {
         Command::Render(args) => render::run(&args),
         Command::Count(args) => count::run(&args),
+        Command::Profile(args) => profile::run(&args),
         Command::Compare(args) => compare::run(&args),
         Command::Variants(args) => variants::run(&args),
     }

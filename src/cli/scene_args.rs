@@ -38,9 +38,10 @@ pub fn parse_size(text: &str) -> Result<(u32, u32), String> {
     Ok((w as u32, h as u32))
 }
 
-/// A rayon pool of `threads` workers (default: one per core).
+/// A rayon pool of `threads` workers (default: one per core), named `rtprof-worker-N`
+/// so that profiles and debuggers show whose stack is whose.
 pub fn thread_pool(threads: Option<u16>) -> Result<rayon::ThreadPool> {
-    let mut pool = rayon::ThreadPoolBuilder::new();
+    let mut pool = rayon::ThreadPoolBuilder::new().thread_name(|i| format!("rtprof-worker-{i}"));
     if let Some(n) = threads {
         pool = pool.num_threads(usize::from(n));
     }

@@ -75,8 +75,6 @@ pub enum RenderError {
     Camera(String),
     #[error("{0}")]
     Size(String),
-    #[error("{0}")]
-    Prepare(String),
 }
 
 /// A floating-point framebuffer, row 0 at the top.

@@ -1,0 +1,1505 @@
+//! GNU gprof's two text reports, the flat profile and the call graph, built from
+//! sampled call stacks (SIGPROF with full stacks) instead of gprof's instrumentation.
+//! They use gprof's own layout (binutils `gprof/hist.c` and `gprof/cg_print.c`,
+//! non-BSD style), so anyone who reads gprof output can read them. The same figures are
+//! available as serde data for JSON, and parsers read both texts back column by column.
+//!
+//! # Figures
+//! - *self* of a function: samples whose last (running) frame is that function.
+//! - *inclusive* (self + children): samples whose stack holds the function anywhere,
+//!   counted once per sample however often recursion repeats it, so no figure can
+//!   exceed 100%. *children* = inclusive − self.
+//! - Seconds = samples × `seconds_per_sample`. Percentages are of all samples whose
+//!   stack has at least one frame (stacks without frames are ignored).
+//! - Call counts come from [`CallCounts`]. A count of 0 is treated as no count and
+//!   left blank, as gprof does. Functions with a non-zero count but no samples are
+//!   listed with zero time.
+//!
+//! # Flat profile
+//! Rows are sorted by self time (descending), then calls (descending), then name.
+//! The per-call unit follows gprof: take the largest (self + children) / calls over
+//! the functions that have calls, then the first SI prefix, starting at `T`, that puts
+//! it in [1, 1000). If none does, `T` is kept, which is why a profile without call
+//! counts says `Ts/call`.
+//!
+//! # Call graph
+//! - Arcs are caller → callee pairs that are adjacent in some stack.
+//! - Arc times: in each sample, every function gives the sample to exactly one arc,
+//!   the one into its *outermost* occurrence in that stack. The sample is self time
+//!   on that arc when the function is the running frame, and children time otherwise.
+//!   So the arcs into a function add up to its own self and children, except for
+//!   samples in which it is the outermost frame (sibling arcs count too, though
+//!   their times are only in the data, not the text). Outermost rather than
+//!   innermost, so that the caller from outside a recursion carries all of it, as in
+//!   gprof. Only recursive functions (always cycle members, see below) can occur
+//!   twice in a stack, and their arcs among themselves are printed without times.
+//! - Cycles are strongly connected components of the arc graph with more than one
+//!   member or with a self-arc (`f` calling `f` directly), numbered from 1 in the
+//!   order of their entries. Members are printed as `name <cycle N>`. The
+//!   `<cycle N as a whole>` entry has self = the members' self time and children =
+//!   the time spent in functions outside the cycle called from it (samples holding
+//!   any member, counted once, minus those where a member runs). Its parent lines
+//!   are the arcs entering the cycle from outside, credited at the first member on
+//!   the stack. Its lines below are the members (gprof lists members there), each
+//!   with its own self and children and its call count. A member keeps its own
+//!   once-per-sample figures, which include time spent in the other members it
+//!   calls; gprof would show only time propagated from outside the cycle there.
+//!   Arcs between members of one cycle are printed in gprof's "call among siblings"
+//!   form, without times.
+//! - Entries are numbered by decreasing inclusive time. Ties go to the cycle entry
+//!   first (as in gprof), then to the function met nearer the root of a stack (so
+//!   a caller comes before a callee with the same time; gprof compares call counts
+//!   here), then to the name.
+//! - Parent lines run from the smallest to the largest arc time, with siblings
+//!   first. Child lines run from the largest to the smallest, with siblings last.
+//!   A function without callers gets the `<spontaneous>` line.
+//! - Arc call counts are unknown with sampling, so the `called` column of arcs is
+//!   blank. So is gprof's `+N` self-call column.
+//! - The granularity line keeps gprof's shape but says `one call stack` instead of
+//!   a number of bytes.
+//! - Index by function name: functions by name, then cycles (`<cycle N>`), three per
+//!   row and running down the columns as gprof does, each cell `%6.6s %-19.19s`.
+//!   Longer names are printed in full and push the rest of their row to the right.
+//!   The `[index]` column is never cut to 6 characters either.
+
+use super::{CallCounts, StackSamples};
+use serde::{Deserialize, Serialize};
+use std::cmp::Reverse;
+use std::collections::{BTreeMap, BTreeSet, HashMap};
+use std::fmt::Write as _;
+use std::str::FromStr;
+
+/// The line gprof prints after each call-graph entry.
+const SEPARATOR: &str = "-----------------------------------------------";
+
+/// gprof's SI table: unit prefixes and the factors that turn seconds into them.
+const SI_PREFIXES: [char; 11] = ['T', 'G', 'M', 'K', ' ', 'm', 'u', 'n', 'p', 'f', 'a'];
+const SI_SCALES: [f64; 11] = [
+    1e-12, 1e-9, 1e-6, 1e-3, 1.0, 1e3, 1e6, 1e9, 1e12, 1e15, 1e18,
+];
+
+/// Width of one cell in the index by function name (`%6.6s %-19.19s`).
+const INDEX_CELL_WIDTH: usize = 26;
+
+const CALL_GRAPH_NOTES: &str = "
+Callers are listed above each function's own line, callees below, with the time
+that flowed along each call (self: function running; children: its callees). A
+sample counts once per function, recursion included. Arc call counts are unknown
+with sampling. A <cycle N> entry sums its members and lists them below it.
+";
+
+/// gprof's flat profile.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct FlatProfile {
+    pub seconds_per_sample: f64,
+    pub total_seconds: f64,
+    /// Unit of the per-call columns, e.g. `"ms/call"` or `"Ts/call"`.
+    pub unit: String,
+    pub rows: Vec<FlatRow>,
+}
+
+/// One function of the flat profile.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct FlatRow {
+    pub name: String,
+    /// Share of all samples with this function running, in percent.
+    pub percent: f64,
+    /// Self seconds of this row and all rows above it.
+    pub cumulative_seconds: f64,
+    pub self_seconds: f64,
+    /// Exact call count; `None` when unknown or zero.
+    pub calls: Option<u64>,
+    /// Self time per call in [`FlatProfile::unit`].
+    pub self_per_call: Option<f64>,
+    /// Self plus children time per call in [`FlatProfile::unit`].
+    pub total_per_call: Option<f64>,
+    pub children_seconds: f64,
+}
+
+/// gprof's call graph.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct CallGraph {
+    pub total_seconds: f64,
+    /// Samples behind `total_seconds`, for the granularity line.
+    pub total_samples: u64,
+    /// In index order: `entries[i].index == i + 1`.
+    pub entries: Vec<CallGraphEntry>,
+}
+
+/// One entry of the call graph: a function or a cycle as a whole.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct CallGraphEntry {
+    pub index: usize,
+    /// Function name, or `<cycle N as a whole>` for a cycle entry.
+    pub name: String,
+    /// Share of all samples holding this function (or cycle), in percent.
+    pub percent: f64,
+    pub self_seconds: f64,
+    pub children_seconds: f64,
+    pub calls: Option<u64>,
+    /// Callers, in printed order.
+    pub parents: Vec<CallArc>,
+    /// Callees in printed order; for a cycle entry, its members.
+    pub children: Vec<CallArc>,
+    /// Number of the cycle this function belongs to (or that this entry is).
+    pub cycle: Option<u32>,
+    /// True for the `<cycle N as a whole>` entry.
+    pub whole_cycle: bool,
+}
+
+/// A caller or callee of an entry, with the time that flowed along the call.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct CallArc {
+    pub name: String,
+    /// Index of the caller's or callee's own entry.
+    pub index: usize,
+    pub self_seconds: f64,
+    pub children_seconds: f64,
+}
+
+/// Samples of one arc or cycle entry, split by whether the function (cycle) was running.
+#[derive(Clone, Copy, Debug, Default)]
+struct Split {
+    self_samples: u64,
+    children_samples: u64,
+}
+
+impl Split {
+    fn add(&mut self, running: bool, samples: u64) {
+        let slot = if running {
+            &mut self.self_samples
+        } else {
+            &mut self.children_samples
+        };
+        *slot = slot.saturating_add(samples);
+    }
+
+    fn total(self) -> u64 {
+        self.self_samples.saturating_add(self.children_samples)
+    }
+}
+
+/// Per-function sample counts shared by both reports.
+struct Tally {
+    /// Function names in name order; a function's id is its position here.
+    names: Vec<String>,
+    /// Stacks as function ids (never empty) with their sample counts.
+    stacks: Vec<(Vec<usize>, u64)>,
+    self_samples: Vec<u64>,
+    inclusive_samples: Vec<u64>,
+    /// Smallest stack position at which each function occurs (`usize::MAX`: none).
+    depth: Vec<usize>,
+    total_samples: u64,
+    /// Non-zero call counts by id.
+    calls: Vec<Option<u64>>,
+}
+
+impl Tally {
+    fn new(samples: &StackSamples, calls: &CallCounts) -> Self {
+        let mut all: BTreeSet<&str> = calls
+            .iter()
+            .filter(|&(_, &count)| count != 0)
+            .map(|(name, _)| name.as_str())
+            .collect();
+        for stack in &samples.stacks {
+            all.extend(stack.frames.iter().map(String::as_str));
+        }
+        let ids: HashMap<&str, usize> = all
+            .iter()
+            .enumerate()
+            .map(|(id, &name)| (name, id))
+            .collect();
+        let count = all.len();
+        let mut tally = Tally {
+            names: all.iter().map(|&name| name.to_owned()).collect(),
+            stacks: Vec::with_capacity(samples.stacks.len()),
+            self_samples: vec![0; count],
+            inclusive_samples: vec![0; count],
+            depth: vec![usize::MAX; count],
+            total_samples: 0,
+            calls: all
+                .iter()
+                .map(|&name| calls.get(name).copied().filter(|&c| c != 0))
+                .collect(),
+        };
+        // The stack that last counted each function, so that recursion counts once.
+        let mut counted_in = vec![usize::MAX; count];
+        for (stack_number, stack) in samples.stacks.iter().enumerate() {
+            let frames: Vec<usize> = stack
+                .frames
+                .iter()
+                .filter_map(|frame| ids.get(frame.as_str()).copied())
+                .collect();
+            let Some(&running) = frames.last() else {
+                continue;
+            };
+            let weight = stack.count;
+            tally.total_samples = tally.total_samples.saturating_add(weight);
+            tally.self_samples[running] = tally.self_samples[running].saturating_add(weight);
+            for (position, &function) in frames.iter().enumerate() {
+                tally.depth[function] = tally.depth[function].min(position);
+                if counted_in[function] != stack_number {
+                    counted_in[function] = stack_number;
+                    tally.inclusive_samples[function] =
+                        tally.inclusive_samples[function].saturating_add(weight);
+                }
+            }
+            tally.stacks.push((frames, weight));
+        }
+        tally
+    }
+
+    fn children_samples(&self, function: usize) -> u64 {
+        self.inclusive_samples[function].saturating_sub(self.self_samples[function])
+    }
+}
+
+/// Percentage of `part` in `total` samples; 0 when there are none.
+fn percent_of(part: u64, total: u64) -> f64 {
+    if total == 0 {
+        0.0
+    } else {
+        100.0 * part as f64 / total as f64
+    }
+}
+
+/// Builds gprof's flat profile from sampled stacks and exact call counts.
+pub fn flat_profile(samples: &StackSamples, calls: &CallCounts) -> FlatProfile {
+    let tally = Tally::new(samples, calls);
+    let seconds = |count: u64| count as f64 * samples.seconds_per_sample;
+    let mut order: Vec<usize> = (0..tally.names.len()).collect();
+    // Ids are in name order, so the id breaks the last tie by name.
+    order.sort_by_key(|&f| {
+        (
+            Reverse(tally.self_samples[f]),
+            Reverse(tally.calls[f].unwrap_or(0)),
+            f,
+        )
+    });
+
+    // gprof's unit choice: the largest total time per call decides the SI prefix.
+    let mut top_seconds_per_call = 0.0;
+    for &f in &order {
+        if let Some(calls) = tally.calls[f] {
+            let per_call = seconds(tally.inclusive_samples[f]) / calls as f64;
+            if per_call > top_seconds_per_call {
+                top_seconds_per_call = per_call;
+            }
+        }
+    }
+    let unit = SI_SCALES
+        .iter()
+        .position(|&scale| (1.0..1000.0).contains(&(scale * top_seconds_per_call)))
+        .unwrap_or(0);
+    let (prefix, scale) = (SI_PREFIXES[unit], SI_SCALES[unit]);
+
+    let mut cumulative_seconds = 0.0;
+    let rows = order
+        .into_iter()
+        .map(|f| {
+            let self_seconds = seconds(tally.self_samples[f]);
+            let children_seconds = seconds(tally.children_samples(f));
+            cumulative_seconds += self_seconds;
+            let calls = tally.calls[f];
+            FlatRow {
+                name: tally.names[f].clone(),
+                percent: percent_of(tally.self_samples[f], tally.total_samples),
+                cumulative_seconds,
+                self_seconds,
+                calls,
+                self_per_call: calls.map(|n| scale * self_seconds / n as f64),
+                total_per_call: calls.map(|n| scale * (self_seconds + children_seconds) / n as f64),
+                children_seconds,
+            }
+        })
+        .collect();
+    FlatProfile {
+        seconds_per_sample: samples.seconds_per_sample,
+        total_seconds: seconds(tally.total_samples),
+        unit: format!("{prefix}s/call"),
+        rows,
+    }
+}
+
+impl FlatProfile {
+    /// The flat profile as gprof prints it (without gprof's explanations).
+    pub fn to_text(&self) -> String {
+        let mut out = String::from("Flat profile:\n\n");
+        let _ = writeln!(
+            out,
+            "Each sample counts as {} seconds.",
+            format_g(self.seconds_per_sample)
+        );
+        if self.total_seconds <= 0.0 {
+            out.push_str(" no time accumulated\n\n");
+        }
+        let _ = writeln!(
+            out,
+            "{} {} {} {} {} {}  {}",
+            c_field("%  ", 5, false),
+            c_field("cumulative", 10, false),
+            c_field("self  ", 8, false),
+            c_field("", 8, false),
+            c_field("self  ", 8, false),
+            c_field("total ", 8, false),
+            c_field("", 8, true),
+        );
+        let _ = writeln!(
+            out,
+            "{} {}  {} {} {} {}  {}",
+            c_field("time", 5, false),
+            c_field("seconds", 9, false),
+            c_field("seconds", 8, false),
+            c_field("calls", 8, false),
+            c_field(&self.unit, 8, false),
+            c_field(&self.unit, 8, false),
+            c_field("name", 8, true),
+        );
+        for row in &self.rows {
+            let _ = write!(
+                out,
+                "{:6.2} {:9.2} {:8.2}",
+                row.percent, row.cumulative_seconds, row.self_seconds
+            );
+            let _ = match (row.calls, row.self_per_call, row.total_per_call) {
+                (Some(calls), Some(own), Some(total)) if calls != 0 => {
+                    write!(out, " {calls:8} {own:8.2} {total:8.2}  ")
+                }
+                _ => write!(out, " {:8} {:8} {:8}  ", "", "", ""),
+            };
+            out.push_str(&row.name);
+            out.push('\n');
+        }
+        out
+    }
+}
+
+/// Builds gprof's call graph from sampled stacks and exact call counts.
+pub fn call_graph(samples: &StackSamples, calls: &CallCounts) -> CallGraph {
+    let tally = Tally::new(samples, calls);
+    let function_count = tally.names.len();
+    let seconds = |count: u64| count as f64 * samples.seconds_per_sample;
+
+    // Arcs: each sample goes, per function, to the arc into its outermost occurrence.
+    let mut arcs: BTreeMap<(usize, usize), Split> = BTreeMap::new();
+    let mut credited_in = vec![usize::MAX; function_count];
+    for (stack_number, (frames, weight)) in tally.stacks.iter().enumerate() {
+        let running = frames.last().copied();
+        let mut caller = None;
+        for &function in frames {
+            let first = credited_in[function] != stack_number;
+            credited_in[function] = stack_number;
+            if let Some(caller) = caller {
+                let arc = arcs.entry((caller, function)).or_default();
+                if first {
+                    arc.add(running == Some(function), *weight);
+                }
+            }
+            caller = Some(function);
+        }
+    }
+
+    // Cycles: strongly connected components with several members or a self-arc.
+    let mut callees = vec![Vec::new(); function_count];
+    for &(caller, callee) in arcs.keys() {
+        callees[caller].push(callee);
+    }
+    let mut components: BTreeMap<usize, Vec<usize>> = BTreeMap::new();
+    for (function, component) in strongly_connected_components(&callees)
+        .into_iter()
+        .enumerate()
+    {
+        components.entry(component).or_default().push(function);
+    }
+    let cycles: Vec<Vec<usize>> = components
+        .into_values()
+        .filter(|members| match members.as_slice() {
+            [only] => arcs.contains_key(&(*only, *only)),
+            _ => true,
+        })
+        .collect();
+    let mut cycle_of = vec![None; function_count];
+    for (cycle, members) in cycles.iter().enumerate() {
+        for &member in members {
+            cycle_of[member] = Some(cycle);
+        }
+    }
+
+    // Cycle figures: every sample counts once per cycle, at its first member on the stack.
+    let mut cycle_split = vec![Split::default(); cycles.len()];
+    let mut cycle_entering: Vec<BTreeMap<usize, Split>> = vec![BTreeMap::new(); cycles.len()];
+    let mut counted_in = vec![usize::MAX; cycles.len()];
+    for (stack_number, (frames, weight)) in tally.stacks.iter().enumerate() {
+        let running_cycle = frames.last().and_then(|&f| cycle_of[f]);
+        let mut caller = None;
+        for &function in frames {
+            if let Some(cycle) = cycle_of[function]
+                && counted_in[cycle] != stack_number
+            {
+                counted_in[cycle] = stack_number;
+                let running = running_cycle == Some(cycle);
+                cycle_split[cycle].add(running, *weight);
+                if let Some(caller) = caller {
+                    let entering = cycle_entering[cycle].entry(caller).or_default();
+                    entering.add(running, *weight);
+                }
+            }
+            caller = Some(function);
+        }
+    }
+
+    // Entry order: time, cycle entries first, nearer the stack root, name.
+    #[derive(Clone, Copy)]
+    enum Node {
+        Function(usize),
+        Cycle(usize),
+    }
+    let function_key = |f: usize| (Reverse(tally.inclusive_samples[f]), true, tally.depth[f], f);
+    let cycle_key = |c: usize| {
+        let first_member = cycles[c].first().copied().unwrap_or(0);
+        (Reverse(cycle_split[c].total()), false, 0, first_member)
+    };
+    let mut nodes: Vec<Node> = (0..function_count)
+        .map(Node::Function)
+        .chain((0..cycles.len()).map(Node::Cycle))
+        .collect();
+    nodes.sort_by_key(|&node| match node {
+        Node::Function(f) => function_key(f),
+        Node::Cycle(c) => cycle_key(c),
+    });
+    // Indexes from 1 in entry order; cycles are numbered in the same order.
+    let mut function_index = vec![0; function_count];
+    let mut cycle_number = vec![None; cycles.len()];
+    let mut cycles_seen = 0u32;
+    for (position, node) in nodes.iter().enumerate() {
+        match *node {
+            Node::Function(f) => function_index[f] = position + 1,
+            Node::Cycle(c) => {
+                cycles_seen = cycles_seen.saturating_add(1);
+                cycle_number[c] = Some(cycles_seen);
+            }
+        }
+    }
+
+    let mut parents_of: Vec<Vec<(usize, Split)>> = vec![Vec::new(); function_count];
+    let mut children_of: Vec<Vec<(usize, Split)>> = vec![Vec::new(); function_count];
+    for (&(caller, callee), &split) in &arcs {
+        parents_of[callee].push((caller, split));
+        children_of[caller].push((callee, split));
+    }
+    let same_cycle = |a: usize, b: usize| cycle_of[a].is_some() && cycle_of[a] == cycle_of[b];
+    let arc_to = |f: usize, split: Split| CallArc {
+        name: tally.names[f].clone(),
+        index: function_index[f],
+        self_seconds: seconds(split.self_samples),
+        children_seconds: seconds(split.children_samples),
+    };
+    let own_split = |f: usize| Split {
+        self_samples: tally.self_samples[f],
+        children_samples: tally.children_samples(f),
+    };
+
+    let entries = nodes
+        .iter()
+        .enumerate()
+        .map(|(position, &node)| match node {
+            Node::Function(f) => {
+                let mut parents = parents_of[f].clone();
+                parents.sort_by_key(|&(p, s)| {
+                    if same_cycle(p, f) {
+                        (false, 0, p)
+                    } else {
+                        (true, s.total(), p)
+                    }
+                });
+                let mut children = children_of[f].clone();
+                children.sort_by_key(|&(c, s)| (same_cycle(c, f), Reverse(s.total()), c));
+                CallGraphEntry {
+                    index: position + 1,
+                    name: tally.names[f].clone(),
+                    percent: percent_of(tally.inclusive_samples[f], tally.total_samples),
+                    self_seconds: seconds(tally.self_samples[f]),
+                    children_seconds: seconds(tally.children_samples(f)),
+                    calls: tally.calls[f],
+                    parents: parents.into_iter().map(|(p, s)| arc_to(p, s)).collect(),
+                    children: children.into_iter().map(|(c, s)| arc_to(c, s)).collect(),
+                    cycle: cycle_of[f].and_then(|c| cycle_number[c]),
+                    whole_cycle: false,
+                }
+            }
+            Node::Cycle(c) => {
+                let mut parents: Vec<(usize, Split)> =
+                    cycle_entering[c].iter().map(|(&p, &s)| (p, s)).collect();
+                parents.sort_by_key(|&(p, s)| (s.total(), p));
+                let mut members = cycles[c].clone();
+                members.sort_by_key(|&m| (Reverse(tally.inclusive_samples[m]), tally.depth[m], m));
+                let number = cycle_number[c].unwrap_or(0);
+                CallGraphEntry {
+                    index: position + 1,
+                    name: format!("<cycle {number} as a whole>"),
+                    percent: percent_of(cycle_split[c].total(), tally.total_samples),
+                    self_seconds: seconds(cycle_split[c].self_samples),
+                    children_seconds: seconds(cycle_split[c].children_samples),
+                    calls: None,
+                    parents: parents.into_iter().map(|(p, s)| arc_to(p, s)).collect(),
+                    children: members
+                        .into_iter()
+                        .map(|m| arc_to(m, own_split(m)))
+                        .collect(),
+                    cycle: Some(number),
+                    whole_cycle: true,
+                }
+            }
+        })
+        .collect();
+    CallGraph {
+        total_seconds: seconds(tally.total_samples),
+        total_samples: tally.total_samples,
+        entries,
+    }
+}
+
+/// Tarjan's strongly connected components, iterative so that deep graphs cannot
+/// overflow the stack. Returns a component number per node.
+fn strongly_connected_components(callees: &[Vec<usize>]) -> Vec<usize> {
+    const UNSEEN: usize = usize::MAX;
+    let count = callees.len();
+    let mut order = vec![UNSEEN; count];
+    let mut low = vec![0; count];
+    let mut on_stack = vec![false; count];
+    let mut component = vec![UNSEEN; count];
+    let mut stack = Vec::new();
+    let mut work: Vec<(usize, usize)> = Vec::new(); // (node, next callee to visit)
+    let (mut next_order, mut next_component) = (0, 0);
+    for root in 0..count {
+        if order[root] != UNSEEN {
+            continue;
+        }
+        work.push((root, 0));
+        while let Some(&(node, edge)) = work.last() {
+            if edge == 0 && order[node] == UNSEEN {
+                order[node] = next_order;
+                low[node] = next_order;
+                next_order += 1;
+                stack.push(node);
+                on_stack[node] = true;
+            }
+            if let Some(&callee) = callees[node].get(edge) {
+                if let Some(top) = work.last_mut() {
+                    top.1 += 1;
+                }
+                if order[callee] == UNSEEN {
+                    work.push((callee, 0));
+                } else if on_stack[callee] {
+                    low[node] = low[node].min(order[callee]);
+                }
+                continue;
+            }
+            work.pop();
+            if let Some(&(parent, _)) = work.last() {
+                low[parent] = low[parent].min(low[node]);
+            }
+            if low[node] == order[node] {
+                while let Some(member) = stack.pop() {
+                    on_stack[member] = false;
+                    component[member] = next_component;
+                    if member == node {
+                        break;
+                    }
+                }
+                next_component += 1;
+            }
+        }
+    }
+    component
+}
+
+impl CallGraph {
+    /// The call graph as gprof prints it: entries, a short explanation, the index.
+    pub fn to_text(&self) -> String {
+        let by_index: HashMap<usize, &CallGraphEntry> =
+            self.entries.iter().map(|e| (e.index, e)).collect();
+        // How an arc's target is named: with its cycle, as gprof's print_name does.
+        let label = |arc: &CallArc| match by_index.get(&arc.index) {
+            Some(target) if !target.whole_cycle => {
+                format!("{} [{}]", display_name(target), arc.index)
+            }
+            _ => format!("{} [{}]", arc.name, arc.index),
+        };
+        let sibling = |entry: &CallGraphEntry, arc: &CallArc| {
+            !entry.whole_cycle
+                && entry.cycle.is_some()
+                && by_index
+                    .get(&arc.index)
+                    .is_some_and(|t| !t.whole_cycle && t.cycle == entry.cycle)
+        };
+
+        let mut out = String::from("\t\t     Call graph (explanation follows)\n\n\n");
+        out.push_str("granularity: each sample hit covers one call stack");
+        if self.total_samples > 0 {
+            let one_sample = 100.0 / self.total_samples as f64;
+            let _ = writeln!(
+                out,
+                " for {one_sample:.2}% of {:.2} seconds\n",
+                self.total_seconds
+            );
+        } else {
+            out.push_str(" no time propagated\n\n");
+        }
+        out.push_str("index % time    self  children    called     name\n");
+        for entry in &self.entries {
+            if entry.parents.is_empty() {
+                let _ = writeln!(out, "{:49}<spontaneous>", "");
+            }
+            for parent in &entry.parents {
+                let times = (!sibling(entry, parent))
+                    .then_some((parent.self_seconds, parent.children_seconds));
+                push_arc_line(&mut out, times, None, &label(parent));
+            }
+            let _ = write!(
+                out,
+                "{:<6} {:5.1} {:7.2} {:7.2}",
+                format!("[{}]", entry.index),
+                entry.percent,
+                entry.self_seconds,
+                entry.children_seconds
+            );
+            let _ = match entry.calls {
+                Some(calls) if calls != 0 => write!(out, " {calls:7} {:7} ", ""),
+                _ => write!(out, " {:7} {:7} ", "", ""),
+            };
+            let _ = writeln!(out, "{} [{}]", display_name(entry), entry.index);
+            for child in &entry.children {
+                let times = (!sibling(entry, child))
+                    .then_some((child.self_seconds, child.children_seconds));
+                // Under a cycle entry the lines are members, which show their call count.
+                let calls = if entry.whole_cycle {
+                    by_index.get(&child.index).and_then(|m| m.calls)
+                } else {
+                    None
+                };
+                push_arc_line(&mut out, times, calls, &label(child));
+            }
+            out.push_str(SEPARATOR);
+            out.push('\n');
+        }
+        out.push_str(CALL_GRAPH_NOTES);
+        out.push_str("\nIndex by function name\n\n");
+        self.push_index(&mut out);
+        out
+    }
+
+    /// gprof's index: names in order, three columns filled top to bottom.
+    fn push_index(&self, out: &mut String) {
+        let mut listed: Vec<&CallGraphEntry> = self.entries.iter().collect();
+        listed.sort_by(|a, b| {
+            let key =
+                |e: &CallGraphEntry| (e.whole_cycle, if e.whole_cycle { e.cycle } else { None });
+            key(a).cmp(&key(b)).then_with(|| a.name.cmp(&b.name))
+        });
+        let rows = listed.len().div_ceil(3);
+        for row in 0..rows {
+            let mut line = String::new();
+            for (column, entry) in listed.iter().skip(row).step_by(rows).enumerate() {
+                let name = match (entry.whole_cycle, entry.cycle) {
+                    (true, Some(number)) => format!("<cycle {number}>"),
+                    _ => display_name(entry),
+                };
+                // A long name in front pushes this cell right; keep at least one space.
+                let start = column * INDEX_CELL_WIDTH;
+                let width = line.chars().count();
+                if width < start {
+                    line.extend(std::iter::repeat_n(' ', start - width));
+                } else if width > start {
+                    line.push(' ');
+                }
+                let _ = write!(line, "{:>6} {name:<19}", format!("[{}]", entry.index));
+            }
+            out.push_str(line.trim_end());
+            out.push('\n');
+        }
+    }
+}
+
+/// Name as gprof prints it: members of a cycle carry ` <cycle N>`.
+fn display_name(entry: &CallGraphEntry) -> String {
+    match entry.cycle {
+        Some(number) if !entry.whole_cycle => format!("{} <cycle {number}>", entry.name),
+        _ => entry.name.clone(),
+    }
+}
+
+/// A parent, child or member line: `%6.6s %5.5s %7.2f %7.2f %7.7s %7.7s     name`, with
+/// blank times for calls among siblings and the count in the first `called` column.
+fn push_arc_line(out: &mut String, times: Option<(f64, f64)>, calls: Option<u64>, label: &str) {
+    let _ = match times {
+        Some((own, children)) => write!(out, "{:6} {:5} {own:7.2} {children:7.2}", "", ""),
+        None => write!(out, "{:6} {:5} {:7} {:7}", "", "", "", ""),
+    };
+    let _ = match calls {
+        Some(calls) => write!(out, " {calls:7} {:7}", ""),
+        None => write!(out, " {:7} {:7}", "", ""),
+    };
+    let _ = writeln!(out, "     {label}");
+}
+
+/// C's `%W.Ws` (right-aligned) or `%-W.Ws` (left-aligned): cut and padded to `width`.
+fn c_field(text: &str, width: usize, left: bool) -> String {
+    let cut: String = text.chars().take(width).collect();
+    if left {
+        format!("{cut:<width$}")
+    } else {
+        format!("{cut:>width$}")
+    }
+}
+
+/// C's `%g`: six significant digits, trailing zeros dropped, exponent form for
+/// exponents below -4 or from 6 on.
+pub fn format_g(value: f64) -> String {
+    if value.is_nan() {
+        return "nan".to_owned();
+    }
+    if value.is_infinite() {
+        return if value > 0.0 { "inf" } else { "-inf" }.to_owned();
+    }
+    if value == 0.0 {
+        return if value.is_sign_negative() { "-0" } else { "0" }.to_owned();
+    }
+    // Rounded to six significant digits first: the rounding can change the exponent.
+    let scientific = format!("{value:.5e}");
+    let Some((mantissa, exponent)) = scientific.split_once('e') else {
+        return scientific;
+    };
+    let Ok(exponent) = exponent.parse::<i32>() else {
+        return scientific;
+    };
+    if (-4..6).contains(&exponent) {
+        let decimals = usize::try_from(5 - exponent).unwrap_or(0);
+        without_trailing_zeros(&format!("{value:.decimals$}")).to_owned()
+    } else {
+        let sign = if exponent < 0 { '-' } else { '+' };
+        format!(
+            "{}e{sign}{:02}",
+            without_trailing_zeros(mantissa),
+            exponent.unsigned_abs()
+        )
+    }
+}
+
+fn without_trailing_zeros(number: &str) -> &str {
+    if number.contains('.') {
+        number.trim_end_matches('0').trim_end_matches('.')
+    } else {
+        number
+    }
+}
+
+/// Why a gprof text could not be read back.
+#[derive(Debug, thiserror::Error, PartialEq)]
+pub enum GprofParseError {
+    #[error("no {0} header line found")]
+    MissingHeader(&'static str),
+    #[error("line {line}: {problem}")]
+    Line { line: usize, problem: String },
+}
+
+/// A flat-profile row as read back from text (per-call values in the text's unit).
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct ParsedFlatRow {
+    pub name: String,
+    pub percent: f64,
+    pub cumulative_seconds: f64,
+    pub self_seconds: f64,
+    pub calls: Option<u64>,
+    pub self_per_call: Option<f64>,
+    pub total_per_call: Option<f64>,
+}
+
+/// A call-graph entry as read back from text.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct ParsedEntry {
+    pub index: usize,
+    pub percent: f64,
+    pub self_seconds: f64,
+    pub children_seconds: f64,
+    /// Calls from the `called` column (the part before a `+`).
+    pub called: Option<u64>,
+    /// Name without the ` <cycle N>` suffix.
+    pub name: String,
+    /// Cycle from ` <cycle N>` or `<cycle N as a whole>`.
+    pub cycle: Option<u32>,
+    pub parents: Vec<ParsedArc>,
+    pub children: Vec<ParsedArc>,
+}
+
+/// A parent or child line as read back from text.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct ParsedArc {
+    /// Name without ` <cycle N>`; `<spontaneous>` for gprof's no-caller line.
+    pub name: String,
+    pub index: Option<usize>,
+    pub cycle: Option<u32>,
+    /// Blank for calls among siblings of a cycle and for `<spontaneous>`.
+    pub self_seconds: Option<f64>,
+    pub children_seconds: Option<f64>,
+    /// The raw `called` columns (e.g. `5/10`), when not blank.
+    pub called: Option<String>,
+}
+
+/// Reads printf-style fields off one line. Widths are minimums, as in printf: a value
+/// wider than its field runs on and pushes the rest of the line to the right.
+struct Columns<'a> {
+    line: &'a str,
+    position: usize,
+    number: usize,
+}
+
+impl<'a> Columns<'a> {
+    fn new(line: &'a str, number: usize) -> Self {
+        Columns {
+            line,
+            position: 0,
+            number,
+        }
+    }
+
+    fn error(&self, problem: impl Into<String>) -> GprofParseError {
+        line_error(self.number, problem)
+    }
+
+    /// The rest of the line, which must hold a name.
+    fn label(&self) -> Result<&'a str, GprofParseError> {
+        let label = self.line.get(self.position..).unwrap_or("").trim_start();
+        if label.is_empty() {
+            Err(self.error("name is missing"))
+        } else {
+            Ok(label)
+        }
+    }
+
+    /// The next field of `width` bytes, trimmed; `None` when blank.
+    fn field(&mut self, width: usize) -> Result<Option<&'a str>, GprofParseError> {
+        let rest = self.line.get(self.position..).unwrap_or("");
+        let bytes = rest.as_bytes();
+        let mut end = width.min(bytes.len());
+        while end > 0 && end < bytes.len() && bytes[end] != b' ' && bytes[end - 1] != b' ' {
+            end += 1;
+        }
+        let text = rest
+            .get(..end)
+            .ok_or_else(|| self.error("a column boundary cuts a character"))?;
+        self.position += end;
+        let text = text.trim();
+        Ok((!text.is_empty()).then_some(text))
+    }
+
+    fn number<T: FromStr>(
+        &mut self,
+        width: usize,
+        what: &str,
+    ) -> Result<Option<T>, GprofParseError> {
+        match self.field(width)? {
+            None => Ok(None),
+            Some(text) => text
+                .parse()
+                .map(Some)
+                .map_err(|_| self.error(format!("{what} is not a number: {text:?}"))),
+        }
+    }
+
+    fn required<T: FromStr>(&mut self, width: usize, what: &str) -> Result<T, GprofParseError> {
+        self.number(width, what)?
+            .ok_or_else(|| self.error(format!("{what} is missing")))
+    }
+}
+
+fn line_error(line: usize, problem: impl Into<String>) -> GprofParseError {
+    GprofParseError::Line {
+        line,
+        problem: problem.into(),
+    }
+}
+
+/// Lines (numbered from 1) after the first line accepted by `is_header`.
+fn lines_after<'a>(
+    text: &'a str,
+    is_header: impl Fn(&str) -> bool,
+    what: &'static str,
+) -> Result<impl Iterator<Item = (usize, &'a str)>, GprofParseError> {
+    let mut lines = text.lines().enumerate().map(|(i, line)| (i + 1, line));
+    if lines.by_ref().any(|(_, line)| is_header(line)) {
+        Ok(lines)
+    } else {
+        Err(GprofParseError::MissingHeader(what))
+    }
+}
+
+/// Reads the rows of a gprof flat profile (ours or GNU gprof's) by its column layout
+/// `%6.2f %9.2f %8.2f %8lu %8.2f %8.2f  name`, with blank call columns read as `None`.
+/// Rows run from the ` time   seconds` header line to the first blank line.
+pub fn parse_flat_text(text: &str) -> Result<Vec<ParsedFlatRow>, GprofParseError> {
+    let mut rows = Vec::new();
+    for (number, line) in lines_after(text, |line| line.starts_with(" time "), "flat profile")? {
+        if line.trim().is_empty() {
+            break;
+        }
+        let mut columns = Columns::new(line, number);
+        let percent = columns.required(6, "% time")?;
+        let cumulative_seconds = columns.required(10, "cumulative seconds")?;
+        let self_seconds = columns.required(9, "self seconds")?;
+        let calls = columns.number(9, "calls")?;
+        let self_per_call = columns.number(9, "self per call")?;
+        let total_per_call = columns.number(9, "total per call")?;
+        if columns.field(2)?.is_some() {
+            return Err(columns.error("expected two spaces before the name"));
+        }
+        let name = columns.label()?;
+        rows.push(ParsedFlatRow {
+            name: name.to_owned(),
+            percent,
+            cumulative_seconds,
+            self_seconds,
+            calls,
+            self_per_call,
+            total_per_call,
+        });
+    }
+    Ok(rows)
+}
+
+/// Reads the entries of a gprof call graph (ours or GNU gprof's): primary lines start
+/// with `[`, the lines above one are its parents, those below its children, and the
+/// dash line ends an entry. The table runs from the `index % time` header line to the
+/// first blank line.
+pub fn parse_call_graph_text(text: &str) -> Result<Vec<ParsedEntry>, GprofParseError> {
+    let mut entries = Vec::new();
+    let mut parents = Vec::new();
+    let mut current: Option<ParsedEntry> = None;
+    let mut last_line = 0;
+    for (number, line) in lines_after(text, |line| line.starts_with("index % time"), "call graph")?
+    {
+        if line.trim().is_empty() {
+            break;
+        }
+        last_line = number;
+        if line.bytes().all(|b| b == b'-') {
+            match current.take() {
+                Some(entry) => entries.push(entry),
+                None if parents.is_empty() => {}
+                None => return Err(line_error(number, "entry has no primary line")),
+            }
+        } else if line.starts_with('[') {
+            if current.is_some() {
+                return Err(line_error(number, "second primary line in one entry"));
+            }
+            let mut entry = parse_primary_line(line, number)?;
+            entry.parents = std::mem::take(&mut parents);
+            current = Some(entry);
+        } else {
+            let arc = parse_arc_line(line, number)?;
+            match current.as_mut() {
+                Some(entry) => entry.children.push(arc),
+                None => parents.push(arc),
+            }
+        }
+    }
+    match current {
+        Some(entry) => {
+            entries.push(entry);
+            Ok(entries)
+        }
+        None if !parents.is_empty() => Err(line_error(last_line, "entry has no primary line")),
+        None => Ok(entries),
+    }
+}
+
+/// `%-6.6s %5.1f %7.2f %7.2f`, the 17-column `called` part, then `name [index]`.
+fn parse_primary_line(line: &str, number: usize) -> Result<ParsedEntry, GprofParseError> {
+    let mut columns = Columns::new(line, number);
+    let tag = columns.field(6)?.unwrap_or("");
+    let index = tag
+        .strip_prefix('[')
+        .and_then(|t| t.strip_suffix(']'))
+        .and_then(|t| t.parse().ok())
+        .ok_or_else(|| columns.error(format!("bad index {tag:?}")))?;
+    let percent = columns.required(6, "% time")?;
+    let self_seconds = columns.required(8, "self")?;
+    let children_seconds = columns.required(8, "children")?;
+    let called = match columns.field(17)? {
+        None => None,
+        Some(text) => {
+            let calls = text.split('+').next().unwrap_or(text);
+            Some(
+                calls
+                    .parse()
+                    .map_err(|_| columns.error(format!("called is not a count: {text:?}")))?,
+            )
+        }
+    };
+    let (name, _, cycle) = split_label(columns.label()?);
+    Ok(ParsedEntry {
+        index,
+        percent,
+        self_seconds,
+        children_seconds,
+        called,
+        name,
+        cycle,
+        parents: Vec::new(),
+        children: Vec::new(),
+    })
+}
+
+/// `%6.6s %5.5s %7.2f %7.2f` (times may be blank), the 21-column `called` part, name.
+fn parse_arc_line(line: &str, number: usize) -> Result<ParsedArc, GprofParseError> {
+    let mut columns = Columns::new(line, number);
+    if columns.field(13)?.is_some() {
+        return Err(columns.error("a parent or child line must start with 13 blanks"));
+    }
+    let self_seconds = columns.number(7, "self")?;
+    let children_seconds = columns.number(8, "children")?;
+    let called = columns.field(21)?.map(str::to_owned);
+    let (name, index, cycle) = split_label(columns.label()?);
+    Ok(ParsedArc {
+        name,
+        index,
+        cycle,
+        self_seconds,
+        children_seconds,
+        called,
+    })
+}
+
+/// Splits `name <cycle N> [index]` into its parts.
+fn split_label(label: &str) -> (String, Option<usize>, Option<u32>) {
+    let (mut name, index) = match label.rsplit_once(" [") {
+        Some((name, tail)) => match tail.strip_suffix(']').and_then(|t| t.parse().ok()) {
+            Some(index) => (name, Some(index)),
+            None => (label, None),
+        },
+        None => (label, None),
+    };
+    let mut cycle = None;
+    if let Some((base, tail)) = name.rsplit_once(" <cycle ")
+        && let Some(number) = tail.strip_suffix('>').and_then(|t| t.parse().ok())
+    {
+        name = base;
+        cycle = Some(number);
+    } else if let Some(number) = name
+        .strip_prefix("<cycle ")
+        .and_then(|t| t.strip_suffix(" as a whole>"))
+        .and_then(|t| t.parse().ok())
+    {
+        cycle = Some(number);
+    }
+    (name.to_owned(), index, cycle)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::profile::Stack;
+
+    fn samples(stacks: &[(&[&str], u64)], seconds_per_sample: f64) -> StackSamples {
+        StackSamples {
+            stacks: stacks
+                .iter()
+                .map(|(frames, count)| Stack {
+                    frames: frames.iter().map(|f| f.to_string()).collect(),
+                    count: *count,
+                })
+                .collect(),
+            seconds_per_sample,
+        }
+    }
+
+    fn counts(pairs: &[(&str, u64)]) -> CallCounts {
+        pairs
+            .iter()
+            .map(|(name, count)| (name.to_string(), *count))
+            .collect()
+    }
+
+    fn close(actual: f64, expected: f64) -> bool {
+        (actual - expected).abs() < 1e-9
+    }
+
+    /// main->a 30, main->a->b 50, main->c 20 samples of 10 ms: 1.00 s in all.
+    fn three_functions() -> StackSamples {
+        samples(
+            &[
+                (&["main", "a"], 30),
+                (&["main", "a", "b"], 50),
+                (&["main", "c"], 20),
+            ],
+            0.01,
+        )
+    }
+
+    /// main->trace->shade->trace->shade->sphere 10 samples, main->trace->shade 5.
+    fn recursive_tracer() -> StackSamples {
+        samples(
+            &[
+                (&["main", "trace", "shade", "trace", "shade", "sphere"], 10),
+                (&["main", "trace", "shade"], 5),
+            ],
+            0.01,
+        )
+    }
+
+    fn entry<'a>(graph: &'a CallGraph, name: &str) -> &'a CallGraphEntry {
+        graph.entries.iter().find(|e| e.name == name).unwrap()
+    }
+
+    #[test]
+    fn g_format_matches_c() {
+        assert_eq!(format_g(0.001), "0.001");
+        assert_eq!(format_g(0.01), "0.01");
+        assert_eq!(format_g(0.0100001), "0.0100001");
+        assert_eq!(format_g(1e-05), "1e-05");
+        assert_eq!(format_g(0.0001), "0.0001");
+        assert_eq!(format_g(2.5), "2.5");
+        assert_eq!(format_g(100000.0), "100000");
+        assert_eq!(format_g(1e6), "1e+06");
+        assert_eq!(format_g(999999.5), "1e+06"); // rounding moves the exponent
+        assert_eq!(format_g(123456789.0), "1.23457e+08");
+        assert_eq!(format_g(0.0), "0");
+        assert_eq!(format_g(f64::NAN), "nan");
+    }
+
+    #[test]
+    fn flat_header_lines_match_gprof_printf_layout() {
+        let text = flat_profile(&three_functions(), &counts(&[("a", 10), ("b", 1000)])).to_text();
+        let lines: Vec<&str> = text.lines().collect();
+        assert_eq!(lines[0], "Flat profile:");
+        assert_eq!(lines[1], "");
+        assert_eq!(lines[2], "Each sample counts as 0.01 seconds.");
+        // "%5.5s %10.10s %8.8s %8.8s %8.8s %8.8s  %-8.8s": "  %  ", "cumulative",
+        // "  self  ", 8 blanks, "  self  ", "  total ", 8 blanks.
+        assert_eq!(
+            lines[3],
+            "  %   cumulative   self              self     total           "
+        );
+        // "%5.5s %9.9s  %8.8s %8.8s %8.8s %8.8s  %-8.8s": " time", "  seconds",
+        // " seconds", "   calls", " ms/call" twice, "name    ".
+        assert_eq!(
+            lines[4],
+            " time   seconds   seconds    calls  ms/call  ms/call  name    "
+        );
+    }
+
+    #[test]
+    fn flat_profile_of_hand_made_stacks() {
+        let profile = flat_profile(
+            &three_functions(),
+            &counts(&[("a", 10), ("b", 1000), ("idle", 5)]),
+        );
+        // self: b 50, a 30, c 20, main 0, idle 0 samples; idle (5 calls) sorts before
+        // main (no calls) on equal time.
+        let names: Vec<&str> = profile.rows.iter().map(|r| r.name.as_str()).collect();
+        assert_eq!(names, ["b", "a", "c", "idle", "main"]);
+        let a = &profile.rows[1];
+        // a: self 0.30 s, children = 80 samples holding a - 30 = 50 -> 0.50 s.
+        assert!(close(a.self_seconds, 0.30) && close(a.children_seconds, 0.50));
+        assert!(close(a.percent, 30.0) && close(a.cumulative_seconds, 0.80));
+        // Top per call: a (0.80 s / 10) = 0.08 s -> x1e3 = 80 in [1, 1000): ms.
+        assert_eq!(profile.unit, "ms/call");
+        assert!(close(a.self_per_call.unwrap(), 30.0) && close(a.total_per_call.unwrap(), 80.0));
+        let main = &profile.rows[4];
+        assert!(
+            close(main.children_seconds, 1.0)
+                && main.calls.is_none()
+                && main.total_per_call.is_none()
+        );
+        assert!(close(profile.total_seconds, 1.0));
+
+        let text = profile.to_text();
+        let rows: Vec<&str> = text.lines().skip(5).take(5).collect();
+        assert_eq!(
+            rows,
+            [
+                " 50.00      0.50     0.50     1000     0.50     0.50  b",
+                " 30.00      0.80     0.30       10    30.00    80.00  a",
+                " 20.00      1.00     0.20                             c",
+                "  0.00      1.00     0.00        5     0.00     0.00  idle",
+                "  0.00      1.00     0.00                             main",
+            ]
+        );
+    }
+
+    #[test]
+    fn per_call_unit_follows_gprof_si_rule() {
+        let unit = |pairs: &[(&str, u64)]| flat_profile(&three_functions(), &counts(pairs)).unit;
+        // b alone: 0.50 s / 1000 = 0.0005 s; x1e3 = 0.5 is too small, x1e6 = 500 fits.
+        assert_eq!(unit(&[("b", 1000)]), "us/call");
+        // main: 1.00 s / 1 call; x1 = 1 fits, so the prefix is a blank.
+        assert_eq!(unit(&[("main", 1), ("b", 1000)]), " s/call");
+        // No calls: nothing to scale, index 0 stays.
+        assert_eq!(unit(&[]), "Ts/call");
+        let profile = flat_profile(&three_functions(), &counts(&[("b", 1000)]));
+        assert!(close(profile.rows[0].self_per_call.unwrap(), 500.0));
+    }
+
+    #[test]
+    fn recursion_counts_each_sample_once_and_forms_a_cycle() {
+        let stacks = recursive_tracer();
+        let flat = flat_profile(&stacks, &CallCounts::new());
+        let row = |name: &str| flat.rows.iter().find(|r| r.name == name).unwrap();
+        // trace and shade are on the stack in all 15 samples: 15, not 10 * 2 + 5 = 25.
+        assert!(close(
+            row("trace").self_seconds + row("trace").children_seconds,
+            0.15
+        ));
+        assert!(
+            close(row("shade").self_seconds, 0.05) && close(row("shade").children_seconds, 0.10)
+        );
+
+        let graph = call_graph(&stacks, &CallCounts::new());
+        assert!(graph.entries.iter().all(|e| e.percent <= 100.0 + 1e-9));
+        let cycle = entry(&graph, "<cycle 1 as a whole>");
+        assert!(cycle.whole_cycle && cycle.cycle == Some(1) && cycle.index == 1);
+        // Cycle: self = shade's 5 samples, children = sphere's 10.
+        assert!(close(cycle.self_seconds, 0.05) && close(cycle.children_seconds, 0.10));
+        let members: Vec<&str> = cycle.children.iter().map(|m| m.name.as_str()).collect();
+        assert_eq!(members, ["trace", "shade"]); // equal time: trace is nearer the root
+        assert_eq!(cycle.parents.len(), 1);
+        assert!(
+            close(cycle.parents[0].self_seconds, 0.05)
+                && close(cycle.parents[0].children_seconds, 0.10)
+        );
+
+        let trace = entry(&graph, "trace");
+        assert_eq!(trace.cycle, Some(1));
+        assert!(close(trace.percent, 100.0) && close(trace.children_seconds, 0.15));
+        // main -> trace carries all 15 samples (outermost occurrence).
+        let from_main = trace.parents.iter().find(|p| p.name == "main").unwrap();
+        assert!(close(from_main.children_seconds, 0.15));
+        let sphere = entry(&graph, "sphere");
+        assert!(close(sphere.percent, 100.0 * 10.0 / 15.0) && sphere.cycle.is_none());
+        let order: Vec<&str> = graph.entries.iter().map(|e| e.name.as_str()).collect();
+        assert_eq!(
+            order,
+            ["<cycle 1 as a whole>", "main", "trace", "shade", "sphere"]
+        );
+
+        let text = graph.to_text();
+        assert!(
+            text.contains(
+                "[1]    100.0    0.05    0.10                 <cycle 1 as a whole> [1]\n"
+            )
+        );
+        assert!(
+            text.contains("[3]    100.0    0.00    0.15                 trace <cycle 1> [3]\n")
+        );
+        // shade's caller inside the cycle: sibling form, no times.
+        assert!(text.contains(&format!("{:49}trace <cycle 1> [3]\n[4]", "")));
+        assert!(text.contains("                0.10    0.00                     sphere [5]\n"));
+    }
+
+    #[test]
+    fn self_recursion_is_a_one_member_cycle() {
+        let graph = call_graph(
+            &samples(&[(&["main", "walk", "walk", "walk", "leaf"], 4)], 1.0),
+            &CallCounts::new(),
+        );
+        let walk = entry(&graph, "walk");
+        assert_eq!(walk.cycle, Some(1));
+        assert!(close(walk.children_seconds, 4.0) && close(walk.percent, 100.0)); // not 12
+        let cycle = entry(&graph, "<cycle 1 as a whole>");
+        assert!(close(cycle.children_seconds, 4.0));
+        assert!(entry(&graph, "main").cycle.is_none() && entry(&graph, "leaf").cycle.is_none());
+    }
+
+    #[test]
+    fn call_graph_text_matches_gprof_layout() {
+        let graph = call_graph(
+            &samples(&[(&["main", "foo"], 240)], 0.01),
+            &counts(&[("foo", 1)]),
+        );
+        let text = graph.to_text();
+        let expected = "\t\t     Call graph (explanation follows)\n\n\n\
+granularity: each sample hit covers one call stack for 0.42% of 2.40 seconds\n\n\
+index % time    self  children    called     name\n\
+\x20                                                <spontaneous>\n\
+[1]    100.0    0.00    2.40                 main [1]\n\
+\x20               2.40    0.00                     foo [2]\n\
+-----------------------------------------------\n\
+\x20               2.40    0.00                     main [1]\n\
+[2]    100.0    2.40    0.00       1         foo [2]\n\
+-----------------------------------------------\n";
+        assert!(text.starts_with(expected), "{text}");
+        // Two names: one row, cells of 26 characters.
+        assert!(
+            text.ends_with("Index by function name\n\n   [2] foo                   [1] main\n"),
+            "{text}"
+        );
+    }
+
+    #[test]
+    fn index_fills_three_columns_downwards_and_keeps_long_names() {
+        let names = ["a", "b", "c", "d", "a_rather_long_function_name"];
+        let stacks: Vec<(&[&str], u64)> =
+            names.iter().map(|n| (std::slice::from_ref(n), 1)).collect();
+        let text = call_graph(&samples(&stacks, 1.0), &CallCounts::new()).to_text();
+        let index = text.split("Index by function name\n\n").nth(1).unwrap();
+        // Five names, two rows, filled down the columns: a, a_rather... | b, c | d.
+        // All have 1 sample at depth 0, so entries are numbered by name too. The long
+        // name pushes c one space past its own long cell.
+        let expected = "   [1] a                     [3] b                     [5] d\n\
+                        \x20  [2] a_rather_long_function_name    [4] c\n";
+        assert_eq!(index, expected);
+    }
+
+    #[test]
+    fn flat_text_round_trips_through_parser() {
+        let profile = flat_profile(
+            &three_functions(),
+            &counts(&[("a", 10), ("b", 123_456_789)]),
+        );
+        let parsed = parse_flat_text(&profile.to_text()).unwrap();
+        assert_eq!(parsed.len(), profile.rows.len());
+        let to_printed = |x: f64| (x * 100.0).round() / 100.0;
+        for (row, back) in profile.rows.iter().zip(&parsed) {
+            assert_eq!(back.name, row.name);
+            assert_eq!(back.calls, row.calls); // includes a 9-digit count wider than %8lu
+            assert!(close(back.percent, to_printed(row.percent)));
+            assert!(close(
+                back.cumulative_seconds,
+                to_printed(row.cumulative_seconds)
+            ));
+            assert!(close(back.self_seconds, to_printed(row.self_seconds)));
+            assert_eq!(back.self_per_call, row.self_per_call.map(to_printed));
+            assert_eq!(back.total_per_call, row.total_per_call.map(to_printed));
+        }
+        let json = serde_json::to_string(&profile).unwrap();
+        assert_eq!(serde_json::from_str::<FlatProfile>(&json).unwrap(), profile);
+    }
+
+    #[test]
+    fn call_graph_text_round_trips_through_parser() {
+        let mut stacks = recursive_tracer();
+        stacks.stacks.push(Stack {
+            frames: vec!["main".into(), "a name with spaces".into()],
+            count: 7,
+        });
+        let graph = call_graph(&stacks, &counts(&[("trace", 300), ("sphere", 12_345_678)]));
+        let parsed = parse_call_graph_text(&graph.to_text()).unwrap();
+        assert_eq!(parsed.len(), graph.entries.len());
+        let to_printed = |x: f64, scale: f64| (x * scale).round() / scale;
+        let by_index: HashMap<usize, &CallGraphEntry> =
+            graph.entries.iter().map(|e| (e.index, e)).collect();
+        for (entry, back) in graph.entries.iter().zip(&parsed) {
+            assert_eq!(
+                (back.index, &back.name, back.cycle, back.called),
+                (entry.index, &entry.name, entry.cycle, entry.calls)
+            );
+            assert!(close(back.percent, to_printed(entry.percent, 10.0)));
+            assert!(close(
+                back.self_seconds,
+                to_printed(entry.self_seconds, 100.0)
+            ));
+            assert!(close(
+                back.children_seconds,
+                to_printed(entry.children_seconds, 100.0)
+            ));
+            let lines = [
+                (&entry.parents, &back.parents),
+                (&entry.children, &back.children),
+            ];
+            for (arcs, parsed_arcs) in lines {
+                let arcs_back: Vec<&ParsedArc> = parsed_arcs
+                    .iter()
+                    .filter(|a| a.name != "<spontaneous>")
+                    .collect();
+                assert_eq!(arcs_back.len(), arcs.len());
+                for (arc, arc_back) in arcs.iter().zip(arcs_back) {
+                    assert_eq!(
+                        (&arc_back.name, arc_back.index),
+                        (&arc.name, Some(arc.index))
+                    );
+                    assert_eq!(arc_back.cycle, by_index[&arc.index].cycle);
+                    if let Some(own) = arc_back.self_seconds {
+                        assert!(close(own, to_printed(arc.self_seconds, 100.0)));
+                    }
+                }
+            }
+        }
+        let main = parsed.iter().find(|e| e.name == "main").unwrap();
+        assert_eq!(main.parents[0].name, "<spontaneous>");
+        let shade = parsed.iter().find(|e| e.name == "shade").unwrap();
+        // Sibling line: no times; sphere's line has them.
+        assert_eq!(shade.parents[0].self_seconds, None);
+        assert_eq!(
+            shade
+                .children
+                .iter()
+                .find(|c| c.name == "sphere")
+                .unwrap()
+                .self_seconds,
+            Some(0.10)
+        );
+        let cycle = parsed
+            .iter()
+            .find(|e| e.cycle == Some(1) && e.name.starts_with("<cycle"))
+            .unwrap();
+        // Member lines carry the member's call count: trace 300.
+        assert_eq!(
+            cycle
+                .children
+                .iter()
+                .find(|m| m.name == "trace")
+                .unwrap()
+                .called
+                .as_deref(),
+            Some("300")
+        );
+        let json = serde_json::to_string(&graph).unwrap();
+        assert_eq!(serde_json::from_str::<CallGraph>(&json).unwrap(), graph);
+    }
+
+    #[test]
+    fn parsers_report_the_failing_line() {
+        let text = flat_profile(&three_functions(), &CallCounts::new()).to_text();
+        let broken = text.replacen(" 50.00", " 5x.00", 1);
+        assert!(matches!(
+            parse_flat_text(&broken),
+            Err(GprofParseError::Line { line: 6, .. })
+        ));
+        assert_eq!(
+            parse_flat_text("nothing"),
+            Err(GprofParseError::MissingHeader("flat profile"))
+        );
+        let graph = call_graph(&three_functions(), &CallCounts::new()).to_text();
+        let broken = graph.replacen("[1]    100.0", "[1]    1o0.0", 1);
+        assert!(matches!(
+            parse_call_graph_text(&broken),
+            Err(GprofParseError::Line { line: 8, .. })
+        ));
+        assert!(parse_call_graph_text("index % time\n                0.1").is_err());
+    }
+
+    #[test]
+    fn odd_input_does_not_panic() {
+        let odd = samples(
+            &[(&[], 3), (&["x"], u64::MAX), (&["x", "ü"], u64::MAX)],
+            f64::NAN,
+        );
+        for (stacks, calls) in [
+            (odd, counts(&[("x", 0)])),
+            (samples(&[], 0.0), counts(&[("lonely", 2)])),
+        ] {
+            let flat = flat_profile(&stacks, &calls);
+            let graph = call_graph(&stacks, &calls);
+            let _ = parse_flat_text(&flat.to_text());
+            let _ = parse_call_graph_text(&graph.to_text());
+        }
+        let lonely = call_graph(&samples(&[], 0.0), &counts(&[("lonely", 2)]));
+        assert_eq!(lonely.entries.len(), 1);
+        assert!(lonely.to_text().contains("no time propagated"));
+        assert!(
+            flat_profile(&samples(&[], 0.0), &CallCounts::new())
+                .to_text()
+                .contains(" no time accumulated")
+        );
+    }
+}

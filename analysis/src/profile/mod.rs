@@ -1,0 +1,41 @@
+//! Profiles: call stacks sampled while a render runs, and what is made of them —
+//! gprof's flat profile and call graph ([`gprof`]), folded stacks and flamegraphs,
+//! Amdahl projections. The sampler produces [`StackSamples`]; everything else reads it.
+
+pub mod amdahl;
+pub mod folded;
+pub mod gprof;
+pub mod names;
+pub mod sampler;
+
+use serde::{Deserialize, Serialize};
+use std::collections::BTreeMap;
+
+/// One distinct call stack and how many samples landed on it.
+#[derive(Clone, Debug, PartialEq, Eq, Serialize, Deserialize)]
+pub struct Stack {
+    /// Function names, outermost caller first, the function that was running last.
+    pub frames: Vec<String>,
+    /// Samples taken with exactly this stack.
+    pub count: u64,
+}
+
+/// Everything a sampling run produced.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct StackSamples {
+    pub stacks: Vec<Stack>,
+    /// CPU seconds one sample stands for: measured CPU time / samples (not
+    /// 1/frequency: the kernel caps the signal rate).
+    pub seconds_per_sample: f64,
+}
+
+impl StackSamples {
+    /// Total number of samples.
+    pub fn total(&self) -> u64 {
+        self.stacks.iter().map(|s| s.count).sum()
+    }
+}
+
+/// Exact call counts by function name (from the tracer's counters), for the `calls`
+/// columns; functions without an entry have no count (blank, as in gprof).
+pub type CallCounts = BTreeMap<String, u64>;
