@@ -28,7 +28,9 @@ pub enum ProfileError {
     Start(String),
     #[error("cannot build the profile report: {0}")]
     Report(String),
-    #[error("no samples were taken: the profiled work ran for too short a time ({0:?})")]
+    #[error(
+        "no samples were taken: the profiled work ran for only {0:?}; give it more work (e.g. a larger --size)"
+    )]
     NoSamples(Duration),
 }
 
