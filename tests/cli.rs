@@ -495,3 +495,145 @@ fn profile_writes_gprof_text_flamegraphs_and_json() {
     );
     std::fs::remove_dir_all(&dir).ok();
 }
+
+fn bench_scene(name: &str) -> String {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+        .join("scenes")
+        .join(format!("{name}.nff"))
+        .display()
+        .to_string()
+}
+
+fn json(out: &Output) -> serde_json::Value {
+    assert!(out.status.success(), "{}", stderr(out));
+    serde_json::from_slice(&out.stdout).unwrap_or_else(|e| panic!("not JSON: {e}"))
+}
+
+#[test]
+fn hw_time_follows_equation_49_for_one_to_seven_spheres() {
+    for n in 1..=7u32 {
+        let v = json(&rtprof(&[
+            "hw",
+            "time",
+            &bench_scene(&format!("balls{n}")),
+            "--json",
+        ]));
+        assert_eq!(v["primitives"], n);
+        assert_eq!(v["units"], 1);
+        assert_eq!(v["clock_hz"], 50e6);
+        let seconds = v["seconds"].as_f64().unwrap();
+        let eq49 = 640.0 * 480.0 * 3.0 * f64::from(n) / 50e6;
+        assert!(
+            (seconds / eq49 - 1.0).abs() < 0.005,
+            "n={n}: {seconds} vs {eq49}"
+        );
+        assert_eq!(v["cycles"].as_f64().unwrap() / 50e6, seconds);
+        assert_eq!(v["fits"], true);
+        for key in ["le", "mult", "mem_bits", "plls"] {
+            assert!(v["utilization"][key].as_f64().unwrap() > 0.0, "{key}");
+        }
+    }
+}
+
+#[test]
+fn hw_time_what_ifs_show_the_thesis_design_beside_them() {
+    // Built-in scene names work as well as paths.
+    let v = json(&rtprof(&[
+        "hw",
+        "time",
+        "both5",
+        "--units",
+        "5",
+        "--fast-sqrt",
+        "--device",
+        "5CGXFC9",
+        "--json",
+    ]));
+    assert_eq!(v["units"], 5);
+    assert_eq!(v["device_validated"], false);
+    // 5 primitives on 5 units: 3 cycles per pixel instead of 15.
+    assert_eq!(v["cycles_per_pixel"], 3);
+    assert_eq!(v["thesis_design"]["cycles_per_pixel"], 15);
+    let ratio = v["thesis_design"]["seconds"].as_f64().unwrap() / v["seconds"].as_f64().unwrap();
+    assert!((ratio - 5.0).abs() < 0.01, "{ratio}");
+    // A faster clock divides the time.
+    let slow = json(&rtprof(&["hw", "time", "balls2", "--json"]));
+    let fast = json(&rtprof(&[
+        "hw", "time", "balls2", "--clock", "100", "--json",
+    ]));
+    assert_eq!(slow["cycles"], fast["cycles"]);
+    assert!(
+        (slow["seconds"].as_f64().unwrap() / fast["seconds"].as_f64().unwrap() - 2.0).abs() < 1e-9
+    );
+}
+
+#[test]
+fn hw_table_json_names_the_blocks_and_gives_errors() {
+    let v = json(&rtprof(&["hw", "table", "--json"]));
+    let blocks = v["blocks"].as_array().unwrap();
+    let names: Vec<&str> = blocks.iter().map(|b| b["name"].as_str().unwrap()).collect();
+    assert_eq!(
+        names,
+        ["primary_ray", "intersection", "min_distance", "shading"]
+    );
+    assert_eq!(blocks[1]["thesis"]["latency"], 136);
+    assert!(blocks[1]["error_pct"]["latency"].as_f64().unwrap().abs() <= 10.0);
+    let text = rtprof(&["hw", "table", "--detail"]);
+    assert!(text.status.success());
+    let text = String::from_utf8_lossy(&text.stdout);
+    assert!(text.contains("Table 7") && text.contains("Table 8") && text.contains("delay lines"));
+}
+
+#[test]
+fn hw_render_and_mif_refuse_unsupported_primitives_and_write_files() {
+    let dir = scratch("hw");
+    let png = dir.join("both3.png");
+    let out = rtprof(&[
+        "hw",
+        "render",
+        &bench_scene("both3"),
+        "-o",
+        png.to_str().unwrap(),
+        "--size",
+        "64x48",
+    ]);
+    assert!(out.status.success(), "{}", stderr(&out));
+    assert_eq!(&read(&png)[1..4], b"PNG");
+    let mif = dir.join("both3.mif");
+    let out = rtprof(&[
+        "hw",
+        "mif",
+        &bench_scene("both3"),
+        "-o",
+        mif.to_str().unwrap(),
+    ]);
+    assert!(out.status.success(), "{}", stderr(&out));
+    let text = String::from_utf8(read(&mif)).unwrap();
+    assert!(
+        text.contains("WIDTH=32;") && text.contains("DEPTH=27;"),
+        "{text}"
+    );
+    // SPD rings has polygons: refused, with a message naming them; exit 2.
+    for cmd in [
+        vec!["hw", "render", &spd("rings"), "-o", png.to_str().unwrap()],
+        vec!["hw", "mif", &spd("rings"), "-o", mif.to_str().unwrap()],
+        vec!["hw", "time", &spd("rings")],
+    ] {
+        let out = rtprof(&cmd);
+        assert_eq!(out.status.code(), Some(2), "{cmd:?}");
+        assert!(stderr(&out).contains("polygon"), "{}", stderr(&out));
+    }
+    let v = json(&rtprof(&[
+        "hw",
+        "time",
+        &spd("rings"),
+        "--ignore-unsupported",
+        "--json",
+    ]));
+    assert_eq!(v["primitives"], 8400);
+    assert!(v["ignored"].as_str().unwrap().contains("polygon"));
+    // Unknown device: exit 2, the known ones listed.
+    let out = rtprof(&["hw", "table", "--device", "XC7A35T"]);
+    assert_eq!(out.status.code(), Some(2));
+    assert!(stderr(&out).contains("EP4CE115"));
+}

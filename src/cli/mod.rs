@@ -2,6 +2,7 @@
 
 mod compare;
 mod count;
+mod hw;
 mod profile;
 mod render;
 mod scene_args;
@@ -29,6 +30,8 @@ enum Command {
     Compare(compare::CompareArgs),
     /// List the optimization variants and the measured accuracy of the approximate ones.
     Variants(variants::VariantsArgs),
+    /// The FPGA pipeline model: tables 7 and 8, frame time and fit, emulator, MIF.
+    Hw(hw::HwArgs),
 }
 
 /// Runs one command.
@@ -39,5 +42,6 @@ pub fn run(cli: Cli) -> anyhow::Result<()> {
         Command::Profile(args) => profile::run(&args),
         Command::Compare(args) => compare::run(&args),
         Command::Variants(args) => variants::run(&args),
+        Command::Hw(args) => hw::run(&args),
     }
 }

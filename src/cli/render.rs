@@ -14,9 +14,10 @@ pub struct RenderArgs {
     #[arg(short, long, value_name = "IMG")]
     output: Option<PathBuf>,
     /// Full shading converted to gray.
-    #[arg(long, conflicts_with = "diffuse_only")]
+    #[arg(long)]
     gray: bool,
-    /// The thesis hardware's shading: Lambert term of the first light only, gray.
+    /// The thesis hardware's shading: Lambert term of the first light only, gray
+    /// (with or without --gray: it is gray either way).
     #[arg(long)]
     diffuse_only: bool,
 }

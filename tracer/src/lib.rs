@@ -28,11 +28,13 @@
 #![cfg_attr(test, allow(clippy::disallowed_methods))]
 
 pub mod accel;
+pub mod builtin_scenes;
 pub mod camera;
 pub mod color;
 pub mod counter;
 pub mod eye_space;
 pub mod fast_sqrt;
+pub mod generators;
 pub mod image_io;
 pub mod nff;
 pub mod pipeline;

@@ -1,0 +1,331 @@
+//! Functional emulator of the thesis hardware (ch. 6): the 8-bit gray image the FPGA
+//! would show, computed in plain `f32` block by block.
+//!
+//! - Primary ray (6.1.3): the scene block precomputes `ScanLine` (the direction to the
+//!   top-left pixel centre), `PixelWidth` and `PixelHeight` (one pixel's step to the
+//!   right and upwards); row `i` starts at `ScanLine − i·PixelHeight` and pixel `j` of
+//!   it looks along `normalize(row base + j·PixelWidth)`. The geometry is the tracer's
+//!   [`tracer::Camera`] with pixel-centre sampling (`w = normalize(at − from)`,
+//!   `u = normalize(w × up)`, `v = u × w`, pitch `2·tan(angle/2)/(rows − 1)`), only
+//!   walked incrementally, so a ray may differ from the software's in the last bit.
+//! - Intersection test (6.1.4): `Voc = O − C`; sphere `a = 1`, `b = 2 R·Voc`,
+//!   `c = Voc·Voc − r²`; cylinder `a = 1 − (R·V)²`, `b = 2(R·Voc − (R·V)(Voc·V))`,
+//!   `c = Voc·Voc − (Voc·V)² − r²`; the selector picks by type; the quadratic solver
+//!   gives the smaller positive root of `(−b ∓ √(b² − 4ac)) / 2a`, infinity when the
+//!   discriminant is negative or no root is positive.
+//! - Hit body (6.1.6): `P = O + d·R`, `m = (P − Cb)·V`; a cylinder's distance becomes
+//!   infinity unless `0 < m < m max`.
+//! - Minimum distance (6.1.5): a strictly smaller distance replaces the stored one, so
+//!   the first primitive in memory wins ties.
+//! - Shading (6.1.7): `L = light − P`, `N = P − C` (sphere) or `(P − Cb) − m·V`
+//!   (cylinder), both normalized; gray = `N·L` × 255, the background where there is no
+//!   hit or `N·L < 0`. The 0..1 → 0..255 conversion clamps and rounds to nearest like
+//!   [`tracer::Rgb::to_rgb8`], so identical maths gives identical bytes.
+//!
+//! Differences from the software's `--diffuse-only` render ([`tracer::ShadingMode::DiffuseOnly`]):
+//! - Open cylinder ends. The hardware hands only the selected (smaller positive) root to
+//!   the hit body. When that root misses the body (the ray passes the outer wall above
+//!   or below the ends), the cylinder counts as missed even though the ray may go on to
+//!   the inner wall through the open end. The software tries the far root too and shows
+//!   that inner wall, shaded with the outward normal (diffuse-only never turns normals
+//!   toward the viewer), so there it is either lit or background; the hardware shows
+//!   whatever lies behind (background or another primitive).
+//! - A ray parallel to a cylinder's axis (`a = 0`): the solver divides by zero and
+//!   gets an infinity or NaN, neither of which counts as a positive distance; the
+//!   software rejects `a ≤ 0` explicitly. Same result.
+//! - Tangent rays (discriminant exactly 0) hit in the hardware and miss in the
+//!   software: a set of measure zero.
+//! - Rounding: the sphere and cylinder distances are the software's bit for bit (the
+//!   `b = 2·half_b` form only scales by powers of two), but the incremental primary
+//!   rays and `m = (P − Cb)·V` (the software uses `m = Voc·V + d·R·V`) can differ in
+//!   the last bits, which moves a gray level by one now and then, or flips a grazing
+//!   silhouette pixel (discriminant near 0, or m near 0 or m max) between hit and miss.
+
+// The emulator computes in plain f32 like the hardware, not through the counting layer.
+#![allow(clippy::disallowed_methods)]
+
+use crate::hw_scene::{HwKind, HwPrimitive, HwScene};
+use std::path::Path;
+use tracer::image_io::{ImageError, write_rgb8};
+
+type V3 = [f32; 3];
+
+fn add(a: V3, b: V3) -> V3 {
+    [a[0] + b[0], a[1] + b[1], a[2] + b[2]]
+}
+
+fn sub(a: V3, b: V3) -> V3 {
+    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
+}
+
+fn scale(a: V3, s: f32) -> V3 {
+    [a[0] * s, a[1] * s, a[2] * s]
+}
+
+/// `(x·x + y·y) + z·z`: the order glam's SSE dot product sums in, so the emulator and
+/// the software round alike.
+fn dot(a: V3, b: V3) -> f32 {
+    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
+}
+
+fn cross(a: V3, b: V3) -> V3 {
+    [
+        a[1] * b[2] - b[1] * a[2],
+        a[2] * b[0] - b[2] * a[0],
+        a[0] * b[1] - b[0] * a[1],
+    ]
+}
+
+fn sqrt(x: f32) -> f32 {
+    x.sqrt()
+}
+
+/// `a · (1/|a|)`, as the software's counter normalizes (a reciprocal, then a scale).
+fn normalize(a: V3) -> V3 {
+    scale(a, 1.0 / sqrt(dot(a, a)))
+}
+
+/// The 0..1 → 0..255 conversion of the software's 8-bit output: clamp, scale, round.
+pub fn to_gray8(value: f32) -> u8 {
+    (value.clamp(0.0, 1.0) * 255.0).round() as u8
+}
+
+/// An 8-bit grayscale image, row-major, top row first.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct HwImage {
+    pub width: u32,
+    pub height: u32,
+    pub pixels: Vec<u8>,
+}
+
+impl HwImage {
+    /// The gray value at (`column`, `row`), row 0 at the top; `None` outside the image.
+    pub fn gray_at(&self, column: u32, row: u32) -> Option<u8> {
+        if column >= self.width || row >= self.height {
+            return None;
+        }
+        let index = row as usize * self.width as usize + column as usize;
+        self.pixels.get(index).copied()
+    }
+
+    /// The pixels as interleaved 8-bit RGB (three equal channels), for the image writers.
+    pub fn to_rgb8(&self) -> Vec<u8> {
+        self.pixels.iter().flat_map(|&g| [g, g, g]).collect()
+    }
+}
+
+/// Writes `image` to `path` as PNG or PPM (chosen by the extension), atomically.
+pub fn write_image(image: &HwImage, path: &Path) -> Result<(), ImageError> {
+    write_rgb8(path, image.width, image.height, &image.to_rgb8())
+}
+
+/// The primary-ray block's inputs, precomputed by the scene block for one screen size.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct PrimaryRays {
+    pub observer: V3,
+    /// Direction (unnormalized) to the centre of the top-left pixel.
+    pub scan_line: V3,
+    /// One pixel's step to the right.
+    pub pixel_width: V3,
+    /// One pixel's step upwards (rows go down, so row `i` subtracts `i` of them).
+    pub pixel_height: V3,
+}
+
+impl PrimaryRays {
+    /// The set-up for a `width` × `height` screen. A degenerate view (refused by
+    /// [`HwScene::from_scene`]) gives NaN directions, which hit nothing.
+    pub fn new(scene: &HwScene, width: u32, height: u32) -> Self {
+        let forward = normalize(sub(scene.look_at, scene.eye));
+        let right = normalize(cross(forward, scene.up));
+        let up = cross(right, forward);
+        let half_span = (scene.angle_deg.to_radians() * 0.5).tan();
+        // The angle spans the centres of the extreme rows (one row: as if two).
+        let pitch = 2.0 * half_span / (height.max(2) - 1) as f32;
+        let pixel_width = scale(right, pitch);
+        let pixel_height = scale(up, pitch);
+        let left = -((width.max(1) - 1) as f32 * 0.5);
+        let top = (height.max(1) - 1) as f32 * 0.5;
+        let scan_line = add(
+            add(forward, scale(pixel_height, top)),
+            scale(pixel_width, left),
+        );
+        Self {
+            observer: scene.eye,
+            scan_line,
+            pixel_width,
+            pixel_height,
+        }
+    }
+
+    /// The base direction of row `row` (row 0 at the top).
+    pub fn row_base(&self, row: u32) -> V3 {
+        sub(self.scan_line, scale(self.pixel_height, row as f32))
+    }
+
+    /// The unit direction of pixel `column` of the row starting at `row_base`.
+    pub fn direction(&self, row_base: V3, column: u32) -> V3 {
+        normalize(add(row_base, scale(self.pixel_width, column as f32)))
+    }
+}
+
+/// The quadratic's coefficients `(a, b, c)` for `primitive`, as the selector outputs
+/// them (`voc = O − C`, `dir` of unit length).
+pub fn quadratic_coefficients(primitive: &HwPrimitive, voc: V3, dir: V3) -> (f32, f32, f32) {
+    let r_sq = primitive.radius * primitive.radius;
+    let r_voc = dot(dir, voc);
+    let voc_voc = dot(voc, voc);
+    match primitive.kind {
+        HwKind::Sphere => (1.0, 2.0 * r_voc, voc_voc - r_sq),
+        HwKind::Cylinder => {
+            let r_v = dot(dir, primitive.axis);
+            let voc_v = dot(voc, primitive.axis);
+            (
+                1.0 - r_v * r_v,
+                2.0 * (r_voc - r_v * voc_v),
+                voc_voc - voc_v * voc_v - r_sq,
+            )
+        }
+    }
+}
+
+/// The quadratic solver: the smaller positive root of `a d² + b d + c = 0`, or
+/// infinity when the discriminant is negative or neither root is positive. Roots that
+/// are NaN or infinite (`a = 0`) are not positive distances.
+pub fn smaller_positive_root(a: f32, b: f32, c: f32) -> f32 {
+    let discriminant = b * b - 4.0 * a * c;
+    if discriminant < 0.0 {
+        return f32::INFINITY;
+    }
+    let root = sqrt(discriminant);
+    let near = (-b - root) / (2.0 * a);
+    let far = (-b + root) / (2.0 * a);
+    let usable = |d: f32| d > 0.0 && d.is_finite();
+    match (usable(near), usable(far)) {
+        (true, true) => near.min(far),
+        (true, false) => near,
+        (false, true) => far,
+        (false, false) => f32::INFINITY,
+    }
+}
+
+/// What the hit body hands on for one primitive: distance (infinity on a miss), the
+/// hit point and the axial coordinate m (zero for a sphere).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct BodyHit {
+    pub distance: f32,
+    pub point: V3,
+    pub m: f32,
+}
+
+/// The intersection test and hit body of one primitive for the ray `origin + d·dir`.
+pub fn intersect(primitive: &HwPrimitive, origin: V3, dir: V3) -> BodyHit {
+    let voc = sub(origin, primitive.center);
+    let (a, b, c) = quadratic_coefficients(primitive, voc, dir);
+    let root = smaller_positive_root(a, b, c);
+    let point = add(origin, scale(dir, root));
+    let m = dot(sub(point, primitive.center), primitive.axis);
+    // Only the selected root is bounded: a cylinder whose near wall lies beyond an end
+    // is missed even if the ray would meet its inner wall (see the module doc).
+    let inside_body = m > 0.0 && m < primitive.m_max;
+    let distance = match primitive.kind {
+        HwKind::Sphere => root,
+        HwKind::Cylinder if inside_body => root,
+        HwKind::Cylinder => f32::INFINITY,
+    };
+    BodyHit { distance, point, m }
+}
+
+/// The minimum-distance block over the whole scene memory: the closest hit and its
+/// primitive, `None` when every distance is infinite.
+pub fn closest_hit(scene: &HwScene, origin: V3, dir: V3) -> Option<(&HwPrimitive, BodyHit)> {
+    let mut best: Option<(&HwPrimitive, BodyHit)> = None;
+    for primitive in &scene.primitives {
+        let hit = intersect(primitive, origin, dir);
+        let best_distance = best.map_or(f32::INFINITY, |(_, b)| b.distance);
+        // Strictly smaller: the first primitive in memory wins ties.
+        if hit.distance < best_distance {
+            best = Some((primitive, hit));
+        }
+    }
+    best
+}
+
+/// The shading block: the Lambert term `N·L` of a hit, or `None` (background) when
+/// it is negative (or NaN).
+pub fn diffuse(primitive: &HwPrimitive, hit: &BodyHit, light: V3) -> Option<f32> {
+    let to_light = normalize(sub(light, hit.point));
+    let radial = sub(hit.point, primitive.center);
+    let normal = match primitive.kind {
+        HwKind::Sphere => radial,
+        HwKind::Cylinder => sub(radial, scale(primitive.axis, hit.m)),
+    };
+    let lambert = dot(normalize(normal), to_light);
+    (lambert >= 0.0).then_some(lambert)
+}
+
+/// The gray value of the pixel whose ray leaves the observer along `dir`.
+pub fn pixel_gray(scene: &HwScene, dir: V3) -> u8 {
+    let background = to_gray8(scene.background_gray);
+    closest_hit(scene, scene.eye, dir)
+        .and_then(|(primitive, hit)| diffuse(primitive, &hit, scene.light))
+        .map_or(background, to_gray8)
+}
+
+/// The image the hardware computes for `scene` on a `width` × `height` screen.
+pub fn render(scene: &HwScene, width: u32, height: u32) -> HwImage {
+    let rays = PrimaryRays::new(scene, width, height);
+    let mut pixels = Vec::with_capacity(width as usize * height as usize);
+    // The screen iterator: columns within rows, top row first.
+    for row in 0..height {
+        let row_base = rays.row_base(row);
+        for column in 0..width {
+            pixels.push(pixel_gray(scene, rays.direction(row_base, column)));
+        }
+    }
+    HwImage {
+        width,
+        height,
+        pixels,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn solver_picks_the_smaller_positive_root() {
+        // (d - 2)(d - 5) = d² - 7d + 10.
+        assert_eq!(smaller_positive_root(1.0, -7.0, 10.0), 2.0);
+        // (d + 1)(d - 3): the origin is inside, the positive root is kept.
+        assert_eq!(smaller_positive_root(1.0, -2.0, -3.0), 3.0);
+        // Both behind.
+        assert_eq!(smaller_positive_root(1.0, 7.0, 10.0), f32::INFINITY);
+        // No real root.
+        assert_eq!(smaller_positive_root(1.0, 0.0, 1.0), f32::INFINITY);
+        // a = 0 (ray parallel to a cylinder axis): no positive distance.
+        assert_eq!(smaller_positive_root(0.0, 2.0, -1.0), f32::INFINITY);
+    }
+
+    #[test]
+    fn cylinder_seen_through_its_open_end_is_missed() {
+        // Axis +z from z = 0 to 2, radius 1. The ray from (-1.1, 0, 2.2) along
+        // (1, 0, -1)/√2 meets the outer wall above the top (m = 2.1) and the inner wall
+        // at m = 0.1: the hardware bounds only the first and reports a miss.
+        let cylinder = HwPrimitive::cylinder([0.0; 3], [0.0, 0.0, 1.0], 1.0, 2.0);
+        let h = std::f32::consts::FRAC_1_SQRT_2;
+        let hit = intersect(&cylinder, [-1.1, 0.0, 2.2], [h, 0.0, -h]);
+        assert_eq!(hit.distance, f32::INFINITY);
+        // From the side at mid-height: wall at x = -1, d = 4, m = 1.
+        let side = intersect(&cylinder, [-5.0, 0.0, 1.0], [1.0, 0.0, 0.0]);
+        assert_eq!((side.distance, side.m), (4.0, 1.0));
+    }
+
+    #[test]
+    fn gray_conversion_rounds_like_the_software() {
+        assert_eq!(to_gray8(0.5), 128);
+        assert_eq!(to_gray8(1.5), 255);
+        assert_eq!(to_gray8(-0.2), 0);
+        assert_eq!(to_gray8(100.0 / 255.0), 100);
+    }
+}

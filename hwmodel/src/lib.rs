@@ -1,0 +1,29 @@
+//! `hwmodel`: a latency and resource model of the thesis's pipelined FPGA ray caster
+//! (Cyclone IV EP4CE115, IEEE-754 single-precision IP cores), with a functional
+//! emulator of the image it shows and an export of its scene memory.
+//!
+//! Stages, each its own module, joined by plain data:
+//! - [`library`]: the operator library of a device family, read from TOML
+//!   (`data/*.toml`: the thesis's table 7 IP-core rows plus the documented assumptions);
+//! - [`graph`]: dataflow graphs of operators, ASAP scheduling (latency = critical
+//!   path) and delay-balancing registers (resources = operators + balancing);
+//! - [`composites`]: dot product, vector × scalar, vector add/sub, normalize;
+//! - [`blocks`]: the thesis's blocks (primary ray, intersection test, minimum distance,
+//!   shading) built from those, for a [`design::Design`] (the thesis's or a what-if);
+//! - [`device`]: devices and fit (utilization, the multiplier rule, the largest K);
+//! - [`pipeline`]: frame timing (one pixel every 3·⌈n/K⌉ cycles plus the fill);
+//! - [`table`]: the model next to the thesis's tables 7 and 8 with percentage errors;
+//! - [`hw_scene`], [`emulator`], [`mif`]: the scene as the hardware holds it, the image
+//!   it computes, and its Memory Initialization File.
+
+pub mod blocks;
+pub mod composites;
+pub mod design;
+pub mod device;
+pub mod emulator;
+pub mod graph;
+pub mod hw_scene;
+pub mod library;
+pub mod mif;
+pub mod pipeline;
+pub mod table;
