@@ -61,6 +61,8 @@ pub struct ProfileArgs {
 #[derive(Serialize)]
 struct VariantProfile {
     variant: String,
+    /// Renders sampled (a fast render is repeated to gather samples); calls cover all.
+    renders: u64,
     samples: u64,
     seconds_per_sample: f64,
     cpu_seconds: f64,
@@ -89,6 +91,11 @@ struct ProfileReport {
     profile: VariantProfile,
     diff: Option<VariantProfile>,
 }
+
+/// Least sampled time per profile: below it a render is repeated.
+const MIN_SAMPLED: std::time::Duration = std::time::Duration::from_millis(300);
+/// Most renders per profile, however fast.
+const MAX_RENDERS: u64 = 10_000;
 
 struct Job<'a> {
     scene: &'a Scene,
@@ -127,21 +134,42 @@ impl Job<'_> {
             .counts()
             .context("the counted render returned no counts")?;
         bar.set_message(format!("sampling {set}"));
+        // A fast render (a BVH on a small image) can finish between two samples: render
+        // again until the sampler has had MIN_SAMPLED time, and scale the calls to match.
         let run = sample(
             self.frequency,
             |name| name.starts_with("tracer::"),
             || {
-                self.pool
-                    .install(|| render_variant::<NoCount>(self.scene, &self.options, &set, &|_| {}))
+                let start = Instant::now();
+                let mut renders = 0u64;
+                loop {
+                    renders += 1;
+                    let out = self.pool.install(|| {
+                        render_variant::<NoCount>(self.scene, &self.options, &set, &|_| {})
+                    });
+                    if out.is_err() || start.elapsed() >= MIN_SAMPLED || renders >= MAX_RENDERS {
+                        return out.map(|_| renders);
+                    }
+                }
             },
         )?;
         bar.finish_and_clear();
-        run.output.map_err(|e| self.fail(e))?;
+        let renders = run.output.map_err(|e| self.fail(e))?;
+        if renders > 1 {
+            eprintln!(
+                "{set}: rendered {renders} times to gather samples (calls are for all {renders})"
+            );
+        }
         let samples = shorten(&run.samples);
+        let calls: CallCounts = call_counts(&counts)
+            .into_iter()
+            .map(|(name, n)| (name, n * renders))
+            .collect();
         Ok(build_profile(
             set.to_string(),
+            renders,
             &samples,
-            &call_counts(&counts),
+            &calls,
             run.cpu.as_secs_f64(),
             run.wall.as_secs_f64(),
         ))
@@ -178,6 +206,7 @@ fn shorten(samples: &StackSamples) -> StackSamples {
 
 fn build_profile(
     variant: String,
+    renders: u64,
     samples: &StackSamples,
     calls: &CallCounts,
     cpu_seconds: f64,
@@ -204,6 +233,7 @@ fn build_profile(
         .collect();
     VariantProfile {
         variant,
+        renders,
         samples: samples.total(),
         seconds_per_sample: samples.seconds_per_sample,
         cpu_seconds,
