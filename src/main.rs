@@ -12,6 +12,10 @@ fn main() -> ExitCode {
     let args = cli::Cli::parse();
     match cli::run(args) {
         Ok(()) => ExitCode::SUCCESS,
+        Err(error) if error.downcast_ref::<cli::CheckFailed>().is_some() => {
+            eprintln!("rtprof: {error:#}");
+            ExitCode::from(1)
+        }
         Err(error) => {
             eprintln!("rtprof: error: {error:#}");
             // Bad input or usage: exit code 2 (1 is kept for failed checks).

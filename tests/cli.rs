@@ -640,3 +640,97 @@ fn hw_render_and_mif_refuse_unsupported_primitives_and_write_files() {
     assert_eq!(out.status.code(), Some(2));
     assert!(stderr(&out).contains("EP4CE115"));
 }
+
+const TINY_SUITE: &str = r#"
+name = "tiny"
+size = [32, 24]
+repeats = 2
+variants = ["baseline", "bvh"]
+scenes = ["balls2", "both3"]
+extra_size = [16, 12]
+profile_size = [32, 24]
+profile_frequency = 500
+hardware_repeats = 1
+"#;
+
+#[test]
+fn suite_writes_results_and_reports_and_the_gate_sets_the_exit_code() {
+    let dir = scratch("suite");
+    let suite = dir.join("tiny.toml");
+    std::fs::write(&suite, TINY_SUITE).unwrap();
+    let first = dir.join("first");
+    let out = rtprof(&[
+        "suite",
+        suite.to_str().unwrap(),
+        "-o",
+        first.to_str().unwrap(),
+    ]);
+    assert_eq!(out.status.code(), Some(0), "{}", stderr(&out));
+    for f in ["results.json", "report.html", "report.pdf"] {
+        assert!(first.join(f).is_file(), "{f} missing");
+    }
+    let results_path = first.join("results.json");
+    let text = String::from_utf8(read(&results_path)).unwrap();
+    let v: serde_json::Value = serde_json::from_str(&text).unwrap();
+    assert_eq!(v["schema"], "rtprof.results/1");
+    assert_eq!(v["scenes"].as_array().unwrap().len(), 2);
+    // The hardware runs on these sphere/cylinder scenes; counts are exact.
+    assert!(v["scenes"][0]["hardware"]["emulator_rms"].as_f64().unwrap() <= 15.0);
+    assert_eq!(
+        v["scenes"][0]["variants"][0]["counts"]["rays.primary"],
+        32 * 24
+    );
+
+    // Same program, same counts: the gate passes (time ignored with a huge threshold).
+    let second = dir.join("second");
+    let out = rtprof(&[
+        "suite",
+        suite.to_str().unwrap(),
+        "-o",
+        second.to_str().unwrap(),
+        "--baseline",
+        results_path.to_str().unwrap(),
+        "--threshold",
+        "1000",
+    ]);
+    assert_eq!(out.status.code(), Some(0), "{}", stderr(&out));
+    // A baseline whose counts differ: exit 1, the changed counter named.
+    let doctored = dir.join("doctored.json");
+    std::fs::write(
+        &doctored,
+        text.replacen("\"rays.primary\": 768", "\"rays.primary\": 769", 1),
+    )
+    .unwrap();
+    let out = rtprof(&[
+        "suite",
+        suite.to_str().unwrap(),
+        "-o",
+        second.to_str().unwrap(),
+        "--baseline",
+        doctored.to_str().unwrap(),
+        "--threshold",
+        "1000",
+    ]);
+    assert_eq!(out.status.code(), Some(1), "{}", stderr(&out));
+    assert!(String::from_utf8_lossy(&out.stdout).contains("rays.primary"));
+    let gate = String::from_utf8(read(&second.join("gate.txt"))).unwrap();
+    assert!(gate.contains("rays.primary"), "{gate}");
+
+    // Two results files: the report has the side-by-side comparison.
+    let both = dir.join("both");
+    let out = rtprof(&[
+        "report",
+        results_path.to_str().unwrap(),
+        second.join("results.json").to_str().unwrap(),
+        "-o",
+        both.to_str().unwrap(),
+    ]);
+    assert_eq!(out.status.code(), Some(0), "{}", stderr(&out));
+    let html = String::from_utf8(read(&both.join("report.html"))).unwrap();
+    assert!(html.contains("id=\"comparison\""), "no comparison section");
+    assert_eq!(&read(&both.join("report.pdf"))[..4], b"%PDF");
+    // Not a results file: exit 2.
+    let out = rtprof(&["report", suite.to_str().unwrap()]);
+    assert_eq!(out.status.code(), Some(2));
+    std::fs::remove_dir_all(&dir).ok();
+}

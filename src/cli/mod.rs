@@ -5,7 +5,10 @@ mod count;
 mod hw;
 mod profile;
 mod render;
+mod report;
+mod scene;
 mod scene_args;
+mod suite;
 mod variants;
 
 use clap::{Parser, Subcommand};
@@ -32,7 +35,26 @@ enum Command {
     Variants(variants::VariantsArgs),
     /// The FPGA pipeline model: tables 7 and 8, frame time and fit, emulator, MIF.
     Hw(hw::HwArgs),
+    /// The main job: every scene × variant, hardware model, profile; results.json,
+    /// report.html, report.pdf; --baseline gates against an earlier run.
+    Suite(suite::SuiteArgs),
+    /// Rebuild report.html and report.pdf from results.json files (several: compared).
+    Report(report::ReportArgs),
+    /// Built-in scenes and scene generators.
+    Scene(scene::SceneArgs),
 }
+
+/// A check that ran and failed (exit code 1, not 2: the input was fine).
+#[derive(Debug)]
+pub struct CheckFailed(pub String);
+
+impl std::fmt::Display for CheckFailed {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(&self.0)
+    }
+}
+
+impl std::error::Error for CheckFailed {}
 
 /// Runs one command.
 pub fn run(cli: Cli) -> anyhow::Result<()> {
@@ -43,5 +65,8 @@ pub fn run(cli: Cli) -> anyhow::Result<()> {
         Command::Compare(args) => compare::run(&args),
         Command::Variants(args) => variants::run(&args),
         Command::Hw(args) => hw::run(&args),
+        Command::Suite(args) => suite::run(&args),
+        Command::Report(args) => report::run(&args),
+        Command::Scene(args) => scene::run(&args),
     }
 }

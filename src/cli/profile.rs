@@ -59,22 +59,22 @@ pub struct ProfileArgs {
 
 /// One variant's profile, as data.
 #[derive(Serialize)]
-struct VariantProfile {
-    variant: String,
+pub(super) struct VariantProfile {
+    pub(super) variant: String,
     /// Renders sampled (a fast render is repeated to gather samples); calls cover all.
-    renders: u64,
-    samples: u64,
-    seconds_per_sample: f64,
+    pub(super) renders: u64,
+    pub(super) samples: u64,
+    pub(super) seconds_per_sample: f64,
     cpu_seconds: f64,
     wall_seconds: f64,
-    flat: FlatProfile,
+    pub(super) flat: FlatProfile,
     call_graph: CallGraph,
-    amdahl: Vec<AmdahlRow>,
-    folded: String,
+    pub(super) amdahl: Vec<AmdahlRow>,
+    pub(super) folded: String,
     #[serde(skip)]
-    flat_text: String,
+    pub(super) flat_text: String,
     #[serde(skip)]
-    call_graph_text: String,
+    pub(super) call_graph_text: String,
 }
 
 #[derive(Serialize)]
@@ -92,17 +92,19 @@ struct ProfileReport {
     diff: Option<VariantProfile>,
 }
 
-/// Least sampled time per profile: below it a render is repeated.
-const MIN_SAMPLED: std::time::Duration = std::time::Duration::from_millis(300);
+/// Least sampled time per profile of `rtprof profile`: below it a render is repeated.
+pub(super) const MIN_SAMPLED: std::time::Duration = std::time::Duration::from_millis(300);
 /// Most renders per profile, however fast.
 const MAX_RENDERS: u64 = 10_000;
 
-struct Job<'a> {
-    scene: &'a Scene,
-    options: RenderOptions,
-    pool: rayon::ThreadPool,
-    frequency: i32,
-    path: &'a Path,
+pub(super) struct Job<'a> {
+    pub(super) scene: &'a Scene,
+    pub(super) options: RenderOptions,
+    pub(super) pool: rayon::ThreadPool,
+    pub(super) frequency: i32,
+    pub(super) path: &'a Path,
+    /// Least sampled time: a faster render is repeated until it is reached.
+    pub(super) min_sampled: std::time::Duration,
 }
 
 impl Job<'_> {
@@ -122,7 +124,7 @@ impl Job<'_> {
     }
 
     /// Counted render (calls), then the sampled render.
-    fn profile(&self, list: &str) -> Result<VariantProfile> {
+    pub(super) fn profile(&self, list: &str) -> Result<VariantProfile> {
         let set = VariantSet::parse(list)?;
         let bar = self.spinner(format!("counting {set}"));
         let counted = self
@@ -135,7 +137,7 @@ impl Job<'_> {
             .context("the counted render returned no counts")?;
         bar.set_message(format!("sampling {set}"));
         // A fast render (a BVH on a small image) can finish between two samples: render
-        // again until the sampler has had MIN_SAMPLED time, and scale the calls to match.
+        // again until the sampler has had `min_sampled` time, and scale the calls to match.
         let run = sample(
             self.frequency,
             |name| name.starts_with("tracer::"),
@@ -147,7 +149,8 @@ impl Job<'_> {
                     let out = self.pool.install(|| {
                         render_variant::<NoCount>(self.scene, &self.options, &set, &|_| {})
                     });
-                    if out.is_err() || start.elapsed() >= MIN_SAMPLED || renders >= MAX_RENDERS {
+                    if out.is_err() || start.elapsed() >= self.min_sampled || renders >= MAX_RENDERS
+                    {
                         return out.map(|_| renders);
                     }
                 }
@@ -286,6 +289,7 @@ pub fn run(args: &ProfileArgs) -> Result<()> {
         pool: thread_pool(args.threads)?,
         frequency: args.frequency,
         path: &args.scene,
+        min_sampled: MIN_SAMPLED,
     };
 
     let unprofiled = if args.measure_overhead {

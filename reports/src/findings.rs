@@ -1,0 +1,499 @@
+//! Headline findings: a few plain-English sentences written from a run's data.
+//!
+//! Each sentence is computed, never canned: the profile's top function and its share,
+//! the fastest variant (geometric-mean speed-up over the scenes it ran on) and its worst
+//! image error, the variants whose images leave the thesis's "visually identical" band,
+//! the range of hardware-over-software speed-ups, whether the thesis design fits the
+//! validated device and what runs out, the model's worst error against table 8, and
+//! failures. A sentence whose data is missing is left out.
+
+use crate::charts::short_name;
+use crate::results::{DeviceUse, HwRow, Results};
+
+/// The thesis's best band (table 2).
+pub const IDENTICAL_BAND: &str = "visually identical";
+
+/// Names of the six columns of tables 7 and 8.
+pub const HW_COLUMNS: [&str; 6] = [
+    "latency",
+    "logic elements",
+    "combinational functions",
+    "registers",
+    "memory bits",
+    "multipliers",
+];
+
+/// 4-8 sentences about the run, most important first.
+pub fn headline_findings(results: &Results) -> Vec<String> {
+    [
+        profile_finding(results),
+        fastest_variant_finding(results),
+        quality_finding(results),
+        hardware_speedup_finding(results),
+        device_finding(results),
+        model_error_finding(results),
+        failures_finding(results),
+    ]
+    .into_iter()
+    .flatten()
+    .collect()
+}
+
+/// Geometric mean of the finite positive values, with how many there were.
+pub fn geometric_mean(values: impl IntoIterator<Item = f64>) -> Option<(f64, usize)> {
+    let logs: Vec<f64> = values
+        .into_iter()
+        .filter(|v| v.is_finite() && *v > 0.0)
+        .map(f64::ln)
+        .collect();
+    if logs.is_empty() {
+        return None;
+    }
+    let mean = logs.iter().sum::<f64>() / logs.len() as f64;
+    Some((mean.exp(), logs.len()))
+}
+
+fn profile_finding(results: &Results) -> Option<String> {
+    let profile = results.profile.as_ref()?;
+    let mut rows: Vec<_> = profile
+        .baseline
+        .flat
+        .iter()
+        .filter(|r| r.percent.is_finite())
+        .collect();
+    rows.sort_by(|a, b| b.percent.total_cmp(&a.percent));
+    let top = rows.first()?;
+    let runner_up = rows
+        .get(1)
+        .map(|r| format!(", ahead of {} ({:.1} %)", short_name(&r.name), r.percent))
+        .unwrap_or_default();
+    Some(format!(
+        "In the profile of {} ({}x{}, {}), {} takes the largest share of the time, {:.1} %{}.",
+        profile.scene,
+        profile.width,
+        profile.height,
+        profile.baseline.variant,
+        short_name(&top.name),
+        top.percent,
+        runner_up
+    ))
+}
+
+/// One scene's image error for a variant.
+struct ImageError {
+    scene: String,
+    rms: f64,
+    band: String,
+}
+
+/// What one variant (not baseline) did over the scenes it ran on.
+struct VariantStats {
+    variant: String,
+    /// (scene, speed-up over baseline).
+    speedups: Vec<(String, f64)>,
+    /// Image errors with a finite RMS.
+    errors: Vec<ImageError>,
+}
+
+/// Per variant (except baseline), in first-seen order.
+fn variant_stats(results: &Results) -> Vec<VariantStats> {
+    let mut stats: Vec<VariantStats> = Vec::new();
+    for scene in &results.scenes {
+        for v in scene.variants.iter().filter(|v| v.variant != "baseline") {
+            let index = match stats.iter().position(|s| s.variant == v.variant) {
+                Some(i) => i,
+                None => {
+                    stats.push(VariantStats {
+                        variant: v.variant.clone(),
+                        speedups: Vec::new(),
+                        errors: Vec::new(),
+                    });
+                    stats.len() - 1
+                }
+            };
+            stats[index].speedups.push((scene.name.clone(), v.speedup));
+            if let Some(q) = v.quality.as_ref().filter(|q| q.rms.is_finite()) {
+                stats[index].errors.push(ImageError {
+                    scene: scene.name.clone(),
+                    rms: q.rms,
+                    band: q.band.clone(),
+                });
+            }
+        }
+    }
+    stats
+}
+
+fn fastest_variant_finding(results: &Results) -> Option<String> {
+    let stats = variant_stats(results);
+    let (best, mean, scenes) = stats
+        .iter()
+        .filter_map(|s| {
+            let (mean, n) = geometric_mean(s.speedups.iter().map(|p| p.1))?;
+            Some((s, mean, n))
+        })
+        .max_by(|a, b| a.1.total_cmp(&b.1))?;
+    let finite: Vec<f64> = best
+        .speedups
+        .iter()
+        .map(|s| s.1)
+        .filter(|s| s.is_finite() && *s > 0.0)
+        .collect();
+    let lo = finite.iter().copied().fold(f64::INFINITY, f64::min);
+    let hi = finite.iter().copied().fold(f64::NEG_INFINITY, f64::max);
+    let worst = best
+        .errors
+        .iter()
+        .max_by(|a, b| a.rms.total_cmp(&b.rms))
+        .map_or_else(
+            || "no image metrics".to_string(),
+            |e| {
+                format!(
+                    "its worst image error is RMS {:.1} on {} ({})",
+                    e.rms, e.scene, e.band
+                )
+            },
+        );
+    Some(format!(
+        "The fastest variant is {}: a geometric-mean speed-up of {mean:.2}× over {scenes} scene{} ({lo:.2}× to {hi:.2}×), and {worst}.",
+        best.variant,
+        if scenes == 1 { "" } else { "s" }
+    ))
+}
+
+fn quality_finding(results: &Results) -> Option<String> {
+    let stats = variant_stats(results);
+    if stats.iter().all(|s| s.errors.is_empty()) {
+        return None;
+    }
+    let leaving: Vec<String> = stats
+        .iter()
+        .filter_map(|s| {
+            let outside: Vec<&ImageError> = s
+                .errors
+                .iter()
+                .filter(|e| e.band != IDENTICAL_BAND)
+                .collect();
+            let worst = outside.iter().max_by(|a, b| a.rms.total_cmp(&b.rms))?;
+            Some(format!(
+                "{} on {} of {} scenes (worst RMS {:.1} on {}: {})",
+                s.variant,
+                outside.len(),
+                s.errors.len(),
+                worst.rms,
+                worst.scene,
+                worst.band
+            ))
+        })
+        .collect();
+    Some(if leaving.is_empty() {
+        format!(
+            "Every variant's images stay in the \"{IDENTICAL_BAND}\" band against baseline (RMS below 15)."
+        )
+    } else {
+        format!(
+            "Images leave the \"{IDENTICAL_BAND}\" band with {}.",
+            join_list(&leaving)
+        )
+    })
+}
+
+fn hardware_speedup_finding(results: &Results) -> Option<String> {
+    let speedups: Vec<(&str, f64)> = results
+        .scenes
+        .iter()
+        .filter_map(|s| {
+            s.hardware
+                .as_ref()
+                .map(|h| (s.name.as_str(), h.speedup))
+                .filter(|h| h.1.is_finite() && h.1 > 0.0)
+        })
+        .collect();
+    let low = speedups.iter().min_by(|a, b| a.1.total_cmp(&b.1))?;
+    let high = speedups.iter().max_by(|a, b| a.1.total_cmp(&b.1))?;
+    let verdict = if high.1 < 1.0 {
+        "the software is faster on every scene"
+    } else if low.1 > 1.0 {
+        "the hardware is faster on every scene"
+    } else {
+        "each wins on some scenes"
+    };
+    Some(format!(
+        "The hardware model's speed-up over software ranges from {:.2}× ({}) to {:.2}× ({}) across {} scenes, against 4.6 to 18 in the thesis: {verdict}.",
+        low.1,
+        low.0,
+        high.1,
+        high.0,
+        speedups.len()
+    ))
+}
+
+/// Resources a device runs out of: demand at or above its capacity.
+pub fn exhausted_resources(d: &DeviceUse) -> Vec<String> {
+    let mut out = Vec::new();
+    if d.le >= d.le_capacity {
+        out.push("logic elements".to_string());
+    }
+    if d.mult + d.soft_mult_elements >= d.mult_capacity && d.mult_capacity > 0 {
+        out.push(if d.soft_mult_elements > 0 {
+            format!(
+                "9-bit multipliers (all {} used, {} more built in logic)",
+                d.mult_capacity, d.soft_mult_elements
+            )
+        } else {
+            format!("9-bit multipliers (all {} used)", d.mult_capacity)
+        });
+    }
+    if d.mem_bits >= d.mem_capacity {
+        out.push("memory bits".to_string());
+    }
+    if d.plls >= d.pll_capacity {
+        out.push("PLLs".to_string());
+    }
+    out
+}
+
+fn percent(used: u64, capacity: u64) -> f64 {
+    if capacity == 0 {
+        f64::NAN
+    } else {
+        used as f64 / capacity as f64 * 100.0
+    }
+}
+
+fn device_finding(results: &Results) -> Option<String> {
+    let hardware = results.hardware.as_ref()?;
+    let d = hardware
+        .devices
+        .iter()
+        .find(|d| d.device == "EP4CE115")
+        .or_else(|| hardware.devices.iter().find(|d| d.validated))
+        .or_else(|| hardware.devices.first())?;
+    let exhausted = exhausted_resources(d);
+    let use_text = format!(
+        "{:.0} % of its logic elements and {:.0} % of its memory bits",
+        percent(d.le, d.le_capacity),
+        percent(d.mem_bits, d.mem_capacity)
+    );
+    let runs_out = if exhausted.is_empty() {
+        "nothing runs out".to_string()
+    } else {
+        format!("what runs out is {}", join_list(&exhausted))
+    };
+    Some(format!(
+        "The thesis design {} the {}{} ({use_text}); {runs_out}.",
+        if d.fits { "fits" } else { "does not fit" },
+        d.device,
+        if d.validated {
+            ""
+        } else {
+            " (unvalidated device data)"
+        }
+    ))
+}
+
+/// The largest |error| of `rows` against the thesis: (row, column, signed error %).
+pub fn worst_error(rows: &[HwRow]) -> Option<(&str, usize, f64)> {
+    rows.iter()
+        .filter_map(|r| r.error_pct.as_ref().map(|e| (r, e)))
+        .flat_map(|(r, errors)| {
+            errors.iter().enumerate().filter_map(move |(c, e)| {
+                e.filter(|e| e.is_finite()).map(|e| (r.name.as_str(), c, e))
+            })
+        })
+        .max_by(|a, b| a.2.abs().total_cmp(&b.2.abs()))
+}
+
+fn model_error_finding(results: &Results) -> Option<String> {
+    let hardware = results.hardware.as_ref()?;
+    let (block, column, error) = worst_error(&hardware.blocks)?;
+    let latency_worst = hardware
+        .blocks
+        .iter()
+        .filter_map(|r| r.error_pct.as_ref().and_then(|e| e[0]))
+        .filter(|e| e.is_finite())
+        .map(f64::abs)
+        .fold(None, |acc: Option<f64>, e| {
+            Some(acc.map_or(e, |a| a.max(e)))
+        });
+    let latency = latency_worst
+        .map(|l| format!("; its latencies are within {l:.1} % of the thesis"))
+        .unwrap_or_default();
+    Some(format!(
+        "The hardware model's worst error against table 8 is {error:+.1} % ({block}, {}){latency}.",
+        HW_COLUMNS[column]
+    ))
+}
+
+fn failures_finding(results: &Results) -> Option<String> {
+    let first = results.failures.first()?;
+    let n = results.failures.len();
+    let what = match &first.variant {
+        Some(v) => format!("{}/{v}", first.scene),
+        None => first.scene.clone(),
+    };
+    Some(format!(
+        "{n} part{} of the run failed (first: {what}: {}); the other results stand.",
+        if n == 1 { "" } else { "s" },
+        first.message
+    ))
+}
+
+/// "a", "a and b", "a, b and c".
+fn join_list(items: &[String]) -> String {
+    match items {
+        [] => String::new(),
+        [one] => one.clone(),
+        [rest @ .., last] => format!("{} and {last}", rest.join(", ")),
+    }
+}
+
+/// How many timed renders each figure rests on, in words ("3 timed repeats, more
+/// until 0.2 s").
+pub fn repeats_text(s: &crate::results::SuiteInfo) -> String {
+    let base = format!(
+        "{} timed repeat{}",
+        s.repeats,
+        if s.repeats == 1 { "" } else { "s" }
+    );
+    if s.min_seconds > 0.0 {
+        format!(
+            "{base} (more, up to 100, until {} s is measured)",
+            s.min_seconds
+        )
+    } else {
+        base
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::sample::sample_results;
+
+    fn find<'a>(findings: &'a [String], needle: &str) -> &'a String {
+        findings
+            .iter()
+            .find(|f| f.contains(needle))
+            .unwrap_or_else(|| panic!("no finding with '{needle}' in {findings:#?}"))
+    }
+
+    #[test]
+    fn sample_findings_name_the_right_things() {
+        let r = sample_results();
+        let findings = headline_findings(&r);
+        assert!((4..=8).contains(&findings.len()), "{findings:#?}");
+
+        // Top function of the profile, computed independently.
+        let flat = &r.profile.as_ref().expect("profile").baseline.flat;
+        let top = flat
+            .iter()
+            .max_by(|a, b| a.percent.total_cmp(&b.percent))
+            .expect("rows");
+        let f = find(&findings, "largest share");
+        assert!(f.contains(&short_name(&top.name)), "{f}");
+        assert!(f.contains(&format!("{:.1} %", top.percent)), "{f}");
+
+        // Fastest variant by geometric mean.
+        let mut best = (String::new(), 0.0);
+        for variant in &r.suite.variants {
+            if variant == "baseline" {
+                continue;
+            }
+            let speedups: Vec<f64> = r
+                .scenes
+                .iter()
+                .flat_map(|s| s.variants.iter())
+                .filter(|v| &v.variant == variant)
+                .map(|v| v.speedup)
+                .collect();
+            let mean = (speedups.iter().map(|s| s.ln()).sum::<f64>() / speedups.len() as f64).exp();
+            if mean > best.1 {
+                best = (variant.clone(), mean);
+            }
+        }
+        let f = find(&findings, "fastest variant");
+        assert!(f.contains(&format!("is {}:", best.0)), "{f}");
+        assert!(f.contains(&format!("{:.2}×", best.1)), "{f}");
+
+        // Variants leaving the identical band: exactly those with a non-identical band.
+        let f = find(&findings, "leave the");
+        for variant in &r.suite.variants {
+            let leaves = r
+                .scenes
+                .iter()
+                .flat_map(|s| s.variants.iter())
+                .filter(|v| &v.variant == variant)
+                .any(|v| v.quality.as_ref().is_some_and(|q| q.rms >= 15.0));
+            assert_eq!(
+                f.contains(&format!("{variant} on")),
+                leaves,
+                "{variant}: {f}"
+            );
+        }
+
+        // Hardware speed-up range.
+        let speedups: Vec<f64> = r
+            .scenes
+            .iter()
+            .filter_map(|s| s.hardware.as_ref().map(|h| h.speedup))
+            .collect();
+        let lo = speedups.iter().copied().fold(f64::INFINITY, f64::min);
+        let hi = speedups.iter().copied().fold(0.0, f64::max);
+        let f = find(&findings, "speed-up over software");
+        assert!(
+            f.contains(&format!("{lo:.2}×")) && f.contains(&format!("{hi:.2}×")),
+            "{f}"
+        );
+
+        // Device fit and the multipliers running out.
+        let f = find(&findings, "EP4CE115");
+        assert!(f.contains("fits") && f.contains("multipliers"), "{f}");
+
+        // Worst table-8 error: intersection memory bits, +154.2 % in the sample.
+        let f = find(&findings, "table 8");
+        assert!(
+            f.contains("+154.2 %") && f.contains("intersection") && f.contains("memory bits"),
+            "{f}"
+        );
+
+        let f = find(&findings, "failed");
+        assert!(
+            f.starts_with("1 part of the run failed") && f.contains("rings/ortho"),
+            "{f}"
+        );
+    }
+
+    #[test]
+    fn empty_or_bad_data_gives_fewer_sentences_without_panicking() {
+        let mut r = sample_results();
+        r.scenes.clear();
+        r.profile = None;
+        r.hardware = None;
+        r.failures.clear();
+        assert!(headline_findings(&r).is_empty());
+
+        let mut r = sample_results();
+        for s in &mut r.scenes {
+            for v in &mut s.variants {
+                v.speedup = f64::NAN;
+                if let Some(q) = &mut v.quality {
+                    q.rms = f64::NAN;
+                }
+            }
+        }
+        let findings = headline_findings(&r);
+        assert!(!findings.iter().any(|f| f.contains("NaN")), "{findings:#?}");
+    }
+
+    #[test]
+    fn geometric_mean_ignores_bad_values() {
+        assert_eq!(geometric_mean([f64::NAN, -1.0]), None);
+        let (m, n) = geometric_mean([2.0, 8.0, f64::INFINITY]).expect("mean");
+        assert!((m - 4.0).abs() < 1e-12 && n == 2);
+        assert_eq!(
+            join_list(&["a".into(), "b".into(), "c".into()]),
+            "a, b and c"
+        );
+    }
+}

@@ -1,0 +1,180 @@
+//! The HTML report of the synthetic sample: sections, self-containment, embedded
+//! images, missing files, the comparison of two runs and escaping.
+
+use std::path::{Path, PathBuf};
+
+use reports::Run;
+use reports::html::{SECTIONS, render_html};
+use reports::sample::{sample_results, write_sample_files};
+
+/// A fresh directory under the system temp dir, removed on drop.
+struct TempDir(PathBuf);
+
+impl TempDir {
+    fn new(tag: &str) -> Self {
+        let dir =
+            std::env::temp_dir().join(format!("rtprof-html-test-{tag}-{}", std::process::id()));
+        let _ = std::fs::remove_dir_all(&dir);
+        std::fs::create_dir_all(&dir).expect("create temp dir");
+        TempDir(dir)
+    }
+
+    fn path(&self) -> &Path {
+        &self.0
+    }
+}
+
+impl Drop for TempDir {
+    fn drop(&mut self) {
+        let _ = std::fs::remove_dir_all(&self.0);
+    }
+}
+
+fn sample_run(label: &str, dir: &Path) -> Run {
+    write_sample_files(dir).expect("write sample files");
+    Run {
+        label: label.to_string(),
+        results: sample_results(),
+        base_dir: dir.to_path_buf(),
+    }
+}
+
+#[test]
+fn every_section_is_present_and_nothing_reaches_the_network() {
+    let dir = TempDir::new("sections");
+    let html = render_html(&[sample_run("bench-1", dir.path())]).expect("render");
+    assert!(html.starts_with("<!DOCTYPE html>"));
+    for (id, _) in SECTIONS {
+        let present = html.contains(&format!("<section id=\"{id}\">"));
+        assert_eq!(present, id != "comparison", "section {id}");
+    }
+    for bad in [
+        "src=\"http",
+        "href=\"http",
+        "src=\"//",
+        "href=\"//",
+        "src='http",
+        "href='http",
+        "url(http",
+        "url(//",
+    ] {
+        assert!(!html.contains(bad), "found {bad}");
+    }
+    assert!(
+        !html.contains("image missing"),
+        "every sample image was written"
+    );
+    assert!(html.contains("<table class=\"sortable\""));
+    assert!(html.contains("<script>"));
+    assert!(html.contains("<iframe class=\"flame\""));
+    assert!(html.contains("srcdoc=\"&lt;!DOCTYPE html&gt;"));
+}
+
+#[test]
+fn images_are_embedded_as_data_uris() {
+    let dir = TempDir::new("images");
+    let html = render_html(&[sample_run("bench-1", dir.path())]).expect("render");
+    let tiny_png = "iVBORw0KGgoAAAANSUhEUgAAAAEAAAABCAAAAAA6fptVAAAACklEQVR4nGNoAAAAggCBd81ytgAAAABJRU5ErkJggg==";
+    assert!(html.contains(&format!("src=\"data:image/png;base64,{tiny_png}\"")));
+    let images = html.matches("<img ").count();
+    let data_images = html.matches("<img src=\"data:image/png;base64,").count();
+    assert!(
+        images > 20 && images == data_images,
+        "{images} images, {data_images} data URIs"
+    );
+    // The charts are inline SVG.
+    assert!(html.contains("<figure class=\"chart\" id=\"chart-calls\"><svg"));
+}
+
+#[test]
+fn a_missing_image_gives_a_visible_note() {
+    let dir = TempDir::new("missing");
+    let run = sample_run("bench-1", dir.path());
+    let gone = "images/balls4-ortho.png";
+    std::fs::remove_file(dir.path().join(gone)).expect("remove");
+    let html = render_html(&[run]).expect("render");
+    assert!(
+        html.contains(&format!("image missing: {gone}")),
+        "no note for {gone}"
+    );
+
+    // A whole missing directory (texts, flamegraphs) still renders, with notes.
+    let empty = TempDir::new("empty");
+    let run = Run {
+        label: "bare".into(),
+        results: sample_results(),
+        base_dir: empty.path().to_path_buf(),
+    };
+    let html = render_html(&[run]).expect("render");
+    assert!(html.contains("flamegraph missing: profile/rings-baseline-flame.svg"));
+    assert!(html.contains("call graph text missing: profile/rings-baseline-callgraph.txt"));
+}
+
+#[test]
+fn two_runs_give_the_comparison_section() {
+    let dir = TempDir::new("two");
+    let first = sample_run("bench-1", dir.path());
+    let mut second = sample_run("bench-2", dir.path());
+    second.results.machine.hostname = "bench-2".into();
+    for scene in &mut second.results.scenes {
+        for v in &mut scene.variants {
+            v.time.median *= 1.2;
+            v.time.low *= 1.2;
+            v.time.high *= 1.2;
+        }
+    }
+    if let Some(v) = second.results.scenes[0].variants.get_mut(0) {
+        *v.counts.entry("ops.dot".into()).or_insert(0) += 1;
+    }
+    let html = render_html(&[first, second]).expect("render");
+    assert!(html.contains("<section id=\"comparison\">"));
+    assert!(html.contains("<a href=\"#comparison\">"));
+    assert!(html.contains("bench-2 / bench-1"));
+    assert!(html.contains("1.200×"), "ratio of the medians");
+    assert!(html.contains("⚑ 1 differ"), "a flagged count difference");
+    assert!(html.contains("ops.dot: "));
+}
+
+#[test]
+fn scene_names_are_escaped() {
+    let dir = TempDir::new("escape");
+    let mut run = sample_run("bench-1", dir.path());
+    run.results.scenes[0].name = "<script>alert(1)</script>".into();
+    run.results.failures[0].message = "bad \"quote\" & <b>tag</b>".into();
+    let html = render_html(&[run]).expect("render");
+    assert!(
+        !html.contains("<script>alert(1)"),
+        "raw scene name in the HTML"
+    );
+    assert!(html.contains("&lt;script&gt;alert(1)&lt;/script&gt;"));
+    assert!(!html.contains("<b>tag</b>"));
+    // Only the report's own script element.
+    assert_eq!(html.matches("<script>").count(), 1);
+}
+
+#[test]
+fn an_empty_run_explains_its_empty_sections() {
+    let dir = TempDir::new("bare");
+    let mut results = sample_results();
+    results.scenes.clear();
+    results.profile = None;
+    results.hardware = None;
+    results.failures.clear();
+    results.criterion.clear();
+    let run = Run {
+        label: "empty".into(),
+        results,
+        base_dir: dir.path().to_path_buf(),
+    };
+    let html = render_html(&[run]).expect("render");
+    for note in [
+        "No profile in this run",
+        "No hardware model in this run",
+        "No SPD scene ran",
+        "No criterion estimates",
+        "No failures",
+        "No test-bench scene",
+    ] {
+        assert!(html.contains(note), "missing note: {note}");
+    }
+}

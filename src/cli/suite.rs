@@ -1,0 +1,1043 @@
+//! `rtprof suite`: the main job. Renders every scene of a suite with every variant
+//! (timing repeats, exact counts, images and their error against baseline), runs the
+//! hardware model and emulator where the scene allows, profiles the heaviest scene,
+//! and writes `results.json`, `report.html` and `report.pdf`. With `--baseline` it
+//! then gates the run against an earlier one.
+//!
+//! Stages are joined by plain data (`reports::results`): measurement here, analysis in
+//! `analysis`, reporting in `reports`. A failing scene is recorded and skipped; the
+//! rest of the run stands.
+
+use super::profile::Job;
+use super::scene_args::thread_pool;
+use analysis::{
+    Band, RgbImage, compare, difference_heat_map, gray_histogram, median_with_bootstrap,
+};
+use anyhow::{Context, Result, bail};
+use hwmodel::blocks::Pipeline;
+use hwmodel::design::Design;
+use hwmodel::device::{demand, fit, largest_units};
+use hwmodel::hw_scene::HwScene;
+use hwmodel::library::Library;
+use hwmodel::pipeline::frame_timing;
+use indicatif::{MultiProgress, ProgressBar, ProgressStyle};
+use reports::results::{
+    AmdahlRow, Build, DeviceUse, Estimate, Failure, FlatRow, HardwareResult, HwRow, Machine,
+    Profile, ProfileResult, Quality, Results, SCHEMA, SceneHardware, SceneResult, SuiteInfo,
+    VariantResult,
+};
+use serde::Deserialize;
+use std::collections::BTreeMap;
+use std::path::{Path, PathBuf};
+use std::time::Instant;
+use tracer::image_io::{encode_png_rgb8, write_atomically};
+use tracer::{
+    Count, NoCount, RenderOptions, Sampling, Scene, ShadingMode, VariantSet, parse_nff,
+    render_variant,
+};
+
+/// The default suite, embedded.
+const DEFAULT_SUITE: &str = include_str!("../../scenes/suite.toml");
+
+#[derive(clap::Args, Debug)]
+pub struct SuiteArgs {
+    /// Suite definition (TOML; default: the embedded suite, scenes/suite.toml).
+    suite: Option<PathBuf>,
+    /// Output directory.
+    #[arg(short, long, value_name = "DIR", default_value = "rtprof-suite")]
+    output: PathBuf,
+    /// The CI-sized run: smaller images, fewer scenes and repeats.
+    #[arg(long)]
+    quick: bool,
+    /// Compare with an earlier results.json: exit 1 on a significant slow-down or any
+    /// changed count.
+    #[arg(long, value_name = "RESULTS.json")]
+    baseline: Option<PathBuf>,
+    /// Slow-down the gate tolerates beyond the intervals, in percent.
+    #[arg(long, value_name = "PCT", default_value_t = 5.0,
+          value_parser = parse_threshold)]
+    threshold: f64,
+    /// Add every .nff file of this directory (e.g. ../shared/spd).
+    #[arg(long, value_name = "DIR")]
+    scenes: Option<PathBuf>,
+    /// Worker threads for the renders (default: one per core).
+    #[arg(long, value_name = "N", value_parser = clap::value_parser!(u16).range(1..=1024))]
+    threads: Option<u16>,
+}
+
+fn parse_threshold(text: &str) -> Result<f64, String> {
+    match text.trim().parse::<f64>() {
+        Ok(p) if p.is_finite() && (0.0..=1000.0).contains(&p) => Ok(p),
+        _ => Err(format!("'{text}' is not a percentage between 0 and 1000")),
+    }
+}
+
+/// The most timed renders of one scene and variant, whatever `min_seconds` asks.
+const MAX_REPEATS: usize = 100;
+
+fn default_profile_seconds() -> f64 {
+    super::profile::MIN_SAMPLED.as_secs_f64()
+}
+
+/// A suite definition (scenes/suite.toml).
+#[derive(Clone, Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct SuiteDef {
+    pub name: String,
+    pub size: [u32; 2],
+    pub repeats: u32,
+    /// Keep repeating a timed render (beyond `repeats`, up to [`MAX_REPEATS`]) until
+    /// this much time is measured: a 10 ms render needs more than three samples.
+    #[serde(default)]
+    pub min_seconds: f64,
+    pub variants: Vec<String>,
+    pub scenes: Vec<String>,
+    pub extra_size: [u32; 2],
+    pub profile_size: [u32; 2],
+    pub profile_frequency: i32,
+    /// Least sampled seconds per profile (a faster render is repeated).
+    #[serde(default = "default_profile_seconds")]
+    pub profile_seconds: f64,
+    pub hardware_repeats: u32,
+    pub quick: Option<QuickDef>,
+}
+
+/// Overrides for `--quick`.
+#[derive(Clone, Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct QuickDef {
+    pub size: Option<[u32; 2]>,
+    pub repeats: Option<u32>,
+    pub min_seconds: Option<f64>,
+    pub variants: Option<Vec<String>>,
+    pub scenes: Option<Vec<String>>,
+    pub extra_size: Option<[u32; 2]>,
+    pub profile_size: Option<[u32; 2]>,
+    pub profile_seconds: Option<f64>,
+    pub hardware_repeats: Option<u32>,
+}
+
+impl SuiteDef {
+    /// Parses a definition and checks it, with and without its `[quick]` overrides
+    /// (`file` names it in errors).
+    pub fn parse(text: &str, file: &str) -> Result<Self> {
+        let def: SuiteDef = toml::from_str(text).map_err(|e| anyhow::anyhow!("{file}: {e}"))?;
+        def.check(file)?;
+        def.clone()
+            .quick()
+            .check(file)
+            .with_context(|| format!("{file}: in [quick]"))?;
+        Ok(def)
+    }
+
+    fn check(&self, file: &str) -> Result<()> {
+        if self.repeats == 0 || self.repeats > 1000 {
+            bail!("{file}: repeats must be 1 to 1000");
+        }
+        if !(0.0..=60.0).contains(&self.min_seconds) {
+            bail!("{file}: min_seconds must be 0 to 60");
+        }
+        if !(0.0..=600.0).contains(&self.profile_seconds) {
+            bail!("{file}: profile_seconds must be 0 to 600");
+        }
+        if self.variants.first().map(String::as_str) != Some("baseline") {
+            bail!("{file}: the first variant must be baseline (the reference)");
+        }
+        for v in &self.variants {
+            VariantSet::parse(v).with_context(|| format!("{file}: variant '{v}'"))?;
+        }
+        for size in [self.size, self.extra_size, self.profile_size] {
+            tracer::Limits::default()
+                .check_size(u64::from(size[0]), u64::from(size[1]))
+                .map_err(|e| anyhow::anyhow!("{file}: {e}"))?;
+        }
+        Ok(())
+    }
+
+    /// The definition with the `[quick]` overrides applied.
+    pub fn quick(mut self) -> Self {
+        if let Some(q) = self.quick.take() {
+            self.size = q.size.unwrap_or(self.size);
+            self.repeats = q.repeats.unwrap_or(self.repeats);
+            self.min_seconds = q.min_seconds.unwrap_or(self.min_seconds);
+            self.variants = q.variants.unwrap_or(self.variants);
+            self.scenes = q.scenes.unwrap_or(self.scenes);
+            self.extra_size = q.extra_size.unwrap_or(self.extra_size);
+            self.profile_size = q.profile_size.unwrap_or(self.profile_size);
+            self.profile_seconds = q.profile_seconds.unwrap_or(self.profile_seconds);
+            self.hardware_repeats = q.hardware_repeats.unwrap_or(self.hardware_repeats);
+        }
+        self
+    }
+}
+
+/// A scene to run: its name, where it came from, its text.
+struct SceneSpec {
+    name: String,
+    source: String,
+    family: String,
+    text: String,
+    size: (u32, u32),
+}
+
+fn family_of(name: &str) -> String {
+    for family in ["balls", "cylinder", "both"] {
+        if let Some(rest) = name.strip_prefix(family)
+            && !rest.is_empty()
+            && rest.chars().all(|c| c.is_ascii_digit())
+        {
+            return family.to_string();
+        }
+    }
+    "other".to_string()
+}
+
+fn resolve_scene(entry: &str, size: (u32, u32), base: &Path) -> Result<SceneSpec> {
+    if let Some((kind, param)) = entry.split_once(':') {
+        let n: u32 = param
+            .parse()
+            .with_context(|| format!("scene '{entry}': '{param}' is not a number"))?;
+        let text = match kind {
+            "sphereflake" => tracer::generators::sphereflake(n)?,
+            "lattice" => tracer::generators::lattice(n)?,
+            _ => bail!("scene '{entry}': unknown generator '{kind}' (sphereflake, lattice)"),
+        };
+        return Ok(SceneSpec {
+            name: format!("{kind}{n}"),
+            source: "generated".into(),
+            family: "generated".into(),
+            text,
+            size,
+        });
+    }
+    if let Some(b) = tracer::builtin_scenes::find(entry) {
+        return Ok(SceneSpec {
+            name: b.name.to_string(),
+            source: "builtin".into(),
+            family: family_of(b.name),
+            text: b.text.to_string(),
+            size,
+        });
+    }
+    let path = base.join(entry);
+    let text = std::fs::read_to_string(&path).with_context(|| {
+        format!(
+            "scene '{entry}': not a built-in name and cannot read {}",
+            path.display()
+        )
+    })?;
+    Ok(SceneSpec {
+        name: path
+            .file_stem()
+            .map_or_else(|| entry.to_string(), |s| s.to_string_lossy().into_owned()),
+        source: path.display().to_string(),
+        family: "other".into(),
+        text,
+        size,
+    })
+}
+
+fn extra_scenes(dir: &Path, size: (u32, u32)) -> Result<Vec<SceneSpec>> {
+    let mut files: Vec<PathBuf> = std::fs::read_dir(dir)
+        .with_context(|| format!("--scenes {}: cannot read the directory", dir.display()))?
+        .filter_map(|e| e.ok().map(|e| e.path()))
+        .filter(|p| p.extension().is_some_and(|x| x.eq_ignore_ascii_case("nff")))
+        .collect();
+    files.sort();
+    if files.is_empty() {
+        bail!("--scenes {}: no .nff files there", dir.display());
+    }
+    let spd = dir.file_name().is_some_and(|n| n == "spd");
+    files
+        .into_iter()
+        .map(|path| {
+            let text = std::fs::read_to_string(&path)
+                .with_context(|| format!("cannot read {}", path.display()))?;
+            Ok(SceneSpec {
+                name: path
+                    .file_stem()
+                    .map_or_else(String::new, |s| s.to_string_lossy().into_owned()),
+                source: path.display().to_string(),
+                family: if spd { "spd" } else { "extra" }.into(),
+                text,
+                size,
+            })
+        })
+        .collect()
+}
+
+/// Flattens the counter JSON to `"ops.dot": n` pairs.
+fn flatten_counts(counts: &tracer::Counts) -> BTreeMap<String, u64> {
+    fn walk(prefix: &str, v: &serde_json::Value, out: &mut BTreeMap<String, u64>) {
+        match v {
+            serde_json::Value::Object(map) => {
+                for (k, v) in map {
+                    let key = if prefix.is_empty() {
+                        k.clone()
+                    } else {
+                        format!("{prefix}.{k}")
+                    };
+                    walk(&key, v, out);
+                }
+            }
+            serde_json::Value::Number(n) => {
+                if let Some(n) = n.as_u64() {
+                    out.insert(prefix.to_string(), n);
+                }
+            }
+            _ => {}
+        }
+    }
+    let mut out = BTreeMap::new();
+    if let Ok(v) = serde_json::to_value(counts) {
+        walk("", &v, &mut out);
+    }
+    out
+}
+
+fn estimate(samples: &[f64]) -> Result<Estimate> {
+    let e = median_with_bootstrap(samples, 2000, 0.95, 0x5eed)?;
+    Ok(Estimate {
+        median: e.median,
+        low: e.low,
+        high: e.high,
+    })
+}
+
+/// Writes `bytes` at `dir/rel` (atomically) and returns `rel`.
+fn save(dir: &Path, rel: &str, bytes: &[u8]) -> Result<String> {
+    let path = dir.join(rel);
+    if let Some(parent) = path.parent() {
+        std::fs::create_dir_all(parent)
+            .with_context(|| format!("cannot create {}", parent.display()))?;
+    }
+    write_atomically(&path, bytes).with_context(|| format!("cannot write {}", path.display()))?;
+    Ok(rel.to_string())
+}
+
+fn save_png(dir: &Path, rel: &str, img: &RgbImage) -> Result<String> {
+    let bytes = encode_png_rgb8(img.width, img.height, &img.data).map_err(anyhow::Error::msg)?;
+    save(dir, rel, &bytes)
+}
+
+/// A file-name-safe form of a scene or variant name.
+fn slug(s: &str) -> String {
+    s.chars()
+        .map(|c| {
+            if c.is_ascii_alphanumeric() || c == '-' {
+                c
+            } else {
+                '_'
+            }
+        })
+        .collect()
+}
+
+struct Runner<'a> {
+    def: &'a SuiteDef,
+    out: &'a Path,
+    pool: rayon::ThreadPool,
+    one_thread: rayon::ThreadPool,
+    bars: MultiProgress,
+}
+
+impl Runner<'_> {
+    fn bar(&self, len: u64, what: &str) -> ProgressBar {
+        let bar = self.bars.add(ProgressBar::new(len));
+        bar.set_style(
+            ProgressStyle::with_template("{prefix:>10} [{bar:30}] {pos}/{len} {msg} ({elapsed})")
+                .unwrap_or_else(|_| ProgressStyle::default_bar())
+                .progress_chars("=> "),
+        );
+        bar.set_prefix(what.to_string());
+        bar
+    }
+
+    /// Every variant on one scene.
+    fn run_scene(
+        &self,
+        spec: &SceneSpec,
+        bar: &ProgressBar,
+        failures: &mut Vec<Failure>,
+    ) -> Result<SceneResult> {
+        let scene = parse_nff(&spec.text, &spec.source)?;
+        let (width, height) = spec.size;
+        let options = RenderOptions::new(width, height, Sampling::PixelCenters, ShadingMode::Color);
+        let mut variants: Vec<VariantResult> = Vec::new();
+        let mut baseline_image: Option<RgbImage> = None;
+        let mut baseline_median = f64::NAN;
+        for name in &self.def.variants {
+            bar.set_message(format!("{} {name}", spec.name));
+            match self.run_variant(spec, &scene, &options, name, baseline_image.as_ref()) {
+                Ok((mut v, image)) => {
+                    if name == "baseline" {
+                        baseline_median = v.time.median;
+                        baseline_image = Some(image);
+                    }
+                    v.speedup = baseline_median / v.time.median;
+                    variants.push(v);
+                }
+                Err(e) => failures.push(Failure {
+                    scene: spec.name.clone(),
+                    variant: Some(name.clone()),
+                    message: format!("{e:#}"),
+                }),
+            }
+            bar.inc(1);
+        }
+        let hardware = match HwScene::from_scene(&scene) {
+            Ok(hw) => match self.run_hardware(spec, &scene, &hw) {
+                Ok(h) => Some(h),
+                Err(e) => {
+                    failures.push(Failure {
+                        scene: spec.name.clone(),
+                        variant: Some("hardware".into()),
+                        message: format!("{e:#}"),
+                    });
+                    None
+                }
+            },
+            Err(_) => None, // polygons etc.: the hardware cannot render it; not a failure
+        };
+        let mut primitive_counts = BTreeMap::new();
+        for (kind, n) in [
+            ("spheres", scene.spheres.len()),
+            ("cylinders", scene.cylinders.len()),
+            ("cones", scene.cones.len()),
+            ("polygons", scene.polygons.len()),
+            ("patches", scene.patches.len()),
+        ] {
+            primitive_counts.insert(kind.to_string(), n as u64);
+        }
+        Ok(SceneResult {
+            name: spec.name.clone(),
+            source: spec.source.clone(),
+            family: spec.family.clone(),
+            primitives: scene.primitive_count() as u64,
+            primitive_counts,
+            width,
+            height,
+            spd: false,
+            variants,
+            hardware,
+        })
+    }
+
+    /// Seconds of `repeats` runs of `render`, more while less than `min_seconds` is
+    /// measured (at most [`MAX_REPEATS`]).
+    fn timed_n(&self, repeats: u32, mut render: impl FnMut() -> Result<()>) -> Result<Vec<f64>> {
+        let mut samples = Vec::with_capacity(repeats as usize);
+        while samples.len() < repeats as usize
+            || (samples.iter().sum::<f64>() < self.def.min_seconds && samples.len() < MAX_REPEATS)
+        {
+            let start = Instant::now();
+            render()?;
+            samples.push(start.elapsed().as_secs_f64());
+        }
+        Ok(samples)
+    }
+
+    /// [`Self::timed_n`] with the suite's `repeats`.
+    fn timed(&self, render: impl FnMut() -> Result<()>) -> Result<Vec<f64>> {
+        self.timed_n(self.def.repeats, render)
+    }
+
+    fn run_variant(
+        &self,
+        spec: &SceneSpec,
+        scene: &Scene,
+        options: &RenderOptions,
+        name: &str,
+        baseline: Option<&RgbImage>,
+    ) -> Result<(VariantResult, RgbImage)> {
+        let set = VariantSet::parse(name)?;
+        // The counted render first: it also warms caches and the thread pool up for
+        // the timed ones.
+        let counted = self
+            .pool
+            .install(|| render_variant::<Count>(scene, options, &set, &|_| {}))?;
+        let mut frame = None;
+        let samples = self.timed(|| {
+            let out = self
+                .pool
+                .install(|| render_variant::<NoCount>(scene, options, &set, &|_| {}))?;
+            frame = Some(out.rendered.frame);
+            Ok(())
+        })?;
+        let counts = counted
+            .rendered
+            .counts()
+            .map(|c| flatten_counts(&c))
+            .unwrap_or_default();
+        let frame = frame.context("no render ran")?;
+        let image = RgbImage {
+            width: frame.width,
+            height: frame.height,
+            data: frame.to_rgb8(),
+        };
+        let stem = format!("images/{}-{}", slug(&spec.name), slug(name));
+        let image_rel = save_png(self.out, &format!("{stem}.png"), &image)?;
+        let (quality, heat_map) = match baseline {
+            Some(base) if name != "baseline" => {
+                let c = compare(base, &image)?;
+                let heat = difference_heat_map(base, &image)?;
+                let heat_rel = save_png(self.out, &format!("{stem}-diff.png"), &heat)?;
+                (
+                    Some(Quality {
+                        rms: c.rms,
+                        band: c.band.to_string(),
+                        psnr: c.psnr.is_finite().then_some(c.psnr),
+                        ssim: c.ssim,
+                        max_abs_diff: u32::from(c.max_abs_diff),
+                    }),
+                    Some(heat_rel),
+                )
+            }
+            _ => (None, None),
+        };
+        let histogram = gray_histogram(&image).to_vec();
+        Ok((
+            VariantResult {
+                variant: name.to_string(),
+                time: estimate(&samples)?,
+                samples,
+                speedup: 1.0,
+                counts,
+                image: Some(image_rel),
+                heat_map,
+                quality,
+                histogram,
+            },
+            image,
+        ))
+    }
+
+    /// Model time, emulator image, and the software on the same job.
+    fn run_hardware(&self, spec: &SceneSpec, scene: &Scene, hw: &HwScene) -> Result<SceneHardware> {
+        let (width, height) = spec.size;
+        let lib = Library::cyclone_iv_e();
+        let pipeline = Pipeline::build(&lib, &Design::thesis());
+        let n = hw.primitive_count() as u64;
+        let timing = frame_timing(&pipeline, n, width, height, 50e6);
+        let device = lib.devices[0].clone();
+        let fits = fit(&lib, &device, demand(&lib, &pipeline, n, width, height)).fits;
+        let emulated = hwmodel::emulator::render(hw, width, height);
+        let emu_img = RgbImage {
+            width,
+            height,
+            data: emulated.to_rgb8(),
+        };
+        let options = RenderOptions::new(
+            width,
+            height,
+            Sampling::PixelCenters,
+            ShadingMode::DiffuseOnly,
+        );
+        let set = VariantSet::parse("baseline")?;
+        let mut frame = None;
+        let samples = self.timed_n(self.def.hardware_repeats.max(1), || {
+            let out = self
+                .one_thread
+                .install(|| render_variant::<NoCount>(scene, &options, &set, &|_| {}))?;
+            frame = Some(out.rendered.frame);
+            Ok(())
+        })?;
+        let frame = frame.context("no software render ran")?;
+        let sw_img = RgbImage {
+            width: frame.width,
+            height: frame.height,
+            data: frame.to_rgb8(),
+        };
+        let c = compare(&sw_img, &emu_img)?;
+        let stem = format!("images/{}", slug(&spec.name));
+        let software_seconds = estimate(&samples)?;
+        Ok(SceneHardware {
+            primitives: n,
+            cycles: timing.cycles,
+            seconds: timing.seconds,
+            fits,
+            speedup: software_seconds.median / timing.seconds,
+            software_seconds,
+            emulator_rms: c.rms,
+            emulator_band: Band::of(c.rms).to_string(),
+            emulator_image: Some(save_png(self.out, &format!("{stem}-hw.png"), &emu_img)?),
+            software_image: Some(save_png(
+                self.out,
+                &format!("{stem}-sw-diffuse.png"),
+                &sw_img,
+            )?),
+        })
+    }
+
+    /// Profiles the heaviest scene, baseline and the best variant whose picture stays
+    /// visually identical.
+    fn run_profile(
+        &self,
+        specs: &[SceneSpec],
+        results: &[SceneResult],
+    ) -> Result<Option<ProfileResult>> {
+        let Some(heaviest) = results
+            .iter()
+            .filter_map(|s| Some((s, s.variants.iter().find(|v| v.variant == "baseline")?)))
+            .max_by(|a, b| a.1.time.median.total_cmp(&b.1.time.median))
+            .map(|(s, _)| s)
+        else {
+            return Ok(None);
+        };
+        let best = heaviest
+            .variants
+            .iter()
+            .filter(|v| v.variant != "baseline")
+            .filter(|v| v.quality.as_ref().is_some_and(|q| q.rms < 15.0))
+            .max_by(|a, b| a.speedup.total_cmp(&b.speedup))
+            .map(|v| v.variant.clone());
+        let Some(spec) = specs.iter().find(|s| s.name == heaviest.name) else {
+            return Ok(None);
+        };
+        let scene = parse_nff(&spec.text, &spec.source)?;
+        let [w, h] = self.def.profile_size;
+        let path = PathBuf::from(&spec.source);
+        let job = Job {
+            scene: &scene,
+            options: RenderOptions::new(w, h, Sampling::PixelCenters, ShadingMode::Color),
+            pool: thread_pool(None)?,
+            frequency: self.def.profile_frequency,
+            path: &path,
+            min_sampled: std::time::Duration::from_secs_f64(self.def.profile_seconds),
+        };
+        let dir = "profile";
+        let base = job.profile("baseline")?;
+        let title = format!("{} ({w}x{h}, baseline)", spec.name);
+        let baseline = self.save_profile(dir, &base, &title)?;
+        let (best_profile, diff) = match &best {
+            Some(name) => {
+                let p = job.profile(name)?;
+                let title = format!("{} ({w}x{h}, {name})", spec.name);
+                let saved = self.save_profile(dir, &p, &title)?;
+                let diff_title =
+                    format!("{}: baseline → {name} (red grew, blue shrank)", spec.name);
+                let svg = analysis::profile::folded::differential_svg(
+                    &base.folded,
+                    &p.folded,
+                    &diff_title,
+                )?;
+                let rel = save(self.out, &format!("{dir}/flame-diff.svg"), svg.as_bytes())?;
+                (Some(saved), Some(rel))
+            }
+            None => (None, None),
+        };
+        Ok(Some(ProfileResult {
+            scene: spec.name.clone(),
+            width: w,
+            height: h,
+            baseline,
+            best: best_profile,
+            diff_flame_svg: diff,
+        }))
+    }
+
+    fn save_profile(
+        &self,
+        dir: &str,
+        p: &super::profile::VariantProfile,
+        title: &str,
+    ) -> Result<Profile> {
+        let v = slug(&p.variant);
+        let flat_text = save(
+            self.out,
+            &format!("{dir}/flat-{v}.txt"),
+            p.flat_text.as_bytes(),
+        )?;
+        let callgraph_text = save(
+            self.out,
+            &format!("{dir}/callgraph-{v}.txt"),
+            p.call_graph_text.as_bytes(),
+        )?;
+        save(
+            self.out,
+            &format!("{dir}/folded-{v}.txt"),
+            p.folded.as_bytes(),
+        )?;
+        let svg = analysis::profile::folded::flamegraph_svg(&p.folded, title)?;
+        let flame_svg = save(self.out, &format!("{dir}/flame-{v}.svg"), svg.as_bytes())?;
+        Ok(Profile {
+            variant: p.variant.clone(),
+            samples: p.samples,
+            seconds_per_sample: p.seconds_per_sample,
+            flat: p
+                .flat
+                .rows
+                .iter()
+                .map(|r| FlatRow {
+                    name: r.name.clone(),
+                    percent: r.percent,
+                    self_seconds: r.self_seconds,
+                    total_seconds: r.self_seconds + r.children_seconds,
+                    calls: r.calls,
+                })
+                .collect(),
+            flat_text,
+            callgraph_text,
+            flame_svg,
+            amdahl: p
+                .amdahl
+                .iter()
+                .map(|a| AmdahlRow {
+                    name: a.name.clone(),
+                    fraction: a.fraction,
+                    speedup_2x: a.speedup_2x,
+                    speedup_10x: a.speedup_10x,
+                    speedup_limit: a.speedup_limit,
+                })
+                .collect(),
+        })
+    }
+}
+
+/// Tables 7 and 8 and the thesis design's fit on every device (7 primitives, 640x480).
+fn hardware_tables() -> HardwareResult {
+    let lib = Library::cyclone_iv_e();
+    let t = hwmodel::table::tables(&lib, &Design::thesis());
+    let row = |r: &hwmodel::table::Row| HwRow {
+        name: r.model.name.clone(),
+        kind: r.kind.to_string(),
+        model: [
+            u64::from(r.model.latency),
+            r.model.le,
+            r.model.comb,
+            r.model.regs,
+            r.model.mem_bits,
+            r.model.mult,
+        ],
+        thesis: r
+            .thesis
+            .as_ref()
+            .map(|t| [t.latency, t.le, t.comb, t.regs, t.mem_bits, t.mult]),
+        error_pct: r
+            .error_pct
+            .as_ref()
+            .map(|e| [e.latency, e.le, e.comb, e.regs, e.mem_bits, e.mult]),
+    };
+    let mut devices = Vec::new();
+    for family in Library::embedded() {
+        let pipeline = Pipeline::build(&family, &Design::thesis());
+        let d = demand(&family, &pipeline, 7, 640, 480);
+        for device in &family.devices {
+            let f = fit(&family, device, d);
+            devices.push(DeviceUse {
+                device: device.name.clone(),
+                validated: f.validated,
+                le: f.used.le,
+                le_capacity: device.le,
+                mult: f.used.mult,
+                mult_capacity: device.mult,
+                soft_mult_elements: f.soft_mult_elements,
+                mem_bits: f.used.mem_bits,
+                mem_capacity: device.mem_bits,
+                plls: f.plls,
+                pll_capacity: device.plls,
+                fits: f.fits,
+                largest_units: largest_units(&family, device, &Design::thesis(), 7, 640, 480),
+            });
+        }
+    }
+    HardwareResult {
+        family: lib.family.clone(),
+        ops: t.ops.iter().map(row).collect(),
+        blocks: t.blocks.iter().map(row).collect(),
+        devices,
+    }
+}
+
+fn first_line(path: &str, prefix: &str) -> Option<String> {
+    std::fs::read_to_string(path).ok()?.lines().find_map(|l| {
+        l.strip_prefix(prefix)
+            .map(|rest| rest.trim_start_matches([' ', '\t', ':']).trim().to_string())
+    })
+}
+
+fn machine() -> Machine {
+    let read = |p: &str| {
+        std::fs::read_to_string(p)
+            .ok()
+            .map(|s| s.trim().to_string())
+    };
+    Machine {
+        cpu_model: first_line("/proc/cpuinfo", "model name").unwrap_or_else(|| "unknown".into()),
+        cores: std::thread::available_parallelism().map_or(1, |n| n.get() as u32),
+        os: match (
+            read("/proc/sys/kernel/ostype"),
+            read("/proc/sys/kernel/osrelease"),
+        ) {
+            (Some(a), Some(b)) => format!("{a} {b}"),
+            _ => std::env::consts::OS.to_string(),
+        },
+        hostname: read("/proc/sys/kernel/hostname").unwrap_or_else(|| "unknown".into()),
+    }
+}
+
+fn build_info() -> Build {
+    Build {
+        rtprof_version: env!("CARGO_PKG_VERSION").to_string(),
+        rustc: env!("RTPROF_RUSTC").to_string(),
+        git_commit: env!("RTPROF_GIT_COMMIT").to_string(),
+        profile: if cfg!(debug_assertions) {
+            "debug"
+        } else {
+            "release"
+        }
+        .to_string(),
+    }
+}
+
+/// Seconds since the epoch as RFC 3339 UTC (civil-from-days, no time-zone crate).
+pub fn rfc3339_utc(secs: u64) -> String {
+    let days = (secs / 86_400) as i64;
+    let rem = secs % 86_400;
+    let z = days + 719_468;
+    let era = z.div_euclid(146_097);
+    let doe = z.rem_euclid(146_097);
+    let yoe = (doe - doe / 1460 + doe / 36_524 - doe / 146_096) / 365;
+    let doy = doe - (365 * yoe + yoe / 4 - yoe / 100);
+    let mp = (5 * doy + 2) / 153;
+    let day = doy - (153 * mp + 2) / 5 + 1;
+    let month = if mp < 10 { mp + 3 } else { mp - 9 };
+    let year = yoe + era * 400 + i64::from(month <= 2);
+    format!(
+        "{year:04}-{month:02}-{day:02}T{:02}:{:02}:{:02}Z",
+        rem / 3600,
+        rem / 60 % 60,
+        rem % 60
+    )
+}
+
+/// The command line that reproduces this run.
+fn command_line() -> String {
+    let args: Vec<String> = std::env::args()
+        .skip(1)
+        .map(|a| {
+            if a.chars()
+                .all(|c| c.is_ascii_alphanumeric() || "-_./=:,+".contains(c))
+            {
+                a
+            } else {
+                format!("'{}'", a.replace('\'', r"'\''"))
+            }
+        })
+        .collect();
+    format!("rtprof {}", args.join(" "))
+}
+
+pub fn run(args: &SuiteArgs) -> Result<()> {
+    let started = Instant::now();
+    let (text, file) = match &args.suite {
+        Some(path) => (
+            std::fs::read_to_string(path)
+                .with_context(|| format!("cannot read suite {}", path.display()))?,
+            path.display().to_string(),
+        ),
+        None => (
+            DEFAULT_SUITE.to_string(),
+            "suite.toml (embedded)".to_string(),
+        ),
+    };
+    let mut def = SuiteDef::parse(&text, &file)?;
+    if args.quick {
+        def = def.quick();
+    }
+    // Read the old results first: a bad --baseline should fail before the work.
+    let old = match &args.baseline {
+        Some(path) => {
+            let text = std::fs::read_to_string(path)
+                .with_context(|| format!("cannot read {}", path.display()))?;
+            Some(
+                reports::results::Results::from_json(&text)
+                    .with_context(|| path.display().to_string())?,
+            )
+        }
+        None => None,
+    };
+    let base_dir = args
+        .suite
+        .as_ref()
+        .and_then(|p| p.parent().map(Path::to_path_buf))
+        .unwrap_or_default();
+    let size = (def.size[0], def.size[1]);
+    let mut specs: Vec<SceneSpec> = def
+        .scenes
+        .iter()
+        .map(|s| resolve_scene(s, size, &base_dir))
+        .collect::<Result<_>>()?;
+    if let Some(dir) = &args.scenes {
+        specs.extend(extra_scenes(dir, (def.extra_size[0], def.extra_size[1]))?);
+    }
+    std::fs::create_dir_all(&args.output)
+        .with_context(|| format!("cannot create {}", args.output.display()))?;
+
+    let runner = Runner {
+        def: &def,
+        out: &args.output,
+        pool: thread_pool(args.threads)?,
+        one_thread: thread_pool(Some(1))?,
+        bars: MultiProgress::new(),
+    };
+    let threads = runner.pool.current_num_threads() as u32;
+    let created = rfc3339_utc(
+        std::time::SystemTime::now()
+            .duration_since(std::time::UNIX_EPOCH)
+            .map_or(0, |d| d.as_secs()),
+    );
+    let bar = runner.bar((specs.len() * def.variants.len()) as u64, "scenes");
+    let mut failures = Vec::new();
+    let mut scenes = Vec::new();
+    for spec in &specs {
+        let outcome = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
+            let mut local = Vec::new();
+            let r = runner.run_scene(spec, &bar, &mut local);
+            (r, local)
+        }));
+        match outcome {
+            Ok((Ok(result), local)) => {
+                failures.extend(local);
+                scenes.push(result);
+            }
+            Ok((Err(e), local)) => {
+                failures.extend(local);
+                failures.push(Failure {
+                    scene: spec.name.clone(),
+                    variant: None,
+                    message: format!("{e:#}"),
+                });
+            }
+            Err(_) => failures.push(Failure {
+                scene: spec.name.clone(),
+                variant: None,
+                message: "internal error (panic) while running this scene; please report it".into(),
+            }),
+        }
+    }
+    bar.finish_and_clear();
+
+    let spinner = runner.bar(2, "profile");
+    spinner.set_message("heaviest scene");
+    let profile = match runner.run_profile(&specs, &scenes) {
+        Ok(p) => p,
+        Err(e) => {
+            failures.push(Failure {
+                scene: "profile".into(),
+                variant: None,
+                message: format!("{e:#}"),
+            });
+            None
+        }
+    };
+    spinner.finish_and_clear();
+
+    let results = Results {
+        schema: SCHEMA.to_string(),
+        created,
+        command: command_line(),
+        machine: machine(),
+        build: build_info(),
+        suite: SuiteInfo {
+            name: def.name.clone(),
+            quick: args.quick,
+            repeats: def.repeats,
+            min_seconds: def.min_seconds,
+            threads,
+            variants: def.variants.clone(),
+            wall_seconds: started.elapsed().as_secs_f64(),
+        },
+        scenes,
+        profile,
+        hardware: Some(hardware_tables()),
+        failures,
+        criterion: Vec::new(),
+    };
+    let json = serde_json::to_string_pretty(&results)?;
+    save(&args.output, "results.json", json.as_bytes())?;
+    super::report::write_reports(
+        &[reports::Run {
+            label: results.machine.hostname.clone(),
+            results: results.clone(),
+            base_dir: args.output.clone(),
+        }],
+        &args.output,
+    )?;
+    eprintln!(
+        "suite '{}': {} scenes × {} variants in {:.1} s; {} failure{}; wrote {}/{{results.json, report.html, report.pdf}}",
+        def.name,
+        results.scenes.len(),
+        def.variants.len(),
+        started.elapsed().as_secs_f64(),
+        results.failures.len(),
+        if results.failures.len() == 1 { "" } else { "s" },
+        args.output.display()
+    );
+    for f in &results.failures {
+        eprintln!(
+            "  failed: {}{}: {}",
+            f.scene,
+            f.variant
+                .as_ref()
+                .map_or(String::new(), |v| format!(" / {v}")),
+            f.message
+        );
+    }
+    if let Some(old) = old {
+        let gate = reports::gate::compare_runs(&old, &results, args.threshold / 100.0);
+        let text = gate.to_text();
+        print!("{text}");
+        save(&args.output, "gate.txt", text.as_bytes())?;
+        if gate.failed() {
+            return Err(super::CheckFailed("the regression gate failed".into()).into());
+        }
+    }
+    Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_embedded_suite_parses_and_its_quick_form_is_smaller() {
+        let def = SuiteDef::parse(DEFAULT_SUITE, "suite.toml").unwrap();
+        assert_eq!(def.variants[0], "baseline");
+        let quick = def.clone().quick();
+        assert!(quick.size[0] * quick.size[1] < def.size[0] * def.size[1]);
+        assert!(quick.scenes.len() < def.scenes.len());
+        for s in &def.scenes {
+            resolve_scene(s, (8, 8), Path::new(".")).unwrap();
+        }
+    }
+
+    #[test]
+    fn rfc3339_matches_known_instants() {
+        assert_eq!(rfc3339_utc(0), "1970-01-01T00:00:00Z");
+        // 2000-02-29 12:34:56 UTC (a leap day) = 951827696.
+        assert_eq!(rfc3339_utc(951_827_696), "2000-02-29T12:34:56Z");
+        // 2026-11-21 00:00:00 UTC = 1795219200.
+        assert_eq!(rfc3339_utc(1_795_219_200), "2026-11-21T00:00:00Z");
+    }
+
+    #[test]
+    fn bad_suites_are_refused_with_the_file_name() {
+        let bad = DEFAULT_SUITE.replace("\"baseline\", \"simd\"", "\"simd\", \"baseline\"");
+        let err = SuiteDef::parse(&bad, "x.toml").unwrap_err().to_string();
+        assert!(err.contains("x.toml") && err.contains("baseline"), "{err}");
+        let err = SuiteDef::parse("name = 1", "y.toml")
+            .unwrap_err()
+            .to_string();
+        assert!(err.starts_with("y.toml"), "{err}");
+        // The [quick] overrides are checked too.
+        let bad = DEFAULT_SUITE.replace("min_seconds = 0.02", "min_seconds = -1");
+        let err = format!("{:#}", SuiteDef::parse(&bad, "z.toml").unwrap_err());
+        assert!(
+            err.contains("[quick]") && err.contains("min_seconds"),
+            "{err}"
+        );
+        assert_eq!(family_of("balls7"), "balls");
+        assert_eq!(family_of("ballsX"), "other");
+    }
+}
