@@ -716,6 +716,56 @@ fn suite_writes_results_and_reports_and_the_gate_sets_the_exit_code() {
     let gate = String::from_utf8(read(&second.join("gate.txt"))).unwrap();
     assert!(gate.contains("rays.primary"), "{gate}");
 
+    // `rtprof gate` on synthetic files made from this run: every time set to `median`
+    // with a tight ±1 % interval.
+    let with_times = |median: f64| {
+        let mut v = v.clone();
+        for scene in v["scenes"].as_array_mut().unwrap() {
+            for variant in scene["variants"].as_array_mut().unwrap() {
+                variant["time"] = serde_json::json!({
+                    "median": median, "low": median * 0.99, "high": median * 1.01
+                });
+            }
+        }
+        v
+    };
+    let gate_file = |name: &str, v: &serde_json::Value| {
+        let path = dir.join(name);
+        std::fs::write(&path, serde_json::to_string(v).unwrap()).unwrap();
+        path
+    };
+    let old = gate_file("old.json", &with_times(0.010));
+    let same = gate_file("same.json", &with_times(0.010));
+    let slower = gate_file("slower.json", &with_times(0.012));
+    let mut recounted = with_times(0.010);
+    recounted["scenes"][1]["variants"][1]["counts"]["ops.dot"] = serde_json::json!(1);
+    let recounted = gate_file("recounted.json", &recounted);
+    let gate = |new: &Path| {
+        rtprof(&["gate", old.to_str().unwrap(), new.to_str().unwrap()])
+            .status
+            .code()
+    };
+    assert_eq!(gate(&same), Some(0), "identical runs pass");
+    assert_eq!(
+        gate(&slower),
+        Some(1),
+        "20 % slower with tight intervals fails"
+    );
+    assert_eq!(gate(&recounted), Some(1), "a changed count fails");
+    let out = rtprof(&[
+        "gate",
+        old.to_str().unwrap(),
+        slower.to_str().unwrap(),
+        "--threshold",
+        "25",
+    ]);
+    assert_eq!(
+        out.status.code(),
+        Some(0),
+        "20 % is inside a 25 % threshold"
+    );
+    assert_eq!(gate(&suite), Some(2), "not a results file");
+
     // Two results files: the report has the side-by-side comparison.
     let both = dir.join("both");
     let out = rtprof(&[

@@ -2,6 +2,7 @@
 
 mod compare;
 mod count;
+mod gate;
 mod hw;
 mod profile;
 mod render;
@@ -38,6 +39,9 @@ enum Command {
     /// The main job: every scene × variant, hardware model, profile; results.json,
     /// report.html, report.pdf; --baseline gates against an earlier run.
     Suite(suite::SuiteArgs),
+    /// Gate NEW.json against OLD.json: exit 1 on a significant slow-down or any
+    /// changed count.
+    Gate(gate::GateArgs),
     /// Rebuild report.html and report.pdf from results.json files (several: compared).
     Report(report::ReportArgs),
     /// Built-in scenes and scene generators.
@@ -66,6 +70,7 @@ pub fn run(cli: Cli) -> anyhow::Result<()> {
         Command::Variants(args) => variants::run(&args),
         Command::Hw(args) => hw::run(&args),
         Command::Suite(args) => suite::run(&args),
+        Command::Gate(args) => gate::run(&args),
         Command::Report(args) => report::run(&args),
         Command::Scene(args) => scene::run(&args),
     }

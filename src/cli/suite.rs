@@ -65,7 +65,7 @@ pub struct SuiteArgs {
     threads: Option<u16>,
 }
 
-fn parse_threshold(text: &str) -> Result<f64, String> {
+pub(super) fn parse_threshold(text: &str) -> Result<f64, String> {
     match text.trim().parse::<f64>() {
         Ok(p) if p.is_finite() && (0.0..=1000.0).contains(&p) => Ok(p),
         _ => Err(format!("'{text}' is not a percentage between 0 and 1000")),
