@@ -531,6 +531,7 @@ impl Page {
                 let kinds = scene
                     .primitive_counts
                     .iter()
+                    .filter(|(_, n)| **n > 0)
                     .map(|(k, n)| kind_count(*n, k))
                     .collect::<Vec<_>>()
                     .join(", ");
@@ -1220,6 +1221,7 @@ impl Page {
             let kinds = scene
                 .primitive_counts
                 .iter()
+                .filter(|(_, n)| **n > 0)
                 .map(|(k, n)| kind_count(*n, k))
                 .collect::<Vec<_>>()
                 .join(", ");
