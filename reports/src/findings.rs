@@ -348,6 +348,24 @@ fn join_list(items: &[String]) -> String {
     }
 }
 
+/// Every (scene, width, height, variant) of any of `runs`, in first-seen order: the
+/// rows of the side-by-side comparison.
+pub fn comparison_keys(runs: &[crate::Run]) -> Vec<(String, u32, u32, String)> {
+    let mut keys = Vec::new();
+    let mut seen = std::collections::BTreeSet::new();
+    for run in runs {
+        for s in &run.results.scenes {
+            for v in &s.variants {
+                let key = (s.name.clone(), s.width, s.height, v.variant.clone());
+                if seen.insert(key.clone()) {
+                    keys.push(key);
+                }
+            }
+        }
+    }
+    keys
+}
+
 /// How many timed renders each figure rests on, in words ("3 timed repeats, more
 /// until 0.2 s").
 pub fn repeats_text(s: &crate::results::SuiteInfo) -> String {

@@ -1351,19 +1351,7 @@ impl Page {
             "<p>Median time of each scene × variant in every run, and its ratio to <b>{}</b> (above 1: slower). Counts are exact, so any difference means a different program or scene: such cells are flagged.</p>\n",
             escape(&first.label)
         ));
-        // Every (scene, size, variant) of any run, in first-seen order.
-        let mut keys: Vec<(String, u32, u32, String)> = Vec::new();
-        let mut seen = BTreeSet::new();
-        for run in runs {
-            for s in &run.results.scenes {
-                for v in &s.variants {
-                    let key = (s.name.clone(), s.width, s.height, v.variant.clone());
-                    if seen.insert(key.clone()) {
-                        keys.push(key);
-                    }
-                }
-            }
-        }
+        let keys = crate::findings::comparison_keys(runs);
         if keys.is_empty() {
             self.push(&empty_note("No scene results in any run to compare."));
             self.section_end();
@@ -1476,8 +1464,9 @@ impl Page {
     }
 }
 
-/// An id-safe form of a name.
-fn slug(s: &str) -> String {
+/// An id- and file-name-safe form of a name (ASCII letters, digits and '-'; the
+/// rest become '_').
+pub fn slug(s: &str) -> String {
     s.chars()
         .map(|c| {
             if c.is_ascii_alphanumeric() || c == '-' {

@@ -564,19 +564,7 @@ impl Builder<'_> {
         self.caption("Machines and builds");
         self.table(&spec, &rows, "7.5pt");
 
-        // Every (scene, size, variant) of any run, in first-seen order.
-        let mut keys: Vec<(String, u32, u32, String)> = Vec::new();
-        let mut seen = BTreeSet::new();
-        for run in runs {
-            for s in &run.results.scenes {
-                for v in &s.variants {
-                    let key = (s.name.clone(), s.width, s.height, v.variant.clone());
-                    if seen.insert(key.clone()) {
-                        keys.push(key);
-                    }
-                }
-            }
-        }
+        let keys = crate::findings::comparison_keys(runs);
         if keys.is_empty() {
             self.note("No scene results in any run to compare.");
             return;

@@ -21,6 +21,7 @@ use hwmodel::hw_scene::HwScene;
 use hwmodel::library::Library;
 use hwmodel::pipeline::frame_timing;
 use indicatif::{MultiProgress, ProgressBar, ProgressStyle};
+use reports::html::slug;
 use reports::results::{
     AmdahlRow, Build, DeviceUse, Estimate, Failure, FlatRow, HardwareResult, HwRow, Machine,
     Profile, ProfileResult, Quality, Results, SCHEMA, SceneHardware, SceneResult, SuiteInfo,
@@ -318,19 +319,6 @@ fn save(dir: &Path, rel: &str, bytes: &[u8]) -> Result<String> {
 fn save_png(dir: &Path, rel: &str, img: &RgbImage) -> Result<String> {
     let bytes = encode_png_rgb8(img.width, img.height, &img.data).map_err(anyhow::Error::msg)?;
     save(dir, rel, &bytes)
-}
-
-/// A file-name-safe form of a scene or variant name.
-fn slug(s: &str) -> String {
-    s.chars()
-        .map(|c| {
-            if c.is_ascii_alphanumeric() || c == '-' {
-                c
-            } else {
-                '_'
-            }
-        })
-        .collect()
 }
 
 struct Runner<'a> {
