@@ -1,0 +1,208 @@
+//! The in-process profiler criterion runs under `--profile-time N`: it samples the
+//! process with pprof (SIGPROF) while one benchmark iterates and, when it stops, writes
+//! the stacks as `folded.txt` (Brendan Gregg's folded format, `a;b;c count`) and as an
+//! interactive `flamegraph.svg`, both into the benchmark's profile directory
+//! (`<target dir>/criterion/<group>/<benchmark>/profile/`, created if missing).
+//!
+//! Plain `cargo bench` runs never call it: criterion only starts a profiler in profile
+//! mode. Nothing here panics: a profiler that cannot start, a report that cannot be
+//! built or a file that cannot be written prints one warning line to stderr and the
+//! benchmark run goes on. Files are written to a temporary name and renamed into place,
+//! so a reader never sees half a flamegraph.
+//!
+//! Symbols are cleaned as the project's profiler cleans them
+//! ([`analysis::profile::names::clean_symbol`]) and the folded text and SVG come from
+//! [`analysis::profile::folded`]; unlike `rtprof profile`, every frame is kept (criterion's
+//! loop and the thread start included), since a benchmark has no single root to cut at.
+
+use analysis::profile::folded::{flamegraph_svg, folded};
+use analysis::profile::names::clean_symbol;
+use analysis::profile::sampler::process_cpu_time;
+use analysis::profile::{Stack, StackSamples};
+use criterion::profiler::Profiler;
+use std::collections::BTreeMap;
+use std::io::Write as _;
+use std::path::Path;
+use std::time::Duration;
+
+/// Frames unwinding from a signal handler must not walk through (it can deadlock);
+/// the same list as `rtprof profile` (pprof's advice).
+const BLOCKLIST: [&str; 4] = ["libc", "libgcc", "pthread", "vdso"];
+
+/// A criterion [`Profiler`] that draws a flamegraph of each profiled benchmark.
+pub struct FlameProfiler {
+    /// Samples per second asked of the kernel (it may deliver fewer).
+    frequency: i32,
+    /// The running profile, between `start_profiling` and `stop_profiling`.
+    running: Option<Running>,
+}
+
+/// A profile being taken.
+struct Running {
+    guard: pprof::ProfilerGuard<'static>,
+    cpu_at_start: Duration,
+}
+
+impl FlameProfiler {
+    /// A profiler sampling at `frequency` Hz (a prime such as 997 keeps the samples
+    /// from locking onto a periodic loop).
+    pub fn new(frequency: i32) -> Self {
+        Self {
+            frequency,
+            running: None,
+        }
+    }
+}
+
+impl Profiler for FlameProfiler {
+    fn start_profiling(&mut self, benchmark_id: &str, _benchmark_dir: &Path) {
+        // A profile left over from a start without stop is dropped (its timer stops).
+        self.running = None;
+        let cpu_at_start = process_cpu_time();
+        match pprof::ProfilerGuardBuilder::default()
+            .frequency(self.frequency)
+            .blocklist(&BLOCKLIST)
+            .build()
+        {
+            Ok(guard) => {
+                self.running = Some(Running {
+                    guard,
+                    cpu_at_start,
+                })
+            }
+            Err(e) => warn(benchmark_id, &format!("cannot start the profiler: {e}")),
+        }
+    }
+
+    fn stop_profiling(&mut self, benchmark_id: &str, benchmark_dir: &Path) {
+        let Some(running) = self.running.take() else {
+            return;
+        };
+        let report = running.guard.report().build();
+        let cpu = process_cpu_time().saturating_sub(running.cpu_at_start);
+        // Stop sampling before the files are written.
+        drop(running.guard);
+        let report = match report {
+            Ok(report) => report,
+            Err(e) => return warn(benchmark_id, &format!("cannot build the report: {e}")),
+        };
+        let samples = stack_samples(&report, cpu);
+        if samples.total() == 0 {
+            return warn(
+                benchmark_id,
+                "no samples were taken (give it a longer --profile-time)",
+            );
+        }
+        if let Err(message) = write_outputs(&samples, benchmark_id, benchmark_dir) {
+            warn(benchmark_id, &message);
+        }
+    }
+}
+
+/// The report's stacks, root first, with cleaned names; identical stacks merged.
+fn stack_samples(report: &pprof::Report, cpu: Duration) -> StackSamples {
+    let mut merged: BTreeMap<Vec<String>, u64> = BTreeMap::new();
+    for (frames, &count) in &report.data {
+        // pprof lists frames innermost first, and the symbols of one frame (inlined
+        // functions first) innermost first too: reverse both for root-first order.
+        let mut names: Vec<String> = frames
+            .frames
+            .iter()
+            .rev()
+            .flat_map(|frame| {
+                frame
+                    .iter()
+                    .rev()
+                    .map(|symbol| clean_symbol(&symbol.name()))
+            })
+            .collect();
+        // A function split by the compiler resolves to its own name twice in a row.
+        names.dedup();
+        if names.is_empty() {
+            continue;
+        }
+        *merged.entry(names).or_default() += u64::try_from(count).unwrap_or(0);
+    }
+    let total: u64 = merged.values().sum();
+    StackSamples {
+        stacks: merged
+            .into_iter()
+            .map(|(frames, count)| Stack { frames, count })
+            .collect(),
+        seconds_per_sample: if total == 0 {
+            0.0
+        } else {
+            cpu.as_secs_f64() / total as f64
+        },
+    }
+}
+
+/// Writes `folded.txt` and `flamegraph.svg` into `dir` (created if missing).
+fn write_outputs(samples: &StackSamples, benchmark_id: &str, dir: &Path) -> Result<(), String> {
+    std::fs::create_dir_all(dir).map_err(|e| format!("cannot create {}: {e}", dir.display()))?;
+    let folded_text = folded(samples);
+    write_atomically(&dir.join("folded.txt"), folded_text.as_bytes())?;
+    let svg = flamegraph_svg(&folded_text, benchmark_id).map_err(|e| e.to_string())?;
+    write_atomically(&dir.join("flamegraph.svg"), svg.as_bytes())
+}
+
+/// Writes `bytes` to a temporary file beside `path`, then renames it to `path`.
+fn write_atomically(path: &Path, bytes: &[u8]) -> Result<(), String> {
+    let mut temporary = path.as_os_str().to_owned();
+    temporary.push(format!(".tmp{}", std::process::id()));
+    let temporary = Path::new(&temporary);
+    let written = std::fs::File::create(temporary)
+        .and_then(|mut file| file.write_all(bytes).and_then(|()| file.sync_all()))
+        .and_then(|()| std::fs::rename(temporary, path));
+    written.map_err(|e| {
+        // Best effort: do not leave the temporary file behind.
+        let _ = std::fs::remove_file(temporary);
+        format!("cannot write {}: {e}", path.display())
+    })
+}
+
+/// One warning line on stderr.
+fn warn(benchmark_id: &str, message: &str) {
+    eprintln!("warning: flame profiler, {benchmark_id}: {message}");
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn files_are_written_atomically_into_a_new_directory() {
+        let dir = std::env::temp_dir().join(format!("benches-flame-{}", std::process::id()));
+        let samples = StackSamples {
+            stacks: vec![
+                Stack {
+                    frames: vec!["main".into(), "bench".into(), "sqrt".into()],
+                    count: 7,
+                },
+                Stack {
+                    frames: vec!["main".into(), "bench".into()],
+                    count: 3,
+                },
+            ],
+            seconds_per_sample: 0.001,
+        };
+        let written = write_outputs(&samples, "sqrt/std", &dir);
+        let folded_text = std::fs::read_to_string(dir.join("folded.txt")).unwrap_or_default();
+        let svg = std::fs::read_to_string(dir.join("flamegraph.svg")).unwrap_or_default();
+        let leftovers = std::fs::read_dir(&dir)
+            .map(|entries| entries.count())
+            .unwrap_or(0);
+        let _ = std::fs::remove_dir_all(&dir);
+        assert_eq!(written, Ok(()));
+        assert_eq!(folded_text, "main;bench 3\nmain;bench;sqrt 7\n");
+        assert!(svg.contains("<svg") && svg.contains("sqrt"));
+        assert_eq!(leftovers, 2, "no temporary file is left behind");
+    }
+
+    #[test]
+    fn a_stop_without_a_start_does_nothing() {
+        let dir = std::env::temp_dir().join(format!("benches-flame-none-{}", std::process::id()));
+        FlameProfiler::new(997).stop_profiling("none", &dir);
+        assert!(!dir.exists());
+    }
+}

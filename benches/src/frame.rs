@@ -1,0 +1,108 @@
+//! Group `frame`: whole renders of a mid-size scene, one benchmark per variant, through
+//! [`render_variant`] exactly as `rtprof render` runs them (structure build and scene
+//! preparation included), on a one-thread rayon pool so the figures do not depend on
+//! the machine's other load or core count.
+//!
+//! The scene is the sphereflake of depth 2 (91 reflective spheres, three lights, the
+//! suite's `sphereflake:2`) at 160x120, full Whitted colour. Every variant renders
+//! uncounted ([`NoCount`]); `baseline-counted` renders the baseline with [`Count`], so
+//! `baseline-counted / baseline` is what the exact operation counters cost.
+
+use criterion::{BenchmarkGroup, Criterion, Throughput, measurement::WallTime};
+use std::hint::black_box;
+use tracer::{
+    Count, Counter, NoCount, RenderOptions, Sampling, Scene, ShadingMode, VariantSet,
+    render_variant,
+};
+
+/// Frame size of every render of the group.
+pub const WIDTH: u32 = 160;
+pub const HEIGHT: u32 = 120;
+
+/// The variants rendered uncounted, by their command-line names.
+pub const VARIANTS: [&str; 8] = [
+    "baseline",
+    "simd",
+    "bvh",
+    "bounded",
+    "fast-sqrt",
+    "ortho",
+    "no-rsqrt-shading",
+    "pixel-avg",
+];
+
+/// The group's scene.
+pub fn scene() -> Scene {
+    crate::accel::sphereflake(2)
+}
+
+/// The group's render options.
+pub fn options() -> RenderOptions {
+    RenderOptions::new(WIDTH, HEIGHT, Sampling::PixelCenters, ShadingMode::Color)
+}
+
+/// One whole render of `scene` with `variants`, counted with `C`; returns the number
+/// of primary rays that hit (kept alive so the render is not optimized away).
+pub fn render<C: Counter>(scene: &Scene, options: &RenderOptions, variants: &VariantSet) -> u64 {
+    render_variant::<C>(scene, options, variants, &|_| {})
+        .unwrap_or_else(|e| panic!("render failed: {e}"))
+        .rendered
+        .rays
+        .primary_hit
+}
+
+/// Registers `frame/<name>`: a render with `variants` counted with `C`, in `pool`.
+fn bench_render<C: Counter>(
+    group: &mut BenchmarkGroup<'_, WallTime>,
+    pool: &rayon::ThreadPool,
+    name: &str,
+    scene: &Scene,
+    variants: &VariantSet,
+) {
+    let options = options();
+    group.bench_function(name, |b| {
+        pool.install(|| b.iter(|| render::<C>(black_box(scene), &options, variants)))
+    });
+}
+
+/// The `frame` group.
+pub fn bench_frame(c: &mut Criterion) {
+    let scene = scene();
+    let pool = rayon::ThreadPoolBuilder::new()
+        .num_threads(1)
+        .build()
+        .unwrap_or_else(|e| panic!("cannot build a one-thread pool: {e}"));
+    let mut group = c.benchmark_group("frame");
+    group.sample_size(10);
+    group.throughput(Throughput::Elements(u64::from(WIDTH * HEIGHT)));
+    for name in VARIANTS {
+        let variants = VariantSet::parse(name).unwrap_or_else(|e| panic!("{e}"));
+        bench_render::<NoCount>(&mut group, &pool, name, &scene, &variants);
+    }
+    bench_render::<Count>(
+        &mut group,
+        &pool,
+        "baseline-counted",
+        &scene,
+        &VariantSet::default(),
+    );
+    group.finish();
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn every_variant_parses_and_the_counted_render_sees_the_same_rays() {
+        for name in VARIANTS {
+            assert!(VariantSet::parse(name).is_ok(), "{name}");
+        }
+        let scene = scene();
+        let small = RenderOptions::new(32, 24, Sampling::PixelCenters, ShadingMode::Color);
+        let baseline = VariantSet::default();
+        let uncounted = render::<NoCount>(&scene, &small, &baseline);
+        assert!(uncounted > 0);
+        assert_eq!(render::<Count>(&scene, &small, &baseline), uncounted);
+    }
+}
