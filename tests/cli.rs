@@ -782,5 +782,77 @@ fn suite_writes_results_and_reports_and_the_gate_sets_the_exit_code() {
     // Not a results file: exit 2.
     let out = rtprof(&["report", suite.to_str().unwrap()]);
     assert_eq!(out.status.code(), Some(2));
+
+    // Benchmark figures added to a saved run: criterion's estimates and gungraun's
+    // instruction counts, in the harnesses' own file layouts.
+    let target = dir.join("target");
+    for (id, ns, instructions) in [("std", 1175.0, 6330), ("fast-sqrt-newton", 815.0, 11451)] {
+        let run = target.join("criterion/sqrt").join(id).join("new");
+        std::fs::create_dir_all(&run).unwrap();
+        std::fs::write(
+            run.join("benchmark.json"),
+            format!(r#"{{"group_id":"sqrt","function_id":"{id}","full_id":"sqrt/{id}"}}"#),
+        )
+        .unwrap();
+        let stat = format!(
+            r#"{{"confidence_interval":{{"confidence_level":0.95,"lower_bound":{},"upper_bound":{}}},"point_estimate":{ns},"standard_error":1.0}}"#,
+            ns * 0.99,
+            ns * 1.01
+        );
+        std::fs::write(
+            run.join("estimates.json"),
+            format!(r#"{{"mean":{stat},"median":{stat}}}"#),
+        )
+        .unwrap();
+        let function = id.replace('-', "_");
+        let counted = target.join(format!("gungraun/benches/instructions/g/sqrt.{function}"));
+        std::fs::create_dir_all(&counted).unwrap();
+        std::fs::write(
+            counted.join("summary.json"),
+            format!(
+                r#"{{"function_name":"sqrt","id":"{function}","profiles":[{{"tool":"Callgrind","data":{{"total":{{"metrics":{{"Ir":{{"values":{{"new":{instructions}}}}}}}}}}}}}]}}"#
+            ),
+        )
+        .unwrap();
+    }
+    let with_benchmarks = dir.join("with-benchmarks");
+    let out = rtprof(&[
+        "report",
+        results_path.to_str().unwrap(),
+        "--criterion",
+        target.join("criterion").to_str().unwrap(),
+        "-o",
+        with_benchmarks.to_str().unwrap(),
+    ]);
+    assert_eq!(out.status.code(), Some(0), "{}", stderr(&out));
+    assert!(
+        stderr(&out).contains("added 2 criterion estimates"),
+        "{}",
+        stderr(&out)
+    );
+    assert!(
+        stderr(&out).contains("added 2 instruction counts"),
+        "{}",
+        stderr(&out)
+    );
+    let html = String::from_utf8(read(&with_benchmarks.join("report.html"))).unwrap();
+    // 11451 / 6330 = 1.81 the instructions in 815 / 1175 = 0.69 the time.
+    assert!(
+        html.contains("sqrt/fast-sqrt-newton executes 1.81× the instructions of sqrt/std yet takes 0.69× its time"),
+        "the report does not say that instructions and time disagree"
+    );
+    assert!(
+        html.contains("11\u{2009}451"),
+        "no instruction count in the table"
+    );
+    // A criterion directory that is not there: exit 2, the flag named.
+    let out = rtprof(&[
+        "report",
+        results_path.to_str().unwrap(),
+        "--criterion",
+        dir.join("nowhere").to_str().unwrap(),
+    ]);
+    assert_eq!(out.status.code(), Some(2));
+    assert!(stderr(&out).contains("--criterion"), "{}", stderr(&out));
     std::fs::remove_dir_all(&dir).ok();
 }

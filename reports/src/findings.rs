@@ -8,7 +8,7 @@
 //! failures. A sentence whose data is missing is left out.
 
 use crate::charts::short_name;
-use crate::results::{DeviceUse, HwRow, Results};
+use crate::results::{CriterionEstimate, DeviceUse, HwRow, InstructionCount, Results};
 
 /// The thesis's best band (table 2).
 pub const IDENTICAL_BAND: &str = "visually identical";
@@ -339,6 +339,171 @@ fn failures_finding(results: &Results) -> Option<String> {
     ))
 }
 
+/// One benchmark's row of the criterion section: its time estimates and, when
+/// gungraun counted it, its instructions. Sorted by id; benchmarks with only one of the
+/// two still get a row.
+#[derive(Clone, Debug, PartialEq)]
+pub struct BenchmarkRow<'a> {
+    pub id: &'a str,
+    pub time: Option<&'a CriterionEstimate>,
+    pub instructions: Option<&'a InstructionCount>,
+}
+
+/// The rows of the criterion section: criterion's estimates joined with the
+/// instruction counts of the same id.
+pub fn benchmark_rows(results: &Results) -> Vec<BenchmarkRow<'_>> {
+    let mut rows: std::collections::BTreeMap<&str, BenchmarkRow<'_>> = Default::default();
+    for c in &results.criterion {
+        rows.entry(&c.id)
+            .or_insert(BenchmarkRow {
+                id: &c.id,
+                time: None,
+                instructions: None,
+            })
+            .time = Some(c);
+    }
+    for i in &results.instructions {
+        rows.entry(&i.id)
+            .or_insert(BenchmarkRow {
+                id: &i.id,
+                time: None,
+                instructions: None,
+            })
+            .instructions = Some(i);
+    }
+    let mut rows: Vec<BenchmarkRow<'_>> = rows.into_values().collect();
+    rows.sort_by(|a, b| natural_order(a.id, b.id));
+    rows
+}
+
+/// Orders ids part by part, numbers by value (`accel/bvh/91` before `accel/bvh/820`).
+fn natural_order(a: &str, b: &str) -> std::cmp::Ordering {
+    let key = |id: &str| -> Vec<(u64, String)> {
+        id.split('/')
+            .map(|part| match part.parse::<u64>() {
+                Ok(n) => (n, String::new()),
+                Err(_) => (u64::MAX, part.to_string()),
+            })
+            .collect()
+    };
+    key(a).cmp(&key(b))
+}
+
+/// When the benchmarks were measured, from the harness files' times:
+/// " (measured 2026-11-21 22:50 UTC)" or " (measured 2026-11-20 09:12 – 2026-11-21
+/// 22:50 UTC)", or nothing when no time is known. Old estimates stay in
+/// `target/criterion` until overwritten, so the span tells a stale run.
+pub fn measured_span(results: &Results) -> String {
+    let times: Vec<&str> = results
+        .criterion
+        .iter()
+        .filter_map(|c| c.measured.as_deref())
+        .chain(
+            results
+                .instructions
+                .iter()
+                .filter_map(|i| i.measured.as_deref()),
+        )
+        .collect();
+    // RFC 3339 UTC strings of one format sort in time order.
+    let (Some(first), Some(last)) = (times.iter().min(), times.iter().max()) else {
+        return String::new();
+    };
+    let minutes = |t: &str| t.get(..16).unwrap_or(t).replace('T', " ");
+    if minutes(first) == minutes(last) {
+        format!(" (measured {} UTC)", minutes(first))
+    } else {
+        format!(" (measured {} – {} UTC)", minutes(first), minutes(last))
+    }
+}
+
+/// The parent of a benchmark id (`sqrt/fast-sqrt` → `sqrt`).
+fn parent_id(id: &str) -> &str {
+    id.rsplit_once('/').map_or("", |(parent, _)| parent)
+}
+
+/// The benchmark `id` is compared with: in its group, `<family>-std` for
+/// `<family>-<method>` (`sqrt/inverse-classic` against `sqrt/inverse-std`), else `std`,
+/// else the group's first id. A `std` benchmark of its own family is the reference, not
+/// compared; `None` when nothing is left to compare with.
+fn reference_of<'r, 'a>(id: &str, rows: &'r [BenchmarkRow<'a>]) -> Option<&'r BenchmarkRow<'a>> {
+    let (group, name) = id.rsplit_once('/')?;
+    let sibling = |n: &str| {
+        rows.iter()
+            .find(|r| r.id.rsplit_once('/') == Some((group, n)))
+    };
+    let family_std = name
+        .split_once('-')
+        .map(|(family, _)| format!("{family}-std"));
+    let reference = family_std
+        .as_deref()
+        .and_then(sibling)
+        .or_else(|| sibling("std"))
+        .or_else(|| rows.iter().find(|r| parent_id(r.id) == group))?;
+    let is_reference = reference.id == id || name == "std" || name.ends_with("-std");
+    (!is_reference).then_some(reference)
+}
+
+/// How far apart the time and instruction ratios must be to be called misleading.
+const MISLEADING_FACTOR: f64 = 1.5;
+
+/// Sentences for the benchmarks whose instruction count and wall time point opposite
+/// ways against their group's reference (`<group>/std` when there is one, otherwise
+/// the group's first id): more instructions yet significantly less time, or the reverse.
+/// Time counts only when the 95 % intervals of the medians do not overlap. When
+/// nothing disagrees and both were measured, one sentence says so.
+pub fn instruction_time_disagreements(results: &Results) -> Vec<String> {
+    let rows: Vec<BenchmarkRow<'_>> = benchmark_rows(results)
+        .into_iter()
+        .filter(|r| r.time.is_some() && r.instructions.is_some())
+        .collect();
+    let mut sentences = Vec::new();
+    let mut compared = 0;
+    for row in &rows {
+        let Some(reference) = reference_of(row.id, &rows) else {
+            continue;
+        };
+        let (Some(t), Some(t_ref), Some(i), Some(i_ref)) = (
+            row.time,
+            reference.time,
+            row.instructions,
+            reference.instructions,
+        ) else {
+            continue;
+        };
+        compared += 1;
+        let (t, t_ref) = (&t.median, &t_ref.median);
+        let faster = t.high < t_ref.low;
+        let slower = t.low > t_ref.high;
+        let more = i.instructions > i_ref.instructions;
+        let fewer = i.instructions < i_ref.instructions;
+        let instruction_ratio = i.instructions as f64 / i_ref.instructions.max(1) as f64;
+        let time_ratio = t.median / t_ref.median;
+        if (more && faster) || (fewer && slower) {
+            sentences.push(format!(
+                "{} executes {instruction_ratio:.2}× the instructions of {} yet takes {time_ratio:.2}× its time: instruction counts are not time (vector width, latency and the execution ports differ).",
+                row.id, reference.id,
+            ));
+        } else if (faster || slower)
+            && (time_ratio / instruction_ratio > MISLEADING_FACTOR
+                || instruction_ratio / time_ratio > MISLEADING_FACTOR)
+        {
+            sentences.push(format!(
+                "{} executes {instruction_ratio:.2}× the instructions of {} and takes {time_ratio:.2}× its time: the instruction count alone is off by {:.1}×.",
+                row.id,
+                reference.id,
+                (time_ratio / instruction_ratio).max(instruction_ratio / time_ratio),
+            ));
+        }
+    }
+    if sentences.is_empty() && compared > 0 {
+        sentences.push(format!(
+            "Instruction counts and wall time point the same way for all {compared} benchmarks compared with their group's reference."
+        ));
+    }
+    sentences
+}
+
 /// "a", "a and b", "a, b and c".
 fn join_list(items: &[String]) -> String {
     match items {
@@ -394,6 +559,113 @@ mod tests {
             .iter()
             .find(|f| f.contains(needle))
             .unwrap_or_else(|| panic!("no finding with '{needle}' in {findings:#?}"))
+    }
+
+    #[test]
+    fn references_are_the_family_std_then_std_then_the_first() {
+        let row = |id| BenchmarkRow {
+            id,
+            time: None,
+            instructions: None,
+        };
+        let rows = [
+            row("sqrt/fast-sqrt"),
+            row("sqrt/inverse-classic"),
+            row("sqrt/inverse-std"),
+            row("sqrt/std"),
+            row("intersect/sphere/hit"),
+            row("intersect/sphere/miss"),
+        ];
+        let reference = |id| reference_of(id, &rows).map(|r| r.id);
+        assert_eq!(reference("sqrt/fast-sqrt"), Some("sqrt/std"));
+        assert_eq!(reference("sqrt/inverse-classic"), Some("sqrt/inverse-std"));
+        assert_eq!(reference("sqrt/inverse-std"), None);
+        assert_eq!(reference("sqrt/std"), None);
+        assert_eq!(
+            reference("intersect/sphere/miss"),
+            Some("intersect/sphere/hit")
+        );
+        assert_eq!(reference("intersect/sphere/hit"), None);
+    }
+
+    #[test]
+    fn ids_sort_with_numbers_by_value() {
+        let mut ids = [
+            "accel/bvh/91",
+            "accel/bvh/10",
+            "accel/bvh/820",
+            "accel/baseline/66430",
+            "accel/bvh/66430",
+        ];
+        ids.sort_by(|a, b| natural_order(a, b));
+        assert_eq!(
+            ids,
+            [
+                "accel/baseline/66430",
+                "accel/bvh/10",
+                "accel/bvh/91",
+                "accel/bvh/820",
+                "accel/bvh/66430"
+            ]
+        );
+    }
+
+    #[test]
+    fn the_measured_span_covers_every_benchmark_file() {
+        let mut r = sample_results();
+        assert_eq!(
+            measured_span(&r),
+            " (measured 2026-11-21 10:00 – 2026-11-21 10:05 UTC)"
+        );
+        r.instructions.clear();
+        assert_eq!(measured_span(&r), " (measured 2026-11-21 10:00 UTC)");
+        r.criterion.clear();
+        assert_eq!(measured_span(&r), "");
+    }
+
+    #[test]
+    fn more_instructions_in_less_time_is_called_out() {
+        let r = sample_results();
+        let rows = benchmark_rows(&r);
+        assert_eq!(rows.len(), 3);
+        assert!(
+            rows.iter()
+                .all(|row| row.time.is_some() && row.instructions.is_some())
+        );
+        let said = instruction_time_disagreements(&r);
+        // 11451 / 6330 = 1.81 the instructions, 815 / 1175 = 0.69 the time.
+        assert_eq!(said.len(), 1, "{said:#?}");
+        assert!(said[0].starts_with("sqrt/fast-sqrt-newton executes 1.81× the instructions of sqrt/std yet takes 0.69× its time"), "{}", said[0]);
+    }
+
+    #[test]
+    fn agreeing_or_insignificant_differences_are_not_called_out() {
+        let mut r = sample_results();
+        // Fewer instructions and less time: they agree (5000 / 6330 = 0.79 against
+        // 0.69, well within 1.5×).
+        r.instructions[1].instructions = 5_000;
+        let said = instruction_time_disagreements(&r);
+        assert_eq!(said.len(), 1);
+        assert!(
+            said[0].contains("same way for all 1 benchmarks"),
+            "{}",
+            said[0]
+        );
+        // Same direction but 0.30× the instructions for 0.69× the time: off by 2.3×.
+        r.instructions[1].instructions = 1_900;
+        let said = instruction_time_disagreements(&r);
+        assert!(
+            said[0].contains("0.30× the instructions of sqrt/std and takes 0.69× its time: the instruction count alone is off by 2.3×"),
+            "{said:#?}"
+        );
+        // More instructions, less time, but the intervals overlap: not significant.
+        r.instructions[1].instructions = 11_451;
+        r.criterion[0].median.high = 1200.0;
+        let said = instruction_time_disagreements(&r);
+        assert!(said[0].contains("same way"), "{said:#?}");
+        // Nothing counted: nothing said.
+        r.instructions.clear();
+        assert!(instruction_time_disagreements(&r).is_empty());
     }
 
     #[test]

@@ -16,7 +16,10 @@ use std::path::Path;
 
 use crate::Run;
 use crate::charts::{self, Chart};
-use crate::findings::{HW_COLUMNS, headline_findings, repeats_text};
+use crate::findings::{
+    HW_COLUMNS, benchmark_rows, headline_findings, instruction_time_disagreements, measured_span,
+    repeats_text,
+};
 use crate::gallery::{self, Picture};
 use crate::results::{Estimate, HwRow, Profile, Results, SceneResult, VariantResult};
 
@@ -45,7 +48,7 @@ pub const SECTIONS: [(&str, &str); 16] = [
     ("sw-hw", "Software against hardware"),
     ("time-vs-primitives", "Render time against primitive count"),
     ("spd", "SPD scene statistics"),
-    ("criterion", "Criterion micro-benchmarks"),
+    ("criterion", "Micro-benchmarks: time and instructions"),
     ("failures", "Failures"),
     ("reproduce", "How to reproduce"),
     ("comparison", "Side-by-side comparison of runs"),
@@ -149,8 +152,10 @@ fn time_unit(s: f64) -> (&'static str, f64) {
         ("s", 1.0)
     } else if s.abs() >= 1e-3 {
         ("ms", 1e3)
-    } else {
+    } else if s.abs() >= 1e-6 {
         ("µs", 1e6)
+    } else {
+        ("ns", 1e9)
     }
 }
 
@@ -1265,30 +1270,47 @@ impl Page {
 
     fn criterion(&mut self, r: &Results) {
         self.section_start("criterion", None);
-        if r.criterion.is_empty() {
+        let rows = benchmark_rows(r);
+        if rows.is_empty() {
             self.push(&empty_note(
-                "No criterion estimates in this run (run `cargo bench` first; the suite picks up target/criterion).",
+                "No benchmark estimates in this run: run `cargo bench -p benches` (and `scripts/instruction-counts.sh` for instruction counts) first; the suite picks up target/criterion and target/gungraun, `rtprof report --criterion DIR` adds them to a saved run.",
             ));
             self.section_end();
             return;
         }
-        self.push("<p>Each cell: criterion's point estimate and its 95 % confidence interval, nanoseconds per iteration.</p>\n<table class=\"sortable\"><thead><tr><th>benchmark</th><th>mean (ns) [95 % interval]</th><th>median (ns) [95 % interval]</th></tr></thead><tbody>");
-        for c in &r.criterion {
-            let ns = |e: &Estimate| {
-                format!(
-                    "{} <span class=\"interval\">[{} – {}]</span>",
-                    number(e.median, 2),
-                    number(e.low, 2),
-                    number(e.high, 2)
-                )
-            };
+        self.push(&format!(
+            "<p>Time: criterion's point estimate and its 95 % confidence interval, per iteration{}. Instructions: valgrind's count for the same work (gungraun), the same on every run; they are not time, and the two can disagree.</p>\n",
+            measured_span(r)
+        ));
+        let said = instruction_time_disagreements(r);
+        if !said.is_empty() {
+            self.push("<ul class=\"findings\">");
+            for sentence in said {
+                self.push(&format!("<li>{}</li>", escape(&sentence)));
+            }
+            self.push("</ul>\n");
+        }
+        self.push("<table class=\"sortable\"><thead><tr><th>benchmark</th><th>mean [95 % interval]</th><th>median [95 % interval]</th><th>instructions</th><th>estimated cycles</th></tr></thead><tbody>");
+        let time = |e: Option<&Estimate>| match e {
+            Some(e) => format!(
+                "<td class=\"num\" data-v=\"{}\">{}</td>",
+                e.median,
+                estimate_text(&e.scaled(1e-9))
+            ),
+            None => "<td class=\"num\" data-v=\"0\">—</td>".to_string(),
+        };
+        let counted = |n: Option<u64>| match n {
+            Some(n) => format!("<td class=\"num\" data-v=\"{n}\">{}</td>", count(n)),
+            None => "<td class=\"num\" data-v=\"0\">—</td>".to_string(),
+        };
+        for row in &rows {
             self.push(&format!(
-                "<tr><td><code>{}</code></td><td class=\"num\" data-v=\"{}\">{}</td><td class=\"num\" data-v=\"{}\">{}</td></tr>",
-                escape(&c.id),
-                c.mean.median,
-                ns(&c.mean),
-                c.median.median,
-                ns(&c.median)
+                "<tr><td><code>{}</code></td>{}{}{}{}</tr>",
+                escape(row.id),
+                time(row.time.map(|t| &t.mean)),
+                time(row.time.map(|t| &t.median)),
+                counted(row.instructions.map(|i| i.instructions)),
+                counted(row.instructions.and_then(|i| i.estimated_cycles)),
             ));
         }
         self.push("</tbody></table>\n");

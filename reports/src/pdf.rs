@@ -1498,37 +1498,59 @@ impl<'a, 'e> RunWriter<'a, 'e> {
 
     fn criterion(&mut self) {
         self.h1("criterion");
-        let criterion = &self.r().criterion;
-        if criterion.is_empty() {
-            self.b.note("No criterion estimates in this run (run cargo bench first; the suite picks up target/criterion).");
-        } else {
-            let spec = [
-                ("Benchmark", "1fr", "left"),
-                ("mean", "auto", "right"),
-                ("interval", "auto", "right"),
-                ("median", "auto", "right"),
-                ("interval", "auto", "right"),
-            ];
-            let rows: Vec<Vec<String>> = criterion
-                .iter()
-                .map(|c| {
-                    let ns = |e: &Estimate| Estimate {
-                        median: e.median * 1e-9,
-                        low: e.low * 1e-9,
-                        high: e.high * 1e-9,
-                    };
-                    let (mean, median) = (ns(&c.mean), ns(&c.median));
-                    vec![
-                        lit(&c.id),
-                        lit(&secs(mean.median)),
-                        lit(&interval(&mean)),
-                        lit(&secs(median.median)),
-                        lit(&interval(&median)),
-                    ]
-                })
-                .collect();
-            self.b.table(&spec, &rows, "8pt");
+        let r = self.r();
+        let rows = findings::benchmark_rows(r);
+        if rows.is_empty() {
+            self.b.note("No benchmark estimates in this run: run cargo bench -p benches (and scripts/instruction-counts.sh for instruction counts) first; the suite picks up target/criterion and target/gungraun, rtprof report --criterion DIR adds them to a saved run.");
+            return;
         }
+        self.b.line(&format!(
+            "#text(size: 9pt, {})\n",
+            lit(&format!(
+                "Time: criterion's point estimate and its 95 % confidence interval, per iteration{}. Instructions: valgrind's count for the same work (gungraun), the same on every run; they are not time, and the two can disagree.",
+                findings::measured_span(r)
+            ))
+        ));
+        let said = findings::instruction_time_disagreements(r);
+        if !said.is_empty() {
+            let items: Vec<String> = said.iter().map(|f| lit(f)).collect();
+            let _ = writeln!(self.b.out, "#list(spacing: 0.7em, {})\n", items.join(", "));
+        }
+        let spec = [
+            ("Benchmark", "1fr", "left"),
+            ("mean", "auto", "right"),
+            ("interval", "auto", "right"),
+            ("median", "auto", "right"),
+            ("interval", "auto", "right"),
+            ("instructions", "auto", "right"),
+        ];
+        let dash = || lit("–");
+        let table: Vec<Vec<String>> = rows
+            .iter()
+            .map(|row| {
+                let (mean, median) = match row.time {
+                    Some(t) => (t.mean.scaled(1e-9), t.median.scaled(1e-9)),
+                    None => {
+                        let none = Estimate {
+                            median: f64::NAN,
+                            low: f64::NAN,
+                            high: f64::NAN,
+                        };
+                        (none, none)
+                    }
+                };
+                vec![
+                    lit(row.id),
+                    lit(&secs(mean.median)),
+                    lit(&interval(&mean)),
+                    lit(&secs(median.median)),
+                    lit(&interval(&median)),
+                    row.instructions
+                        .map_or_else(dash, |i| lit(&group(i.instructions))),
+                ]
+            })
+            .collect();
+        self.b.table(&spec, &table, "8pt");
     }
 
     fn failures(&mut self) {

@@ -35,6 +35,10 @@ pub struct Results {
     /// Criterion estimates picked up from a `target/criterion` directory, if any.
     #[serde(default)]
     pub criterion: Vec<CriterionEstimate>,
+    /// Instruction counts picked up from gungraun's summaries (`target/gungraun`), if
+    /// any; their ids match the criterion benchmark doing the same work.
+    #[serde(default)]
+    pub instructions: Vec<InstructionCount>,
 }
 
 /// The machine the run was made on.
@@ -79,6 +83,17 @@ pub struct Estimate {
     pub median: f64,
     pub low: f64,
     pub high: f64,
+}
+
+impl Estimate {
+    /// The same estimate in another unit (`1e-9` turns nanoseconds into seconds).
+    pub fn scaled(&self, factor: f64) -> Estimate {
+        Estimate {
+            median: self.median * factor,
+            low: self.low * factor,
+            high: self.high * factor,
+        }
+    }
 }
 
 /// One scene and every variant run on it.
@@ -259,6 +274,24 @@ pub struct CriterionEstimate {
     pub id: String,
     pub mean: Estimate,
     pub median: Estimate,
+    /// When it was measured (the estimates file's time, RFC 3339 UTC).
+    #[serde(default)]
+    pub measured: Option<String>,
+}
+
+/// One benchmark's instruction count under valgrind (deterministic, unlike time).
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct InstructionCount {
+    /// The id of the criterion benchmark that does the same work (`sqrt/fast-sqrt`).
+    pub id: String,
+    /// Instructions executed (callgrind's `Ir`).
+    pub instructions: u64,
+    /// Callgrind's cycle estimate from its cache simulation, when it ran one.
+    #[serde(default)]
+    pub estimated_cycles: Option<u64>,
+    /// When it was counted (the summary file's time, RFC 3339 UTC).
+    #[serde(default)]
+    pub measured: Option<String>,
 }
 
 impl Results {
@@ -278,6 +311,27 @@ impl Results {
     }
 }
 
+/// Seconds since the epoch as RFC 3339 UTC (civil-from-days, no time-zone crate).
+pub fn rfc3339_utc(secs: u64) -> String {
+    let days = (secs / 86_400) as i64;
+    let rem = secs % 86_400;
+    let z = days + 719_468;
+    let era = z.div_euclid(146_097);
+    let doe = z.rem_euclid(146_097);
+    let yoe = (doe - doe / 1460 + doe / 36_524 - doe / 146_096) / 365;
+    let doy = doe - (365 * yoe + yoe / 4 - yoe / 100);
+    let mp = (5 * doy + 2) / 153;
+    let day = doy - (153 * mp + 2) / 5 + 1;
+    let month = if mp < 10 { mp + 3 } else { mp - 9 };
+    let year = yoe + era * 400 + i64::from(month <= 2);
+    format!(
+        "{year:04}-{month:02}-{day:02}T{:02}:{:02}:{:02}Z",
+        rem / 3600,
+        rem / 60 % 60,
+        rem % 60
+    )
+}
+
 /// A results file that cannot be read.
 #[derive(Debug, thiserror::Error)]
 pub enum ResultsError {
@@ -285,4 +339,18 @@ pub enum ResultsError {
     Json(#[from] serde_json::Error),
     #[error("results schema '{0}' is not {SCHEMA}: rebuild it with this rtprof version")]
     Schema(String),
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn rfc3339_matches_known_instants() {
+        assert_eq!(rfc3339_utc(0), "1970-01-01T00:00:00Z");
+        // 2000-02-29 12:34:56 UTC (a leap day) = 951827696.
+        assert_eq!(rfc3339_utc(951_827_696), "2000-02-29T12:34:56Z");
+        // 2026-11-21 00:00:00 UTC = 1795219200.
+        assert_eq!(rfc3339_utc(1_795_219_200), "2026-11-21T00:00:00Z");
+    }
 }

@@ -7,7 +7,7 @@
 //! intervals, speed-ups, exact counts and image metrics, a profile of `rings`
 //! (baseline and `bvh`), the hardware model's tables 7 and 8 (the thesis's figures and
 //! the model's, as `rtprof hw table` prints them), two devices, machine and build
-//! information, two criterion estimates and one failure. The numbers are made up but
+//! information, three criterion estimates with their instruction counts and one failure. The numbers are made up but
 //! consistent with each other (speed-ups are baseline median / variant median, counts
 //! follow from the ray counts, histograms sum to the pixel count).
 //!
@@ -19,8 +19,8 @@ use std::path::Path;
 
 use crate::results::{
     AmdahlRow, Build, CriterionEstimate, DeviceUse, Estimate, Failure, FlatRow, HardwareResult,
-    HwRow, Machine, Profile, ProfileResult, Quality, Results, SCHEMA, SceneHardware, SceneResult,
-    SuiteInfo, VariantResult,
+    HwRow, InstructionCount, Machine, Profile, ProfileResult, Quality, Results, SCHEMA,
+    SceneHardware, SceneResult, SuiteInfo, VariantResult,
 };
 
 /// A valid 1x1 8-bit grayscale PNG (one mid-gray pixel).
@@ -750,16 +750,46 @@ pub fn sample_results() -> Results {
             variant: Some("ortho".to_string()),
             message: "render exceeded the 60 s budget for one repeat; skipped".to_string(),
         }],
+        // The bit trick runs more instructions than `sqrtss` yet takes less time: the
+        // report has to say when the two disagree.
         criterion: vec![
             CriterionEstimate {
-                id: "intersect/sphere".to_string(),
-                mean: ns(11.8),
-                median: ns(11.6),
+                id: "sqrt/fast-sqrt-newton".to_string(),
+                mean: ns(820.0),
+                median: ns(815.0),
+                measured: Some("2026-11-21T10:00:00Z".to_string()),
             },
             CriterionEstimate {
-                id: "intersect/cylinder".to_string(),
-                mean: ns(24.3),
-                median: ns(24.1),
+                id: "sqrt/std".to_string(),
+                mean: ns(1180.0),
+                median: ns(1175.0),
+                measured: Some("2026-11-21T10:00:00Z".to_string()),
+            },
+            CriterionEstimate {
+                id: "intersect/sphere/hit".to_string(),
+                mean: ns(11.8),
+                median: ns(11.6),
+                measured: Some("2026-11-21T10:00:00Z".to_string()),
+            },
+        ],
+        instructions: vec![
+            InstructionCount {
+                id: "intersect/sphere/hit".to_string(),
+                instructions: 62,
+                estimated_cycles: Some(210),
+                measured: Some("2026-11-21T10:05:00Z".to_string()),
+            },
+            InstructionCount {
+                id: "sqrt/fast-sqrt-newton".to_string(),
+                instructions: 11_451,
+                estimated_cycles: Some(14_500),
+                measured: Some("2026-11-21T10:05:00Z".to_string()),
+            },
+            InstructionCount {
+                id: "sqrt/std".to_string(),
+                instructions: 6_330,
+                estimated_cycles: Some(9_289),
+                measured: Some("2026-11-21T10:05:00Z".to_string()),
             },
         ],
     }

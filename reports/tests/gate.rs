@@ -74,6 +74,7 @@ fn results(baseline_s: f64, bvh_s: f64, dots: u64) -> Results {
         hardware: None,
         failures: Vec::new(),
         criterion: Vec::new(),
+        instructions: Vec::new(),
     }
 }
 

@@ -161,6 +161,7 @@ fn an_empty_run_explains_its_empty_sections() {
     results.hardware = None;
     results.failures.clear();
     results.criterion.clear();
+    results.instructions.clear();
     let run = Run {
         label: "empty".into(),
         results,
@@ -171,7 +172,7 @@ fn an_empty_run_explains_its_empty_sections() {
         "No profile in this run",
         "No hardware model in this run",
         "No SPD scene ran",
-        "No criterion estimates",
+        "No benchmark estimates",
         "No failures",
         "No test-bench scene",
     ] {

@@ -242,6 +242,7 @@ fn an_empty_run_still_has_every_section() {
     results.hardware = None;
     results.failures.clear();
     results.criterion.clear();
+    results.instructions.clear();
     let run = Run {
         label: "empty".to_string(),
         results,

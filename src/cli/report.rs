@@ -15,6 +15,86 @@ pub struct ReportArgs {
     /// Output directory (default: the first file's directory).
     #[arg(short, long, value_name = "DIR")]
     output: Option<PathBuf>,
+    #[command(flatten)]
+    benchmarks: BenchmarkDirs,
+}
+
+/// Where the benchmark harnesses saved their figures (`cargo bench -p benches`).
+#[derive(clap::Args, Debug, Default)]
+pub struct BenchmarkDirs {
+    /// Add criterion's estimates (mean, median, 95 % intervals) from this directory,
+    /// e.g. target/criterion [suite default: <target dir>/criterion when present].
+    #[arg(long, value_name = "DIR")]
+    pub criterion: Option<PathBuf>,
+    /// Add gungraun's instruction counts from this directory [default: `gungraun`
+    /// beside the criterion directory, when present].
+    #[arg(long, value_name = "DIR")]
+    pub instructions: Option<PathBuf>,
+}
+
+impl BenchmarkDirs {
+    /// The directories to read: the ones given, else (when `discover`) those of the
+    /// cargo target directory: `$CARGO_TARGET_DIR`, else the one this binary was built
+    /// in, else ./target.
+    fn resolve(&self, discover: bool) -> (Option<PathBuf>, Option<PathBuf>) {
+        let beside_criterion = || {
+            self.criterion
+                .as_ref()
+                .and_then(|c| c.parent())
+                .map(|target| reports::benchmarks::harness_dirs(target).1)
+                .unwrap_or_default()
+        };
+        match (&self.criterion, &self.instructions) {
+            (Some(c), Some(i)) => (Some(c.clone()), Some(i.clone())),
+            (Some(c), None) => (Some(c.clone()), beside_criterion()),
+            (None, Some(i)) => (None, Some(i.clone())),
+            (None, None) if discover => match target_dir() {
+                Some(target) => reports::benchmarks::harness_dirs(&target),
+                None => (None, None),
+            },
+            (None, None) => (None, None),
+        }
+    }
+
+    /// Reads the benchmark figures into `results`, replacing any it had. Says on
+    /// stderr what it added.
+    pub fn add_to(&self, results: &mut Results, discover: bool) -> Result<()> {
+        let (criterion, instructions) = self.resolve(discover);
+        if let Some(dir) = criterion {
+            results.criterion = reports::benchmarks::read_criterion_dir(&dir)
+                .context("cannot add the criterion estimates (--criterion)")?;
+            eprintln!(
+                "added {} criterion estimates from {}",
+                results.criterion.len(),
+                dir.display()
+            );
+        }
+        if let Some(dir) = instructions {
+            results.instructions = reports::benchmarks::read_gungraun_dir(&dir)
+                .context("cannot add the instruction counts (--instructions)")?;
+            eprintln!(
+                "added {} instruction counts from {}",
+                results.instructions.len(),
+                dir.display()
+            );
+        }
+        Ok(())
+    }
+}
+
+/// The cargo target directory whose harness output to pick up, if one exists.
+fn target_dir() -> Option<PathBuf> {
+    if let Some(dir) = std::env::var_os("CARGO_TARGET_DIR") {
+        return Some(PathBuf::from(dir));
+    }
+    // <target>/<profile>/rtprof
+    let built_in = std::env::current_exe()
+        .ok()
+        .and_then(|exe| Some(exe.parent()?.parent()?.to_path_buf()));
+    built_in
+        .into_iter()
+        .chain([PathBuf::from("target")])
+        .find(|t| t.join("criterion").is_dir() || t.join("gungraun").is_dir())
 }
 
 /// Writes report.html and report.pdf for `runs` into `dir` (each atomically).
@@ -56,6 +136,9 @@ pub fn run(args: &ReportArgs) -> Result<()> {
             results,
             base_dir,
         });
+    }
+    if let Some(main_run) = runs.first_mut() {
+        args.benchmarks.add_to(&mut main_run.results, false)?;
     }
     let dir = match &args.output {
         Some(d) => d.clone(),

@@ -64,6 +64,8 @@ pub struct SuiteArgs {
     /// Worker threads for the renders (default: one per core).
     #[arg(long, value_name = "N", value_parser = clap::value_parser!(u16).range(1..=1024))]
     threads: Option<u16>,
+    #[command(flatten)]
+    benchmarks: super::report::BenchmarkDirs,
 }
 
 pub(super) fn parse_threshold(text: &str) -> Result<f64, String> {
@@ -778,27 +780,6 @@ fn build_info() -> Build {
     }
 }
 
-/// Seconds since the epoch as RFC 3339 UTC (civil-from-days, no time-zone crate).
-pub fn rfc3339_utc(secs: u64) -> String {
-    let days = (secs / 86_400) as i64;
-    let rem = secs % 86_400;
-    let z = days + 719_468;
-    let era = z.div_euclid(146_097);
-    let doe = z.rem_euclid(146_097);
-    let yoe = (doe - doe / 1460 + doe / 36_524 - doe / 146_096) / 365;
-    let doy = doe - (365 * yoe + yoe / 4 - yoe / 100);
-    let mp = (5 * doy + 2) / 153;
-    let day = doy - (153 * mp + 2) / 5 + 1;
-    let month = if mp < 10 { mp + 3 } else { mp - 9 };
-    let year = yoe + era * 400 + i64::from(month <= 2);
-    format!(
-        "{year:04}-{month:02}-{day:02}T{:02}:{:02}:{:02}Z",
-        rem / 3600,
-        rem / 60 % 60,
-        rem % 60
-    )
-}
-
 /// The command line that reproduces this run.
 fn command_line() -> String {
     let args: Vec<String> = std::env::args()
@@ -870,7 +851,7 @@ pub fn run(args: &SuiteArgs) -> Result<()> {
         bars: MultiProgress::new(),
     };
     let threads = runner.pool.current_num_threads() as u32;
-    let created = rfc3339_utc(
+    let created = reports::results::rfc3339_utc(
         std::time::SystemTime::now()
             .duration_since(std::time::UNIX_EPOCH)
             .map_or(0, |d| d.as_secs()),
@@ -921,7 +902,7 @@ pub fn run(args: &SuiteArgs) -> Result<()> {
     };
     spinner.finish_and_clear();
 
-    let results = Results {
+    let mut results = Results {
         schema: SCHEMA.to_string(),
         created,
         command: command_line(),
@@ -941,7 +922,9 @@ pub fn run(args: &SuiteArgs) -> Result<()> {
         hardware: Some(hardware_tables()),
         failures,
         criterion: Vec::new(),
+        instructions: Vec::new(),
     };
+    args.benchmarks.add_to(&mut results, true)?;
     let json = serde_json::to_string_pretty(&results)?;
     save(&args.output, "results.json", json.as_bytes())?;
     super::report::write_reports(
@@ -998,15 +981,6 @@ mod tests {
         for s in &def.scenes {
             resolve_scene(s, (8, 8), Path::new(".")).unwrap();
         }
-    }
-
-    #[test]
-    fn rfc3339_matches_known_instants() {
-        assert_eq!(rfc3339_utc(0), "1970-01-01T00:00:00Z");
-        // 2000-02-29 12:34:56 UTC (a leap day) = 951827696.
-        assert_eq!(rfc3339_utc(951_827_696), "2000-02-29T12:34:56Z");
-        // 2026-11-21 00:00:00 UTC = 1795219200.
-        assert_eq!(rfc3339_utc(1_795_219_200), "2026-11-21T00:00:00Z");
     }
 
     #[test]

@@ -1,0 +1,29 @@
+#!/usr/bin/env bash
+# Instruction counts of the `sqrt` and `intersect` kernels under valgrind (gungraun),
+# saved as <target dir>/gungraun/**/summary.json for `rtprof suite` and
+# `rtprof report --instructions` to show beside criterion's times.
+#
+# Installs what it needs once: valgrind (Debian package) and gungraun-runner of the
+# exact version the benches crate uses, into $GUNGRAUN_HOME (default
+# ~/.cache/gungraun, outside any checkout, so CI reuses it).
+# Usage: scripts/instruction-counts.sh [extra gungraun arguments, e.g. a filter]
+set -euo pipefail
+cd "$(dirname "$0")/.."
+
+if ! command -v valgrind >/dev/null; then
+    echo "instruction-counts: installing valgrind" >&2
+    apt-get update -qq && DEBIAN_FRONTEND=noninteractive apt-get install -y -qq valgrind >/dev/null
+fi
+
+# The runner must match the library version exactly (gungraun refuses otherwise).
+version=$(cargo metadata --format-version 1 --locked 2>/dev/null \
+    | python3 -c 'import json,sys; print(next(p["version"] for p in json.load(sys.stdin)["packages"] if p["name"] == "gungraun"))')
+home="${GUNGRAUN_HOME:-$HOME/.cache/gungraun}"
+runner="$home/$version/bin/gungraun-runner"
+if [ ! -x "$runner" ]; then
+    echo "instruction-counts: installing gungraun-runner $version into $home/$version" >&2
+    cargo install --locked --quiet --version "$version" --root "$home/$version" gungraun-runner
+fi
+
+GUNGRAUN_RUNNER="$runner" cargo bench -p benches --features instructions --bench instructions \
+    -- --save-summary=json "$@"
