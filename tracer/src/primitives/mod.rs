@@ -28,8 +28,9 @@ pub enum GeometryError {
     DegeneratePolygon,
     #[error("the cone/cylinder base and apex coincide (zero-length axis)")]
     ZeroLengthAxis,
-    #[error("a patch vertex normal has zero length")]
-    ZeroNormal,
+    /// The 1-based vertex whose normal is the zero vector.
+    #[error("the normal of vertex {0} has zero length")]
+    ZeroNormal(usize),
     #[error("patch has {vertices} vertices but {normals} normals")]
     NormalCountMismatch { vertices: usize, normals: usize },
 }
