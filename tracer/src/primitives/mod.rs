@@ -35,6 +35,16 @@ pub enum GeometryError {
     NormalCountMismatch { vertices: usize, normals: usize },
 }
 
+/// The squared radius a quadric test uses: `radius²`, or -inf when that is zero (a zero
+/// radius, or one whose square underflows). A point or a line has no area to see, but
+/// rounding can make its discriminant slightly positive and report a hit whose normal
+/// is undefined; -inf makes every discriminant -inf (or NaN), never a hit, with no
+/// extra test in the intersection loop.
+pub(crate) fn test_radius_sq(radius: f32) -> f32 {
+    let sq = radius * radius;
+    if sq > 0.0 { sq } else { f32::NEG_INFINITY }
+}
+
 /// The two roots of `a t² + 2 half_b t + c = 0` in ascending order, given the square
 /// root of the discriminant `half_b² - a c`. `a` must not be zero.
 #[inline(always)]
