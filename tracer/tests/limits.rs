@@ -1,8 +1,6 @@
 //! The size limits of [`tracer::Limits`]: each refuses input just over it with an error
 //! that names the limit, and accepts input exactly at it. Numbers are worked out by hand.
 
-mod common;
-
 use tracer::nff::{load_nff_with_limits, parse_nff_with_limits};
 use tracer::{
     BruteForce, Count, Limits, LoadError, NffError, RenderError, RenderOptions, Sampling, Scene,
