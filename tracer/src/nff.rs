@@ -11,6 +11,7 @@ use crate::counter::{Counter, NoCount};
 use crate::primitives::{Cone, Cylinder, GeometryError, Patch, Polygon, Sphere};
 use crate::scene::{Light, Material, Scene, View};
 use crate::vec3::Vec3;
+use std::io::Read as _;
 use std::path::Path;
 
 /// A parse error at a place in a file.
@@ -33,19 +34,41 @@ pub enum LoadError {
         #[source]
         source: std::io::Error,
     },
+    #[error(
+        "{path} is {bytes} bytes, over the limit of {limit} bytes for a scene file \
+         (limit `max_file_bytes` in tracer::Limits: raise it to accept this)"
+    )]
+    TooLarge {
+        path: String,
+        bytes: u64,
+        limit: u64,
+    },
     #[error(transparent)]
     Parse(#[from] NffError),
 }
 
-/// Sizes refused before allocating. The defaults are generous for real scenes.
+/// Sizes refused before allocating, each raisable by setting its field. The defaults
+/// are generous for real scenes; every error names the field to raise.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct Limits {
-    /// Largest accepted width or height, in pixels.
+    /// Largest accepted width or height, in pixels (default 16,384).
     pub max_side: u32,
-    /// Largest accepted width × height.
+    /// Largest accepted width × height (default 64 Mi pixels).
     pub max_pixels: u64,
-    /// Largest vertex count of one `p` or `pp`.
+    /// Largest framebuffer, [`Limits::FRAMEBUFFER_BYTES_PER_PIXEL`] bytes per pixel
+    /// (default 1 GiB).
+    pub max_framebuffer_bytes: u64,
+    /// Largest vertex count of one `p` or `pp` (default 65,536).
     pub max_polygon_vertices: u64,
+    /// Most primitives in one scene, all kinds together (default 10 million).
+    pub max_primitives: u64,
+    /// Ceiling of the settable maximum ray-tree depth,
+    /// [`RenderOptions::max_depth`](crate::RenderOptions::max_depth) (default 64: a
+    /// transmitting scene can double its rays per level, and every level is a stack
+    /// frame of the recursive shader).
+    pub max_ray_depth: u32,
+    /// Largest scene file or text, in bytes (default 1 GiB).
+    pub max_file_bytes: u64,
 }
 
 impl Default for Limits {
@@ -53,27 +76,81 @@ impl Default for Limits {
         Self {
             max_side: 16_384,
             max_pixels: 64 * 1024 * 1024,
+            max_framebuffer_bytes: 1 << 30,
             max_polygon_vertices: 1 << 16,
+            max_primitives: 10_000_000,
+            max_ray_depth: 64,
+            max_file_bytes: 1 << 30,
         }
     }
 }
 
+/// How an error names the limit it hit.
+fn raise_hint(field: &str) -> String {
+    format!("limit `{field}` in tracer::Limits: raise it to accept this")
+}
+
 impl Limits {
-    /// Checks an image size against the limits; the error says what to do.
+    /// Bytes of framebuffer per pixel: one f32 RGB triple.
+    pub const FRAMEBUFFER_BYTES_PER_PIXEL: u64 = std::mem::size_of::<Rgb>() as u64;
+
+    /// Checks an image size against the side, pixel and framebuffer limits; the error
+    /// says which limit to raise.
     pub fn check_size(&self, width: u64, height: u64) -> Result<(), String> {
         if width == 0 || height == 0 {
             return Err(format!("image size {width}x{height} must be positive"));
         }
         if width > u64::from(self.max_side) || height > u64::from(self.max_side) {
             return Err(format!(
-                "image size {width}x{height} exceeds the limit of {} pixels per side",
-                self.max_side
+                "image size {width}x{height} exceeds the limit of {} pixels per side ({})",
+                self.max_side,
+                raise_hint("max_side")
             ));
         }
-        if width * height > self.max_pixels {
+        let pixels = width.saturating_mul(height);
+        if pixels > self.max_pixels {
             return Err(format!(
-                "image size {width}x{height} exceeds the limit of {} pixels",
-                self.max_pixels
+                "image size {width}x{height} ({pixels} pixels) exceeds the limit of {} pixels ({})",
+                self.max_pixels,
+                raise_hint("max_pixels")
+            ));
+        }
+        let bytes = pixels.saturating_mul(Self::FRAMEBUFFER_BYTES_PER_PIXEL);
+        if bytes > self.max_framebuffer_bytes {
+            return Err(format!(
+                "image size {width}x{height} needs a framebuffer of {bytes} bytes ({} per pixel), over the limit of {} bytes ({})",
+                Self::FRAMEBUFFER_BYTES_PER_PIXEL,
+                self.max_framebuffer_bytes,
+                raise_hint("max_framebuffer_bytes")
+            ));
+        }
+        Ok(())
+    }
+
+    /// Checks a maximum ray-tree depth (the eye ray is depth 1) against the ceiling.
+    pub fn check_ray_depth(&self, depth: u32) -> Result<(), String> {
+        if depth == 0 {
+            return Err(
+                "maximum ray depth 0: it must be at least 1 (the eye ray is depth 1)".into(),
+            );
+        }
+        if depth > self.max_ray_depth {
+            return Err(format!(
+                "maximum ray depth {depth} exceeds the limit of {} ({})",
+                self.max_ray_depth,
+                raise_hint("max_ray_depth")
+            ));
+        }
+        Ok(())
+    }
+
+    /// Checks the size of a scene file or text, in bytes.
+    pub fn check_file_size(&self, bytes: u64) -> Result<(), String> {
+        if bytes > self.max_file_bytes {
+            return Err(format!(
+                "{bytes} bytes, over the limit of {} bytes for a scene ({})",
+                self.max_file_bytes,
+                raise_hint("max_file_bytes")
             ));
         }
         Ok(())
@@ -82,11 +159,35 @@ impl Limits {
 
 /// Reads and parses an NFF file with the default limits.
 pub fn load_nff(path: &Path) -> Result<Scene, LoadError> {
+    load_nff_with_limits(path, &Limits::default())
+}
+
+/// Reads and parses an NFF file, refusing a file larger than `limits.max_file_bytes`
+/// before reading it (and sizes beyond the other limits while parsing).
+pub fn load_nff_with_limits(path: &Path, limits: &Limits) -> Result<Scene, LoadError> {
     let name = path.display().to_string();
-    let bytes = std::fs::read(path).map_err(|source| LoadError::Io {
+    let io = |source| LoadError::Io {
         path: name.clone(),
         source,
-    })?;
+    };
+    let too_large = |bytes: u64| LoadError::TooLarge {
+        path: name.clone(),
+        bytes,
+        limit: limits.max_file_bytes,
+    };
+    let file = std::fs::File::open(path).map_err(io)?;
+    let length = file.metadata().map_err(io)?.len();
+    if limits.check_file_size(length).is_err() {
+        return Err(too_large(length));
+    }
+    // The metadata may understate (pipes, /proc): read at most one byte past the limit.
+    let mut bytes = Vec::with_capacity(usize::try_from(length).unwrap_or(0));
+    file.take(limits.max_file_bytes.saturating_add(1))
+        .read_to_end(&mut bytes)
+        .map_err(io)?;
+    if limits.check_file_size(bytes.len() as u64).is_err() {
+        return Err(too_large(bytes.len() as u64));
+    }
     let text = match String::from_utf8(bytes) {
         Ok(text) => text,
         Err(e) => {
@@ -100,7 +201,7 @@ pub fn load_nff(path: &Path) -> Result<Scene, LoadError> {
             .into());
         }
     };
-    Ok(parse_nff(&text, &name)?)
+    Ok(parse_nff_with_limits(&text, &name, limits)?)
 }
 
 /// Parses NFF text with the default limits; `file` names the source in errors.
@@ -110,11 +211,19 @@ pub fn parse_nff(text: &str, file: &str) -> Result<Scene, NffError> {
 
 /// Parses NFF text, refusing sizes beyond `limits`.
 pub fn parse_nff_with_limits(text: &str, file: &str, limits: &Limits) -> Result<Scene, NffError> {
+    if let Err(message) = limits.check_file_size(text.len() as u64) {
+        return Err(NffError {
+            file: file.to_string(),
+            line: 1,
+            message: format!("the scene text is {message}"),
+        });
+    }
     Parser {
         lines: text.split('\n').enumerate().peekable(),
         file,
         limits,
         last_line: 1,
+        primitives: 0,
     }
     .parse()
 }
@@ -127,6 +236,8 @@ struct Parser<'a> {
     file: &'a str,
     limits: &'a Limits,
     last_line: usize,
+    /// Primitives parsed so far (for `Limits::max_primitives`).
+    primitives: u64,
 }
 
 /// One significant line: its number and its tokens (comments removed).
@@ -221,6 +332,23 @@ impl<'a> Parser<'a> {
         Ok(out)
     }
 
+    /// Counts one more primitive, refused (on its keyword line, before its data is read)
+    /// beyond `Limits::max_primitives`.
+    fn count_primitive(&mut self, line: usize) -> Result<(), NffError> {
+        if self.primitives >= self.limits.max_primitives {
+            return Err(self.error(
+                line,
+                format!(
+                    "too many primitives: the scene exceeds the limit of {} primitives ({})",
+                    self.limits.max_primitives,
+                    raise_hint("max_primitives")
+                ),
+            ));
+        }
+        self.primitives += 1;
+        Ok(())
+    }
+
     fn geometry(&self, line: usize, what: &str, e: GeometryError) -> NffError {
         self.error(line, format!("invalid {what}: {e}"))
     }
@@ -302,6 +430,7 @@ impl<'a> Parser<'a> {
                     });
                 }
                 "s" => {
+                    self.count_primitive(n)?;
                     let [x, y, z, r] = self.numbers(n, args, "sphere centre x y z and radius")?;
                     let m = current_material(&mut materials);
                     scene_parts
@@ -309,6 +438,7 @@ impl<'a> Parser<'a> {
                         .push(Sphere::new(Vec3::new(x, y, z), r, m));
                 }
                 "c" => {
+                    self.count_primitive(n)?;
                     // Base and apex on the next two lines (NFF), or all eight numbers on
                     // the `c` line itself (as the SPD generators write them).
                     let [bx, by, bz, br, ax, ay, az, ar] = if args.is_empty() {
@@ -337,6 +467,7 @@ impl<'a> Parser<'a> {
                 keyword @ ("p" | "pp") => {
                     let patch = keyword == "pp";
                     let what = if patch { "patch" } else { "polygon" };
+                    self.count_primitive(n)?;
                     let count = self.vertex_count(n, args, what)?;
                     let mut vertices = Vec::with_capacity(count.min(1024));
                     let mut normals = Vec::new();
@@ -425,8 +556,9 @@ impl<'a> Parser<'a> {
             return Err(self.error(
                 line,
                 format!(
-                    "{what} vertex count {count} exceeds the limit of {}",
-                    self.limits.max_polygon_vertices
+                    "{what} vertex count {count} exceeds the limit of {} ({})",
+                    self.limits.max_polygon_vertices,
+                    raise_hint("max_polygon_vertices")
                 ),
             ));
         }

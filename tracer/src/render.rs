@@ -14,7 +14,7 @@ use crate::color::Rgb;
 use crate::counter::{Counter, Counts, RayCounts};
 use crate::nff::Limits;
 use crate::scene::Scene;
-use crate::shading::{DiffuseForm, Shader, ShadingMode};
+use crate::shading::{DiffuseForm, MAX_DEPTH, Shader, ShadingMode};
 use rayon::prelude::*;
 
 /// What to render.
@@ -31,6 +31,11 @@ pub struct RenderOptions {
     /// Distance at which the orthographic grid spans the perspective view (`ortho`;
     /// default `|at - from|`).
     pub ortho_focus: Option<f32>,
+    /// Maximum ray-tree depth, the eye ray being depth 1 (default [`MAX_DEPTH`], the
+    /// SPD's 5); at most `limits.max_ray_depth`.
+    pub max_depth: u32,
+    /// Image size and depth limits checked before anything is allocated.
+    pub limits: Limits,
 }
 
 impl RenderOptions {
@@ -56,6 +61,8 @@ impl RenderOptions {
             diffuse: DiffuseForm::Lambert,
             checkerboard: false,
             ortho_focus: None,
+            max_depth: MAX_DEPTH,
+            limits: Limits::default(),
         }
     }
 
@@ -75,6 +82,8 @@ pub enum RenderError {
     Camera(String),
     #[error("{0}")]
     Size(String),
+    #[error("{0}")]
+    Depth(String),
 }
 
 /// A floating-point framebuffer, row 0 at the top.
@@ -122,9 +131,13 @@ pub fn render<C: Counter, I: Intersector>(
     options: &RenderOptions,
     progress: &(dyn Fn(u64) + Sync),
 ) -> Result<Rendered<C>, RenderError> {
-    Limits::default()
+    let limits = &options.limits;
+    limits
         .check_size(u64::from(options.width), u64::from(options.height))
         .map_err(RenderError::Size)?;
+    limits
+        .check_ray_depth(options.max_depth)
+        .map_err(RenderError::Depth)?;
     let mut counter = C::default();
     let camera = Camera::new(
         &scene.view,
@@ -136,7 +149,8 @@ pub fn render<C: Counter, I: Intersector>(
         &mut counter,
     )
     .map_err(RenderError::Camera)?;
-    let shader = Shader::with_diffuse(scene, accel, options.mode, options.diffuse);
+    let shader = Shader::with_diffuse(scene, accel, options.mode, options.diffuse)
+        .with_max_depth(options.max_depth);
     let (columns, rows) = camera.grid();
     let from_eye = options.projection == Projection::EyeRows;
 

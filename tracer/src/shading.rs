@@ -217,6 +217,13 @@ impl<'s, I: Intersector> Shader<'s, I> {
         }
     }
 
+    /// The same shader with another maximum ray-tree depth (the eye ray is depth 1;
+    /// [`crate::render`] checks it against [`crate::Limits::max_ray_depth`]).
+    pub fn with_max_depth(mut self, max_depth: u32) -> Self {
+        self.max_depth = max_depth;
+        self
+    }
+
     /// The sample value of one eye ray (depth 1). Counts `rays.primary` and
     /// `rays.primary_hit`.
     pub fn primary<C: Counter>(&self, ray: &Ray, c: &mut C, rays: &mut RayCounts) -> Rgb {
@@ -432,6 +439,13 @@ impl<'s, I: Intersector> Shader<'s, I> {
         let along = c.scale(ray.dir, hit.t);
         let point = c.add(ray.origin, along);
         let (mut normal, mut facing) = self.normals(hit, point, c);
+        // A quadric far thinner than its coordinates' precision (radius 1e-20 at
+        // distance 1) can be hit exactly on its centre or axis, where the normal is 0/0.
+        // Such a surface is seen edge-on: face the ray rather than shade with NaN.
+        if !facing.is_finite() || !normal.is_finite() {
+            facing = ray.dir.flipped();
+            normal = facing;
+        }
         let front = c.dot(facing, ray.dir) < 0.0;
         if !front {
             facing = facing.flipped();

@@ -171,3 +171,18 @@ fn project_scenes_parse_and_render() {
     }
     assert!(rendered >= 2);
 }
+
+#[test]
+fn every_spd_scene_round_trips_through_the_writer() {
+    for name in spd_names() {
+        let scene = load_spd(&name);
+        let text = tracer::scene_to_nff(&scene);
+        let again = tracer::parse_nff(&text, &format!("{name} (written)"))
+            .unwrap_or_else(|e| panic!("{e}"));
+        assert!(
+            again == scene,
+            "{name}: the written scene parses differently"
+        );
+        assert_eq!(tracer::scene_to_nff(&again), text, "{name}");
+    }
+}

@@ -76,7 +76,7 @@ impl<'s> Simd<'s> {
                 for (i, s) in chunk.iter().enumerate() {
                     let [x, y, z] = s.center.to_array();
                     (l.cx[i], l.cy[i], l.cz[i]) = (x, y, z);
-                    l.radius_sq[i] = s.radius * s.radius;
+                    l.radius_sq[i] = s.radius_sq();
                     l.inside[i] = f32::from(u8::from(s.inside_visible()));
                 }
                 l
@@ -103,7 +103,7 @@ impl<'s> Simd<'s> {
                     (l.bx[i], l.by[i], l.bz[i]) = (x, y, z);
                     let [x, y, z] = cy.axis.to_array();
                     (l.ax[i], l.ay[i], l.az[i]) = (x, y, z);
-                    l.radius_sq[i] = cy.radius * cy.radius;
+                    l.radius_sq[i] = cy.radius_sq();
                     l.length[i] = cy.length;
                     l.inside[i] = f32::from(u8::from(cy.inside_visible()));
                 }

@@ -2,7 +2,7 @@
 //! `a = 1 - (R·V)²`, `b = 2((R·Voc) - (R·V)(Voc·V))`, `c = |Voc|² - (Voc·V)² - r²`,
 //! bounded by `0 < m < |Ct - Cb|` with `m = d (R·V) + Voc·V`; `N = normalize(P - (Cb + m V))`.
 
-use super::{GeometryError, ordered_roots};
+use super::{GeometryError, ordered_roots, test_radius_sq};
 use crate::counter::{Counter, NoCount, Stat};
 use crate::ray::Ray;
 use crate::vec3::Vec3;
@@ -36,8 +36,13 @@ impl Cylinder {
             axis,
             length,
             eye_offset: Vec3::ZERO,
-            radius_sq: radius * radius,
+            radius_sq: test_radius_sq(radius),
         })
+    }
+
+    /// The squared radius the intersection test uses (-inf for a zero radius: never hit).
+    pub fn radius_sq(&self) -> f32 {
+        self.radius_sq
     }
 
     /// Whether only the inside wall is visible (negative radius).
@@ -64,7 +69,8 @@ impl Cylinder {
         let half_b = ro - rv * ov;
         let cc = oo - ov * ov - self.radius_sq;
         let disc = half_b * half_b - a * cc;
-        // a = 0: the ray runs parallel to the axis and never crosses the wall.
+        // a = 0: the ray runs parallel to the axis and never crosses the wall. A zero
+        // radius (radius² = -inf) gives disc = -inf or NaN: never hit.
         if disc <= 0.0 || a <= 0.0 {
             return None;
         }

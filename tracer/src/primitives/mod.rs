@@ -28,10 +28,21 @@ pub enum GeometryError {
     DegeneratePolygon,
     #[error("the cone/cylinder base and apex coincide (zero-length axis)")]
     ZeroLengthAxis,
-    #[error("a patch vertex normal has zero length")]
-    ZeroNormal,
+    /// The 1-based vertex whose normal is the zero vector.
+    #[error("the normal of vertex {0} has zero length")]
+    ZeroNormal(usize),
     #[error("patch has {vertices} vertices but {normals} normals")]
     NormalCountMismatch { vertices: usize, normals: usize },
+}
+
+/// The squared radius a quadric test uses: `radius²`, or -inf when that is zero (a zero
+/// radius, or one whose square underflows). A point or a line has no area to see, but
+/// rounding can make its discriminant slightly positive and report a hit whose normal
+/// is undefined; -inf makes every discriminant -inf (or NaN), never a hit, with no
+/// extra test in the intersection loop.
+pub(crate) fn test_radius_sq(radius: f32) -> f32 {
+    let sq = radius * radius;
+    if sq > 0.0 { sq } else { f32::NEG_INFINITY }
 }
 
 /// The two roots of `a t² + 2 half_b t + c = 0` in ascending order, given the square

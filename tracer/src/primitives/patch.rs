@@ -13,11 +13,15 @@ pub struct Patch {
     pub outline: PlanarOutline,
     /// Unit vertex normals, one per vertex.
     pub normals: Vec<Vec3>,
+    /// The vertex normals as written in the scene (any length), kept so that the scene
+    /// can be written back exactly ([`crate::nff_writer`]).
+    pub written_normals: Vec<Vec3>,
     pub material: u32,
 }
 
 impl Patch {
-    /// Builds a patch; vertex normals are normalized and must be non-zero.
+    /// Builds a patch; vertex normals are normalized and must be non-zero (the error
+    /// names the first zero one).
     pub fn new(
         vertices: Vec<Vec3>,
         normals: Vec<Vec3>,
@@ -30,21 +34,15 @@ impl Patch {
             });
         }
         let outline = PlanarOutline::new(vertices)?;
-        let c = &mut NoCount;
-        let normals = normals
-            .into_iter()
-            .map(|n| {
-                let len_sq = c.dot(n, n);
-                if len_sq > 0.0 && len_sq.is_finite() {
-                    Ok(c.normalize(n))
-                } else {
-                    Err(GeometryError::ZeroNormal)
-                }
-            })
+        let unit_normals = normals
+            .iter()
+            .enumerate()
+            .map(|(i, &n)| unit_normal(n).ok_or(GeometryError::ZeroNormal(i + 1)))
             .collect::<Result<Vec<_>, _>>()?;
         Ok(Self {
             outline,
-            normals,
+            normals: unit_normals,
+            written_normals: normals,
             material,
         })
     }
@@ -81,6 +79,24 @@ impl Patch {
             self.outline.normal
         }
     }
+}
+
+/// `n` scaled to unit length, or `None` for a zero vector. A normal whose squared
+/// length underflows or overflows f32 (components below about 1e-19 or above 1e19) is
+/// first divided by its largest component, so every non-zero direction is accepted.
+fn unit_normal(n: Vec3) -> Option<Vec3> {
+    let c = &mut NoCount;
+    let len_sq = c.dot(n, n);
+    if len_sq >= f32::MIN_POSITIVE && len_sq.is_finite() {
+        return Some(c.normalize(n));
+    }
+    let largest = n.max_abs();
+    if !(largest > 0.0) || !largest.is_finite() {
+        return None;
+    }
+    // Exact division: the largest component becomes exactly ±1.
+    let scaled = Vec3::from_array(n.to_array().map(|v| v / largest));
+    Some(c.normalize(scaled))
 }
 
 #[cfg(test)]
@@ -137,7 +153,10 @@ mod tests {
             Vec3::ZERO,
             Vec3::new(0.0, 0.0, 1.0),
         ];
-        assert_eq!(Patch::new(v.clone(), n, 0), Err(GeometryError::ZeroNormal));
+        assert_eq!(
+            Patch::new(v.clone(), n, 0),
+            Err(GeometryError::ZeroNormal(2))
+        );
         assert!(matches!(
             Patch::new(v, vec![Vec3::new(0.0, 0.0, 1.0)], 0),
             Err(GeometryError::NormalCountMismatch { .. })

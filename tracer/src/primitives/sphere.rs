@@ -1,5 +1,6 @@
 //! Sphere: `d² + 2 (R·Voc) d + (|Voc|² - r²) = 0` (thesis ch. 1.3), `N = normalize(P - C)`.
 
+use super::test_radius_sq;
 use crate::counter::{Counter, Stat};
 use crate::ray::Ray;
 use crate::vec3::Vec3;
@@ -24,8 +25,13 @@ impl Sphere {
             radius,
             material,
             eye_offset: Vec3::ZERO,
-            radius_sq: radius * radius,
+            radius_sq: test_radius_sq(radius),
         }
+    }
+
+    /// The squared radius the intersection test uses (-inf for a zero radius: never hit).
+    pub fn radius_sq(&self) -> f32 {
+        self.radius_sq
     }
 
     /// Whether only the inside of the sphere is visible (negative radius).
@@ -50,8 +56,9 @@ impl Sphere {
         let half_b = c.dot(ray.dir, voc);
         let cc = c.dot(voc, voc) - self.radius_sq;
         let disc = half_b * half_b - cc;
-        // A tangent ray (disc = 0) and a zero-radius sphere are never hit: neither
-        // has an area that a pixel could see, and the normal would be undefined.
+        // A tangent ray (disc = 0) and a zero-radius sphere (disc = -inf, see
+        // `test_radius_sq`) are never hit: neither has an area that a pixel could see,
+        // and the normal would be undefined.
         if disc <= 0.0 {
             return None;
         }
