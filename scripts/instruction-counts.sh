@@ -16,7 +16,7 @@ if ! command -v valgrind >/dev/null; then
 fi
 
 # The runner must match the library version exactly (gungraun refuses otherwise).
-version=$(cargo metadata --format-version 1 --locked 2>/dev/null \
+version=$(cargo metadata --format-version 1 --locked --all-features \
     | python3 -c 'import json,sys; print(next(p["version"] for p in json.load(sys.stdin)["packages"] if p["name"] == "gungraun"))')
 home="${GUNGRAUN_HOME:-$HOME/.cache/gungraun}"
 runner="$home/$version/bin/gungraun-runner"
