@@ -172,13 +172,66 @@ fn command_line_misuse_exits_2() {
             "baseline,fast-sqrt+fast-sqrt-tuned".into(),
         ],
     ];
-    for args in cases {
+    // Files that cannot be read as scenes: not UTF-8, a path through a regular file, a
+    // dangling symbolic link, an empty directory given to --scenes.
+    let not_text = dir.join("binary.nff");
+    std::fs::write(&not_text, [0xff, 0xfe, 0x00, 0x9f, b'\n']).unwrap();
+    let dangling = dir.join("dangling.nff");
+    let _ = std::fs::remove_file(&dangling);
+    std::os::unix::fs::symlink(dir.join("nowhere.nff"), &dangling).unwrap();
+    let suite_with_bad_variant = dir.join("bad-variant.toml");
+    std::fs::write(
+        &suite_with_bad_variant,
+        "name = \"x\"\nsize = [8, 8]\nrepeats = 1\nvariants = [\"baseline\", \"warp-drive\"]\nscenes = [\"balls1\"]\nextra_size = [8, 8]\nprofile_size = [8, 8]\nprofile_frequency = 100\nhardware_repeats = 1\n",
+    )
+    .unwrap();
+    let path = |p: &Path| p.display().to_string();
+    let more: Vec<Vec<String>> = vec![
+        vec!["render".into(), path(&not_text)],
+        vec!["count".into(), format!("{rings}/inside.nff")],
+        vec!["render".into(), path(&dangling)],
+        vec![
+            "suite".into(),
+            path(&suite_with_bad_variant),
+            "-o".into(),
+            path(&dir.join("s")),
+        ],
+        vec![
+            "suite".into(),
+            "--quick".into(),
+            "--scenes".into(),
+            path(&dir.join("no-such-dir")),
+        ],
+        vec!["report".into(), path(&dir)],
+        vec![
+            "gate".into(),
+            path(&dir.join("old.json")),
+            path(&dir.join("new.json")),
+        ],
+        vec!["hw".into(), "time".into(), "no-such-scene".into()],
+        vec!["warp".into()],
+        vec!["render".into()],
+        vec![
+            "render".into(),
+            rings.clone(),
+            "--size".into(),
+            "99999999x99999999".into(),
+        ],
+    ];
+    for args in cases.into_iter().chain(more) {
         let args: Vec<&str> = args.iter().map(String::as_str).collect();
         let out = rtprof(&args);
         let err = stderr(&out);
         assert_eq!(out.status.code(), Some(2), "{args:?}: {err}");
         assert!(!err.contains("panicked"), "{args:?}: {err}");
+        // One line, saying it is an error (clap's multi-line usage is folded into it).
+        assert_eq!(err.trim_end().lines().count(), 1, "{args:?}: {err}");
+        assert!(err.starts_with("rtprof: error: "), "{args:?}: {err}");
     }
+    // Help is not an error.
+    let out = rtprof(&["render", "--help"]);
+    assert_eq!(out.status.code(), Some(0));
+    assert!(String::from_utf8_lossy(&out.stdout).contains("Usage: rtprof render"));
     std::fs::remove_dir_all(&dir).ok();
 }
 
@@ -652,6 +705,71 @@ profile_size = [32, 24]
 profile_frequency = 500
 hardware_repeats = 1
 "#;
+
+#[test]
+fn an_interrupted_suite_keeps_the_previous_results_and_reports() {
+    let dir = scratch("interrupt");
+    let out_dir = dir.join("out");
+    let tiny = dir.join("tiny.toml");
+    std::fs::write(&tiny, TINY_SUITE).unwrap();
+    let out = rtprof(&[
+        "suite",
+        tiny.to_str().unwrap(),
+        "-o",
+        out_dir.to_str().unwrap(),
+    ]);
+    assert_eq!(out.status.code(), Some(0), "{}", stderr(&out));
+    let before: Vec<Vec<u8>> = ["results.json", "report.html", "report.pdf"]
+        .iter()
+        .map(|f| read(&out_dir.join(f)))
+        .collect();
+    // A suite that needs well over a minute (2 s measured per scene and variant): it is
+    // still rendering its first scenes when Ctrl-C (SIGINT) arrives.
+    let long = dir.join("long.toml");
+    std::fs::write(
+        &long,
+        TINY_SUITE
+            .replace("repeats = 2", "repeats = 2\nmin_seconds = 2.0")
+            .replace("scenes = [\"balls2\", \"both3\"]", "scenes = [\"balls1\", \"balls2\", \"balls3\", \"balls4\", \"balls5\", \"balls6\", \"balls7\", \"both1\", \"both2\", \"both3\", \"both4\", \"both5\", \"both6\", \"both7\", \"cylinder1\", \"cylinder2\", \"cylinder3\", \"cylinder4\", \"cylinder5\", \"cylinder6\", \"cylinder7\"]"),
+    )
+    .unwrap();
+    let child = Command::new(env!("CARGO_BIN_EXE_rtprof"))
+        .args([
+            "suite",
+            long.to_str().unwrap(),
+            "-o",
+            out_dir.to_str().unwrap(),
+        ])
+        .stderr(std::process::Stdio::piped())
+        .spawn()
+        .unwrap();
+    std::thread::sleep(std::time::Duration::from_millis(1500));
+    let kill = Command::new("kill")
+        .args(["-INT", &child.id().to_string()])
+        .status()
+        .unwrap();
+    assert!(kill.success());
+    let out = child.wait_with_output().unwrap();
+    let message = stderr(&out);
+    assert_eq!(out.status.code(), Some(130), "{message}");
+    assert!(
+        message.contains("interrupted after") && message.contains("intact"),
+        "{message}"
+    );
+    for (f, bytes) in ["results.json", "report.html", "report.pdf"]
+        .iter()
+        .zip(&before)
+    {
+        assert!(read(&out_dir.join(f)) == *bytes, "{f} changed");
+    }
+    let leftovers: Vec<_> = std::fs::read_dir(&out_dir)
+        .unwrap()
+        .filter_map(|e| e.ok())
+        .filter(|e| e.file_name().to_string_lossy().ends_with(".partial"))
+        .collect();
+    assert!(leftovers.is_empty(), "staging left behind: {leftovers:?}");
+    std::fs::remove_dir_all(&dir).ok();
+}
 
 #[test]
 fn suite_writes_results_and_reports_and_the_gate_sets_the_exit_code() {

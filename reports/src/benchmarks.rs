@@ -15,7 +15,7 @@ use crate::results::{CriterionEstimate, Estimate, InstructionCount, rfc3339_utc}
 /// A harness directory that cannot be read.
 #[derive(Debug, thiserror::Error)]
 pub enum BenchImportError {
-    #[error("cannot read {path}: {source}")]
+    #[error("cannot read {path}")]
     Io {
         path: PathBuf,
         source: std::io::Error,

@@ -2,7 +2,7 @@
 //! one scene (time with a bootstrap interval, speed-up, image error, counts), all
 //! against the first image or variant.
 
-use super::scene_args::{parse_size, thread_pool};
+use super::scene_args::{LimitArgs, parse_size, thread_pool};
 use analysis::{
     Band, Comparison, Estimate, P3Histograms, RgbImage, compare, difference_heat_map,
     median_with_bootstrap, p3_histograms, to_p3,
@@ -13,8 +13,7 @@ use serde::Serialize;
 use std::path::{Path, PathBuf};
 use tracer::image_io::write_rgb8;
 use tracer::{
-    Count, Counts, NoCount, RenderOptions, Sampling, ShadingMode, VariantSet, load_nff,
-    render_variant,
+    Count, Counts, NoCount, RenderOptions, Sampling, ShadingMode, VariantSet, render_variant,
 };
 
 #[derive(clap::Args, Debug)]
@@ -39,6 +38,8 @@ pub struct CompareArgs {
     /// Worker threads (default: one per core).
     #[arg(long, value_name = "N", value_parser = clap::value_parser!(u16).range(1..=1024))]
     threads: Option<u16>,
+    #[command(flatten)]
+    limits: LimitArgs,
     /// Print the result as JSON.
     #[arg(long)]
     json: bool,
@@ -166,14 +167,15 @@ fn compare_variants(args: &CompareArgs, scene_path: &Path, list: &str) -> Result
         std::fs::create_dir_all(dir)
             .with_context(|| format!("cannot create directory {}", dir.display()))?;
     }
-    let scene = load_nff(scene_path)?;
+    let scene = args.limits.load(scene_path)?;
     let (width, height) = args.size.unwrap_or((scene.view.width, scene.view.height));
     let sampling = if args.spd {
         Sampling::SpdCorners
     } else {
         Sampling::PixelCenters
     };
-    let options = RenderOptions::new(width, height, sampling, ShadingMode::Color);
+    let mut options = RenderOptions::new(width, height, sampling, ShadingMode::Color);
+    options.limits = args.limits.limits();
     let pool = thread_pool(args.threads)?;
     let threads = pool.current_num_threads();
 

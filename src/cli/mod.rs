@@ -4,6 +4,7 @@ mod compare;
 mod count;
 mod gate;
 mod hw;
+mod interrupt;
 mod profile;
 mod render;
 mod report;
@@ -47,6 +48,8 @@ enum Command {
     /// Built-in scenes and scene generators.
     Scene(scene::SceneArgs),
 }
+
+pub use interrupt::Interrupted;
 
 /// A check that ran and failed (exit code 1, not 2: the input was fine).
 #[derive(Debug)]

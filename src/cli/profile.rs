@@ -3,7 +3,7 @@
 //! a flamegraph, a differential flamegraph against another variant, and Amdahl
 //! projections. Calls come from a counted render of the same scene and variant.
 
-use super::scene_args::{parse_size, thread_pool};
+use super::scene_args::{LimitArgs, parse_size, thread_pool};
 use analysis::profile::amdahl::{AmdahlRow, amdahl_table, amdahl_text};
 use analysis::profile::folded::{differential_svg, flamegraph_svg, folded};
 use analysis::profile::gprof::{CallGraph, FlatProfile, call_graph, flat_profile};
@@ -18,8 +18,7 @@ use std::path::{Path, PathBuf};
 use std::time::Instant;
 use tracer::image_io::write_atomically;
 use tracer::{
-    Count, NoCount, RenderOptions, Sampling, Scene, ShadingMode, VariantSet, load_nff,
-    render_variant,
+    Count, NoCount, RenderOptions, Sampling, Scene, ShadingMode, VariantSet, render_variant,
 };
 
 #[derive(clap::Args, Debug)]
@@ -41,6 +40,8 @@ pub struct ProfileArgs {
     /// Worker threads (default: one per core).
     #[arg(long, value_name = "N", value_parser = clap::value_parser!(u16).range(1..=1024))]
     threads: Option<u16>,
+    #[command(flatten)]
+    limits: LimitArgs,
     /// Sampling rate asked of the kernel, Hz (it may deliver fewer; times use the
     /// measured CPU time per sample).
     #[arg(long, default_value_t = 1000, value_name = "HZ",
@@ -262,7 +263,7 @@ pub fn run(args: &ProfileArgs) -> Result<()> {
     if let Some(other) = &args.diff_with {
         VariantSet::parse(other)?;
     }
-    let scene = load_nff(&args.scene)?;
+    let scene = args.limits.load(&args.scene)?;
     let (width, height) = args.size.unwrap_or((scene.view.width, scene.view.height));
     let sampling = if args.spd {
         Sampling::SpdCorners
@@ -285,7 +286,10 @@ pub fn run(args: &ProfileArgs) -> Result<()> {
         .with_context(|| format!("cannot create directory {}", dir.display()))?;
     let job = Job {
         scene: &scene,
-        options: RenderOptions::new(width, height, sampling, ShadingMode::Color),
+        options: RenderOptions {
+            limits: args.limits.limits(),
+            ..RenderOptions::new(width, height, sampling, ShadingMode::Color)
+        },
         pool: thread_pool(args.threads)?,
         frequency: args.frequency,
         path: &args.scene,

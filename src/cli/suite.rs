@@ -307,6 +307,72 @@ fn estimate(samples: &[f64]) -> Result<Estimate> {
     })
 }
 
+/// The suite's staging directory, `<output>/.rtprof-suite-<pid>.partial`: removed
+/// with whatever is left in it when dropped (after an error, a panic or Ctrl-C).
+struct Staging {
+    dir: PathBuf,
+}
+
+impl Staging {
+    fn create(output: &Path) -> Result<Self> {
+        let dir = output.join(format!(".rtprof-suite-{}.partial", std::process::id()));
+        std::fs::create_dir_all(&dir)
+            .with_context(|| format!("cannot create {}", dir.display()))?;
+        Ok(Staging { dir })
+    }
+
+    /// Moves every staged file to the same place under `output` (one rename each,
+    /// replacing the previous run's file).
+    fn publish(&self, output: &Path) -> Result<()> {
+        let mut pending = vec![self.dir.clone()];
+        while let Some(dir) = pending.pop() {
+            let entries = std::fs::read_dir(&dir)
+                .with_context(|| format!("cannot read {}", dir.display()))?;
+            for entry in entries {
+                let path = entry
+                    .with_context(|| format!("cannot read {}", dir.display()))?
+                    .path();
+                if path.is_dir() {
+                    pending.push(path);
+                    continue;
+                }
+                let rel = path.strip_prefix(&self.dir).unwrap_or(&path);
+                let target = output.join(rel);
+                if let Some(parent) = target.parent() {
+                    std::fs::create_dir_all(parent)
+                        .with_context(|| format!("cannot create {}", parent.display()))?;
+                }
+                std::fs::rename(&path, &target)
+                    .with_context(|| format!("cannot move {} into place", target.display()))?;
+            }
+        }
+        Ok(())
+    }
+}
+
+impl Drop for Staging {
+    fn drop(&mut self) {
+        // Best effort: a leftover directory is named as partial and harmless.
+        let _ = std::fs::remove_dir_all(&self.dir);
+    }
+}
+
+/// The error for a suite stopped by Ctrl-C after `done` of `total` scenes.
+fn interrupted(output: &Path, done: usize, total: usize) -> anyhow::Error {
+    let previous = if output.join("report.html").is_file() {
+        format!(
+            "the previous results and reports in {} are intact",
+            output.display()
+        )
+    } else {
+        format!("nothing was written to {}", output.display())
+    };
+    super::Interrupted(format!(
+        "interrupted after {done} of {total} scenes; this run's outputs were discarded and {previous}"
+    ))
+    .into()
+}
+
 /// Writes `bytes` at `dir/rel` (atomically) and returns `rel`.
 fn save(dir: &Path, rel: &str, bytes: &[u8]) -> Result<String> {
     let path = dir.join(rel);
@@ -420,6 +486,9 @@ impl Runner<'_> {
         while samples.len() < repeats as usize
             || (samples.iter().sum::<f64>() < self.def.min_seconds && samples.len() < MAX_REPEATS)
         {
+            if super::interrupt::requested() {
+                anyhow::bail!("interrupted");
+            }
             let start = Instant::now();
             render()?;
             samples.push(start.elapsed().as_secs_f64());
@@ -842,10 +911,14 @@ pub fn run(args: &SuiteArgs) -> Result<()> {
     }
     std::fs::create_dir_all(&args.output)
         .with_context(|| format!("cannot create {}", args.output.display()))?;
+    // Everything is written to a staging directory inside the output and moved into
+    // place at the end: an interrupted or failed run leaves the previous one whole.
+    let staging = Staging::create(&args.output)?;
+    super::interrupt::install();
 
     let runner = Runner {
         def: &def,
-        out: &args.output,
+        out: &staging.dir,
         pool: thread_pool(args.threads)?,
         one_thread: thread_pool(Some(1))?,
         bars: MultiProgress::new(),
@@ -859,7 +932,11 @@ pub fn run(args: &SuiteArgs) -> Result<()> {
     let bar = runner.bar((specs.len() * def.variants.len()) as u64, "scenes");
     let mut failures = Vec::new();
     let mut scenes = Vec::new();
-    for spec in &specs {
+    for (done, spec) in specs.iter().enumerate() {
+        if super::interrupt::requested() {
+            bar.finish_and_clear();
+            return Err(interrupted(&args.output, done, specs.len()));
+        }
         let outcome = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
             let mut local = Vec::new();
             let r = runner.run_scene(spec, &bar, &mut local);
@@ -926,15 +1003,19 @@ pub fn run(args: &SuiteArgs) -> Result<()> {
     };
     args.benchmarks.add_to(&mut results, true)?;
     let json = serde_json::to_string_pretty(&results)?;
-    save(&args.output, "results.json", json.as_bytes())?;
+    save(&staging.dir, "results.json", json.as_bytes())?;
     super::report::write_reports(
         &[reports::Run {
             label: results.machine.hostname.clone(),
             results: results.clone(),
-            base_dir: args.output.clone(),
+            base_dir: staging.dir.clone(),
         }],
-        &args.output,
+        &staging.dir,
     )?;
+    if super::interrupt::requested() {
+        return Err(interrupted(&args.output, specs.len(), specs.len()));
+    }
+    staging.publish(&args.output)?;
     eprintln!(
         "suite '{}': {} scenes × {} variants in {:.1} s; {} failure{}; wrote {}/{{results.json, report.html, report.pdf}}",
         def.name,

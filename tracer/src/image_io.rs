@@ -18,7 +18,7 @@ pub enum ImageFormat {
 pub enum ImageError {
     #[error("cannot tell the image format of {0}: use a .png or .ppm extension")]
     UnknownExtension(String),
-    #[error("cannot write {path}: {source}")]
+    #[error("cannot write {path}")]
     Io {
         path: String,
         #[source]

@@ -51,7 +51,7 @@ pub use accel::{BruteForce, Bvh, Intersector, Simd};
 pub use camera::{Camera, Projection, Sampling};
 pub use color::Rgb;
 pub use counter::{Count, Counter, Counts, NoCount, RayCounts, Stat};
-pub use nff::{Limits, LoadError, NffError, load_nff, parse_nff};
+pub use nff::{Limits, LoadError, NffError, load_nff, load_nff_with_limits, parse_nff};
 pub use nff_writer::{scene_to_nff, write_scene};
 pub use pipeline::{VariantRender, render_variant};
 pub use ray::{Hit, PrimKind, PrimRef, Ray};

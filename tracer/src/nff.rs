@@ -28,7 +28,7 @@ pub struct NffError {
 /// Why a scene file could not be loaded.
 #[derive(Debug, thiserror::Error)]
 pub enum LoadError {
-    #[error("cannot read {path}: {source}")]
+    #[error("cannot read {path}")]
     Io {
         path: String,
         #[source]
@@ -36,7 +36,8 @@ pub enum LoadError {
     },
     #[error(
         "{path} is {bytes} bytes, over the limit of {limit} bytes for a scene file \
-         (limit `max_file_bytes` in tracer::Limits: raise it to accept this)"
+         (limit max_file_bytes: raise it with rtprof's --max-file-bytes or \
+         tracer::Limits::max_file_bytes)"
     )]
     TooLarge {
         path: String,
@@ -87,7 +88,10 @@ impl Default for Limits {
 
 /// How an error names the limit it hit.
 fn raise_hint(field: &str) -> String {
-    format!("limit `{field}` in tracer::Limits: raise it to accept this")
+    format!(
+        "limit {field}: raise it with rtprof's --{} or tracer::Limits::{field}",
+        field.replace('_', "-")
+    )
 }
 
 impl Limits {

@@ -1,0 +1,42 @@
+//! Ctrl-C for long commands (the suite): the first Ctrl-C asks the command to stop at
+//! its next safe point, where it discards its partial outputs and leaves the previous
+//! ones intact; a second Ctrl-C exits at once (outputs are written to a temporary file
+//! and renamed, so even then nothing is left half-written).
+//!
+//! Only commands that check [`requested`] install the handler; the others keep the
+//! default Ctrl-C behaviour.
+
+use std::sync::atomic::{AtomicBool, Ordering};
+
+static REQUESTED: AtomicBool = AtomicBool::new(false);
+
+/// The run was stopped by Ctrl-C (the binary exits 130).
+#[derive(Debug)]
+pub struct Interrupted(pub String);
+
+impl std::fmt::Display for Interrupted {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(&self.0)
+    }
+}
+
+impl std::error::Error for Interrupted {}
+
+/// Installs the handler (once per process; later calls do nothing).
+pub fn install() {
+    // An error means a handler is already installed, which is what we want.
+    let _ = ctrlc::set_handler(|| {
+        if REQUESTED.swap(true, Ordering::SeqCst) {
+            eprintln!("\nrtprof: interrupted again; exiting now");
+            std::process::exit(130);
+        }
+        eprintln!(
+            "\nrtprof: interrupted; stopping after the current render (Ctrl-C again to exit now)"
+        );
+    });
+}
+
+/// Whether Ctrl-C was pressed.
+pub fn requested() -> bool {
+    REQUESTED.load(Ordering::SeqCst)
+}
