@@ -122,6 +122,12 @@ pub fn parse_nff_with_limits(text: &str, file: &str, limits: &Limits) -> Result<
 /// The entity keywords, for the unknown-keyword message.
 const KEYWORDS: &str = "v, b, l, f, c, s, p, pp";
 
+/// Largest accepted colour channel, light intensity, Kd, Ks or T. NFF colours and
+/// coefficients lie in [0, 1]; the margin admits over-bright lights while keeping the
+/// ray tree's products (at most nine such factors down to depth 5) far from f32 overflow,
+/// so a finite scene never renders an infinite pixel.
+pub const MAX_COEFFICIENT: f32 = 1000.0;
+
 struct Parser<'a> {
     lines: std::iter::Peekable<std::iter::Enumerate<std::str::Split<'a, char>>>,
     file: &'a str,
@@ -221,6 +227,23 @@ impl<'a> Parser<'a> {
         Ok(out)
     }
 
+    /// Checks a colour channel or shading coefficient against `[0, MAX_COEFFICIENT]`.
+    fn coefficient(&self, line: usize, value: f32, what: &str) -> Result<f32, NffError> {
+        if !(0.0..=MAX_COEFFICIENT).contains(&value) {
+            return Err(self.error(
+                line,
+                format!("{what} {value} must lie between 0 and {MAX_COEFFICIENT}"),
+            ));
+        }
+        Ok(value)
+    }
+
+    /// An RGB triple whose channels are coefficients (see [`Parser::coefficient`]).
+    fn color(&self, line: usize, [r, g, b]: [f32; 3], what: &str) -> Result<Rgb, NffError> {
+        let channel = |v: f32| self.coefficient(line, v, what);
+        Ok(Rgb::new(channel(r)?, channel(g)?, channel(b)?))
+    }
+
     fn geometry(&self, line: usize, what: &str, e: GeometryError) -> NffError {
         self.error(line, format!("invalid {what}: {e}"))
     }
@@ -259,15 +282,17 @@ impl<'a> Parser<'a> {
                     view = Some((n, self.view_block(n)?));
                 }
                 "b" => {
-                    let [r, g, b] = self.numbers(n, args, "background colour r g b")?;
-                    background = Rgb::new(r, g, b);
+                    let rgb = self.numbers(n, args, "background colour r g b")?;
+                    background = self.color(n, rgb, "background colour channel")?;
                 }
                 "l" => {
                     let (position, color) = match args.len() {
                         3 => (self.numbers::<3>(n, args, "light position x y z")?, None),
                         6 => {
                             let v = self.numbers::<6>(n, args, "light position and colour")?;
-                            ([v[0], v[1], v[2]], Some(Rgb::new(v[3], v[4], v[5])))
+                            let color =
+                                self.color(n, [v[3], v[4], v[5]], "light colour channel")?;
+                            ([v[0], v[1], v[2]], Some(color))
                         }
                         found => {
                             return Err(self.error(
@@ -285,6 +310,18 @@ impl<'a> Parser<'a> {
                 "f" => {
                     let [r, g, b, kd, ks, shine, t, ior] =
                         self.numbers(n, args, "material r g b Kd Ks Shine T index_of_refraction")?;
+                    let color = self.color(n, [r, g, b], "material colour channel")?;
+                    let kd = self.coefficient(n, kd, "diffuse coefficient Kd")?;
+                    let ks = self.coefficient(n, ks, "specular coefficient Ks")?;
+                    let t = self.coefficient(n, t, "transmittance T")?;
+                    // A negative Phong exponent would make the highlight grow without
+                    // bound as the angle widens.
+                    if !(shine >= 0.0) {
+                        return Err(self.error(
+                            n,
+                            format!("Phong exponent Shine {shine} must not be negative"),
+                        ));
+                    }
                     // SPD files write ior 0 for opaque materials; only a transmitter uses it.
                     if t > 0.0 && ior <= 0.0 {
                         return Err(self.error(
@@ -293,7 +330,7 @@ impl<'a> Parser<'a> {
                         ));
                     }
                     materials.push(Material {
-                        color: Rgb::new(r, g, b),
+                        color,
                         kd,
                         ks,
                         shine,
@@ -646,6 +683,21 @@ mod tests {
             ("f 1 1 1 1 0 0 0.5 0\n", 8, "must be positive"),
             ("f 1 1 1 1 0 0 0 0\nq\n", 9, "unknown keyword 'q'"),
             ("b 1 1\n", 8, "background"),
+            (
+                "b 0 -0.5 0\n",
+                8,
+                "background colour channel -0.5 must lie between 0 and 1000",
+            ),
+            ("l 0 0 0 1 1 2000\n", 8, "light colour channel 2000"),
+            (
+                "f 1 1 1 1 1e19 20 0 1\n",
+                8,
+                "specular coefficient Ks 10000000000000000000",
+            ),
+            ("f 1 1 1 -1 0 20 0 1\n", 8, "diffuse coefficient Kd -1"),
+            ("f 1 1 1 1 0 20 1001 1\n", 8, "transmittance T 1001"),
+            ("f 1 1e30 1 1 0 20 0 1\n", 8, "material colour channel"),
+            ("f 1 1 1 1 0.5 -2 0 1\n", 8, "Shine -2 must not be negative"),
         ];
         for (body, line, needle) in cases {
             let (got_line, message) = err_line(body);

@@ -470,7 +470,9 @@ fn color_contribution<C: Counter>(
     if let (Some(mirror), true) = (mirror, m.ks > 0.0) {
         let cos_alpha = c.dot(mirror, l);
         if cos_alpha > 0.0 {
-            color += light.color * (m.ks * c.pow(cos_alpha, m.shine));
+            // Unit vectors give cos ≤ 1, but the approximate square roots can leave it a
+            // few per cent above, where SPD's exponent 100000 would overflow to infinity.
+            color += light.color * (m.ks * c.pow(cos_alpha.min(1.0), m.shine));
         }
     }
     color
