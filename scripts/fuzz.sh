@@ -100,6 +100,8 @@ done
 echo "== $(ls "$seeds" | wc -l) seeds in $seeds, $(ls "$corpus" | wc -l) inputs in $corpus"
 
 stamp=$(date +%Y%m%d-%H%M%S)
+# The code fuzzed: the commit when the run starts (-dirty with uncommitted changes).
+commit=$(git -C "$root" describe --always --dirty 2> /dev/null || echo "?")
 run_dir=$work/runs/$stamp
 artifacts=$work/artifacts/$stamp
 mkdir -p "$run_dir" "$artifacts"
@@ -153,7 +155,6 @@ corpus_size=$(ls "$corpus" | wc -l)
 
 summary_header="date	commit	workers	executions	wall_s	exec_per_s	cov	ft	corpus	crashes	timeouts	ooms"
 [[ -f $work/campaign.tsv ]] || echo "$summary_header" > "$work/campaign.tsv"
-commit=$(git -C "$root" rev-parse --short HEAD 2> /dev/null || echo "?")
 echo "$stamp	$commit	$workers	$executions	$wall	$per_second	$cov	$features	$corpus_size	$crashes	$timeouts	$ooms" >> "$work/campaign.tsv"
 
 echo "== done in ${wall}s"
