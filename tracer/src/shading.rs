@@ -432,6 +432,15 @@ impl<'s, I: Intersector> Shader<'s, I> {
         let along = c.scale(ray.dir, hit.t);
         let point = c.add(ray.origin, along);
         let (mut normal, mut facing) = self.normals(hit, point, c);
+        // A hit point that rounds onto a sphere's centre or a cylinder's or cone's axis
+        // (a radius below the f32 spacing of the coordinates, or a cone's tip) has no
+        // radial direction, and normalizing the zero vector gives NaN. Such a point
+        // shows no orientation at any resolution: shade it as facing the ray.
+        // (Polygon and patch planes are unit vectors checked when they are built.)
+        if !facing.is_finite() {
+            facing = ray.dir.flipped();
+            normal = facing;
+        }
         let front = c.dot(facing, ray.dir) < 0.0;
         if !front {
             facing = facing.flipped();
