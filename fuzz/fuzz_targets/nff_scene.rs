@@ -26,9 +26,18 @@ fn pool() -> &'static rayon::ThreadPool {
     })
 }
 
+/// With `NFF_SCENE_SHOW=1` every input's outcome is printed (for triage: running the
+/// binary on files executes each once).
+fn show() -> bool {
+    static SHOW: OnceLock<bool> = OnceLock::new();
+    *SHOW.get_or_init(|| std::env::var_os("NFF_SCENE_SHOW").is_some_and(|v| v == "1"))
+}
+
 fuzz_target!(|data: &[u8]| {
     let text = String::from_utf8_lossy(data);
-    if let Err(defect) = pool().install(|| tracer::fuzz_check::parse_and_render_tiny(&text, "fuzz.nff")) {
-        panic!("{defect}");
+    match pool().install(|| tracer::fuzz_check::parse_and_render_tiny(&text, "fuzz.nff")) {
+        Err(defect) => panic!("{defect}"),
+        Ok(outcome) if show() => eprintln!("outcome: {outcome:?}"),
+        Ok(_) => {}
     }
 });
