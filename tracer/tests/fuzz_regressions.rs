@@ -118,9 +118,14 @@ enum Shape {
 fn generated_inputs_at_the_size_limits_render() {
     let view =
         "v\nfrom 0 0 -5\nat 0 0 0\nup 0 1 0\nangle 40\nhither 0\nresolution 32 24\nl 0 0 -9\n";
-    // Too large to keep as files: a 10 000-vertex star polygon, and a patch with exactly
-    // Limits::max_polygon_vertices (65536) vertices, which the limit admits.
+    // Too large to keep as files: a 10 000-vertex star polygon, a patch with exactly
+    // Limits::max_polygon_vertices (65536) vertices, which the limit admits, and 70 000
+    // coincident spheres (more equal centroids than a BVH leaf holds: split by count).
     let cases = [
+        (
+            "coincident-spheres-70000.nff",
+            format!("{view}{}", "s 0 0 0 1\n".repeat(70_000)),
+        ),
         (
             "star-10000.nff",
             format!("{view}p 10000\n{}", outline(10_000, Shape::Star, false)),
