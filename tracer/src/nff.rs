@@ -143,9 +143,10 @@ pub const MAX_COORDINATE: f32 = 1e9;
 
 /// Accepted index of refraction of a transmitting material (real materials lie between
 /// 1 and 4). Snell's law computes the refracted direction as `eta (D + cos_i N) - cos_t N`,
-/// which scales the rounding error of `D + cos_i N` by the relative index `eta`; with an
-/// index of 1e19 the "unit" direction came out 1e10 long, and the intersection tests,
-/// which rely on unit directions, produced points whose shading overflowed to NaN.
+/// which scales the rounding error of `D + cos_i N` by the relative index `eta`: its
+/// length is off by up to 2e-6 at `eta` = 100, but by 1e14 at 5e18 (measured near normal
+/// incidence), and the intersection tests, which rely on unit directions, then reported
+/// hits whose shading was NaN or infinite.
 pub const IOR_RANGE: (f32, f32) = (0.01, 100.0);
 
 /// Largest accepted colour channel, light intensity, Kd, Ks or T. NFF colours and
