@@ -34,6 +34,7 @@ pub mod color;
 pub mod counter;
 pub mod eye_space;
 pub mod fast_sqrt;
+pub mod fuzz_check;
 pub mod generators;
 pub mod image_io;
 pub mod nff;

@@ -232,8 +232,41 @@ pub fn parse_nff_with_limits(text: &str, file: &str, limits: &Limits) -> Result<
     .parse()
 }
 
+/// A number for an error message: plain where that is short, in exponent form for very
+/// large or small magnitudes (`1e19`, not twenty digits).
+fn shown(v: f32) -> String {
+    if v == 0.0 || (1e-3..1e7).contains(&v.abs()) {
+        format!("{v}")
+    } else {
+        format!("{v:e}")
+    }
+}
+
 /// The entity keywords, for the unknown-keyword message.
 const KEYWORDS: &str = "v, b, l, f, c, s, p, pp";
+
+/// Largest accepted magnitude of a coordinate, radius or direction component. f32 keeps
+/// about seven significant digits, so no scene that renders with visible detail comes
+/// near it (the SPD scenes stay below 150). Within it every product the tracer forms stays
+/// finite: a difference of two points is at most 2·√3·1e9 ≈ 3.5e9 long, its square
+/// 1.2e19, and the fourth-degree terms of the polygon and view checks at most 1.4e38,
+/// below f32::MAX (3.4e38). Beyond it, a light and a hit point far enough apart make
+/// `light - point` overflow to infinity and the shading NaN.
+pub const MAX_COORDINATE: f32 = 1e9;
+
+/// Accepted index of refraction of a transmitting material (real materials lie between
+/// 1 and 4). Snell's law computes the refracted direction as `eta (D + cos_i N) - cos_t N`,
+/// which scales the rounding error of `D + cos_i N` by the relative index `eta`: its
+/// length is off by up to 2e-6 at `eta` = 100, but by 1e14 at 5e18 (measured near normal
+/// incidence), and the intersection tests, which rely on unit directions, then reported
+/// hits whose shading was NaN or infinite.
+pub const IOR_RANGE: (f32, f32) = (0.01, 100.0);
+
+/// Largest accepted colour channel, light intensity, Kd, Ks or T. NFF colours and
+/// coefficients lie in [0, 1]; the margin admits over-bright lights while keeping the
+/// ray tree's products (at most nine such factors down to depth 5) far from f32 overflow,
+/// so a finite scene never renders an infinite pixel.
+pub const MAX_COEFFICIENT: f32 = 1000.0;
 
 struct Parser<'a> {
     lines: std::iter::Peekable<std::iter::Enumerate<std::str::Split<'a, char>>>,
@@ -353,6 +386,47 @@ impl<'a> Parser<'a> {
         Ok(())
     }
 
+    /// Exactly `N` numbers in `tokens`, each a coordinate (see [`MAX_COORDINATE`]).
+    fn coordinates<const N: usize>(
+        &self,
+        line: usize,
+        tokens: &[&str],
+        what: &str,
+    ) -> Result<[f32; N], NffError> {
+        let values = self.numbers::<N>(line, tokens, what)?;
+        if let Some(v) = values.iter().find(|v| !(v.abs() <= MAX_COORDINATE)) {
+            return Err(self.error(
+                line,
+                format!(
+                    "{} is beyond the supported coordinate range ±{} (expected {what})",
+                    shown(*v),
+                    shown(MAX_COORDINATE)
+                ),
+            ));
+        }
+        Ok(values)
+    }
+
+    /// Checks a colour channel or shading coefficient against `[0, MAX_COEFFICIENT]`.
+    fn coefficient(&self, line: usize, value: f32, what: &str) -> Result<f32, NffError> {
+        if !(0.0..=MAX_COEFFICIENT).contains(&value) {
+            return Err(self.error(
+                line,
+                format!(
+                    "{what} {} must lie between 0 and {MAX_COEFFICIENT}",
+                    shown(value)
+                ),
+            ));
+        }
+        Ok(value)
+    }
+
+    /// An RGB triple whose channels are coefficients (see [`Parser::coefficient`]).
+    fn color(&self, line: usize, [r, g, b]: [f32; 3], what: &str) -> Result<Rgb, NffError> {
+        let channel = |v: f32| self.coefficient(line, v, what);
+        Ok(Rgb::new(channel(r)?, channel(g)?, channel(b)?))
+    }
+
     fn geometry(&self, line: usize, what: &str, e: GeometryError) -> NffError {
         self.error(line, format!("invalid {what}: {e}"))
     }
@@ -391,15 +465,20 @@ impl<'a> Parser<'a> {
                     view = Some((n, self.view_block(n)?));
                 }
                 "b" => {
-                    let [r, g, b] = self.numbers(n, args, "background colour r g b")?;
-                    background = Rgb::new(r, g, b);
+                    let rgb = self.numbers(n, args, "background colour r g b")?;
+                    background = self.color(n, rgb, "background colour channel")?;
                 }
                 "l" => {
                     let (position, color) = match args.len() {
-                        3 => (self.numbers::<3>(n, args, "light position x y z")?, None),
+                        3 => (
+                            self.coordinates::<3>(n, args, "light position x y z")?,
+                            None,
+                        ),
                         6 => {
-                            let v = self.numbers::<6>(n, args, "light position and colour")?;
-                            ([v[0], v[1], v[2]], Some(Rgb::new(v[3], v[4], v[5])))
+                            let position =
+                                self.coordinates::<3>(n, &args[..3], "light position x y z")?;
+                            let rgb = self.numbers::<3>(n, &args[3..], "light colour r g b")?;
+                            (position, Some(self.color(n, rgb, "light colour channel")?))
                         }
                         found => {
                             return Err(self.error(
@@ -417,15 +496,32 @@ impl<'a> Parser<'a> {
                 "f" => {
                     let [r, g, b, kd, ks, shine, t, ior] =
                         self.numbers(n, args, "material r g b Kd Ks Shine T index_of_refraction")?;
-                    // SPD files write ior 0 for opaque materials; only a transmitter uses it.
-                    if t > 0.0 && ior <= 0.0 {
+                    let color = self.color(n, [r, g, b], "material colour channel")?;
+                    let kd = self.coefficient(n, kd, "diffuse coefficient Kd")?;
+                    let ks = self.coefficient(n, ks, "specular coefficient Ks")?;
+                    let t = self.coefficient(n, t, "transmittance T")?;
+                    // A negative Phong exponent would make the highlight grow without
+                    // bound as the angle widens.
+                    if !(shine >= 0.0) {
                         return Err(self.error(
                             n,
-                            format!("index of refraction {ior} of a transmitting material (T = {t}) must be positive"),
+                            format!("Phong exponent Shine {} must not be negative", shown(shine)),
+                        ));
+                    }
+                    // SPD files write ior 0 for opaque materials; only a transmitter uses it.
+                    if t > 0.0 && !(IOR_RANGE.0..=IOR_RANGE.1).contains(&ior) {
+                        return Err(self.error(
+                            n,
+                            format!(
+                                "index of refraction {} of a transmitting material (T = {t}) must lie between {} and {}",
+                                shown(ior),
+                                IOR_RANGE.0,
+                                IOR_RANGE.1
+                            ),
                         ));
                     }
                     materials.push(Material {
-                        color: Rgb::new(r, g, b),
+                        color,
                         kd,
                         ks,
                         shine,
@@ -435,7 +531,8 @@ impl<'a> Parser<'a> {
                 }
                 "s" => {
                     self.count_primitive(n)?;
-                    let [x, y, z, r] = self.numbers(n, args, "sphere centre x y z and radius")?;
+                    let [x, y, z, r] =
+                        self.coordinates(n, args, "sphere centre x y z and radius")?;
                     let m = current_material(&mut materials);
                     scene_parts
                         .spheres
@@ -448,13 +545,13 @@ impl<'a> Parser<'a> {
                     let [bx, by, bz, br, ax, ay, az, ar] = if args.is_empty() {
                         let base = self.required_line("cone base line 'x y z radius'")?;
                         let [bx, by, bz, br] =
-                            self.numbers(base.number, &base.tokens, "cone base x y z radius")?;
+                            self.coordinates(base.number, &base.tokens, "cone base x y z radius")?;
                         let apex = self.required_line("cone apex line 'x y z radius'")?;
                         let [ax, ay, az, ar] =
-                            self.numbers(apex.number, &apex.tokens, "cone apex x y z radius")?;
+                            self.coordinates(apex.number, &apex.tokens, "cone apex x y z radius")?;
                         [bx, by, bz, br, ax, ay, az, ar]
                     } else {
-                        self.numbers(n, args, "cone base x y z radius and apex x y z radius")?
+                        self.coordinates(n, args, "cone base x y z radius and apex x y z radius")?
                     };
                     let m = current_material(&mut materials);
                     let (b, a) = (Vec3::new(bx, by, bz), Vec3::new(ax, ay, az));
@@ -483,13 +580,16 @@ impl<'a> Parser<'a> {
                         };
                         let v = self.required_line(&expect)?;
                         if patch {
-                            let [x, y, z, nx, ny, nz] =
-                                self.numbers(v.number, &v.tokens, "patch vertex x y z nx ny nz")?;
+                            let [x, y, z, nx, ny, nz] = self.coordinates(
+                                v.number,
+                                &v.tokens,
+                                "patch vertex x y z nx ny nz",
+                            )?;
                             vertices.push(Vec3::new(x, y, z));
                             normals.push(Vec3::new(nx, ny, nz));
                         } else {
                             let [x, y, z] =
-                                self.numbers(v.number, &v.tokens, "polygon vertex x y z")?;
+                                self.coordinates(v.number, &v.tokens, "polygon vertex x y z")?;
                             vertices.push(Vec3::new(x, y, z));
                         }
                     }
@@ -595,7 +695,7 @@ impl<'a> Parser<'a> {
             match key {
                 "from" => {
                     duplicate(from.is_some())?;
-                    from = Some(Vec3::from_array(self.numbers(
+                    from = Some(Vec3::from_array(self.coordinates(
                         n,
                         args,
                         "eye position x y z",
@@ -603,7 +703,7 @@ impl<'a> Parser<'a> {
                 }
                 "at" => {
                     duplicate(at.is_some())?;
-                    at = Some(Vec3::from_array(self.numbers(
+                    at = Some(Vec3::from_array(self.coordinates(
                         n,
                         args,
                         "look-at point x y z",
@@ -611,7 +711,7 @@ impl<'a> Parser<'a> {
                 }
                 "up" => {
                     duplicate(up.is_some())?;
-                    up = Some(Vec3::from_array(self.numbers(
+                    up = Some(Vec3::from_array(self.coordinates(
                         n,
                         args,
                         "up vector x y z",
@@ -779,9 +879,50 @@ mod tests {
             ),
             ("l 1 2\n", 8, "expected 3 numbers"),
             ("f 1 1 1 1 0 0 0\n", 8, "expected 8 numbers"),
-            ("f 1 1 1 1 0 0 0.5 0\n", 8, "must be positive"),
+            (
+                "f 1 1 1 1 0 0 0.5 0\n",
+                8,
+                "index of refraction 0 of a transmitting material (T = 0.5) must lie between 0.01 and 100",
+            ),
+            ("f 1 1 1 1 0 0 0.5 5e18\n", 8, "index of refraction 5e18"),
+            (
+                "f 1 1 1 1 0 0 0.5 0.001\n",
+                8,
+                "must lie between 0.01 and 100",
+            ),
             ("f 1 1 1 1 0 0 0 0\nq\n", 9, "unknown keyword 'q'"),
             ("b 1 1\n", 8, "background"),
+            (
+                "b 0 -0.5 0\n",
+                8,
+                "background colour channel -0.5 must lie between 0 and 1000",
+            ),
+            ("l 0 0 0 1 1 2000\n", 8, "light colour channel 2000"),
+            ("f 1 1 1 1 1e19 20 0 1\n", 8, "specular coefficient Ks 1e19"),
+            ("f 1 1 1 -1 0 20 0 1\n", 8, "diffuse coefficient Kd -1"),
+            ("f 1 1 1 1 0 20 1001 1\n", 8, "transmittance T 1001"),
+            ("f 1 1e30 1 1 0 20 0 1\n", 8, "material colour channel"),
+            ("f 1 1 1 1 0.5 -2 0 1\n", 8, "Shine -2 must not be negative"),
+            (
+                "s 0 0 1e10 1\n",
+                8,
+                "1e10 is beyond the supported coordinate range ±1e9",
+            ),
+            (
+                "s 0 0 0 -2e9\n",
+                8,
+                "-2e9 is beyond the supported coordinate range",
+            ),
+            ("l 3e38 0 0\n", 8, "3e38 is beyond"),
+            (
+                "l 0 0 0 1 x 1\n",
+                8,
+                "'x' is not a number (expected light colour r g b)",
+            ),
+            ("l 0 -1e20 0 1 1 1\n", 8, "-1e20 is beyond"),
+            ("c\n0 0 0 1\n0 0 1e12 1\n", 10, "1e12 is beyond"),
+            ("p 3\n0 0 0\n1 0 0\n0 1.1e9 0\n", 11, "1.1e9 is beyond"),
+            ("pp 3\n0 0 0 0 0 1e30\n", 9, "1e30 is beyond"),
         ];
         for (body, line, needle) in cases {
             let (got_line, message) = err_line(body);
@@ -791,6 +932,23 @@ mod tests {
                 "{body:?}: '{message}' lacks '{needle}'"
             );
         }
+    }
+
+    #[test]
+    fn geometry_spanning_the_coordinate_range_keeps_finite_normals() {
+        // The largest edges the range admits: their cross product's squared length
+        // (the degeneracy test) must not overflow to infinity and reject the polygon.
+        let scene = parse("p 3\n-1e9 -1e9 -1e9\n1e9 -1e9 1e9\n-1e9 1e9 1e9\nl 1e9 1e9 -1e9\n")
+            .unwrap_or_else(|e| panic!("{e}"));
+        let n = scene.polygons[0].normal().to_array();
+        let length: f32 = n.iter().map(|v| v * v).sum();
+        assert!((length - 1.0).abs() < 1e-6, "{n:?}");
+        // (2,0,2) × (0,2,2) = (-4,-4,4): the unit normal is (-1,-1,1)/√3.
+        let s = 1.0 / 3f32.sqrt();
+        assert!(
+            n.iter().zip([-s, -s, s]).all(|(a, b)| (a - b).abs() < 1e-6),
+            "{n:?}"
+        );
     }
 
     #[test]
@@ -838,6 +996,12 @@ mod tests {
                 "no 'at' line",
             ),
             ("v\nfrom 0 0 0\nfrom 0 0 0\n", 3, "given twice"),
+            (
+                "v\nfrom 1e30 0 -10\nat -1e30 0 0\nup 0 1 0\nangle 40\nresolution 8 8\n",
+                2,
+                "1e30 is beyond the supported coordinate range",
+            ),
+            ("v\nfrom 0 0 0\nat 0 0 1\nup 0 2e9 0\n", 4, "2e9 is beyond"),
         ];
         for (text, line, needle) in cases {
             match parse_nff(text, "v.nff") {

@@ -439,9 +439,11 @@ impl<'s, I: Intersector> Shader<'s, I> {
         let along = c.scale(ray.dir, hit.t);
         let point = c.add(ray.origin, along);
         let (mut normal, mut facing) = self.normals(hit, point, c);
-        // A quadric far thinner than its coordinates' precision (radius 1e-20 at
-        // distance 1) can be hit exactly on its centre or axis, where the normal is 0/0.
-        // Such a surface is seen edge-on: face the ray rather than shade with NaN.
+        // A hit point that rounds onto a sphere's centre or a cylinder's or cone's axis
+        // (a radius below the f32 spacing of the coordinates, or a cone's tip) has no
+        // radial direction, and normalizing the zero vector gives NaN. Such a point
+        // shows no orientation at any resolution: shade it as facing the ray.
+        // (Polygon and patch planes are unit vectors checked when they are built.)
         if !facing.is_finite() || !normal.is_finite() {
             facing = ray.dir.flipped();
             normal = facing;
@@ -484,7 +486,9 @@ fn color_contribution<C: Counter>(
     if let (Some(mirror), true) = (mirror, m.ks > 0.0) {
         let cos_alpha = c.dot(mirror, l);
         if cos_alpha > 0.0 {
-            color += light.color * (m.ks * c.pow(cos_alpha, m.shine));
+            // Unit vectors give cos ≤ 1, but the approximate square roots can leave it a
+            // few per cent above, where SPD's exponent 100000 would overflow to infinity.
+            color += light.color * (m.ks * c.pow(cos_alpha.min(1.0), m.shine));
         }
     }
     color
