@@ -71,6 +71,11 @@ pub enum Defect {
         line: usize,
         lines: usize,
     },
+    #[error("fuzz_check::RENDERS lists a variant set that does not parse: '{variants}': {message}")]
+    BadVariantSet {
+        variants: &'static str,
+        message: String,
+    },
     #[error("the scene parsed but variants '{variants}' could not render it: {error}")]
     RenderFailed {
         variants: &'static str,
@@ -118,8 +123,10 @@ pub fn parse_and_render_tiny(text: &str, file: &str) -> Result<Outcome, Defect> 
         }
     };
     for (variants, sampling, mode) in RENDERS {
-        let set = VariantSet::parse(variants)
-            .unwrap_or_else(|e| panic!("fuzz_check::RENDERS lists a bad variant set: {e}"));
+        let set = VariantSet::parse(variants).map_err(|e| Defect::BadVariantSet {
+            variants,
+            message: e.to_string(),
+        })?;
         let options = RenderOptions::new(TINY_WIDTH, TINY_HEIGHT, sampling, mode);
         let out = render_variant::<NoCount>(&scene, &options, &set, &|_| {})
             .map_err(|error| Defect::RenderFailed { variants, error })?;

@@ -308,15 +308,24 @@ fn zero_length_patch_normals_are_a_parse_error_naming_the_vertex() {
 }
 
 #[test]
-fn tiny_and_huge_patch_normals_are_normalized() {
-    // |n|² underflows (1e-25² = 1e-50) or overflows (1e25² = 1e50) in f32; the normals
-    // are still directions and shade like unit ones.
+fn tiny_patch_normals_are_normalized_and_huge_ones_refused() {
+    // |n|² underflows (1e-25² = 1e-50) in f32; the normal is still a direction and
+    // shades like a unit one. Components beyond the coordinate range (±1e9, where
+    // products start to overflow) are refused on their line.
     let patch = |n: &str| {
         format!("b 0.25 0.5 0.75\n{VIEW}l 0 0 -5\npp 3\n-2 -2 0 {n}\n2 -2 0 {n}\n0 2 0 {n}\n")
     };
     let unit = render_all(&parse(&patch("0 0 -1")));
+    let huge = tracer::parse_nff(&patch("0 0 -1e25"), "edge.nff")
+        .err()
+        .map(|e| e.to_string())
+        .unwrap_or_default();
+    assert!(
+        huge.starts_with("edge.nff:11:") && huge.contains("coordinate range"),
+        "{huge}"
+    );
     // Scaled by their largest component first: exactly (0, 0, -1) again.
-    for n in ["0 0 -1e-25", "0 0 -1e25"] {
+    for n in ["0 0 -1e-25", "0 0 -1e-20"] {
         let scene = parse(&patch(n));
         let normal = scene.patches[0].normals[0].to_array();
         assert!((normal[2] + 1.0).abs() < 1e-6, "{n}: {normal:?}");
