@@ -604,6 +604,30 @@ mod tests {
     }
 
     #[test]
+    fn highlight_of_slightly_long_vectors_stays_finite_at_spd_exponents() {
+        // An approximate root that underestimates (fast-sqrt-tuned) leaves "unit" vectors
+        // a few per cent too long: aligned, their dot is 1.03² ≈ 1.06, and 1.06^100000
+        // overflows. With the cosine clamped the highlight is that of aligned unit
+        // vectors: Ks × light colour.
+        let m = Material {
+            color: Rgb::BLACK,
+            kd: 0.0,
+            ks: 0.5,
+            shine: 100_000.0,
+            t: 0.0,
+            ior: 1.0,
+        };
+        let light = Light {
+            position: Vec3::ZERO,
+            color: Rgb::new(0.2, 0.4, 0.8),
+            color_given: true,
+        };
+        let long = Vec3::new(0.0, 1.03, 0.0);
+        let got = color_contribution(&m, &light, 1.0, Some(long), long, &mut NoCount);
+        assert_eq!(got, Rgb::new(0.1, 0.2, 0.4));
+    }
+
+    #[test]
     fn reflection_mirrors_about_the_normal() {
         let r = reflect(
             Vec3::new(1.0, -1.0, 0.0),
