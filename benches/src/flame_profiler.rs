@@ -16,8 +16,7 @@
 //! loop and the thread start included), since a benchmark has no single root to cut at.
 
 use analysis::profile::folded::{flamegraph_svg, folded};
-use analysis::profile::names::clean_symbol;
-use analysis::profile::sampler::process_cpu_time;
+use analysis::profile::sampler::{process_cpu_time, root_first_names};
 use analysis::profile::{Stack, StackSamples};
 use criterion::profiler::Profiler;
 use std::collections::BTreeMap;
@@ -103,19 +102,7 @@ impl Profiler for FlameProfiler {
 fn stack_samples(report: &pprof::Report, cpu: Duration) -> StackSamples {
     let mut merged: BTreeMap<Vec<String>, u64> = BTreeMap::new();
     for (frames, &count) in &report.data {
-        // pprof lists frames innermost first, and the symbols of one frame (inlined
-        // functions first) innermost first too: reverse both for root-first order.
-        let mut names: Vec<String> = frames
-            .frames
-            .iter()
-            .rev()
-            .flat_map(|frame| {
-                frame
-                    .iter()
-                    .rev()
-                    .map(|symbol| clean_symbol(&symbol.name()))
-            })
-            .collect();
+        let mut names = root_first_names(frames);
         // A function split by the compiler resolves to its own name twice in a row.
         names.dedup();
         if names.is_empty() {

@@ -89,19 +89,7 @@ pub fn sample<T>(
 
     let mut merged: BTreeMap<Vec<String>, u64> = BTreeMap::new();
     for (frames, &count) in &report.data {
-        // pprof lists frames innermost first, and the symbols of one frame (inlined
-        // functions first) innermost first too: reverse both for root-first order.
-        let names: Vec<String> = frames
-            .frames
-            .iter()
-            .rev()
-            .flat_map(|frame| {
-                frame
-                    .iter()
-                    .rev()
-                    .map(|symbol| clean_symbol(&symbol.name()))
-            })
-            .collect();
+        let names = root_first_names(frames);
         let stack = match (
             names.iter().position(|n| is_profiled(n)),
             names.iter().rposition(|n| is_profiled(n)),
@@ -148,6 +136,23 @@ pub fn sample<T>(
 fn collapse_repeats(mut frames: Vec<String>) -> Vec<String> {
     frames.dedup();
     frames
+}
+
+/// The cleaned symbol names of one sampled stack, root first. pprof lists frames
+/// innermost first, and the symbols of one frame (inlined functions first) innermost
+/// first too: both are reversed.
+pub fn root_first_names(frames: &pprof::Frames) -> Vec<String> {
+    frames
+        .frames
+        .iter()
+        .rev()
+        .flat_map(|frame| {
+            frame
+                .iter()
+                .rev()
+                .map(|symbol| clean_symbol(&symbol.name()))
+        })
+        .collect()
 }
 
 #[cfg(test)]
