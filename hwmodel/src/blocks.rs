@@ -94,6 +94,35 @@ pub struct Pipeline {
 }
 
 impl Pipeline {
+    /// Each table block's operators and delay lines, as `rtprof hw table --detail`
+    /// prints them.
+    pub fn detail_text(&self) -> String {
+        let p = self;
+        let mut out = String::new();
+        for b in p.table_blocks() {
+            let s = &b.schedule;
+            out += &format!("\n{}: {} cycles\n  operators:", b.name, s.latency);
+            for (op, n) in &s.op_counts {
+                out += &format!(" {}×{n}", op.key());
+            }
+            out += "\n  delay lines (bits × cycles):";
+            if s.delay_lines.is_empty() {
+                out += " none";
+            }
+            for l in &s.delay_lines {
+                out += &format!(
+                    "\n    {:<28} {:>3} × {:>3}{}",
+                    l.producer,
+                    l.bits,
+                    l.cycles,
+                    if l.in_memory { "  (memory)" } else { "" }
+                );
+            }
+            out += "\n";
+        }
+        out
+    }
+
     /// Builds and schedules every block of `design`.
     pub fn build(lib: &Library, design: &Design) -> Self {
         Self {

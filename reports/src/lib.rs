@@ -4,7 +4,6 @@
 //! schema `rtprof.results/1`), this crate turns it into charts (SVG), one
 //! self-contained HTML file and a typeset PDF. It never renders a scene.
 
-pub mod benchmarks;
 pub mod charts;
 pub mod findings;
 pub mod gallery;

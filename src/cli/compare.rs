@@ -2,19 +2,16 @@
 //! one scene (time with a bootstrap interval, speed-up, image error, counts), all
 //! against the first image or variant.
 
-use super::scene_args::{LimitArgs, parse_size, thread_pool};
-use analysis::{
-    Band, Comparison, Estimate, P3Histograms, RgbImage, compare, difference_heat_map,
-    median_with_bootstrap, p3_histograms, to_p3,
-};
+use super::progress::Bars;
+use super::scene_args::{LimitArgs, parse_size};
 use anyhow::{Context, Result, bail};
-use indicatif::{ProgressBar, ProgressStyle};
-use serde::Serialize;
+use runner::compare::{VariantsReport, compare_variants};
+use runner::pool::thread_pool;
+use runner::timing::TimingPolicy;
+use runner::variant_job::RenderSetup;
 use std::path::{Path, PathBuf};
-use tracer::image_io::write_rgb8;
-use tracer::{
-    Count, Counts, NoCount, RenderOptions, Sampling, ShadingMode, VariantSet, render_variant,
-};
+use std::sync::atomic::AtomicBool;
+use tracer::{RenderOptions, Sampling, ShadingMode, VariantSet};
 
 #[derive(clap::Args, Debug)]
 pub struct CompareArgs {
@@ -52,108 +49,24 @@ pub struct CompareArgs {
 pub fn run(args: &CompareArgs) -> Result<()> {
     match (&args.variants, args.inputs.as_slice()) {
         (None, [a, b]) => compare_images(args, a, b),
-        (Some(list), [scene]) => compare_variants(args, scene, list),
+        (Some(list), [scene]) => side_by_side(args, scene, list),
         (None, [_]) => bail!("give two images to compare, or a scene with --variants A,B,…"),
         (Some(_), _) => bail!("--variants takes one scene, not two inputs"),
         _ => bail!("give two images to compare, or a scene with --variants A,B,…"),
     }
 }
 
-fn load(path: &Path) -> Result<RgbImage> {
-    RgbImage::load(path).with_context(|| format!("cannot read image {}", path.display()))
-}
-
-fn write_png(path: &Path, img: &RgbImage) -> Result<()> {
-    Ok(write_rgb8(path, img.width, img.height, &img.data)?)
-}
-
-/// `compare IMG_A IMG_B --json`: the metrics (method 1 histograms included) and the
-/// thesis's method 2, histograms computed from each image's plain-text PPM form.
-#[derive(Serialize)]
-struct ImageReport<'a> {
-    #[serde(flatten)]
-    metrics: &'a Comparison,
-    p3_histograms_a: P3Histograms,
-    p3_histograms_b: P3Histograms,
-}
-
 fn compare_images(args: &CompareArgs, a: &Path, b: &Path) -> Result<()> {
-    let (img_a, img_b) = (load(a)?, load(b)?);
-    let metrics = compare(&img_a, &img_b)?;
-    if let Some(out) = &args.output {
-        write_png(out, &difference_heat_map(&img_a, &img_b)?)?;
-    }
+    let report = runner::compare::compare_images(a, b, args.output.as_deref(), args.json)?;
     if args.json {
-        let report = ImageReport {
-            metrics: &metrics,
-            p3_histograms_a: p3_histograms(&to_p3(&img_a))?,
-            p3_histograms_b: p3_histograms(&to_p3(&img_b))?,
-        };
         println!("{}", serde_json::to_string_pretty(&report)?);
     } else {
-        println!(
-            "{} vs {} ({}x{})",
-            a.display(),
-            b.display(),
-            metrics.width,
-            metrics.height
-        );
-        print_metrics(&metrics);
-        if let Some(out) = &args.output {
-            println!("difference heat map: {}", out.display());
-        }
+        print!("{}", report.to_text());
     }
     Ok(())
 }
 
-fn print_metrics(m: &Comparison) {
-    println!("RMS            {:.3} ({})", m.rms, m.band.name());
-    if m.psnr.is_finite() {
-        println!("PSNR           {:.2} dB", m.psnr);
-    } else {
-        println!("PSNR           infinite (identical)");
-    }
-    println!("SSIM           {:.5}", m.ssim);
-    println!("max |diff|     {}", m.max_abs_diff);
-    println!("mean |diff|    {:.3}", m.mean_abs_diff);
-    println!(
-        "differing px   {} of {}",
-        m.differing_pixels,
-        u64::from(m.width) * u64::from(m.height)
-    );
-}
-
-/// One variant's row of `compare SCENE --variants`.
-#[derive(Serialize)]
-struct VariantRow {
-    name: String,
-    seconds: Estimate,
-    /// Preprocessing (scene preparation, structure build) of the first timed run.
-    preprocessing_seconds: f64,
-    /// Reference median / this median.
-    speedup: f64,
-    rms: f64,
-    band: Band,
-    /// `null` when the images are identical (infinite PSNR).
-    psnr: Option<f64>,
-    ssim: f64,
-    max_abs_diff: u8,
-    counts: Counts,
-}
-
-#[derive(Serialize)]
-struct VariantsReport {
-    scene: String,
-    width: u32,
-    height: u32,
-    spd: bool,
-    threads: usize,
-    repeats: u32,
-    reference: String,
-    variants: Vec<VariantRow>,
-}
-
-fn compare_variants(args: &CompareArgs, scene_path: &Path, list: &str) -> Result<()> {
+fn side_by_side(args: &CompareArgs, scene_path: &Path, list: &str) -> Result<()> {
     let sets = list
         .split(',')
         .map(str::trim)
@@ -177,163 +90,39 @@ fn compare_variants(args: &CompareArgs, scene_path: &Path, list: &str) -> Result
     let mut options = RenderOptions::new(width, height, sampling, ShadingMode::Color);
     options.limits = args.limits.limits();
     let pool = thread_pool(args.threads)?;
-    let threads = pool.current_num_threads();
-
-    let renders_per_variant = u64::from(args.repeats) + 1;
-    let bar = ProgressBar::new(sets.len() as u64 * renders_per_variant);
-    bar.set_style(
-        ProgressStyle::with_template(
-            "{spinner} {msg:<24} [{bar:30}] {pos}/{len} renders, {elapsed}",
-        )
-        .unwrap_or_else(|_| ProgressStyle::default_bar())
-        .progress_chars("=> "),
-    );
-    let fail = |e: tracer::RenderError| anyhow::anyhow!("{}: {e}", scene_path.display());
-
-    struct Measured {
-        name: String,
-        seconds: Estimate,
-        preprocessing: f64,
-        image: RgbImage,
-        counts: Counts,
-    }
-    let mut measured = Vec::with_capacity(sets.len());
-    for (index, set) in sets.iter().enumerate() {
-        bar.set_message(set.to_string());
-        let mut times = Vec::with_capacity(args.repeats as usize);
-        let mut image = None;
-        let mut preprocessing = 0.0;
-        for _ in 0..args.repeats {
-            let out = pool
-                .install(|| render_variant::<NoCount>(&scene, &options, set, &|_| {}))
-                .map_err(fail)?;
-            times.push((out.preprocessing + out.tracing).as_secs_f64());
-            if image.is_none() {
-                preprocessing = out.preprocessing.as_secs_f64();
-                let frame = &out.rendered.frame;
-                image = Some(RgbImage::new(frame.width, frame.height, frame.to_rgb8())?);
-            }
-            bar.inc(1);
-        }
-        let counted = pool
-            .install(|| render_variant::<Count>(&scene, &options, set, &|_| {}))
-            .map_err(fail)?;
-        let counts = counted
-            .rendered
-            .counts()
-            .context("the counted render returned no counts")?;
-        bar.inc(1);
-        let seconds = median_with_bootstrap(&times, 10_000, 0.95, 0x5EED + index as u64)?;
-        let image = image.context("no timed render ran")?;
-        if let Some(dir) = &args.output {
-            write_png(&dir.join(format!("{set}.png")), &image)?;
-        }
-        measured.push(Measured {
-            name: set.to_string(),
-            seconds,
-            preprocessing,
-            image,
-            counts,
-        });
-    }
-    bar.finish_and_clear();
-
-    let reference = &measured[0];
-    let mut rows = Vec::with_capacity(measured.len());
-    for m in &measured {
-        let metrics = compare(&reference.image, &m.image)?;
-        if let (Some(dir), false) = (&args.output, std::ptr::eq(m, reference)) {
-            let heat = difference_heat_map(&reference.image, &m.image)?;
-            write_png(&dir.join(format!("{}-diff.png", m.name)), &heat)?;
-        }
-        rows.push(VariantRow {
-            name: m.name.clone(),
-            seconds: m.seconds,
-            preprocessing_seconds: m.preprocessing,
-            speedup: reference.seconds.median / m.seconds.median.max(1e-12),
-            rms: metrics.rms,
-            band: metrics.band,
-            psnr: metrics.psnr.is_finite().then_some(metrics.psnr),
-            ssim: metrics.ssim,
-            max_abs_diff: metrics.max_abs_diff,
-            counts: m.counts,
-        });
-    }
+    let name = scene_path.display().to_string();
+    let never = AtomicBool::new(false);
+    let setup = RenderSetup {
+        scene: &scene,
+        name: &name,
+        options: &options,
+        pool: &pool,
+        stop: &never,
+    };
+    // --repeats renders at least; no minimum time, so the count is what was asked.
+    let policy = TimingPolicy::new(args.repeats, 0.0);
+    let rows = compare_variants(
+        &setup,
+        &sets,
+        &policy,
+        args.output.as_deref(),
+        &Bars::default(),
+    )?;
     let report = VariantsReport {
-        scene: scene_path.display().to_string(),
+        scene: name,
         width,
         height,
         spd: args.spd,
-        threads,
+        threads: pool.current_num_threads(),
         repeats: args.repeats,
-        reference: reference.name.clone(),
+        time_covers: "tracing",
+        reference: sets[0].to_string(),
         variants: rows,
     };
     if args.json {
         println!("{}", serde_json::to_string_pretty(&report)?);
     } else {
-        print_variants(&report);
+        print!("{}", report.to_text());
     }
     Ok(())
-}
-
-fn print_variants(r: &VariantsReport) {
-    println!(
-        "{}: {}x{}{}, {} thread{}, {} repeat{}, against {}",
-        r.scene,
-        r.width,
-        r.height,
-        if r.spd { " (SPD)" } else { "" },
-        r.threads,
-        if r.threads == 1 { "" } else { "s" },
-        r.repeats,
-        if r.repeats == 1 { "" } else { "s" },
-        r.reference
-    );
-    let width = r
-        .variants
-        .iter()
-        .map(|v| v.name.len())
-        .max()
-        .unwrap_or(8)
-        .max(7);
-    println!(
-        "{:<width$}  {:>9}  {:>21}  {:>8}  {:>7}  {:<17}  {:>7}  {:>7}  {:>12}  {:>8}",
-        "variant",
-        "median s",
-        "95 % interval",
-        "speedup",
-        "RMS",
-        "band",
-        "PSNR",
-        "SSIM",
-        "tests",
-        "rays"
-    );
-    let reference_rays = r.variants.first().map(|v| v.counts.rays);
-    for v in &r.variants {
-        let t = &v.counts.tests;
-        let tests =
-            t.sphere.tests + t.cylinder.tests + t.cone.tests + t.polygon.tests + t.patch.tests;
-        let psnr = v.psnr.map_or("inf".to_string(), |p| format!("{p:.1}"));
-        let rays = if Some(v.counts.rays) == reference_rays {
-            "same"
-        } else {
-            "differ"
-        };
-        println!(
-            "{:<width$}  {:>9.4}  [{:>9.4}, {:>9.4}]  {:>7.2}x  {:>7.3}  {:<17}  {:>7}  {:>7.4}  {:>12}  {:>8}",
-            v.name,
-            v.seconds.median,
-            v.seconds.low,
-            v.seconds.high,
-            v.speedup,
-            v.rms,
-            v.band.name(),
-            psnr,
-            v.ssim,
-            tests,
-            rays
-        );
-    }
 }

@@ -2,9 +2,8 @@
 //! saved results files (for a CI that keeps its runs): exit 1 when a variant is
 //! significantly slower or any count changed, 0 otherwise.
 
-use anyhow::{Context, Result};
-use reports::results::Results;
-use std::path::{Path, PathBuf};
+use anyhow::Result;
+use std::path::PathBuf;
 
 #[derive(clap::Args, Debug)]
 pub struct GateArgs {
@@ -23,15 +22,9 @@ pub struct GateArgs {
     json: bool,
 }
 
-fn load(path: &Path) -> Result<Results> {
-    let text =
-        std::fs::read_to_string(path).with_context(|| format!("cannot read {}", path.display()))?;
-    Results::from_json(&text).with_context(|| path.display().to_string())
-}
-
 pub fn run(args: &GateArgs) -> Result<()> {
-    let old = load(&args.old)?;
-    let new = load(&args.new)?;
+    let old = super::report::load_results(&args.old)?;
+    let new = super::report::load_results(&args.new)?;
     let gate = reports::gate::compare_runs(&old, &new, args.threshold / 100.0);
     if args.json {
         println!("{}", serde_json::to_string_pretty(&gate)?);

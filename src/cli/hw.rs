@@ -3,20 +3,16 @@
 //! the measured software), `render` (the image the hardware would show) and `mif` (the
 //! scene memory as an Altera Memory Initialization File).
 
-use super::scene_args::{parse_size, thread_pool};
-use analysis::median_with_bootstrap;
-use anyhow::{Context, Result, bail};
+use super::scene_args::parse_size;
+use anyhow::{Context, Result};
 use hwmodel::blocks::Pipeline;
 use hwmodel::design::Design;
-use hwmodel::device::{Fit, demand, fit, largest_units};
 use hwmodel::hw_scene::HwScene;
 use hwmodel::library::{DeviceSpec, Library, device_names, find_device};
-use hwmodel::pipeline::{FrameTiming, frame_timing};
 use hwmodel::table::{Row, Tables, tables};
-use serde::Serialize;
+use runner::hardware_prediction::{TimeRequest, time_report};
 use std::path::{Path, PathBuf};
-use std::time::Instant;
-use tracer::{NoCount, RenderOptions, Sampling, Scene, ShadingMode, VariantSet, load_nff};
+use tracer::{Scene, load_nff};
 
 #[derive(clap::Args, Debug)]
 pub struct HwArgs {
@@ -189,7 +185,7 @@ fn table(args: &TableArgs) -> Result<()> {
     }
     print!("{}", format_tables(&t, &lib, &device));
     if args.detail {
-        print!("{}", format_detail(&Pipeline::build(&lib, &design)));
+        print!("{}", Pipeline::build(&lib, &design).detail_text());
     }
     Ok(())
 }
@@ -252,293 +248,26 @@ fn format_tables(t: &Tables, lib: &Library, device: &DeviceSpec) -> String {
     out
 }
 
-fn format_detail(p: &Pipeline) -> String {
-    let mut out = String::new();
-    for b in p.table_blocks() {
-        let s = &b.schedule;
-        out += &format!("\n{}: {} cycles\n  operators:", b.name, s.latency);
-        for (op, n) in &s.op_counts {
-            out += &format!(" {}×{n}", op.key());
-        }
-        out += "\n  delay lines (bits × cycles):";
-        if s.delay_lines.is_empty() {
-            out += " none";
-        }
-        for l in &s.delay_lines {
-            out += &format!(
-                "\n    {:<28} {:>3} × {:>3}{}",
-                l.producer,
-                l.bits,
-                l.cycles,
-                if l.in_memory { "  (memory)" } else { "" }
-            );
-        }
-        out += "\n";
-    }
-    out
-}
-
 // ----------------------------------------------------------------------------- time
-
-/// One design's prediction for a scene.
-#[derive(Serialize)]
-struct Prediction {
-    design: String,
-    #[serde(flatten)]
-    timing: FrameTiming,
-    fits: bool,
-    utilization: hwmodel::device::Utilization,
-    #[serde(rename = "fit")]
-    detail: Fit,
-    /// The largest number of intersection units that fits this device.
-    largest_units: Option<u32>,
-}
-
-/// Measured software time of the same job.
-#[derive(Serialize)]
-struct Software {
-    seconds: f64,
-    low: f64,
-    high: f64,
-    threads: u16,
-    repeats: u32,
-    /// Software seconds / hardware seconds.
-    speedup: f64,
-}
-
-#[derive(Serialize)]
-struct TimeReport {
-    scene: String,
-    device: String,
-    device_validated: bool,
-    #[serde(flatten)]
-    prediction: Prediction,
-    /// The thesis's design on the same scene, when a what-if changed it.
-    thesis_design: Option<Prediction>,
-    software: Option<Software>,
-    /// Primitives the hardware cannot hold that were left out (--ignore-unsupported).
-    ignored: Option<String>,
-}
-
-fn predict(
-    lib: &Library,
-    device: &DeviceSpec,
-    design: &Design,
-    primitives: u64,
-    (width, height): (u32, u32),
-    clock_hz: f64,
-) -> Prediction {
-    let pipeline = Pipeline::build(lib, design);
-    let timing = frame_timing(&pipeline, primitives, width, height, clock_hz);
-    let f = fit(
-        lib,
-        device,
-        demand(lib, &pipeline, primitives, width, height),
-    );
-    Prediction {
-        design: design.label(),
-        timing,
-        fits: f.fits,
-        utilization: f.utilization.clone(),
-        detail: f,
-        largest_units: largest_units(lib, device, design, primitives, width, height),
-    }
-}
 
 fn time(args: &TimeArgs) -> Result<()> {
     let (lib, device) = args.what_if.device()?;
     let scene = load_scene(&args.scene)?;
-    let (primitives, ignored) = match HwScene::from_scene(&scene) {
-        Ok(hw) => (hw.primitive_count() as u64, None),
-        Err(e) if args.ignore_unsupported => {
-            let n = scene.spheres.len() + scene.cylinders.len();
-            (n as u64, Some(e.to_string()))
-        }
-        Err(e) => bail!(
-            "{}: {e}\n(pass --ignore-unsupported to time its spheres and cylinders alone)",
-            args.scene.display()
-        ),
+    let request = TimeRequest {
+        name: args.scene.display().to_string(),
+        design: args.what_if.design(),
+        size: args.size,
+        clock_hz: args.clock * 1e6,
+        ignore_unsupported: args.ignore_unsupported,
+        software: args.vs_software.then_some((args.threads, args.repeats)),
     };
-    let clock_hz = args.clock * 1e6;
-    let design = args.what_if.design();
-    let prediction = predict(&lib, &device, &design, primitives, args.size, clock_hz);
-    let thesis_design = (!design.is_thesis()).then(|| {
-        predict(
-            &lib,
-            &device,
-            &Design::thesis(),
-            primitives,
-            args.size,
-            clock_hz,
-        )
-    });
-    let software = if args.vs_software {
-        Some(measure_software(args, &scene, prediction.timing.seconds)?)
-    } else {
-        None
-    };
-    let report = TimeReport {
-        scene: args.scene.display().to_string(),
-        device: device.name.clone(),
-        device_validated: lib.validated && device.validated,
-        prediction,
-        thesis_design,
-        software,
-        ignored,
-    };
+    let report = time_report(&scene, &lib, &device, &request)?;
     if args.json {
         println!("{}", serde_json::to_string_pretty(&report)?);
     } else {
-        print!("{}", format_time(&report));
+        print!("{}", report.to_text());
     }
     Ok(())
-}
-
-fn measure_software(args: &TimeArgs, scene: &Scene, hw_seconds: f64) -> Result<Software> {
-    let (width, height) = args.size;
-    let options = RenderOptions::new(
-        width,
-        height,
-        Sampling::PixelCenters,
-        ShadingMode::DiffuseOnly,
-    );
-    let variants = VariantSet::parse("baseline")?;
-    let pool = thread_pool(Some(args.threads))?;
-    let mut samples = Vec::with_capacity(args.repeats as usize);
-    for run in 0..args.repeats {
-        eprint!("\rsoftware render {}/{}", run + 1, args.repeats);
-        let start = Instant::now();
-        pool.install(|| tracer::render_variant::<NoCount>(scene, &options, &variants, &|_| {}))
-            .with_context(|| args.scene.display().to_string())?;
-        samples.push(start.elapsed().as_secs_f64());
-    }
-    eprintln!();
-    let est = median_with_bootstrap(&samples, 2000, 0.95, 0x5eed)?;
-    Ok(Software {
-        seconds: est.median,
-        low: est.low,
-        high: est.high,
-        threads: args.threads,
-        repeats: args.repeats,
-        speedup: est.median / hw_seconds,
-    })
-}
-
-fn pct(x: f64) -> String {
-    format!("{:.1} %", x * 100.0)
-}
-
-fn format_prediction_column(p: &Prediction) -> Vec<String> {
-    let f = &p.detail;
-    vec![
-        p.design.clone(),
-        p.timing.units.to_string(),
-        p.timing.cycles_per_pixel.to_string(),
-        p.timing.fill_cycles.to_string(),
-        p.timing.cycles.to_string(),
-        format!(
-            "{:.6} s ({:.1} fps)",
-            p.timing.seconds,
-            1.0 / p.timing.seconds
-        ),
-        format!("{} ({})", f.used.le, pct(f.utilization.le)),
-        format!(
-            "{} ({}){}",
-            f.used.mult,
-            pct(f.utilization.mult),
-            if f.soft_mult_elements > 0 {
-                format!(" + {} in logic", f.soft_mult_elements)
-            } else {
-                String::new()
-            }
-        ),
-        format!("{} ({})", f.used.mem_bits, pct(f.utilization.mem_bits)),
-        format!("{} ({})", f.plls, pct(f.utilization.plls)),
-        if f.fits {
-            "yes".to_string()
-        } else {
-            format!("no ({} over)", f.over.join(", "))
-        },
-        p.largest_units
-            .map_or_else(|| "none".to_string(), |k| k.to_string()),
-    ]
-}
-
-fn format_time(r: &TimeReport) -> String {
-    let p = &r.prediction;
-    let mut out = format!(
-        "{}: {} primitives, {}x{} at {} MHz on {}{}\n",
-        r.scene,
-        p.timing.primitives,
-        p.timing.width,
-        p.timing.height,
-        p.timing.clock_hz / 1e6,
-        r.device,
-        if r.device_validated {
-            ""
-        } else {
-            " (unvalidated)"
-        }
-    );
-    if let Some(ignored) = &r.ignored {
-        out += &format!("left out: {ignored}\n");
-    }
-    let labels = [
-        "design",
-        "units K",
-        "cycles per pixel",
-        "fill cycles",
-        "cycles",
-        "frame time",
-        "LEs",
-        "9-bit multipliers",
-        "memory bits",
-        "PLLs",
-        "fits",
-        "largest K that fits",
-    ];
-    let mut columns = Vec::new();
-    if let Some(t) = &r.thesis_design {
-        columns.push(format_prediction_column(t));
-    }
-    columns.push(format_prediction_column(p));
-    for (i, label) in labels.iter().enumerate() {
-        out += &format!("  {label:<20}");
-        for c in &columns {
-            out += &format!(" {:<34}", c[i]);
-        }
-        out += "\n";
-    }
-    if let Some(t) = &r.thesis_design {
-        out += &format!(
-            "  what-if vs thesis: {:.2}x the frame rate, {:+.1} % LEs\n",
-            t.timing.seconds / p.timing.seconds,
-            (p.detail.used.le as f64 / t.detail.used.le as f64 - 1.0) * 100.0
-        );
-    }
-    if p.detail.soft_mult_elements > 0 {
-        out += &format!(
-            "  multiplier rule: {} elements beyond the device's {} are built in logic ({} LEs)\n",
-            p.detail.soft_mult_elements, p.detail.used.mult, p.detail.soft_mult_le
-        );
-    }
-    if let Some(s) = &r.software {
-        out += &format!(
-            "  software (baseline, diffuse-only gray, {} thread{}): {:.4} s [{:.4}, {:.4}] → hardware speed-up {:.2}x{}\n",
-            s.threads,
-            if s.threads == 1 { "" } else { "s" },
-            s.seconds,
-            s.low,
-            s.high,
-            s.speedup,
-            if s.speedup < 1.0 {
-                " (the software is faster)"
-            } else {
-                ""
-            }
-        );
-    }
-    out
 }
 
 // --------------------------------------------------------------------- render, mif

@@ -22,8 +22,9 @@ impl std::fmt::Display for Interrupted {
 
 impl std::error::Error for Interrupted {}
 
-/// Installs the handler (once per process; later calls do nothing).
-pub fn install() {
+/// Installs the handler (once per process; later calls do nothing) and returns the
+/// flag it sets, for the runner to check.
+pub fn install() -> &'static AtomicBool {
     // An error means a handler is already installed, which is what we want.
     let _ = ctrlc::set_handler(|| {
         if REQUESTED.swap(true, Ordering::SeqCst) {
@@ -34,6 +35,7 @@ pub fn install() {
             "\nrtprof: interrupted; stopping after the current render (Ctrl-C again to exit now)"
         );
     });
+    &REQUESTED
 }
 
 /// Whether Ctrl-C was pressed.

@@ -6,6 +6,7 @@ mod gate;
 mod hw;
 mod interrupt;
 mod profile;
+mod progress;
 mod render;
 mod report;
 mod scene;

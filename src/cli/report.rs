@@ -33,35 +33,16 @@ pub struct BenchmarkDirs {
 }
 
 impl BenchmarkDirs {
-    /// The directories to read: the ones given, else (when `discover`) those of the
-    /// cargo target directory: `$CARGO_TARGET_DIR`, else the one this binary was built
-    /// in, else ./target.
-    fn resolve(&self, discover: bool) -> (Option<PathBuf>, Option<PathBuf>) {
-        let beside_criterion = || {
-            self.criterion
-                .as_ref()
-                .and_then(|c| c.parent())
-                .map(|target| reports::benchmarks::harness_dirs(target).1)
-                .unwrap_or_default()
-        };
-        match (&self.criterion, &self.instructions) {
-            (Some(c), Some(i)) => (Some(c.clone()), Some(i.clone())),
-            (Some(c), None) => (Some(c.clone()), beside_criterion()),
-            (None, Some(i)) => (None, Some(i.clone())),
-            (None, None) if discover => match target_dir() {
-                Some(target) => reports::benchmarks::harness_dirs(&target),
-                None => (None, None),
-            },
-            (None, None) => (None, None),
-        }
-    }
-
     /// Reads the benchmark figures into `results`, replacing any it had. Says on
     /// stderr what it added.
     pub fn add_to(&self, results: &mut Results, discover: bool) -> Result<()> {
-        let (criterion, instructions) = self.resolve(discover);
+        let (criterion, instructions) = runner::benchmarks::resolve_dirs(
+            self.criterion.as_deref(),
+            self.instructions.as_deref(),
+            discover,
+        );
         if let Some(dir) = criterion {
-            results.criterion = reports::benchmarks::read_criterion_dir(&dir)
+            results.criterion = runner::benchmarks::read_criterion_dir(&dir)
                 .context("cannot add the criterion estimates (--criterion)")?;
             eprintln!(
                 "added {} criterion estimates from {}",
@@ -70,7 +51,7 @@ impl BenchmarkDirs {
             );
         }
         if let Some(dir) = instructions {
-            results.instructions = reports::benchmarks::read_gungraun_dir(&dir)
+            results.instructions = runner::benchmarks::read_gungraun_dir(&dir)
                 .context("cannot add the instruction counts (--instructions)")?;
             eprintln!(
                 "added {} instruction counts from {}",
@@ -80,21 +61,6 @@ impl BenchmarkDirs {
         }
         Ok(())
     }
-}
-
-/// The cargo target directory whose harness output to pick up, if one exists.
-fn target_dir() -> Option<PathBuf> {
-    if let Some(dir) = std::env::var_os("CARGO_TARGET_DIR") {
-        return Some(PathBuf::from(dir));
-    }
-    // <target>/<profile>/rtprof
-    let built_in = std::env::current_exe()
-        .ok()
-        .and_then(|exe| Some(exe.parent()?.parent()?.to_path_buf()));
-    built_in
-        .into_iter()
-        .chain([PathBuf::from("target")])
-        .find(|t| t.join("criterion").is_dir() || t.join("gungraun").is_dir())
 }
 
 /// Writes report.html and report.pdf for `runs` into `dir` (each atomically).
@@ -119,12 +85,17 @@ pub fn write_reports(runs: &[Run], dir: &Path) -> Result<()> {
     Ok(())
 }
 
+/// Reads a results file (any supported schema version), validated.
+pub fn load_results(path: &Path) -> Result<Results> {
+    let text =
+        std::fs::read_to_string(path).with_context(|| format!("cannot read {}", path.display()))?;
+    Results::from_json(&text).with_context(|| path.display().to_string())
+}
+
 pub fn run(args: &ReportArgs) -> Result<()> {
     let mut runs = Vec::new();
     for path in &args.results {
-        let text = std::fs::read_to_string(path)
-            .with_context(|| format!("cannot read {}", path.display()))?;
-        let results = Results::from_json(&text).with_context(|| path.display().to_string())?;
+        let results = load_results(path)?;
         let base_dir = path.parent().map(Path::to_path_buf).unwrap_or_default();
         // Label by machine, then by file when two runs share a machine.
         let mut label = results.machine.hostname.clone();

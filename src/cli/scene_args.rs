@@ -1,14 +1,11 @@
 //! Arguments shared by the commands that render a scene, and the render driver they
 //! share: load, build, run in a thread pool with a progress bar, time each phase.
 
-use anyhow::{Context, Result, bail};
-use indicatif::{ProgressBar, ProgressStyle};
+use super::progress::Bars;
+use anyhow::Result;
+use runner::render_job::{RenderRequest, SceneRender, render_scene};
 use std::path::PathBuf;
-use std::time::{Duration, Instant};
-use tracer::{
-    Counter, Limits, RenderOptions, Rendered, Sampling, Scene, ShadingMode, VariantSet,
-    load_nff_with_limits, render_variant,
-};
+use tracer::{Counter, Limits, Scene, ShadingMode, VariantSet, load_nff_with_limits};
 
 #[derive(clap::Args, Debug)]
 pub struct SceneArgs {
@@ -101,100 +98,19 @@ pub fn parse_size(text: &str) -> Result<(u32, u32), String> {
     Ok((w, h))
 }
 
-/// A rayon pool of `threads` workers (default: one per core), named `rtprof-worker-N`
-/// so that profiles and debuggers show whose stack is whose.
-pub fn thread_pool(threads: Option<u16>) -> Result<rayon::ThreadPool> {
-    let mut pool = rayon::ThreadPoolBuilder::new().thread_name(|i| format!("rtprof-worker-{i}"));
-    if let Some(n) = threads {
-        pool = pool.num_threads(usize::from(n));
-    }
-    pool.build().context("cannot start the worker threads")
-}
-
-/// A finished render with its timings.
-pub struct Run<C> {
-    pub scene: Scene,
-    pub rendered: Rendered<C>,
-    pub preprocessing: Duration,
-    pub tracing: Duration,
-    pub threads: usize,
-    pub variants: VariantSet,
-}
-
 impl SceneArgs {
-    /// Loads the scene, renders it with counter `C` and reports progress on stderr.
-    pub fn run<C: Counter>(&self, mode: ShadingMode) -> Result<Run<C>> {
-        let variants = VariantSet::parse(&self.variant)?;
-        let start = Instant::now();
-        let scene = self.limits.load(&self.scene)?;
-        let parsing = start.elapsed();
-
-        let (width, height) = self.size.unwrap_or((scene.view.width, scene.view.height));
-        let sampling = if self.spd {
-            Sampling::SpdCorners
-        } else {
-            Sampling::PixelCenters
+    /// Loads the scene and renders it with counter `C`, progress on stderr.
+    pub fn run<C: Counter>(&self, mode: ShadingMode) -> Result<SceneRender<C>> {
+        let request = RenderRequest {
+            path: &self.scene,
+            variants: VariantSet::parse(&self.variant)?,
+            size: self.size,
+            spd: self.spd,
+            threads: self.threads,
+            depth: self.depth,
+            limits: self.limits.limits(),
+            mode,
         };
-        let mut options = RenderOptions::new(width, height, sampling, mode);
-        options.limits = self.limits.limits();
-        if let Some(depth) = self.depth {
-            options.max_depth = depth;
-        }
-        options
-            .limits
-            .check_ray_depth(options.max_depth)
-            .map_err(anyhow::Error::msg)?;
-        // Refused before the progress bar and the framebuffer exist.
-        options
-            .limits
-            .check_size(u64::from(width), u64::from(height))
-            .map_err(anyhow::Error::msg)?;
-        let pool = thread_pool(self.threads)?;
-        let threads = pool.current_num_threads();
-
-        let bar = ProgressBar::new(options.sample_rows());
-        bar.set_style(
-            ProgressStyle::with_template(
-                "{spinner} tracing [{bar:40}] {pos}/{len} rows, {elapsed} (eta {eta})",
-            )
-            .unwrap_or_else(|_| ProgressStyle::default_bar())
-            .progress_chars("=> "),
-        );
-        let rendered =
-            pool.install(|| render_variant::<C>(&scene, &options, &variants, &|n| bar.inc(n)));
-        bar.finish_and_clear();
-        let out = match rendered {
-            Ok(r) => r,
-            Err(e) => bail!("{}: {e}", self.scene.display()),
-        };
-        Ok(Run {
-            scene,
-            rendered: out.rendered,
-            preprocessing: parsing + out.preprocessing,
-            tracing: out.tracing,
-            threads,
-            variants,
-        })
-    }
-}
-
-impl<C> Run<C> {
-    /// The SPD-style timing report: preprocessing vs tracing, rays per second.
-    pub fn timing_report(&self, scene_path: &std::path::Path) -> String {
-        let rays = self.rendered.rays;
-        let secs = self.tracing.as_secs_f64().max(1e-9);
-        format!(
-            "{}: {}, variant {}\npreprocessing {:.3} s (parse + build), tracing {:.3} s on {} thread{}\n{} rays ({} eye), {:.0} rays/s",
-            scene_path.display(),
-            self.scene.summary(),
-            self.variants,
-            self.preprocessing.as_secs_f64(),
-            self.tracing.as_secs_f64(),
-            self.threads,
-            if self.threads == 1 { "" } else { "s" },
-            rays.total(),
-            rays.primary,
-            rays.total() as f64 / secs,
-        )
+        Ok(render_scene(&request, &Bars::default())?)
     }
 }

@@ -3,14 +3,14 @@
 //! (`target/gungraun`).
 //!
 //! Both harnesses write one directory per benchmark; this module walks them and keeps
-//! only the figures the reports show, as plain [`results`](crate::results) data. It
+//! only the figures the reports show, as plain `results` data. It
 //! reads files and nothing else: running the benchmarks is `cargo bench`'s job.
 
 use std::path::{Path, PathBuf};
 
 use serde::Deserialize;
 
-use crate::results::{CriterionEstimate, Estimate, InstructionCount, rfc3339_utc};
+use reports::results::{CriterionEstimate, Estimate, InstructionCount, rfc3339_utc};
 
 /// A harness directory that cannot be read.
 #[derive(Debug, thiserror::Error)]
@@ -205,6 +205,48 @@ pub fn read_gungraun_dir(dir: &Path) -> Result<Vec<InstructionCount>, BenchImpor
 pub fn harness_dirs(target: &Path) -> (Option<PathBuf>, Option<PathBuf>) {
     let existing = |name: &str| Some(target.join(name)).filter(|d| d.is_dir());
     (existing("criterion"), existing("gungraun"))
+}
+
+/// The harness directories to read: the ones given, else (when `discover`) those of
+/// the cargo target directory — `$CARGO_TARGET_DIR`, else the one this binary was
+/// built in, else ./target. An instructions directory not given is looked for beside
+/// a given criterion directory.
+pub fn resolve_dirs(
+    criterion: Option<&Path>,
+    instructions: Option<&Path>,
+    discover: bool,
+) -> (Option<PathBuf>, Option<PathBuf>) {
+    let beside_criterion = || {
+        criterion
+            .and_then(|c| c.parent())
+            .map(|target| harness_dirs(target).1)
+            .unwrap_or_default()
+    };
+    match (criterion, instructions) {
+        (Some(c), Some(i)) => (Some(c.to_path_buf()), Some(i.to_path_buf())),
+        (Some(c), None) => (Some(c.to_path_buf()), beside_criterion()),
+        (None, Some(i)) => (None, Some(i.to_path_buf())),
+        (None, None) if discover => match target_dir() {
+            Some(target) => harness_dirs(&target),
+            None => (None, None),
+        },
+        (None, None) => (None, None),
+    }
+}
+
+/// The cargo target directory whose harness output to pick up, if one exists.
+fn target_dir() -> Option<PathBuf> {
+    if let Some(dir) = std::env::var_os("CARGO_TARGET_DIR") {
+        return Some(PathBuf::from(dir));
+    }
+    // <target>/<profile>/rtprof
+    let built_in = std::env::current_exe()
+        .ok()
+        .and_then(|exe| Some(exe.parent()?.parent()?.to_path_buf()));
+    built_in
+        .into_iter()
+        .chain([PathBuf::from("target")])
+        .find(|t| t.join("criterion").is_dir() || t.join("gungraun").is_dir())
 }
 
 #[cfg(test)]

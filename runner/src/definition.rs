@@ -1,0 +1,180 @@
+//! A suite definition (`scenes/suite.toml`, embedded as the default): which scenes at
+//! which size, which variants, how long to time, profile and model, and the smaller
+//! `[quick]` form CI runs.
+
+use serde::Deserialize;
+use tracer::VariantSet;
+
+use crate::error::RunError;
+use crate::timing::TimingPolicy;
+
+/// The default suite, embedded in the binary.
+pub const DEFAULT_SUITE: &str = include_str!("../../scenes/suite.toml");
+
+/// Its name in messages.
+pub const DEFAULT_SUITE_FILE: &str = "suite.toml (embedded)";
+
+/// Least sampled seconds per profile when the definition does not say: the same as
+/// `rtprof profile`.
+fn default_profile_seconds() -> f64 {
+    crate::profile_job::MIN_SAMPLED.as_secs_f64()
+}
+
+/// A suite definition.
+#[derive(Clone, Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct SuiteDef {
+    pub name: String,
+    pub size: [u32; 2],
+    pub repeats: u32,
+    /// Keep repeating a timed render (beyond `repeats`, up to the timing policy's most)
+    /// until this much tracing time is measured.
+    #[serde(default)]
+    pub min_seconds: f64,
+    pub variants: Vec<String>,
+    pub scenes: Vec<String>,
+    pub extra_size: [u32; 2],
+    pub profile_size: [u32; 2],
+    pub profile_frequency: i32,
+    /// Least sampled seconds per profile (a faster render is repeated).
+    #[serde(default = "default_profile_seconds")]
+    pub profile_seconds: f64,
+    pub hardware_repeats: u32,
+    pub quick: Option<QuickDef>,
+}
+
+/// Overrides for `--quick`.
+#[derive(Clone, Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct QuickDef {
+    pub size: Option<[u32; 2]>,
+    pub repeats: Option<u32>,
+    pub min_seconds: Option<f64>,
+    pub variants: Option<Vec<String>>,
+    pub scenes: Option<Vec<String>>,
+    pub extra_size: Option<[u32; 2]>,
+    pub profile_size: Option<[u32; 2]>,
+    pub profile_seconds: Option<f64>,
+    pub hardware_repeats: Option<u32>,
+}
+
+impl SuiteDef {
+    /// Parses a definition and checks it, with and without its `[quick]` overrides
+    /// (`file` names it in errors).
+    pub fn parse(text: &str, file: &str) -> Result<Self, RunError> {
+        let def: SuiteDef = toml::from_str(text).map_err(|e| RunError::Definition {
+            file: file.to_string(),
+            message: e.to_string().trim().to_string(),
+        })?;
+        def.check(file)?;
+        def.clone().quick().check(file).map_err(|e| match e {
+            RunError::Definition { file, message } => RunError::Definition {
+                file,
+                message: format!("in [quick]: {message}"),
+            },
+            other => other,
+        })?;
+        Ok(def)
+    }
+
+    fn check(&self, file: &str) -> Result<(), RunError> {
+        let bad = |message: String| {
+            Err(RunError::Definition {
+                file: file.to_string(),
+                message,
+            })
+        };
+        if self.repeats == 0 || self.repeats > 1000 {
+            return bad("repeats must be 1 to 1000".into());
+        }
+        if !(0.0..=60.0).contains(&self.min_seconds) {
+            return bad("min_seconds must be 0 to 60".into());
+        }
+        if !(0.0..=600.0).contains(&self.profile_seconds) {
+            return bad("profile_seconds must be 0 to 600".into());
+        }
+        if !(10..=10_000).contains(&self.profile_frequency) {
+            return bad("profile_frequency must be 10 to 10000 Hz".into());
+        }
+        match self.variants.first().map(|v| VariantSet::parse(v)) {
+            Some(Ok(set)) if set == VariantSet::default() => {}
+            _ => return bad("the first variant must be baseline (the reference)".into()),
+        }
+        for v in &self.variants {
+            if let Err(e) = VariantSet::parse(v) {
+                return bad(format!("variant '{v}': {e}"));
+            }
+        }
+        for size in [self.size, self.extra_size, self.profile_size] {
+            if let Err(e) =
+                tracer::Limits::default().check_size(u64::from(size[0]), u64::from(size[1]))
+            {
+                return bad(e.to_string());
+            }
+        }
+        Ok(())
+    }
+
+    /// The definition with the `[quick]` overrides applied.
+    pub fn quick(mut self) -> Self {
+        if let Some(q) = self.quick.take() {
+            self.size = q.size.unwrap_or(self.size);
+            self.repeats = q.repeats.unwrap_or(self.repeats);
+            self.min_seconds = q.min_seconds.unwrap_or(self.min_seconds);
+            self.variants = q.variants.unwrap_or(self.variants);
+            self.scenes = q.scenes.unwrap_or(self.scenes);
+            self.extra_size = q.extra_size.unwrap_or(self.extra_size);
+            self.profile_size = q.profile_size.unwrap_or(self.profile_size);
+            self.profile_seconds = q.profile_seconds.unwrap_or(self.profile_seconds);
+            self.hardware_repeats = q.hardware_repeats.unwrap_or(self.hardware_repeats);
+        }
+        self
+    }
+
+    /// How the variants' renders are timed.
+    pub fn timing(&self) -> TimingPolicy {
+        TimingPolicy::new(self.repeats, self.min_seconds)
+    }
+
+    /// How the software side of the hardware comparison is timed.
+    pub fn hardware_timing(&self) -> TimingPolicy {
+        TimingPolicy::new(self.hardware_repeats.max(1), self.min_seconds)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::scenes::resolve_scene;
+    use std::path::Path;
+
+    #[test]
+    fn the_embedded_suite_parses_and_its_quick_form_is_smaller() {
+        let def = SuiteDef::parse(DEFAULT_SUITE, "suite.toml").unwrap();
+        assert_eq!(def.variants[0], "baseline");
+        let quick = def.clone().quick();
+        assert!(quick.size[0] * quick.size[1] < def.size[0] * def.size[1]);
+        assert!(quick.scenes.len() < def.scenes.len());
+        for s in &def.scenes {
+            resolve_scene(s, (8, 8), Path::new(".")).unwrap();
+        }
+    }
+
+    #[test]
+    fn bad_suites_are_refused_with_the_file_name() {
+        let bad = DEFAULT_SUITE.replace("\"baseline\", \"simd\"", "\"simd\", \"baseline\"");
+        let err = SuiteDef::parse(&bad, "x.toml").unwrap_err().to_string();
+        assert!(err.contains("x.toml") && err.contains("baseline"), "{err}");
+        let err = SuiteDef::parse("name = 1", "y.toml")
+            .unwrap_err()
+            .to_string();
+        assert!(err.starts_with("y.toml"), "{err}");
+        // The [quick] overrides are checked too.
+        let bad = DEFAULT_SUITE.replace("min_seconds = 0.02", "min_seconds = -1");
+        let err = SuiteDef::parse(&bad, "z.toml").unwrap_err().to_string();
+        assert!(
+            err.contains("[quick]") && err.contains("min_seconds"),
+            "{err}"
+        );
+    }
+}

@@ -1,0 +1,66 @@
+//! The runner's error type: what failed, with the scene, file or stage it concerns.
+//! Messages carry their cause inline (no `#[source]` chain), so the binary's one-line
+//! error printer shows each cause once.
+
+use std::path::PathBuf;
+
+/// Something the runner could not do.
+#[derive(Debug, thiserror::Error)]
+pub enum RunError {
+    /// A suite definition that cannot be used.
+    #[error("{file}: {message}")]
+    Definition { file: String, message: String },
+    /// Bad input whose message already says where (an NFF error names file and line).
+    #[error("{0}")]
+    Input(String),
+    /// A scene entry that cannot be resolved or parsed.
+    #[error("scene '{scene}': {message}")]
+    Scene { scene: String, message: String },
+    /// A file or directory that cannot be read or written.
+    #[error("cannot {action} {}: {message}", path.display())]
+    Io {
+        action: &'static str,
+        path: PathBuf,
+        message: String,
+    },
+    /// A render that failed.
+    #[error("{context}: {message}")]
+    Render { context: String, message: String },
+    #[error("{0}")]
+    Variant(#[from] tracer::VariantError),
+    #[error("{0}")]
+    Metrics(#[from] analysis::MetricsError),
+    #[error("{0}")]
+    Stats(#[from] analysis::StatsError),
+    /// The sampling profiler or the flamegraph writer failed.
+    #[error("profile: {0}")]
+    Profile(String),
+    /// Benchmark figures that cannot be imported.
+    #[error("{0}")]
+    Benchmarks(#[from] crate::benchmarks::BenchImportError),
+    /// The caller asked the run to stop (Ctrl-C).
+    #[error("stopped on request")]
+    Stopped,
+    /// A suite stopped on request after `done` of its `total` scenes.
+    #[error("stopped on request after {done} of {total} scenes")]
+    StoppedAfter { done: usize, total: usize },
+}
+
+impl RunError {
+    /// An I/O error on `path`.
+    pub fn io(action: &'static str, path: impl Into<PathBuf>, err: &std::io::Error) -> Self {
+        RunError::Io {
+            action,
+            path: path.into(),
+            message: err.to_string(),
+        }
+    }
+
+    /// A render error, said of `context` (a file or scene name).
+    pub fn render(context: impl std::fmt::Display, err: &tracer::RenderError) -> Self {
+        RunError::Render {
+            context: context.to_string(),
+            message: err.to_string(),
+        }
+    }
+}

@@ -1,0 +1,149 @@
+//! The hardware job: the FPGA model's frame time and fit for a scene, the emulator's
+//! image, and the software's time on the same job (baseline, diffuse-only gray, one
+//! thread, like the thesis's software) under the one timing policy. Also the model's
+//! tables 7 and 8 and the thesis design's fit on every device.
+
+use std::sync::atomic::AtomicBool;
+
+use analysis::{Comparison, RgbImage, compare};
+use hwmodel::blocks::Pipeline;
+use hwmodel::design::Design;
+use hwmodel::device::{demand, fit, largest_units};
+use hwmodel::hw_scene::HwScene;
+use hwmodel::library::Library;
+use hwmodel::pipeline::{FrameTiming, frame_timing};
+use reports::results::{DeviceUse, HardwareResult, HwRow};
+use tracer::{NoCount, RenderOptions, Sampling, Scene, ShadingMode, VariantSet, render_variant};
+
+use crate::error::RunError;
+use crate::timing::{Measured, TimingPolicy, measure};
+
+/// The thesis's clock, Hz.
+pub const THESIS_CLOCK_HZ: f64 = 50e6;
+
+/// The software's time on the hardware's job: `scene` at `size`, baseline variant,
+/// diffuse-only gray shading, on `pool`.
+pub fn software_time(
+    scene: &Scene,
+    name: &str,
+    (width, height): (u32, u32),
+    pool: &rayon::ThreadPool,
+    policy: &TimingPolicy,
+    stop: &AtomicBool,
+) -> Result<Measured<tracer::VariantRender<NoCount>>, RunError> {
+    let options = RenderOptions::new(
+        width,
+        height,
+        Sampling::PixelCenters,
+        ShadingMode::DiffuseOnly,
+    );
+    let set = VariantSet::default();
+    measure(policy, stop, || {
+        pool.install(|| render_variant::<NoCount>(scene, &options, &set, &|_| {}))
+            .map_err(|e| RunError::render(name, &e))
+    })
+}
+
+/// The model and emulator on one scene, beside the software.
+pub struct HardwareMeasurement {
+    pub primitives: u64,
+    pub timing: FrameTiming,
+    pub fits: bool,
+    pub software: Measured<tracer::VariantRender<NoCount>>,
+    pub emulator_image: RgbImage,
+    pub software_image: RgbImage,
+    /// Emulator against software.
+    pub comparison: Comparison,
+}
+
+/// Runs the hardware job on `scene` at `size` with the thesis design at 50 MHz on the
+/// EP4CE115.
+pub fn run_hardware(
+    scene: &Scene,
+    hw: &HwScene,
+    name: &str,
+    size: (u32, u32),
+    pool: &rayon::ThreadPool,
+    policy: &TimingPolicy,
+    stop: &AtomicBool,
+) -> Result<HardwareMeasurement, RunError> {
+    let (width, height) = size;
+    let lib = Library::cyclone_iv_e();
+    let pipeline = Pipeline::build(&lib, &Design::thesis());
+    let n = hw.primitive_count() as u64;
+    let timing = frame_timing(&pipeline, n, width, height, THESIS_CLOCK_HZ);
+    let fits = lib
+        .devices
+        .first()
+        .is_some_and(|device| fit(&lib, device, demand(&lib, &pipeline, n, width, height)).fits);
+    let emulated = hwmodel::emulator::render(hw, width, height);
+    let emulator_image = RgbImage::new(width, height, emulated.to_rgb8())?;
+    let software = software_time(scene, name, size, pool, policy, stop)?;
+    let frame = &software.last.rendered.frame;
+    let software_image = RgbImage::new(frame.width, frame.height, frame.to_rgb8())?;
+    let comparison = compare(&software_image, &emulator_image)?;
+    Ok(HardwareMeasurement {
+        primitives: n,
+        timing,
+        fits,
+        software,
+        emulator_image,
+        software_image,
+        comparison,
+    })
+}
+
+/// Tables 7 and 8 and the thesis design's fit on every device (7 primitives, 640x480).
+pub fn hardware_tables() -> HardwareResult {
+    let lib = Library::cyclone_iv_e();
+    let t = hwmodel::table::tables(&lib, &Design::thesis());
+    let row = |r: &hwmodel::table::Row| HwRow {
+        name: r.model.name.clone(),
+        kind: r.kind.to_string(),
+        model: [
+            u64::from(r.model.latency),
+            r.model.le,
+            r.model.comb,
+            r.model.regs,
+            r.model.mem_bits,
+            r.model.mult,
+        ],
+        thesis: r
+            .thesis
+            .as_ref()
+            .map(|t| [t.latency, t.le, t.comb, t.regs, t.mem_bits, t.mult]),
+        error_pct: r
+            .error_pct
+            .as_ref()
+            .map(|e| [e.latency, e.le, e.comb, e.regs, e.mem_bits, e.mult]),
+    };
+    let mut devices = Vec::new();
+    for family in Library::embedded() {
+        let pipeline = Pipeline::build(&family, &Design::thesis());
+        let d = demand(&family, &pipeline, 7, 640, 480);
+        for device in &family.devices {
+            let f = fit(&family, device, d);
+            devices.push(DeviceUse {
+                device: device.name.clone(),
+                validated: f.validated,
+                le: f.used.le,
+                le_capacity: device.le,
+                mult: f.used.mult,
+                mult_capacity: device.mult,
+                soft_mult_elements: f.soft_mult_elements,
+                mem_bits: f.used.mem_bits,
+                mem_capacity: device.mem_bits,
+                plls: f.plls,
+                pll_capacity: device.plls,
+                fits: f.fits,
+                largest_units: largest_units(&family, device, &Design::thesis(), 7, 640, 480),
+            });
+        }
+    }
+    HardwareResult {
+        family: lib.family.clone(),
+        ops: t.ops.iter().map(row).collect(),
+        blocks: t.blocks.iter().map(row).collect(),
+        devices,
+    }
+}

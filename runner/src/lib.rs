@@ -1,0 +1,46 @@
+//! `runner`: the rtprof suite as a library. It measures (renders with `tracer`,
+//! statistics and profiles with `analysis`, the FPGA model with `hwmodel`) and collects
+//! everything into the typed results; it writes nothing but the files a run produces
+//! (images, profiles, flamegraphs) and prints nothing (progress goes to a [`Progress`]).
+//! The binary and a future `serve` command call it; reports are made from its results.
+//!
+//! Modules:
+//! - [`definition`]: the suite definition (scenes/suite.toml) and its `[quick]` form;
+//! - [`scenes`]: suite entries and directories resolved to scene texts;
+//! - [`timing`]: the one timing policy (repeats, minimum measured time, bootstrap) and
+//!   what a time covers (tracing; preprocessing apart);
+//! - [`render_job`]: one render with its phase times (`rtprof render`, `count`);
+//! - [`variant_catalogue`]: what each variant does and how accurate it is;
+//! - [`variant_job`]: one variant on one scene: counts, timed renders, picture;
+//! - [`compare`]: variants side by side (`rtprof compare SCENE --variants`);
+//! - [`profile_job`]: counted + sampled renders into gprof tables, folded stacks, Amdahl;
+//! - [`hardware_job`]: the FPGA model, emulator and software time on the same job;
+//! - [`hardware_prediction`]: `rtprof hw time`: frame time, fit and what-ifs;
+//! - [`collect`]: measurements into results entries;
+//! - [`suite`]: the whole suite into one results value;
+//! - [`benchmarks`]: criterion estimates and instruction counts picked up from disk;
+//! - [`machine`]: machine, build and command line of a run;
+//! - [`staging`]: staged, atomic output; [`pool`]: worker threads;
+//! - [`progress`], [`error`].
+
+pub mod benchmarks;
+pub mod collect;
+pub mod compare;
+pub mod definition;
+pub mod error;
+pub mod hardware_job;
+pub mod hardware_prediction;
+pub mod machine;
+pub mod pool;
+pub mod profile_job;
+pub mod progress;
+pub mod render_job;
+pub mod scenes;
+pub mod staging;
+pub mod suite;
+pub mod timing;
+pub mod variant_catalogue;
+pub mod variant_job;
+
+pub use error::RunError;
+pub use progress::{Progress, Silent};

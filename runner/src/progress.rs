@@ -1,0 +1,22 @@
+//! Progress of long work, reported to whoever runs it (the binary draws bars on
+//! stderr; tests and a future web UI observe the same calls). The runner itself
+//! prints nothing.
+
+/// Receives progress. Every method has a do-nothing default.
+pub trait Progress: Sync {
+    /// A stage of `total` steps begins (`total` 0: a spinner of unknown length).
+    fn begin(&self, _stage: &str, _total: u64) {}
+    /// What is being done now.
+    fn message(&self, _text: &str) {}
+    /// `steps` more steps of the stage are done.
+    fn advance(&self, _steps: u64) {}
+    /// The stage is over.
+    fn end(&self) {}
+    /// Something the user should know (e.g. a render repeated to gather samples).
+    fn note(&self, _text: &str) {}
+}
+
+/// Progress nobody watches.
+pub struct Silent;
+
+impl Progress for Silent {}

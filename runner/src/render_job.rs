@@ -1,0 +1,111 @@
+//! The render job of `rtprof render` and `rtprof count`: load a scene within limits,
+//! render it once with the chosen counter and variants, and time the two phases
+//! (preprocessing = parse + build, tracing) as the SPD rules ask.
+
+use std::path::Path;
+use std::time::{Duration, Instant};
+
+use tracer::{
+    Counter, Limits, RenderOptions, Rendered, Sampling, Scene, ShadingMode, VariantSet,
+    load_nff_with_limits, render_variant,
+};
+
+use crate::error::RunError;
+use crate::pool::thread_pool;
+use crate::progress::Progress;
+
+/// What to render and how.
+pub struct RenderRequest<'a> {
+    pub path: &'a Path,
+    pub variants: VariantSet,
+    /// Image size (default: the scene's resolution).
+    pub size: Option<(u32, u32)>,
+    /// SPD corner sampling.
+    pub spd: bool,
+    pub threads: Option<u16>,
+    /// Ray-tree depth (default: the SPD's 5).
+    pub depth: Option<u32>,
+    pub limits: Limits,
+    pub mode: ShadingMode,
+}
+
+/// A finished render with its timings.
+pub struct SceneRender<C> {
+    pub scene: Scene,
+    pub rendered: Rendered<C>,
+    /// Parse + scene preparation + structure build.
+    pub preprocessing: Duration,
+    pub tracing: Duration,
+    pub threads: usize,
+    pub variants: VariantSet,
+}
+
+/// Loads and renders; progress counts sample rows.
+pub fn render_scene<C: Counter>(
+    req: &RenderRequest<'_>,
+    progress: &dyn Progress,
+) -> Result<SceneRender<C>, RunError> {
+    let start = Instant::now();
+    let scene =
+        load_nff_with_limits(req.path, &req.limits).map_err(|e| RunError::Input(e.to_string()))?;
+    let parsing = start.elapsed();
+    let (width, height) = req.size.unwrap_or((scene.view.width, scene.view.height));
+    let sampling = if req.spd {
+        Sampling::SpdCorners
+    } else {
+        Sampling::PixelCenters
+    };
+    let mut options = RenderOptions::new(width, height, sampling, req.mode);
+    options.limits = req.limits;
+    if let Some(depth) = req.depth {
+        options.max_depth = depth;
+    }
+    // Refused before the progress bar and the framebuffer exist.
+    let refuse = |message: String| RunError::Render {
+        context: req.path.display().to_string(),
+        message,
+    };
+    options
+        .limits
+        .check_ray_depth(options.max_depth)
+        .map_err(|e| refuse(e.to_string()))?;
+    options
+        .limits
+        .check_size(u64::from(width), u64::from(height))
+        .map_err(|e| refuse(e.to_string()))?;
+    let pool = thread_pool(req.threads)?;
+    progress.begin("tracing", options.sample_rows());
+    let out = pool
+        .install(|| render_variant::<C>(&scene, &options, &req.variants, &|n| progress.advance(n)));
+    progress.end();
+    let out = out.map_err(|e| RunError::render(req.path.display(), &e))?;
+    Ok(SceneRender {
+        scene,
+        rendered: out.rendered,
+        preprocessing: parsing + out.preprocessing,
+        tracing: out.tracing,
+        threads: pool.current_num_threads(),
+        variants: req.variants.clone(),
+    })
+}
+
+impl<C> SceneRender<C> {
+    /// The SPD-style timing report: preprocessing vs tracing, rays per second.
+    pub fn timing_report(&self, scene_path: &Path) -> String {
+        let rays = self.rendered.rays;
+        let secs = self.tracing.as_secs_f64().max(1e-9);
+        format!(
+            "{}: {}, variant {}\npreprocessing {:.3} s (parse + build), tracing {:.3} s on {} thread{}\n{} rays ({} eye), {:.0} rays/s",
+            scene_path.display(),
+            self.scene.summary(),
+            self.variants,
+            self.preprocessing.as_secs_f64(),
+            self.tracing.as_secs_f64(),
+            self.threads,
+            if self.threads == 1 { "" } else { "s" },
+            rays.total(),
+            rays.primary,
+            rays.total() as f64 / secs,
+        )
+    }
+}

@@ -1,0 +1,417 @@
+//! The suite: every scene of a definition with every variant (counts, timed renders,
+//! images and their error against the reference), the hardware model and emulator
+//! where the scene allows, and a profile of the heaviest scene; collected into one
+//! [`Results`]. A failing scene or variant is recorded and skipped; the rest stands.
+
+use std::collections::BTreeMap;
+use std::path::Path;
+use std::sync::atomic::{AtomicBool, Ordering};
+use std::time::Instant;
+
+use analysis::{Band, compare, difference_heat_map, gray_histogram};
+use hwmodel::hw_scene::HwScene;
+use reports::results::{
+    Estimate, Failure, ProfileResult, Results, SCHEMA, SceneHardware, SceneResult, SuiteInfo,
+    VariantResult,
+};
+use tracer::{RenderOptions, Sampling, Scene, ShadingMode, VariantSet, parse_nff};
+
+use crate::collect::{count_map, quality, save_profile, slug};
+use crate::definition::SuiteDef;
+use crate::error::RunError;
+use crate::hardware_job::{hardware_tables, run_hardware};
+use crate::machine::{build_info, command_line, machine, now_rfc3339};
+use crate::pool::thread_pool;
+use crate::profile_job::ProfileJob;
+use crate::progress::Progress;
+use crate::scenes::{SceneSpec, extra_scenes, resolve_scene};
+use crate::staging::{save, save_png};
+use crate::variant_job::RenderSetup;
+
+/// A suite ready to run: its definition and its resolved scenes.
+pub struct Suite {
+    pub def: SuiteDef,
+    pub quick: bool,
+    pub scenes: Vec<SceneSpec>,
+}
+
+/// Where a suite's work happens.
+pub struct RunContext<'a> {
+    /// Directory the images, profiles and flamegraphs are written to.
+    pub out: &'a Path,
+    /// Worker threads for the renders (default: one per core).
+    pub threads: Option<u16>,
+    pub progress: &'a dyn Progress,
+    /// Set when the user asks the run to stop; checked before every render.
+    pub stop: &'a AtomicBool,
+}
+
+fn est(e: analysis::Estimate) -> Estimate {
+    Estimate {
+        median: e.median,
+        low: e.low,
+        high: e.high,
+    }
+}
+
+impl Suite {
+    /// Resolves the scenes of `def` (relative paths from `base_dir`) and, when given,
+    /// every NFF file of `extra_dir`: a missing scene fails here, before any work.
+    pub fn prepare(
+        def: SuiteDef,
+        quick: bool,
+        base_dir: &Path,
+        extra_dir: Option<&Path>,
+    ) -> Result<Self, RunError> {
+        let def = if quick { def.quick() } else { def };
+        let size = (def.size[0], def.size[1]);
+        let mut scenes: Vec<SceneSpec> = def
+            .scenes
+            .iter()
+            .map(|s| resolve_scene(s, size, base_dir))
+            .collect::<Result<_, _>>()?;
+        if let Some(dir) = extra_dir {
+            scenes.extend(extra_scenes(dir, (def.extra_size[0], def.extra_size[1]))?);
+        }
+        Ok(Suite { def, quick, scenes })
+    }
+
+    /// Renders per progress step count: scenes × variants.
+    pub fn steps(&self) -> u64 {
+        (self.scenes.len() * self.def.variants.len()) as u64
+    }
+
+    /// Runs everything. Stopping returns [`RunError::StoppedAfter`] with the scenes done.
+    pub fn run(&self, ctx: &RunContext<'_>) -> Result<Results, RunError> {
+        let started = Instant::now();
+        let created = now_rfc3339();
+        let pool = thread_pool(ctx.threads)?;
+        let one_thread = thread_pool(Some(1))?;
+        let runner = SceneRunner {
+            def: &self.def,
+            ctx,
+            pool: &pool,
+            one_thread: &one_thread,
+        };
+        ctx.progress.begin("scenes", self.steps());
+        let mut failures = Vec::new();
+        let mut scenes = Vec::new();
+        let total = self.scenes.len();
+        for (done, spec) in self.scenes.iter().enumerate() {
+            if ctx.stop.load(Ordering::SeqCst) {
+                ctx.progress.end();
+                return Err(RunError::StoppedAfter { done, total });
+            }
+            let outcome = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
+                let mut local = Vec::new();
+                let r = runner.run_scene(spec, &mut local);
+                (r, local)
+            }));
+            match outcome {
+                Ok((Ok(result), local)) => {
+                    failures.extend(local);
+                    scenes.push(result);
+                }
+                Ok((Err(RunError::Stopped), _)) => {
+                    ctx.progress.end();
+                    return Err(RunError::StoppedAfter { done, total });
+                }
+                Ok((Err(e), local)) => {
+                    failures.extend(local);
+                    failures.push(failure(&spec.name, None, &e));
+                }
+                Err(_) => failures.push(Failure {
+                    scene: spec.name.clone(),
+                    variant: None,
+                    message: "internal error (panic) while running this scene; please report it"
+                        .into(),
+                }),
+            }
+        }
+        ctx.progress.end();
+
+        ctx.progress.begin("profile", 0);
+        ctx.progress.message("heaviest scene");
+        let profile = match runner.run_profile(&self.scenes, &scenes) {
+            Ok(p) => p,
+            Err(RunError::Stopped) => {
+                ctx.progress.end();
+                return Err(RunError::StoppedAfter { done: total, total });
+            }
+            Err(e) => {
+                failures.push(failure("profile", None, &e));
+                None
+            }
+        };
+        ctx.progress.end();
+
+        let policy = self.def.timing();
+        Ok(Results {
+            schema: SCHEMA.to_string(),
+            created,
+            command: command_line(),
+            machine: machine(),
+            build: build_info(),
+            suite: SuiteInfo {
+                name: self.def.name.clone(),
+                quick: self.quick,
+                repeats: policy.min_repeats,
+                min_seconds: policy.min_seconds,
+                threads: pool.current_num_threads() as u32,
+                variants: self.def.variants.clone(),
+                wall_seconds: started.elapsed().as_secs_f64(),
+            },
+            scenes,
+            profile,
+            hardware: Some(hardware_tables()),
+            failures,
+            criterion: Vec::new(),
+            instructions: Vec::new(),
+        })
+    }
+}
+
+fn failure(scene: &str, variant: Option<&str>, e: &RunError) -> Failure {
+    Failure {
+        scene: scene.to_string(),
+        variant: variant.map(str::to_string),
+        message: e.to_string(),
+    }
+}
+
+struct SceneRunner<'a> {
+    def: &'a SuiteDef,
+    ctx: &'a RunContext<'a>,
+    pool: &'a rayon::ThreadPool,
+    one_thread: &'a rayon::ThreadPool,
+}
+
+impl SceneRunner<'_> {
+    /// Every variant on one scene, then the hardware job.
+    fn run_scene(
+        &self,
+        spec: &SceneSpec,
+        failures: &mut Vec<Failure>,
+    ) -> Result<SceneResult, RunError> {
+        let scene = parse_nff(&spec.text, &spec.source).map_err(|e| RunError::Scene {
+            scene: spec.name.clone(),
+            message: e.to_string(),
+        })?;
+        let (width, height) = spec.size;
+        let options = RenderOptions::new(width, height, Sampling::PixelCenters, ShadingMode::Color);
+        let setup = RenderSetup {
+            scene: &scene,
+            name: &spec.name,
+            options: &options,
+            pool: self.pool,
+            stop: self.ctx.stop,
+        };
+        let mut variants: Vec<VariantResult> = Vec::new();
+        let mut reference: Option<analysis::RgbImage> = None;
+        let mut reference_median = f64::NAN;
+        for name in &self.def.variants {
+            self.ctx.progress.message(&format!("{} {name}", spec.name));
+            match self.run_variant(spec, &setup, name, reference.as_ref()) {
+                Ok((mut v, image)) => {
+                    if reference.is_none() {
+                        reference_median = v.time.median;
+                        reference = Some(image);
+                    }
+                    v.speedup = reference_median / v.time.median;
+                    variants.push(v);
+                }
+                Err(RunError::Stopped) => return Err(RunError::Stopped),
+                Err(e) => failures.push(failure(&spec.name, Some(name), &e)),
+            }
+            self.ctx.progress.advance(1);
+        }
+        let hardware = match HwScene::from_scene(&scene) {
+            Ok(hw) => match self.run_hardware(spec, &scene, &hw) {
+                Ok(h) => Some(h),
+                Err(RunError::Stopped) => return Err(RunError::Stopped),
+                Err(e) => {
+                    failures.push(failure(&spec.name, Some("hardware"), &e));
+                    None
+                }
+            },
+            Err(_) => None, // polygons etc.: the hardware cannot render it; not a failure
+        };
+        let primitive_counts: BTreeMap<String, u64> = [
+            ("spheres", scene.spheres.len()),
+            ("cylinders", scene.cylinders.len()),
+            ("cones", scene.cones.len()),
+            ("polygons", scene.polygons.len()),
+            ("patches", scene.patches.len()),
+        ]
+        .into_iter()
+        .map(|(kind, n)| (kind.to_string(), n as u64))
+        .collect();
+        Ok(SceneResult {
+            name: spec.name.clone(),
+            source: spec.source.clone(),
+            family: spec.family.clone(),
+            primitives: scene.primitive_count() as u64,
+            primitive_counts,
+            width,
+            height,
+            spd: false,
+            variants,
+            hardware,
+        })
+    }
+
+    /// One variant: measured, its image saved, compared with the reference's.
+    fn run_variant(
+        &self,
+        spec: &SceneSpec,
+        setup: &RenderSetup<'_>,
+        name: &str,
+        reference: Option<&analysis::RgbImage>,
+    ) -> Result<(VariantResult, analysis::RgbImage), RunError> {
+        let set = VariantSet::parse(name)?;
+        let m = setup.measure(&set, &self.def.timing())?;
+        let out = self.ctx.out;
+        let stem = format!("images/{}-{}", slug(&spec.name), slug(name));
+        let image_rel = save_png(out, &format!("{stem}.png"), &m.image)?;
+        let (quality, heat_map) = match reference {
+            Some(base) => {
+                let c = compare(base, &m.image)?;
+                let heat = difference_heat_map(base, &m.image)?;
+                let heat_rel = save_png(out, &format!("{stem}-diff.png"), &heat)?;
+                (Some(quality(&c)), Some(heat_rel))
+            }
+            None => (None, None),
+        };
+        let histogram = gray_histogram(&m.image).to_vec();
+        Ok((
+            VariantResult {
+                variant: name.to_string(),
+                time: est(m.time),
+                samples: m.samples,
+                speedup: 1.0,
+                counts: count_map(&m.counts),
+                image: Some(image_rel),
+                heat_map,
+                quality,
+                histogram,
+            },
+            m.image,
+        ))
+    }
+
+    /// Model time, emulator image, and the software on the same job.
+    fn run_hardware(
+        &self,
+        spec: &SceneSpec,
+        scene: &Scene,
+        hw: &HwScene,
+    ) -> Result<SceneHardware, RunError> {
+        let m = run_hardware(
+            scene,
+            hw,
+            &spec.name,
+            spec.size,
+            self.one_thread,
+            &self.def.hardware_timing(),
+            self.ctx.stop,
+        )?;
+        let out = self.ctx.out;
+        let stem = format!("images/{}", slug(&spec.name));
+        let software_seconds = est(m.software.time);
+        Ok(SceneHardware {
+            primitives: m.primitives,
+            cycles: m.timing.cycles,
+            seconds: m.timing.seconds,
+            fits: m.fits,
+            speedup: software_seconds.median / m.timing.seconds,
+            software_seconds,
+            emulator_rms: m.comparison.rms,
+            emulator_band: Band::of(m.comparison.rms).to_string(),
+            emulator_image: Some(save_png(out, &format!("{stem}-hw.png"), &m.emulator_image)?),
+            software_image: Some(save_png(
+                out,
+                &format!("{stem}-sw-diffuse.png"),
+                &m.software_image,
+            )?),
+        })
+    }
+
+    /// Profiles the heaviest scene: the reference and the fastest variant whose picture
+    /// stays visually identical.
+    fn run_profile(
+        &self,
+        specs: &[SceneSpec],
+        results: &[SceneResult],
+    ) -> Result<Option<ProfileResult>, RunError> {
+        let reference = |s: &SceneResult| s.variants.first().map(|v| v.time.median);
+        let Some(heaviest) = results
+            .iter()
+            .filter_map(|s| Some((s, reference(s)?)))
+            .max_by(|a, b| a.1.total_cmp(&b.1))
+            .map(|(s, _)| s)
+        else {
+            return Ok(None);
+        };
+        let best = heaviest
+            .variants
+            .iter()
+            .skip(1)
+            .filter(|v| {
+                v.quality
+                    .as_ref()
+                    .is_some_and(|q| Band::of(q.rms) == Band::VisuallyIdentical)
+            })
+            .max_by(|a, b| a.speedup.total_cmp(&b.speedup))
+            .map(|v| v.variant.clone());
+        let Some(spec) = specs.iter().find(|s| s.name == heaviest.name) else {
+            return Ok(None);
+        };
+        let scene = parse_nff(&spec.text, &spec.source).map_err(|e| RunError::Scene {
+            scene: spec.name.clone(),
+            message: e.to_string(),
+        })?;
+        let [w, h] = self.def.profile_size;
+        let pool = thread_pool(None)?;
+        let job = ProfileJob {
+            scene: &scene,
+            options: RenderOptions::new(w, h, Sampling::PixelCenters, ShadingMode::Color),
+            pool: &pool,
+            frequency: self.def.profile_frequency,
+            name: &spec.name,
+            min_sampled: std::time::Duration::from_secs_f64(self.def.profile_seconds),
+        };
+        let out = self.ctx.out;
+        let dir = "profile";
+        let base_set = VariantSet::default();
+        let base = job.profile(&base_set, self.ctx.progress)?;
+        let title = format!("{} ({w}x{h}, {base_set})", spec.name);
+        let baseline = save_profile(out, dir, &base, &title)?;
+        let (best_profile, diff) = match &best {
+            Some(name) => {
+                let set = VariantSet::parse(name)?;
+                let p = job.profile(&set, self.ctx.progress)?;
+                let title = format!("{} ({w}x{h}, {name})", spec.name);
+                let saved = save_profile(out, dir, &p, &title)?;
+                let diff_title =
+                    format!("{}: {base_set} → {name} (red grew, blue shrank)", spec.name);
+                let svg = analysis::profile::folded::differential_svg(
+                    &base.folded,
+                    &p.folded,
+                    &diff_title,
+                )
+                .map_err(|e| RunError::Profile(e.to_string()))?;
+                let rel = save(out, &format!("{dir}/flame-diff.svg"), svg.as_bytes())?;
+                (Some(saved), Some(rel))
+            }
+            None => (None, None),
+        };
+        Ok(Some(ProfileResult {
+            scene: spec.name.clone(),
+            width: w,
+            height: h,
+            baseline,
+            best: best_profile,
+            diff_flame_svg: diff,
+        }))
+    }
+}

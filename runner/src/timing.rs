@@ -1,0 +1,188 @@
+//! The one timing policy of rtprof: how many renders are timed, what a time covers and
+//! how the median and its interval are estimated. `rtprof suite`, `rtprof compare` and
+//! `rtprof hw time --vs-software` all measure through [`measure`].
+//!
+//! A time covers **tracing only** (eye rays, intersection, shading); preprocessing
+//! (scene preparation, the BVH or SIMD lanes build) is measured apart and reported
+//! beside it, as the SPD rules ask.
+
+use std::sync::atomic::{AtomicBool, Ordering};
+
+use analysis::{Estimate, median, median_with_bootstrap};
+use std::time::Duration;
+
+use tracer::VariantRender;
+
+use crate::error::RunError;
+
+/// How a render is timed.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct TimingPolicy {
+    /// Timed renders, at least.
+    pub min_repeats: u32,
+    /// More renders (up to `max_repeats`) until this many seconds of tracing are
+    /// measured: a 10 ms render needs more than three samples for a useful interval.
+    pub min_seconds: f64,
+    /// Most timed renders, whatever `min_seconds` asks.
+    pub max_repeats: u32,
+    /// Bootstrap resamples of the median.
+    pub resamples: usize,
+    /// Confidence of the interval.
+    pub confidence: f64,
+    /// Seed of the bootstrap: the same samples always give the same interval.
+    pub seed: u64,
+}
+
+/// The most timed renders of one measurement.
+pub const MAX_REPEATS: u32 = 100;
+/// Resamples of the percentile bootstrap: 10,000 keeps the interval ends stable to
+/// well under 1 % of their width for up to [`MAX_REPEATS`] samples.
+pub const RESAMPLES: usize = 10_000;
+/// 95 % intervals everywhere.
+pub const CONFIDENCE: f64 = 0.95;
+/// The bootstrap seed.
+pub const SEED: u64 = 0x5EED;
+
+impl TimingPolicy {
+    /// `repeats` renders at least, more until `min_seconds` are measured.
+    pub fn new(repeats: u32, min_seconds: f64) -> Self {
+        TimingPolicy {
+            min_repeats: repeats.max(1),
+            min_seconds,
+            max_repeats: MAX_REPEATS.max(repeats),
+            resamples: RESAMPLES,
+            confidence: CONFIDENCE,
+            seed: SEED,
+        }
+    }
+
+    /// Median and interval of `samples` under this policy.
+    pub fn estimate(&self, samples: &[f64]) -> Result<Estimate, RunError> {
+        Ok(median_with_bootstrap(
+            samples,
+            self.resamples,
+            self.confidence,
+            self.seed,
+        )?)
+    }
+}
+
+/// A finished render that says how long its two phases took.
+pub trait PhaseTimes {
+    /// Tracing time (what a measurement's samples are).
+    fn tracing(&self) -> Duration;
+    /// Preprocessing time (reported apart).
+    fn preprocessing(&self) -> Duration;
+}
+
+impl<C> PhaseTimes for VariantRender<C> {
+    fn tracing(&self) -> Duration {
+        self.tracing
+    }
+    fn preprocessing(&self) -> Duration {
+        self.preprocessing
+    }
+}
+
+/// What [`measure`] measured.
+pub struct Measured<R> {
+    /// Tracing seconds of each timed render.
+    pub samples: Vec<f64>,
+    /// Median and interval of `samples`.
+    pub time: Estimate,
+    /// Median preprocessing seconds of the same renders.
+    pub preprocessing: f64,
+    /// The last render (its frame serves as the variant's image).
+    pub last: R,
+}
+
+/// Times `render` under `policy`; `stop` is checked before each render.
+pub fn measure<R: PhaseTimes>(
+    policy: &TimingPolicy,
+    stop: &AtomicBool,
+    mut render: impl FnMut() -> Result<R, RunError>,
+) -> Result<Measured<R>, RunError> {
+    let mut samples = Vec::new();
+    let mut preprocessing = Vec::new();
+    let mut last = None;
+    while samples.len() < policy.min_repeats as usize
+        || (samples.iter().sum::<f64>() < policy.min_seconds
+            && samples.len() < policy.max_repeats as usize)
+    {
+        if stop.load(Ordering::SeqCst) {
+            return Err(RunError::Stopped);
+        }
+        let out = render()?;
+        samples.push(out.tracing().as_secs_f64());
+        preprocessing.push(out.preprocessing().as_secs_f64());
+        last = Some(out);
+    }
+    let last = last.ok_or(RunError::Stopped)?;
+    Ok(Measured {
+        time: policy.estimate(&samples)?,
+        preprocessing: median(&preprocessing).unwrap_or(0.0),
+        samples,
+        last,
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    struct Fake(Duration, Duration);
+
+    impl PhaseTimes for Fake {
+        fn tracing(&self) -> Duration {
+            self.0
+        }
+        fn preprocessing(&self) -> Duration {
+            self.1
+        }
+    }
+
+    fn ms(n: u64) -> Duration {
+        Duration::from_millis(n)
+    }
+
+    #[test]
+    fn repeats_until_the_minimum_time_of_tracing_is_measured() {
+        // 10 ms renders, at least 3, until 0.1 s of tracing: 10 renders. The 1 s of
+        // preprocessing per render must not count towards the minimum.
+        let policy = TimingPolicy::new(3, 0.1);
+        let stop = AtomicBool::new(false);
+        let mut calls = 0;
+        let m = measure(&policy, &stop, || {
+            calls += 1;
+            Ok(Fake(ms(10), ms(1000)))
+        })
+        .unwrap();
+        assert_eq!(calls, 10);
+        assert_eq!(m.samples.len(), 10);
+        assert!((m.time.median - 0.010).abs() < 1e-12);
+        assert!((m.preprocessing - 1.0).abs() < 1e-12);
+    }
+
+    #[test]
+    fn stops_at_the_most_repeats_and_on_request() {
+        let policy = TimingPolicy::new(2, 1e6);
+        let stop = AtomicBool::new(false);
+        let m = measure(&policy, &stop, || Ok(Fake(ms(1), ms(0)))).unwrap();
+        assert_eq!(m.samples.len(), MAX_REPEATS as usize);
+        stop.store(true, Ordering::SeqCst);
+        let r = measure(&policy, &stop, || Ok(Fake(ms(1), ms(0))));
+        assert!(matches!(r, Err(RunError::Stopped)));
+    }
+
+    #[test]
+    fn the_interval_is_reproducible_and_brackets_the_median() {
+        let policy = TimingPolicy::new(5, 0.0);
+        let samples = [0.9, 1.0, 1.1, 1.05, 0.95, 1.2, 0.85];
+        let a = policy.estimate(&samples).unwrap();
+        let b = policy.estimate(&samples).unwrap();
+        assert_eq!(a, b);
+        assert_eq!(a.median, 1.0);
+        assert!(a.low <= a.median && a.median <= a.high);
+        assert!(a.low >= 0.85 && a.high <= 1.2);
+    }
+}
