@@ -7,7 +7,7 @@ use super::scene_args::{LimitArgs, parse_size, thread_pool};
 use analysis::profile::amdahl::{AmdahlRow, amdahl_table, amdahl_text};
 use analysis::profile::folded::{differential_svg, flamegraph_svg, folded};
 use analysis::profile::gprof::{CallGraph, FlatProfile, call_graph, flat_profile};
-use analysis::profile::names::{call_counts, display_name};
+use analysis::profile::names::{BareMethods, display_name};
 use analysis::profile::sampler::sample;
 use analysis::profile::{CallCounts, Stack, StackSamples};
 use anyhow::{Context, Result, bail};
@@ -165,9 +165,10 @@ impl Job<'_> {
             );
         }
         let samples = shorten(&run.samples);
-        let calls: CallCounts = call_counts(&counts)
+        let calls: CallCounts = counts
+            .function_calls()
             .into_iter()
-            .map(|(name, n)| (name, n * renders))
+            .map(|(name, n)| (name.to_string(), n * renders))
             .collect();
         Ok(build_profile(
             set.to_string(),
@@ -193,9 +194,18 @@ impl Job<'_> {
 
 /// Stacks with the reports' short names; stacks that become equal merge.
 fn shorten(samples: &StackSamples) -> StackSamples {
+    let operations = tracer::counter::counted_operations();
+    let bare = BareMethods {
+        owners: &tracer::counter::COUNTING_LAYER,
+        methods: &operations,
+    };
     let mut merged: BTreeMap<Vec<String>, u64> = BTreeMap::new();
     for stack in &samples.stacks {
-        let mut frames: Vec<String> = stack.frames.iter().map(|f| display_name(f)).collect();
+        let mut frames: Vec<String> = stack
+            .frames
+            .iter()
+            .map(|f| display_name(f, &bare))
+            .collect();
         frames.dedup();
         *merged.entry(frames).or_default() += stack.count;
     }

@@ -17,9 +17,9 @@ use anyhow::{Context, Result, bail};
 use hwmodel::blocks::Pipeline;
 use hwmodel::design::Design;
 use hwmodel::device::{demand, fit, largest_units};
+use hwmodel::frame_timing::frame_timing;
 use hwmodel::hw_scene::HwScene;
 use hwmodel::library::Library;
-use hwmodel::pipeline::frame_timing;
 use indicatif::{MultiProgress, ProgressBar, ProgressStyle};
 use reports::html::slug;
 use reports::results::{
@@ -269,33 +269,13 @@ fn extra_scenes(dir: &Path, size: (u32, u32)) -> Result<Vec<SceneSpec>> {
         .collect()
 }
 
-/// Flattens the counter JSON to `"ops.dot": n` pairs.
+/// The counts as `"ops.dot": n` pairs (the keys of the counter table).
 fn flatten_counts(counts: &tracer::Counts) -> BTreeMap<String, u64> {
-    fn walk(prefix: &str, v: &serde_json::Value, out: &mut BTreeMap<String, u64>) {
-        match v {
-            serde_json::Value::Object(map) => {
-                for (k, v) in map {
-                    let key = if prefix.is_empty() {
-                        k.clone()
-                    } else {
-                        format!("{prefix}.{k}")
-                    };
-                    walk(&key, v, out);
-                }
-            }
-            serde_json::Value::Number(n) => {
-                if let Some(n) = n.as_u64() {
-                    out.insert(prefix.to_string(), n);
-                }
-            }
-            _ => {}
-        }
-    }
-    let mut out = BTreeMap::new();
-    if let Ok(v) = serde_json::to_value(counts) {
-        walk("", &v, &mut out);
-    }
-    out
+    counts
+        .rows()
+        .into_iter()
+        .map(|(key, n)| (key.to_string(), n))
+        .collect()
 }
 
 fn estimate(samples: &[f64]) -> Result<Estimate> {
