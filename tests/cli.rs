@@ -982,3 +982,156 @@ fn suite_writes_results_and_reports_and_the_gate_sets_the_exit_code() {
     assert!(stderr(&out).contains("--criterion"), "{}", stderr(&out));
     std::fs::remove_dir_all(&dir).ok();
 }
+
+/// `"a.b.c": n` for every number of a JSON object (the counter keys of `count --json`).
+fn flatten_json(prefix: &str, value: &serde_json::Value, out: &mut Vec<(String, u64)>) {
+    match value {
+        serde_json::Value::Object(map) => {
+            for (k, v) in map {
+                let key = if prefix.is_empty() {
+                    k.clone()
+                } else {
+                    format!("{prefix}.{k}")
+                };
+                flatten_json(&key, v, out);
+            }
+        }
+        other => out.push((
+            prefix.to_string(),
+            other
+                .as_u64()
+                .unwrap_or_else(|| panic!("{prefix}: not a count: {other}")),
+        )),
+    }
+}
+
+/// Every counter of `rtprof count --json` on `scene` at `size`, flattened.
+fn counter_values(scene: &str, size: &str) -> Vec<(String, u64)> {
+    let counts = json(&rtprof(&["count", scene, "--size", size, "--json"]));
+    let mut flat = Vec::new();
+    flatten_json("", &counts, &mut flat);
+    flat
+}
+
+/// Profiles `scene` at `size` (baseline, one thread) and checks the `calls` column of
+/// flat.txt against `rtprof count`: every function the tracer's counter table gives
+/// the calls of, if sampled, has exactly the counter's value times the renders. Returns
+/// the functions that were sampled and checked.
+fn profile_calls_match_the_counters(test: &str, scene: &str, size: &str) -> Vec<String> {
+    let dir = scratch(test);
+    let out_dir = dir.join("prof");
+    let profile = json(&rtprof(&[
+        "profile",
+        scene,
+        "--size",
+        size,
+        "--threads",
+        "1",
+        "--json",
+        "-o",
+        &out_dir.display().to_string(),
+    ]));
+    let renders = profile["profile"]["renders"].as_u64().unwrap();
+    let flat = String::from_utf8_lossy(&read(&out_dir.join("flat.txt"))).into_owned();
+    let rows = analysis::profile::gprof::parse_flat_text(&flat).unwrap_or_else(|e| panic!("{e}"));
+    let calls_of = |name: &str| rows.iter().find(|r| r.name == name).map(|r| r.calls);
+    let counts: std::collections::BTreeMap<String, u64> =
+        counter_values(scene, size).into_iter().collect();
+    let mut expected: Vec<(&str, u64)> = Vec::new();
+    for def in tracer::COUNTERS {
+        let value = counts.get(def.key).copied();
+        let value = value.unwrap_or_else(|| panic!("{} not in count --json", def.key));
+        expected.extend(def.functions.iter().map(|&f| (f, value)));
+    }
+    // The derived entries of the table, computed here from the JSON values.
+    let secondary = counts["calls.trace"] - counts["rays.primary"];
+    assert_eq!(tracer::counter::DERIVED_CALLS.len(), 1);
+    expected.push(("Shader::trace", secondary));
+    let mut checked = Vec::new();
+    for (function, value) in expected {
+        match calls_of(function) {
+            Some(calls) if value > 0 => {
+                assert_eq!(calls, Some(value * renders), "{function} in {flat}");
+                checked.push(function.to_string());
+            }
+            // A function never called is never sampled.
+            Some(_) => panic!("{function} sampled but its counter is 0"),
+            None => {}
+        }
+    }
+    std::fs::remove_dir_all(&dir).ok();
+    checked
+}
+
+#[test]
+fn a_renamed_function_cannot_blank_the_calls_column() {
+    // balls: thousands of spheres, brute force: the sphere test and its dot products
+    // take nearly every sample, so both must show their exact calls.
+    let checked = profile_calls_match_the_counters("renamed", &spd("balls"), "24x18");
+    for function in ["Sphere::intersect", "dot"] {
+        assert!(
+            checked.iter().any(|f| f == function),
+            "{function} has no calls: checked {checked:?}"
+        );
+    }
+}
+
+#[test]
+fn every_counter_appears_everywhere() {
+    let dir = scratch("every-counter");
+    let scene = bench_scene("primitives");
+    let counts = counter_values(&scene, "16x12");
+    assert_eq!(counts.len(), tracer::COUNTERS.len());
+
+    // The listing of `rtprof count`: one line per counter, key then value.
+    let listing = rtprof(&["count", &scene, "--size", "16x12"]);
+    assert!(listing.status.success(), "{}", stderr(&listing));
+    let listing = String::from_utf8_lossy(&listing.stdout).into_owned();
+    for (key, value) in &counts {
+        assert!(
+            listing.lines().any(|l| {
+                let mut words = l.split_whitespace();
+                words.next() == Some(key.as_str())
+                    && words.next() == Some(value.to_string().as_str())
+                    && words.next().is_none()
+            }),
+            "{key} = {value} not listed:\n{listing}"
+        );
+    }
+
+    // results.json of a suite that renders the same scene at the same size.
+    let suite = dir.join("counters.toml");
+    std::fs::write(
+        &suite,
+        format!(
+            "name = \"counters\"\nsize = [16, 12]\nrepeats = 1\nvariants = [\"baseline\"]\n\
+             scenes = [{scene:?}]\nextra_size = [16, 12]\nprofile_size = [16, 12]\n\
+             profile_frequency = 500\nprofile_seconds = 0.05\nhardware_repeats = 1\n"
+        ),
+    )
+    .unwrap();
+    let out_dir = dir.join("suite");
+    let out = rtprof(&[
+        "suite",
+        suite.to_str().unwrap(),
+        "-o",
+        out_dir.to_str().unwrap(),
+    ]);
+    assert_eq!(out.status.code(), Some(0), "{}", stderr(&out));
+    let results: serde_json::Value =
+        serde_json::from_slice(&read(&out_dir.join("results.json"))).unwrap();
+    let baseline = &results["scenes"][0]["variants"][0];
+    assert_eq!(baseline["variant"], "baseline");
+    for (key, value) in &counts {
+        assert_eq!(
+            baseline["counts"][key].as_u64(),
+            Some(*value),
+            "{key} in results.json"
+        );
+    }
+
+    // The flat profile's calls, for the counted functions it sampled.
+    let checked = profile_calls_match_the_counters("every-counter-profile", &scene, "16x12");
+    assert!(!checked.is_empty(), "no counted function was sampled");
+    std::fs::remove_dir_all(&dir).ok();
+}

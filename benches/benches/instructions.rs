@@ -21,7 +21,9 @@ use benches::intersect::{Primitives, Rays, primitives, rays};
 use benches::sqrt::{classic_inverse_sqrt, classic_inverse_sqrt_newton, inputs, std_inverse_sqrt};
 use gungraun::{LibraryBenchmarkConfig, library_benchmark, library_benchmark_group, main};
 use std::hint::black_box;
-use tracer::fast_sqrt::{BitTrickSqrt, NewtonBitTrickSqrt, SquareRoot, StdSqrt, TunedBitTrickSqrt};
+use tracer::variants::fast_sqrt::{
+    BitTrickSqrt, NewtonBitTrickSqrt, SquareRoot, StdSqrt, TunedBitTrickSqrt,
+};
 use tracer::{NoCount, Ray};
 
 /// The root every `sqrt` benchmark maps over the inputs; one enum so that each arm

@@ -11,7 +11,7 @@
 
 use criterion::{Criterion, Throughput};
 use std::hint::black_box;
-use tracer::shading::{squared_diffuse, thesis_linear_diffuse};
+use tracer::variants::diffuse::{squared_diffuse, thesis_linear_diffuse};
 use tracer::{Counter, NoCount, Vec3};
 
 /// Number of surface points every benchmark of the group shades.

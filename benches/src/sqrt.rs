@@ -8,7 +8,9 @@
 
 use criterion::{BenchmarkGroup, Criterion, Throughput, measurement::WallTime};
 use std::hint::black_box;
-use tracer::fast_sqrt::{BitTrickSqrt, NewtonBitTrickSqrt, SquareRoot, StdSqrt, TunedBitTrickSqrt};
+use tracer::variants::fast_sqrt::{
+    BitTrickSqrt, NewtonBitTrickSqrt, SquareRoot, StdSqrt, TunedBitTrickSqrt,
+};
 
 /// Number of inputs every benchmark of the group maps.
 pub const INPUT_COUNT: usize = 4096;

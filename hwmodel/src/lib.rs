@@ -11,7 +11,7 @@
 //! - [`blocks`]: the thesis's blocks (primary ray, intersection test, minimum distance,
 //!   shading) built from those, for a [`design::Design`] (the thesis's or a what-if);
 //! - [`device`]: devices and fit (utilization, the multiplier rule, the largest K);
-//! - [`pipeline`]: frame timing (one pixel every 3·⌈n/K⌉ cycles plus the fill);
+//! - [`frame_timing`]: frame timing (one pixel every 3·⌈n/K⌉ cycles plus the fill);
 //! - [`table`]: the model next to the thesis's tables 7 and 8 with percentage errors;
 //! - [`hw_scene`], [`emulator`], [`mif`]: the scene as the hardware holds it, the image
 //!   it computes, and its Memory Initialization File.
@@ -21,9 +21,9 @@ pub mod composites;
 pub mod design;
 pub mod device;
 pub mod emulator;
+pub mod frame_timing;
 pub mod graph;
 pub mod hw_scene;
 pub mod library;
 pub mod mif;
-pub mod pipeline;
 pub mod table;

@@ -102,8 +102,14 @@ fn software_gray(scene: &tracer::Scene, width: u32, height: u32) -> Vec<u8> {
         Sampling::PixelCenters,
         ShadingMode::DiffuseOnly,
     );
-    let rendered = tracer::render::<NoCount, _>(scene, &BruteForce::new(scene), &options, &|_| {})
-        .unwrap_or_else(|e| panic!("{e}"));
+    let rendered = tracer::render::<NoCount, _>(
+        scene,
+        &BruteForce::new(scene),
+        &options,
+        &tracer::RenderMethod::default(),
+        &|_| {},
+    )
+    .unwrap_or_else(|e| panic!("{e}"));
     rendered
         .frame
         .to_rgb8()

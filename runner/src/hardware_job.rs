@@ -11,7 +11,7 @@ use hwmodel::design::Design;
 use hwmodel::device::{demand, fit, largest_units};
 use hwmodel::hw_scene::HwScene;
 use hwmodel::library::Library;
-use hwmodel::pipeline::{FrameTiming, frame_timing};
+use hwmodel::frame_timing::{FrameTiming, frame_timing};
 use reports::results::{DeviceUse, HardwareResult, HwRow};
 use tracer::{NoCount, RenderOptions, Sampling, Scene, ShadingMode, VariantSet, render_variant};
 

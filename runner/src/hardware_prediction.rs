@@ -10,7 +10,7 @@ use hwmodel::design::Design;
 use hwmodel::device::{Fit, demand, fit, largest_units};
 use hwmodel::hw_scene::HwScene;
 use hwmodel::library::{DeviceSpec, Library};
-use hwmodel::pipeline::{FrameTiming, frame_timing};
+use hwmodel::frame_timing::{FrameTiming, frame_timing};
 use serde::Serialize;
 use tracer::Scene;
 

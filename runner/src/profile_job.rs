@@ -9,7 +9,7 @@ use std::time::{Duration, Instant};
 use analysis::profile::amdahl::{AmdahlRow, amdahl_table, amdahl_text};
 use analysis::profile::folded::{differential_svg, flamegraph_svg, folded};
 use analysis::profile::gprof::{CallGraph, FlatProfile, call_graph, flat_profile};
-use analysis::profile::names::{call_counts, display_name};
+use analysis::profile::names::{BareMethods, display_name};
 use analysis::profile::sampler::sample;
 use analysis::profile::{CallCounts, Stack, StackSamples};
 use serde::Serialize;
@@ -122,9 +122,10 @@ impl ProfileJob<'_> {
             ));
         }
         let samples = shorten(&run.samples);
-        let calls: CallCounts = call_counts(&counts)
+        let calls: CallCounts = counts
+            .function_calls()
             .into_iter()
-            .map(|(name, n)| (name, n * renders))
+            .map(|(name, n)| (name.to_string(), n * renders))
             .collect();
         Ok(build_profile(
             set.to_string(),
@@ -148,9 +149,18 @@ impl ProfileJob<'_> {
 
 /// Stacks with the reports' short names; stacks that become equal merge.
 fn shorten(samples: &StackSamples) -> StackSamples {
+    let operations = tracer::counter::counted_operations();
+    let bare = BareMethods {
+        owners: &tracer::counter::COUNTING_LAYER,
+        methods: &operations,
+    };
     let mut merged: BTreeMap<Vec<String>, u64> = BTreeMap::new();
     for stack in &samples.stacks {
-        let mut frames: Vec<String> = stack.frames.iter().map(|f| display_name(f)).collect();
+        let mut frames: Vec<String> = stack
+            .frames
+            .iter()
+            .map(|f| display_name(f, &bare))
+            .collect();
         frames.dedup();
         *merged.entry(frames).or_default() += stack.count;
     }

@@ -147,19 +147,19 @@ mod tests {
 
     #[test]
     fn repeats_until_the_minimum_time_of_tracing_is_measured() {
-        // 10 ms renders, at least 3, until 0.1 s of tracing: 10 renders. The 1 s of
-        // preprocessing per render must not count towards the minimum.
-        let policy = TimingPolicy::new(3, 0.1);
+        // 1/64 s renders (exact in binary), at least 3, until 1/8 s of tracing: 8
+        // renders. The 1 s of preprocessing per render must not count towards it.
+        let policy = TimingPolicy::new(3, 0.125);
         let stop = AtomicBool::new(false);
         let mut calls = 0;
         let m = measure(&policy, &stop, || {
             calls += 1;
-            Ok(Fake(ms(10), ms(1000)))
+            Ok(Fake(Duration::from_micros(15_625), ms(1000)))
         })
         .unwrap();
-        assert_eq!(calls, 10);
-        assert_eq!(m.samples.len(), 10);
-        assert!((m.time.median - 0.010).abs() < 1e-12);
+        assert_eq!(calls, 8);
+        assert_eq!(m.samples.len(), 8);
+        assert!((m.time.median - 0.015_625).abs() < 1e-12);
         assert!((m.preprocessing - 1.0).abs() < 1e-12);
     }
 

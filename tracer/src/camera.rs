@@ -42,7 +42,7 @@ pub enum Projection {
     /// The grid covers what the perspective view shows at the look-at distance.
     Orthographic,
     /// Perspective walked row by row from a scene with eye offsets (variant `bounded`,
-    /// see [`crate::eye_space`]).
+    /// see [`crate::variants::eye_space`]).
     EyeRows,
 }
 

@@ -12,10 +12,10 @@
 use crate::camera::Sampling;
 use crate::counter::NoCount;
 use crate::nff::{Limits, NffError, parse_nff_with_limits};
-use crate::pipeline::render_variant;
 use crate::render::{RenderError, RenderOptions};
 use crate::shading::ShadingMode;
-use crate::variant::VariantSet;
+use crate::variants::dispatch::render_variant;
+use crate::variants::set::VariantSet;
 
 /// Width of the tiny image (the scene's own resolution is ignored: the parser has
 /// already checked it against the limits, and rendering it would be slow).

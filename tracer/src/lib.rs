@@ -4,18 +4,22 @@
 //! ([`camera`]), answers intersection queries ([`accel`]), shades under the SPD rules
 //! ([`shading`]) and renders in parallel ([`render`]). Every vector operation, square
 //! root, power, intersection test and ray is counted exactly through the [`counter`]
-//! layer; with [`NoCount`] the counting compiles away, so one binary renders counted and
-//! uncounted. This crate depends on no other workspace crate.
+//! layer, whose counters are declared once in its table ([`counter::table`]); with
+//! [`NoCount`] the counting compiles away, so one binary renders counted and uncounted.
+//! The optimization variants (their set, dispatch, fast square roots, eye-space walk and
+//! diffuse forms) live in [`variants`]; [`render_variant`] renders with any of them.
+//! This crate depends on no other workspace crate.
 //!
 //! ```
-//! use tracer::{render, BruteForce, Count, RenderOptions};
+//! use tracer::{render, BruteForce, Count, RenderMethod, RenderOptions};
 //! let scene = tracer::parse_nff(
 //!     "v\nfrom 0 0 -4\nat 0 0 0\nup 0 1 0\nangle 40\nhither 0\nresolution 8 8\n\
 //!      l 2 2 -5\nf 1 0 0 1 0 1 0 1\ns 0 0 0 1\n",
 //!     "doc.nff",
 //! ).unwrap();
 //! let accel = BruteForce::new(&scene);
-//! let out = render::<Count, _>(&scene, &accel, &RenderOptions::for_scene(&scene), &|_| {}).unwrap();
+//! let options = RenderOptions::for_scene(&scene);
+//! let out = render::<Count, _>(&scene, &accel, &options, &RenderMethod::default(), &|_| {}).unwrap();
 //! let counts = out.counts().unwrap();
 //! assert_eq!(counts.rays.primary, 64);
 //! assert_eq!(counts.tests.sphere.tests, counts.calls.intersect); // one sphere per query
@@ -32,32 +36,31 @@ pub mod builtin_scenes;
 pub mod camera;
 pub mod color;
 pub mod counter;
-pub mod eye_space;
-pub mod fast_sqrt;
 pub mod fuzz_check;
 pub mod generators;
 pub mod image_io;
 pub mod nff;
 pub mod nff_writer;
-pub mod pipeline;
 pub mod primitives;
 pub mod ray;
 pub mod render;
 pub mod scene;
 pub mod shading;
-pub mod variant;
+pub mod variants;
 pub mod vec3;
 
 pub use accel::{BruteForce, Bvh, Intersector, Simd};
 pub use camera::{Camera, Projection, Sampling};
 pub use color::Rgb;
-pub use counter::{Count, Counter, Counts, NoCount, RayCounts, Stat};
+pub use counter::{COUNTERS, Count, Counter, CounterDef, Counts, NoCount, RayCounts, Stat};
 pub use nff::{Limits, LoadError, NffError, load_nff, load_nff_with_limits, parse_nff};
 pub use nff_writer::{scene_to_nff, write_scene};
-pub use pipeline::{VariantRender, render_variant};
 pub use ray::{Hit, PrimKind, PrimRef, Ray};
-pub use render::{Frame, RenderError, RenderOptions, Rendered, render};
+pub use render::{Frame, RenderError, RenderMethod, RenderOptions, Rendered, render};
 pub use scene::{Light, Material, Scene, View};
-pub use shading::{DiffuseForm, MAX_DEPTH, ShadingMode};
-pub use variant::{Accelerator, SqrtMethod, Variant, VariantConfig, VariantError, VariantSet};
+pub use shading::{MAX_DEPTH, ShadingMode};
+pub use variants::{
+    Accelerator, DiffuseForm, SqrtMethod, Variant, VariantConfig, VariantError, VariantRender,
+    VariantSet, render_variant,
+};
 pub use vec3::Vec3;

@@ -14,16 +14,31 @@ use crate::color::Rgb;
 use crate::counter::{Counter, Counts, RayCounts};
 use crate::nff::Limits;
 use crate::scene::Scene;
-use crate::shading::{DiffuseForm, MAX_DEPTH, Shader, ShadingMode};
+use crate::shading::{MAX_DEPTH, Shader, ShadingMode};
+use crate::variants::diffuse::DiffuseForm;
 use rayon::prelude::*;
 
-/// What to render.
+/// What to render: the choices of whoever asks for the picture.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct RenderOptions {
     pub width: u32,
     pub height: u32,
     pub sampling: Sampling,
     pub mode: ShadingMode,
+    /// Maximum ray-tree depth, the eye ray being depth 1 (default [`MAX_DEPTH`], the
+    /// SPD's 5); at most `limits.max_ray_depth`.
+    pub max_depth: u32,
+    /// Image size and depth limits checked before anything is allocated.
+    pub limits: Limits,
+}
+
+/// How the renderer computes the picture: the choices of the variant set that the
+/// renderer itself reads ([`crate::variants::render_variant`] makes it from the
+/// [`VariantConfig`](crate::VariantConfig); the square root and the intersection
+/// structure arrive as types, the counter and the intersector). The default is the
+/// baseline's: perspective camera, Lambert diffuse, every sample traced.
+#[derive(Clone, Copy, Debug, PartialEq, Default)]
+pub struct RenderMethod {
     pub projection: Projection,
     pub diffuse: DiffuseForm,
     /// Trace every other sample, fill the rest from neighbours (`pixel-avg`).
@@ -31,11 +46,6 @@ pub struct RenderOptions {
     /// Distance at which the orthographic grid spans the perspective view (`ortho`;
     /// default `|at - from|`).
     pub ortho_focus: Option<f32>,
-    /// Maximum ray-tree depth, the eye ray being depth 1 (default [`MAX_DEPTH`], the
-    /// SPD's 5); at most `limits.max_ray_depth`.
-    pub max_depth: u32,
-    /// Image size and depth limits checked before anything is allocated.
-    pub limits: Limits,
 }
 
 impl RenderOptions {
@@ -49,18 +59,14 @@ impl RenderOptions {
         )
     }
 
-    /// Options for a size, sampling and shading mode, with the baseline's perspective
-    /// camera, Lambert diffuse and every sample traced.
+    /// Options for a size, sampling and shading mode, with the SPD's depth and the
+    /// default limits.
     pub fn new(width: u32, height: u32, sampling: Sampling, mode: ShadingMode) -> Self {
         Self {
             width,
             height,
             sampling,
             mode,
-            projection: Projection::Perspective,
-            diffuse: DiffuseForm::Lambert,
-            checkerboard: false,
-            ortho_focus: None,
             max_depth: MAX_DEPTH,
             limits: Limits::default(),
         }
@@ -123,12 +129,14 @@ impl<C: Counter> Rendered<C> {
     }
 }
 
-/// Renders `scene` with `accel` in the current rayon pool. `progress` is called with 1
-/// after each finished sample row (from worker threads).
+/// Renders `scene` with `accel` in the current rayon pool, computing the picture by
+/// `method`. `progress` is called with 1 after each finished sample row (from worker
+/// threads).
 pub fn render<C: Counter, I: Intersector>(
     scene: &Scene,
     accel: &I,
     options: &RenderOptions,
+    method: &RenderMethod,
     progress: &(dyn Fn(u64) + Sync),
 ) -> Result<Rendered<C>, RenderError> {
     let limits = &options.limits;
@@ -144,15 +152,15 @@ pub fn render<C: Counter, I: Intersector>(
         options.width,
         options.height,
         options.sampling,
-        options.projection,
-        options.ortho_focus,
+        method.projection,
+        method.ortho_focus,
         &mut counter,
     )
     .map_err(RenderError::Camera)?;
-    let shader = Shader::with_diffuse(scene, accel, options.mode, options.diffuse)
+    let shader = Shader::with_diffuse(scene, accel, options.mode, method.diffuse)
         .with_max_depth(options.max_depth);
     let (columns, rows) = camera.grid();
-    let from_eye = options.projection == Projection::EyeRows;
+    let from_eye = method.projection == Projection::EyeRows;
 
     let traced: Vec<(Vec<Rgb>, C, RayCounts)> = (0..rows)
         .into_par_iter()
@@ -163,7 +171,7 @@ pub fn render<C: Counter, I: Intersector>(
             let row_base = from_eye.then(|| camera.row_base(row, &mut c));
             let samples = (0..columns)
                 .map(|column| {
-                    if options.checkerboard && (column + row) % 2 == 1 {
+                    if method.checkerboard && (column + row) % 2 == 1 {
                         // Filled from the neighbours after the loop.
                         Rgb::BLACK
                     } else if let Some(base) = row_base {
@@ -187,7 +195,7 @@ pub fn render<C: Counter, I: Intersector>(
         ray_counts.merge(&rays);
         samples.extend(row);
     }
-    if options.checkerboard {
+    if method.checkerboard {
         fill_checkerboard(&mut samples, columns as usize, rows as usize);
     }
     let pixels = match options.sampling {

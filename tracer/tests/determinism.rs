@@ -25,8 +25,14 @@ fn counting_does_not_change_the_image() {
     let opts = options(12, 12, Sampling::PixelCenters);
     let counted = render_counted(&scene, &opts, 2);
     let accel = BruteForce::new(&scene);
-    let plain = tracer::render::<NoCount, _>(&scene, &accel, &opts, &|_| {})
-        .unwrap_or_else(|e| panic!("{e}"));
+    let plain = tracer::render::<NoCount, _>(
+        &scene,
+        &accel,
+        &opts,
+        &tracer::RenderMethod::default(),
+        &|_| {},
+    )
+    .unwrap_or_else(|e| panic!("{e}"));
     assert_eq!(counted.frame.pixels, plain.frame.pixels);
     assert_eq!(counted.rays, plain.rays, "ray counts are kept by both");
     assert!(plain.counts().is_none());

@@ -14,8 +14,14 @@ fn one_pixel_one_sphere_one_light_counts_by_hand() {
     .unwrap_or_else(|e| panic!("{e}"));
     let accel = BruteForce::new(&scene);
     let opts = RenderOptions::new(1, 1, Sampling::PixelCenters, ShadingMode::Color);
-    let out = tracer::render::<Count, _>(&scene, &accel, &opts, &|_| {})
-        .unwrap_or_else(|e| panic!("{e}"));
+    let out = tracer::render::<Count, _>(
+        &scene,
+        &accel,
+        &opts,
+        &tracer::RenderMethod::default(),
+        &|_| {},
+    )
+    .unwrap_or_else(|e| panic!("{e}"));
     let c: Counts = out.counts().unwrap_or_default();
 
     // Camera set-up: at - from (sub), normalize w, w × up (cross), normalize u,
@@ -72,8 +78,14 @@ fn mirror_sphere_spawns_reflections_down_to_depth_five() {
     .unwrap_or_else(|e| panic!("{e}"));
     let accel = BruteForce::new(&scene);
     let opts = RenderOptions::for_scene(&scene);
-    let out = tracer::render::<Count, _>(&scene, &accel, &opts, &|_| {})
-        .unwrap_or_else(|e| panic!("{e}"));
+    let out = tracer::render::<Count, _>(
+        &scene,
+        &accel,
+        &opts,
+        &tracer::RenderMethod::default(),
+        &|_| {},
+    )
+    .unwrap_or_else(|e| panic!("{e}"));
     let c = out.counts().unwrap_or_default();
     assert_eq!(c.rays.reflection, 4);
     assert_eq!(c.calls.trace, 5);
@@ -92,9 +104,14 @@ fn glass_slab_refracts_and_total_internal_reflection_keeps_the_reflection_ray() 
     )
     .unwrap_or_else(|e| panic!("{e}"));
     let accel = BruteForce::new(&scene);
-    let out =
-        tracer::render::<Count, _>(&scene, &accel, &RenderOptions::for_scene(&scene), &|_| {})
-            .unwrap_or_else(|e| panic!("{e}"));
+    let out = tracer::render::<Count, _>(
+        &scene,
+        &accel,
+        &RenderOptions::for_scene(&scene),
+        &tracer::RenderMethod::default(),
+        &|_| {},
+    )
+    .unwrap_or_else(|e| panic!("{e}"));
     let c = out.counts().unwrap_or_default();
     assert_eq!((c.rays.reflection, c.rays.refraction), (1, 1));
     assert_eq!(c.calls.trace, 3);

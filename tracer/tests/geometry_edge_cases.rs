@@ -23,15 +23,33 @@ const VIEW: &str = "v\nfrom 0 0 -5\nat 0 0 0\nup 0 1 0\nangle 40\nhither 0\nreso
 /// three must agree (they run the same tests in different orders).
 fn render_all(scene: &Scene) -> Frame {
     let options = RenderOptions::for_scene(scene);
-    let brute = tracer::render::<NoCount, _>(scene, &BruteForce::new(scene), &options, &|_| {})
-        .unwrap_or_else(|e| panic!("{e}"))
-        .frame;
-    let simd = tracer::render::<NoCount, _>(scene, &Simd::new(scene), &options, &|_| {})
-        .unwrap_or_else(|e| panic!("{e}"))
-        .frame;
-    let bvh = tracer::render::<NoCount, _>(scene, &Bvh::build(scene), &options, &|_| {})
-        .unwrap_or_else(|e| panic!("{e}"))
-        .frame;
+    let brute = tracer::render::<NoCount, _>(
+        scene,
+        &BruteForce::new(scene),
+        &options,
+        &tracer::RenderMethod::default(),
+        &|_| {},
+    )
+    .unwrap_or_else(|e| panic!("{e}"))
+    .frame;
+    let simd = tracer::render::<NoCount, _>(
+        scene,
+        &Simd::new(scene),
+        &options,
+        &tracer::RenderMethod::default(),
+        &|_| {},
+    )
+    .unwrap_or_else(|e| panic!("{e}"))
+    .frame;
+    let bvh = tracer::render::<NoCount, _>(
+        scene,
+        &Bvh::build(scene),
+        &options,
+        &tracer::RenderMethod::default(),
+        &|_| {},
+    )
+    .unwrap_or_else(|e| panic!("{e}"))
+    .frame;
     for (name, frame) in [("brute force", &brute), ("simd", &simd), ("bvh", &bvh)] {
         assert!(frame.is_finite(), "{name}: {:?}", frame.pixels);
     }
@@ -275,7 +293,13 @@ fn up_parallel_to_the_view_and_from_equal_to_at_are_errors_naming_the_view() {
     let mut bad = scene.clone();
     bad.view.up = Vec3::new(0.0, 0.0, 2.0);
     let options = RenderOptions::new(8, 6, Sampling::PixelCenters, ShadingMode::Color);
-    let result = tracer::render::<NoCount, _>(&bad, &BruteForce::new(&bad), &options, &|_| {});
+    let result = tracer::render::<NoCount, _>(
+        &bad,
+        &BruteForce::new(&bad),
+        &options,
+        &tracer::RenderMethod::default(),
+        &|_| {},
+    );
     assert!(matches!(result, Err(RenderError::Camera(m)) if m.contains("parallel")));
 }
 

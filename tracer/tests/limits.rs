@@ -103,15 +103,36 @@ fn render_checks_its_own_limits_before_allocating() {
     // 4 x 3 = 12 pixels, 144 bytes.
     options.limits.max_pixels = 12;
     options.limits.max_framebuffer_bytes = 144;
-    assert!(tracer::render::<Count, _>(&scene, &accel, &options, &|_| {}).is_ok());
+    assert!(
+        tracer::render::<Count, _>(
+            &scene,
+            &accel,
+            &options,
+            &tracer::RenderMethod::default(),
+            &|_| {}
+        )
+        .is_ok()
+    );
     options.width = 5;
-    match tracer::render::<Count, _>(&scene, &accel, &options, &|_| {}) {
+    match tracer::render::<Count, _>(
+        &scene,
+        &accel,
+        &options,
+        &tracer::RenderMethod::default(),
+        &|_| {},
+    ) {
         Err(RenderError::Size(m)) => assert!(m.contains("max_pixels"), "{m}"),
         other => panic!("expected a size error, got {:?}", other.map(|_| ())),
     }
     options.width = 4;
     options.limits.max_framebuffer_bytes = 143;
-    match tracer::render::<Count, _>(&scene, &accel, &options, &|_| {}) {
+    match tracer::render::<Count, _>(
+        &scene,
+        &accel,
+        &options,
+        &tracer::RenderMethod::default(),
+        &|_| {},
+    ) {
         Err(RenderError::Size(m)) => assert!(m.contains("144 bytes"), "{m}"),
         other => panic!("expected a size error, got {:?}", other.map(|_| ())),
     }
@@ -169,10 +190,25 @@ fn ray_depth_limit() {
     assert_eq!(options.max_depth, tracer::MAX_DEPTH);
     options.limits.max_ray_depth = 8;
     options.max_depth = 8;
-    assert!(tracer::render::<Count, _>(&scene, &accel, &options, &|_| {}).is_ok());
+    assert!(
+        tracer::render::<Count, _>(
+            &scene,
+            &accel,
+            &options,
+            &tracer::RenderMethod::default(),
+            &|_| {}
+        )
+        .is_ok()
+    );
     for (depth, needle) in [(9, "max_ray_depth"), (0, "at least 1")] {
         options.max_depth = depth;
-        match tracer::render::<Count, _>(&scene, &accel, &options, &|_| {}) {
+        match tracer::render::<Count, _>(
+            &scene,
+            &accel,
+            &options,
+            &tracer::RenderMethod::default(),
+            &|_| {},
+        ) {
             Err(RenderError::Depth(m)) => assert!(m.contains(needle), "{m}"),
             other => panic!(
                 "depth {depth}: expected an error, got {:?}",
@@ -198,8 +234,14 @@ fn max_depth_bounds_the_ray_tree_up_to_the_default_ceiling() {
     let ceiling = Limits::default().max_ray_depth;
     for (depth, reflections) in [(1, 0), (2, 1), (5, 4), (ceiling, u64::from(ceiling) - 1)] {
         options.max_depth = depth;
-        let out = tracer::render::<Count, _>(&scene, &accel, &options, &|_| {})
-            .unwrap_or_else(|e| panic!("{e}"));
+        let out = tracer::render::<Count, _>(
+            &scene,
+            &accel,
+            &options,
+            &tracer::RenderMethod::default(),
+            &|_| {},
+        )
+        .unwrap_or_else(|e| panic!("{e}"));
         assert_eq!(out.rays.primary_hit, 1);
         assert_eq!(out.rays.reflection, reflections, "max depth {depth}");
         assert!(out.frame.is_finite());

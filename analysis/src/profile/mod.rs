@@ -36,6 +36,7 @@ impl StackSamples {
     }
 }
 
-/// Exact call counts by function name (from the tracer's counters), for the `calls`
-/// columns; functions without an entry have no count (blank, as in gprof).
+/// Exact call counts by function name (the caller's: for rtprof, the tracer's counter
+/// table, `tracer::Counts::function_calls`), for the `calls` columns; functions
+/// without an entry have no count (blank, as in gprof).
 pub type CallCounts = BTreeMap<String, u64>;

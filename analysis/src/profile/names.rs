@@ -1,9 +1,8 @@
-//! Function names in profiles: demangled symbols cleaned into stable paths, the short
-//! names the reports print (`Sphere::intersect`, and the thesis's bare `dot`, `sub`, …
-//! for the counted vector operations), and the exact call counts that go with them.
-
-use super::CallCounts;
-use tracer::Counts;
+//! Function names in profiles: demangled symbols cleaned into stable paths, and the
+//! short names the reports print (`Sphere::intersect`, and the bare `dot`, `sub`, …
+//! the thesis prints for the counted vector operations). Which methods print bare is
+//! the profiled program's knowledge, so the caller passes it ([`BareMethods`]); so is
+//! the table of exact calls by short name ([`super::CallCounts`]).
 
 /// A demangled symbol as a plain path: no hash suffix, no generic arguments, and
 /// `<Type as Trait>::method` written `Type::method`.
@@ -68,76 +67,30 @@ fn strip_generics(name: &str) -> String {
     out
 }
 
-/// The counted vector and scalar operations, named as in the thesis's table 6.
-const OPERATIONS: [&str; 8] = [
-    "dot",
-    "sub",
-    "add",
-    "cross",
-    "scale",
-    "normalize",
-    "sqrt",
-    "pow",
-];
-
-/// Types whose methods are the counting layer.
-const COUNTERS: [&str; 4] = ["Counter", "NoCount", "Count", "WithSqrt"];
+/// Methods a profile prints by their bare name, as the thesis's table 6 prints the
+/// counted operations (`dot`, not `Counter::dot`): the methods `methods` of the types
+/// (or traits) `owners`. For rtprof these are the tracer's counting layer,
+/// `tracer::counter::COUNTING_LAYER` and `tracer::counter::counted_operations()`:
+/// declared beside the counters, so this crate keeps no copy of the tracer's names.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct BareMethods<'a> {
+    pub owners: &'a [&'a str],
+    pub methods: &'a [&'a str],
+}
 
 /// The name a report prints: the last two path segments (`Sphere::intersect`,
-/// `shading::color_contribution`), and the bare operation name for the counting
-/// layer's maths (`dot`). Names outside any module are kept whole.
-pub fn display_name(clean: &str) -> String {
+/// `shading::color_contribution`), and the bare method name for the `bare` methods
+/// (`dot`). Names outside any module are kept whole.
+pub fn display_name(clean: &str, bare: &BareMethods<'_>) -> String {
     let segments: Vec<&str> = clean.split("::").collect();
     match segments.as_slice() {
-        [.., owner, op] if COUNTERS.contains(owner) && OPERATIONS.contains(op) => op.to_string(),
+        [.., owner, method] if bare.owners.contains(owner) && bare.methods.contains(method) => {
+            method.to_string()
+        }
         [.., owner, "{{closure}}"] => format!("{owner}::{{{{closure}}}}"),
         [.., owner, function] => format!("{owner}::{function}"),
         _ => clean.to_string(),
     }
-}
-
-/// Exact call counts, by display name, for the functions the tracer counts. Each
-/// accelerator's query functions get the query counts; functions whose calls the
-/// counters do not determine are left out (their `calls` column stays blank).
-pub fn call_counts(counts: &Counts) -> CallCounts {
-    let (o, c, t, r) = (&counts.ops, &counts.calls, &counts.tests, &counts.rays);
-    let mut m = CallCounts::new();
-    let mut put = |name: &str, n: u64| {
-        m.insert(name.to_string(), n);
-    };
-    for (name, n) in [
-        ("dot", o.dot),
-        ("sub", o.sub),
-        ("add", o.add),
-        ("cross", o.cross),
-        ("scale", o.scale),
-        ("normalize", o.normalize),
-        ("sqrt", o.sqrt),
-        ("pow", o.pow),
-        ("Sphere::intersect", t.sphere.tests),
-        ("Cylinder::intersect", t.cylinder.tests),
-        ("Cone::intersect", t.cone.tests),
-        ("Polygon::intersect", t.polygon.tests),
-        ("Patch::intersect", t.patch.tests),
-        ("PlanarOutline::intersect_plane", t.plane.tests),
-        ("Shader::shade", c.shade),
-        // Eye rays start in `primary`; `trace` is every later (secondary) ray.
-        ("Shader::primary", r.primary),
-        ("Shader::primary_from_eye", r.primary),
-        ("Shader::trace", c.trace.saturating_sub(r.primary)),
-        ("shading::color_contribution", c.color_contribution),
-        ("Camera::ray", r.primary),
-        ("Camera::ray_from_eye", r.primary),
-    ] {
-        put(name, n);
-    }
-    // Closest-hit queries are one per traced ray, occlusion queries one per shadow ray.
-    for accel in ["BruteForce", "Simd", "Bvh"] {
-        put(&format!("{accel}::closest_hit"), c.trace);
-        put(&format!("{accel}::closest"), c.trace);
-        put(&format!("{accel}::occluded"), r.shadow);
-    }
-    m
 }
 
 #[cfg(test)]
@@ -170,32 +123,33 @@ mod tests {
 
     #[test]
     fn display_names_are_short_and_operations_bare() {
-        assert_eq!(display_name("tracer::counter::Counter::dot"), "dot");
-        assert_eq!(display_name("tracer::fast_sqrt::WithSqrt::sqrt"), "sqrt");
+        let bare = BareMethods {
+            owners: &["Counter", "WithSqrt"],
+            methods: &["dot", "sqrt"],
+        };
+        assert_eq!(display_name("tracer::counter::Counter::dot", &bare), "dot");
         assert_eq!(
-            display_name("tracer::primitives::sphere::Sphere::intersect"),
+            display_name("tracer::variants::fast_sqrt::WithSqrt::sqrt", &bare),
+            "sqrt"
+        );
+        // Only the listed methods of the listed owners lose their owner.
+        assert_eq!(
+            display_name("tracer::counter::Counter::tally", &bare),
+            "Counter::tally"
+        );
+        assert_eq!(display_name("core::f32::sqrt", &bare), "f32::sqrt");
+        assert_eq!(
+            display_name("tracer::counter::Counter::dot", &BareMethods::default()),
+            "Counter::dot"
+        );
+        assert_eq!(
+            display_name("tracer::primitives::sphere::Sphere::intersect", &bare),
             "Sphere::intersect"
         );
         assert_eq!(
-            display_name("tracer::render::render::{{closure}}"),
+            display_name("tracer::render::render::{{closure}}", &bare),
             "render::{{closure}}"
         );
-        assert_eq!(display_name("main"), "main");
-    }
-
-    #[test]
-    fn call_counts_take_the_counter_values() {
-        let mut counts = Counts::default();
-        counts.ops.dot = 42;
-        counts.tests.sphere.tests = 7;
-        counts.calls.trace = 10;
-        counts.rays.primary = 4;
-        counts.rays.shadow = 3;
-        let m = call_counts(&counts);
-        assert_eq!(m.get("dot"), Some(&42));
-        assert_eq!(m.get("Sphere::intersect"), Some(&7));
-        assert_eq!(m.get("Shader::trace"), Some(&6));
-        assert_eq!(m.get("Bvh::occluded"), Some(&3));
-        assert_eq!(m.get("shading::reflect"), None);
+        assert_eq!(display_name("main", &bare), "main");
     }
 }

@@ -28,7 +28,7 @@ pub struct Cone {
     pub axis: Vec3,
     /// Distance from base to apex.
     pub length: f32,
-    /// `eye - base`, set by [`crate::eye_space`] for the `bounded` variant.
+    /// `eye - base`, set by [`crate::variants::eye_space`] for the `bounded` variant.
     pub eye_offset: Vec3,
     rb: f32,
     slope: f32,

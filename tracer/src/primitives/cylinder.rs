@@ -19,7 +19,7 @@ pub struct Cylinder {
     pub axis: Vec3,
     /// Distance from base to apex (the thesis's Mmax).
     pub length: f32,
-    /// `eye - base`, set by [`crate::eye_space`] for the `bounded` variant.
+    /// `eye - base`, set by [`crate::variants::eye_space`] for the `bounded` variant.
     pub eye_offset: Vec3,
     radius_sq: f32,
 }

@@ -18,7 +18,7 @@ pub struct PlanarOutline {
     axes: [usize; 2],
     /// The vertices projected onto `axes`.
     projected: Vec<[f32; 2]>,
-    /// `eye - vertices[0]`, set by [`crate::eye_space`] for the `bounded` variant.
+    /// `eye - vertices[0]`, set by [`crate::variants::eye_space`] for the `bounded` variant.
     pub eye_offset: Vec3,
 }
 

@@ -12,7 +12,7 @@ pub struct Sphere {
     /// The radius as written in the scene (negative: inside visible).
     pub radius: f32,
     pub material: u32,
-    /// `eye - center`, set by [`crate::eye_space`] for the `bounded` variant.
+    /// `eye - center`, set by [`crate::variants::eye_space`] for the `bounded` variant.
     pub eye_offset: Vec3,
     radius_sq: f32,
 }

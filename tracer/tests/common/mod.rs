@@ -31,6 +31,14 @@ pub fn render_counted(scene: &Scene, options: &RenderOptions, threads: usize) ->
         .build()
         .unwrap_or_else(|e| panic!("{e}"));
     let accel = BruteForce::new(scene);
-    pool.install(|| tracer::render::<Count, _>(scene, &accel, options, &|_| {}))
-        .unwrap_or_else(|e| panic!("{e}"))
+    pool.install(|| {
+        tracer::render::<Count, _>(
+            scene,
+            &accel,
+            options,
+            &tracer::RenderMethod::default(),
+            &|_| {},
+        )
+    })
+    .unwrap_or_else(|e| panic!("{e}"))
 }

@@ -6,6 +6,10 @@
 //! plain `u64`. One binary therefore runs counted (`rtprof count`) and uncounted
 //! (`rtprof render`) without a runtime branch in the hot loops.
 //!
+//! Every counter is declared once, in the counter table ([`table`]: its [`Stat`], its
+//! key, what it counts, the profiled functions it gives the calls of); the report of a
+//! counted render is a [`Counts`] ([`counts`]).
+//!
 //! Conventions (they decide what a number means):
 //! - a `normalize` counts as itself, not as the dot product and square root inside it;
 //! - scalar arithmetic is not counted, nor are colour sums (they use [`Rgb`](crate::Rgb));
@@ -13,48 +17,25 @@
 //! - a test is counted when a primitive is tested against a ray, a hit when that test
 //!   reports an intersection inside the ray's interval (not only the closest one).
 //!
-//! Ray counts (`rays.*`) are not kept here: they cost one increment per ray, so the
+//! Ray counts (`rays.*`) are not tallied here: they cost one increment per ray, so the
 //! renderer always keeps them in a [`RayCounts`] and the uncounted render can report
-//! rays per second.
+//! rays per second. They are rows of the counter table all the same.
+
+pub mod counts;
+pub mod table;
+
+pub use counts::{AccelCounts, CallCounts, Counts, OpCounts, RayCounts, TestCounts, TestHits};
+pub use table::{
+    COUNTERS, CounterDef, DERIVED_CALLS, DerivedCalls, STAT_COUNT, Stat, by_key, counted_operations,
+};
 
 use crate::vec3::Vec3;
-use serde::{Deserialize, Serialize};
 
-/// One countable event. The names follow the thesis's gprof table 6.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
-#[repr(usize)]
-pub enum Stat {
-    Dot,
-    Sub,
-    Add,
-    Cross,
-    Scale,
-    Normalize,
-    Sqrt,
-    Pow,
-    Trace,
-    Intersect,
-    Shade,
-    ColorContribution,
-    PrimaryRaySetup,
-    SphereTest,
-    SphereHit,
-    CylinderTest,
-    CylinderHit,
-    ConeTest,
-    ConeHit,
-    PolygonTest,
-    PolygonHit,
-    PatchTest,
-    PatchHit,
-    PlaneTest,
-    PlaneHit,
-    NodesVisited,
-    LeavesVisited,
-}
-
-/// Number of [`Stat`] variants.
-pub const STAT_COUNT: usize = Stat::LeavesVisited as usize + 1;
+/// The types whose methods are the counted operations (the trait, its two counters and
+/// the square-root adaptor of the `fast-sqrt*` variants): a profile prints their
+/// methods by the bare operation name, as the thesis's table 6 does (`dot`, not
+/// `Counter::dot`). A test checks each against the source.
+pub const COUNTING_LAYER: [&str; 4] = ["Counter", "NoCount", "Count", "WithSqrt"];
 
 /// A sink for operation counts, and the home of every counted operation.
 ///
@@ -214,185 +195,6 @@ impl Counter for Count {
 
     fn totals(&self) -> Option<[u64; STAT_COUNT]> {
         Some(self.values)
-    }
-}
-
-/// Ray statistics in the SPD sense, always kept by the renderer.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
-pub struct RayCounts {
-    /// Eye rays ((W+1)(H+1) in SPD corner mode, W·H otherwise).
-    pub primary: u64,
-    /// Eye rays that hit an object.
-    pub primary_hit: u64,
-    /// Shadow rays cast toward lights.
-    pub shadow: u64,
-    /// Shadow rays that found an occluder.
-    pub shadow_blocked: u64,
-    /// Reflection rays spawned.
-    pub reflection: u64,
-    /// Refraction rays spawned.
-    pub refraction: u64,
-}
-
-impl RayCounts {
-    /// Adds `other` into `self`.
-    pub fn merge(&mut self, other: &Self) {
-        self.primary += other.primary;
-        self.primary_hit += other.primary_hit;
-        self.shadow += other.shadow;
-        self.shadow_blocked += other.shadow_blocked;
-        self.reflection += other.reflection;
-        self.refraction += other.refraction;
-    }
-
-    /// Every ray traced: eye, shadow, reflection and refraction.
-    pub fn total(&self) -> u64 {
-        self.primary + self.shadow + self.reflection + self.refraction
-    }
-}
-
-/// `ops.*`: counted vector and scalar operations.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
-pub struct OpCounts {
-    pub dot: u64,
-    pub sub: u64,
-    pub add: u64,
-    pub cross: u64,
-    pub scale: u64,
-    pub normalize: u64,
-    pub sqrt: u64,
-    pub pow: u64,
-}
-
-/// `calls.*`: calls of the tracer's main functions.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
-pub struct CallCounts {
-    pub trace: u64,
-    pub intersect: u64,
-    pub shade: u64,
-    pub color_contribution: u64,
-    pub primary_ray_setup: u64,
-}
-
-/// Tests and hits of one primitive kind.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
-pub struct TestHits {
-    pub tests: u64,
-    pub hits: u64,
-}
-
-/// `tests.*`: ray-primitive tests and hits per primitive kind. `plane` counts the
-/// plane test that opens every polygon and patch test (as the thesis's table does).
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
-pub struct TestCounts {
-    pub sphere: TestHits,
-    pub cylinder: TestHits,
-    pub cone: TestHits,
-    pub polygon: TestHits,
-    pub patch: TestHits,
-    pub plane: TestHits,
-}
-
-/// `accel.*`: acceleration-structure traversal (zero for brute force).
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
-pub struct AccelCounts {
-    pub nodes_visited: u64,
-    pub leaves_visited: u64,
-}
-
-/// Every count of one render, in the JSON shape of `rtprof count --json`
-/// (`{"ops": {"dot": N, …}, "calls": {…}, "tests": {"sphere": {"tests": N, "hits": N}, …},
-/// "rays": {…}, "accel": {…}}`).
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
-pub struct Counts {
-    pub ops: OpCounts,
-    pub calls: CallCounts,
-    pub tests: TestCounts,
-    pub rays: RayCounts,
-    pub accel: AccelCounts,
-}
-
-impl Counts {
-    /// Assembles the report from a counter's totals and the ray counts.
-    pub fn from_parts(totals: &[u64; STAT_COUNT], rays: RayCounts) -> Self {
-        let g = |s: Stat| totals[s as usize];
-        let th = |t: Stat, h: Stat| TestHits {
-            tests: g(t),
-            hits: g(h),
-        };
-        Self {
-            ops: OpCounts {
-                dot: g(Stat::Dot),
-                sub: g(Stat::Sub),
-                add: g(Stat::Add),
-                cross: g(Stat::Cross),
-                scale: g(Stat::Scale),
-                normalize: g(Stat::Normalize),
-                sqrt: g(Stat::Sqrt),
-                pow: g(Stat::Pow),
-            },
-            calls: CallCounts {
-                trace: g(Stat::Trace),
-                intersect: g(Stat::Intersect),
-                shade: g(Stat::Shade),
-                color_contribution: g(Stat::ColorContribution),
-                primary_ray_setup: g(Stat::PrimaryRaySetup),
-            },
-            tests: TestCounts {
-                sphere: th(Stat::SphereTest, Stat::SphereHit),
-                cylinder: th(Stat::CylinderTest, Stat::CylinderHit),
-                cone: th(Stat::ConeTest, Stat::ConeHit),
-                polygon: th(Stat::PolygonTest, Stat::PolygonHit),
-                patch: th(Stat::PatchTest, Stat::PatchHit),
-                plane: th(Stat::PlaneTest, Stat::PlaneHit),
-            },
-            rays,
-            accel: AccelCounts {
-                nodes_visited: g(Stat::NodesVisited),
-                leaves_visited: g(Stat::LeavesVisited),
-            },
-        }
-    }
-
-    /// Every count as `(dotted name, value)`, in the order of the thesis's table 6
-    /// (calls first, then operations, then tests, rays and acceleration).
-    pub fn rows(&self) -> Vec<(&'static str, u64)> {
-        let (o, c, t, r, a) = (&self.ops, &self.calls, &self.tests, &self.rays, &self.accel);
-        vec![
-            ("calls.primary_ray_setup", c.primary_ray_setup),
-            ("calls.trace", c.trace),
-            ("calls.intersect", c.intersect),
-            ("calls.shade", c.shade),
-            ("calls.color_contribution", c.color_contribution),
-            ("ops.add", o.add),
-            ("ops.sub", o.sub),
-            ("ops.cross", o.cross),
-            ("ops.dot", o.dot),
-            ("ops.normalize", o.normalize),
-            ("ops.scale", o.scale),
-            ("ops.sqrt", o.sqrt),
-            ("ops.pow", o.pow),
-            ("tests.sphere.tests", t.sphere.tests),
-            ("tests.sphere.hits", t.sphere.hits),
-            ("tests.cylinder.tests", t.cylinder.tests),
-            ("tests.cylinder.hits", t.cylinder.hits),
-            ("tests.cone.tests", t.cone.tests),
-            ("tests.cone.hits", t.cone.hits),
-            ("tests.polygon.tests", t.polygon.tests),
-            ("tests.polygon.hits", t.polygon.hits),
-            ("tests.patch.tests", t.patch.tests),
-            ("tests.patch.hits", t.patch.hits),
-            ("tests.plane.tests", t.plane.tests),
-            ("tests.plane.hits", t.plane.hits),
-            ("rays.primary", r.primary),
-            ("rays.primary_hit", r.primary_hit),
-            ("rays.shadow", r.shadow),
-            ("rays.shadow_blocked", r.shadow_blocked),
-            ("rays.reflection", r.reflection),
-            ("rays.refraction", r.refraction),
-            ("accel.nodes_visited", a.nodes_visited),
-            ("accel.leaves_visited", a.leaves_visited),
-        ]
     }
 }
 

@@ -1,10 +1,11 @@
-//! Named optimization variants (`--variant a,b,…`) and what a combination of them sets.
+//! The variant set: named optimization variants (`--variant a,b,…`) and what a
+//! combination of them chooses ([`VariantConfig`]).
 //! `baseline` is the thesis's software reference: brute force over all primitives, std
 //! sqrt, perspective camera, Lambert diffuse, every sample traced. Each other variant
 //! changes one of those choices; variants that change the same choice cannot combine.
 
 use crate::camera::Projection;
-use crate::shading::DiffuseForm;
+use crate::variants::diffuse::DiffuseForm;
 use std::fmt;
 
 /// One named variant.

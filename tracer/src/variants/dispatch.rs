@@ -1,16 +1,19 @@
-//! Renders a scene with a set of variants: prepares the scene (eye offsets for
-//! `bounded`), builds the intersection structure, and runs the renderer with the chosen
-//! square root, projection, diffuse term and sampling. Everything the command line,
-//! the suite and the benchmarks render goes through [`render_variant`].
+//! The variants' dispatch: renders a scene with a set of variants. It prepares the
+//! scene (eye offsets for `bounded`), builds the intersection structure, and runs the
+//! renderer with the chosen square root (a counter type), structure (an intersector
+//! type) and [`RenderMethod`] (projection, diffuse form, checkerboard). Everything the
+//! command line, the suite and the benchmarks render goes through [`render_variant`].
 
 use crate::accel::{BruteForce, Bvh, BvhStats, Intersector, Simd};
 use crate::camera::Projection;
 use crate::counter::{Counter, NoCount};
-use crate::eye_space::with_eye_offsets;
-use crate::fast_sqrt::{BitTrickSqrt, NewtonBitTrickSqrt, SquareRoot, TunedBitTrickSqrt, WithSqrt};
-use crate::render::{RenderError, RenderOptions, Rendered, render};
+use crate::render::{RenderError, RenderMethod, RenderOptions, Rendered, render};
 use crate::scene::Scene;
-use crate::variant::{Accelerator, SqrtMethod, VariantSet};
+use crate::variants::eye_space::with_eye_offsets;
+use crate::variants::fast_sqrt::{
+    BitTrickSqrt, NewtonBitTrickSqrt, SquareRoot, TunedBitTrickSqrt, WithSqrt,
+};
+use crate::variants::set::{Accelerator, SqrtMethod, VariantSet};
 use crate::vec3::Vec3;
 use std::time::{Duration, Instant};
 
@@ -26,8 +29,8 @@ pub struct VariantRender<C> {
     pub bvh: Option<BvhStats>,
 }
 
-/// Renders `scene` with `variants`. `options` gives size, sampling and shading mode;
-/// its projection, diffuse form and checkerboard are set from the variants.
+/// Renders `scene` with `variants`; `options` are the caller's (size, sampling, shading
+/// mode, depth, limits), everything else comes from the variants.
 pub fn render_variant<C: Counter>(
     scene: &Scene,
     options: &RenderOptions,
@@ -43,18 +46,18 @@ pub fn render_variant<C: Counter>(
     } else {
         scene
     };
-    let options = RenderOptions {
+    let method = RenderMethod {
         projection: config.projection,
         diffuse: config.diffuse,
         checkerboard: config.checkerboard,
         ortho_focus: (config.projection == Projection::Orthographic)
             .then(|| scene_depth(scene))
             .flatten(),
-        ..*options
     };
     let job = Job {
         scene,
-        options: &options,
+        options,
+        method: &method,
         progress,
         start,
     };
@@ -117,6 +120,7 @@ fn scene_depth(scene: &Scene) -> Option<f32> {
 struct Job<'a> {
     scene: &'a Scene,
     options: &'a RenderOptions,
+    method: &'a RenderMethod,
     progress: &'a (dyn Fn(u64) + Sync),
     start: Instant,
 }
@@ -143,7 +147,7 @@ impl Job<'_> {
     ) -> Result<VariantRender<C>, RenderError> {
         let preprocessing = self.start.elapsed();
         let start = Instant::now();
-        let rendered = render::<C, I>(self.scene, accel, self.options, self.progress)?;
+        let rendered = render::<C, I>(self.scene, accel, self.options, self.method, self.progress)?;
         Ok(VariantRender {
             rendered,
             preprocessing,
