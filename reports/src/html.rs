@@ -17,11 +17,13 @@ use std::path::Path;
 use crate::Run;
 use crate::charts::{self, Chart};
 use crate::findings::{
-    HW_COLUMNS, benchmark_rows, headline_findings, instruction_time_disagreements, measured_span,
-    repeats_text,
+    benchmark_rows, headline_findings, instruction_time_disagreements, measured_span, repeats_text,
 };
 use crate::gallery::{self, Picture};
-use crate::results::{Estimate, HwRow, Profile, Results, SceneResult, VariantResult};
+use crate::results::{
+    Band, Estimate, HwColumn, HwRow, HwRowKind, Profile, Results, SceneFamily, SceneResult,
+    VariantName, VariantResult,
+};
 
 /// A report that cannot be made.
 #[derive(Debug, thiserror::Error)]
@@ -211,13 +213,22 @@ fn percent_of(used: u64, capacity: u64) -> f64 {
     }
 }
 
+/// Variant names separated by commas.
+pub(crate) fn join_names(names: &[crate::results::VariantName]) -> String {
+    names
+        .iter()
+        .map(|n| n.as_str())
+        .collect::<Vec<_>>()
+        .join(", ")
+}
+
 /// CSS class of an RMS band.
-fn band_class(band: &str) -> &'static str {
+fn band_class(band: Band) -> &'static str {
     match band {
-        "visually identical" => "band-identical",
-        "visually similar" => "band-similar",
-        "notable changes" => "band-notable",
-        _ => "band-different",
+        Band::VisuallyIdentical => "band-identical",
+        Band::Similar => "band-similar",
+        Band::NotableChanges => "band-notable",
+        Band::Different => "band-different",
     }
 }
 
@@ -520,7 +531,7 @@ impl Page {
                     number(s.wall_seconds, 1)
                 ),
             ),
-            ("Variants", s.variants.join(", ")),
+            ("Variants", join_names(&s.variants)),
             ("Schema", r.schema.clone()),
         ];
         for (k, v) in rows {
@@ -544,7 +555,7 @@ impl Page {
                 self.push(&format!(
                     "<tr><td>{}</td><td>{}</td><td class=\"num\">{}</td><td>{}</td><td>{}x{}{}</td><td class=\"num\">{}</td><td class=\"num\" data-v=\"{}\">{}</td><td>{}</td></tr>",
                     escape(&scene.name),
-                    escape(&scene.family),
+                    escape(scene.family.name()),
                     scene.primitives,
                     escape(&kinds),
                     scene.width,
@@ -780,15 +791,15 @@ impl Page {
                 "<td class=\"num\" data-v=\"{}\">{}</td><td class=\"{}\">{}</td><td class=\"num\" data-v=\"{}\">{}</td><td class=\"num\">{}</td><td class=\"num\">{}</td>",
                 q.rms,
                 number(q.rms, 2),
-                band_class(&q.band),
-                escape(&q.band),
+                band_class(q.band),
+                escape(q.band.name()),
                 q.psnr.unwrap_or(1e300),
                 q.psnr
                     .map_or_else(|| "∞".to_string(), |p| format!("{} dB", number(p, 1))),
                 number(q.ssim, 4),
                 q.max_abs_diff
             ),
-            None if v.variant == "baseline" => {
+            None if v.variant.is_reference() => {
                 "<td colspan=\"5\" class=\"muted\">reference image</td>".to_string()
             }
             None => "<td colspan=\"5\" class=\"muted\">no image metrics</td>".to_string(),
@@ -798,7 +809,7 @@ impl Page {
             let value = v.counts.get(key).copied();
             let reference = base.and_then(|b| b.counts.get(key).copied());
             let cell = match (value, reference) {
-                (Some(n), _) if v.variant == "baseline" => {
+                (Some(n), _) if v.variant.is_reference() => {
                     format!("<td class=\"num\" data-v=\"{n}\">{}</td>", count(n))
                 }
                 (Some(n), Some(b)) if n == b => {
@@ -827,9 +838,9 @@ impl Page {
             escape(&v.variant),
             v.time.median,
             estimate_text(&v.time),
-            v.speedup,
-            if v.speedup.is_finite() {
-                format!("{}×", number(v.speedup, 2))
+            v.speedup.unwrap_or(f64::NAN),
+            if let Some(s) = v.speedup.filter(|s| s.is_finite()) {
+                format!("{}×", number(s, 2))
             } else {
                 "–".to_string()
             }
@@ -855,7 +866,7 @@ impl Page {
                 "<h3 id=\"variants-{}\">{} <span class=\"muted\">({}, {} primitive{}, {}x{})</span></h3>\n",
                 escape(&slug(&scene.name)),
                 escape(&scene.name),
-                escape(&scene.family),
+                escape(scene.family.name()),
                 scene.primitives,
                 if scene.primitives == 1 { "" } else { "s" },
                 scene.width,
@@ -917,7 +928,7 @@ impl Page {
             for v in &scene.variants {
                 let label = match &v.quality {
                     Some(q) => format!("{} · RMS {} ({})", v.variant, number(q.rms, 1), q.band),
-                    None => v.variant.clone(),
+                    None => v.variant.to_string(),
                 };
                 self.push(&format!(
                     "<figure class=\"tile\">{}<figcaption>{}</figcaption></figure>",
@@ -931,7 +942,7 @@ impl Page {
                 ));
             }
             for v in &scene.variants {
-                if v.variant == "baseline" {
+                if v.variant.is_reference() {
                     self.push("<div class=\"tile reference\">reference image: no heat map</div>");
                     continue;
                 }
@@ -962,7 +973,7 @@ impl Page {
 
     fn hw_table(&mut self, rows: &[HwRow]) {
         self.push("<table class=\"hw sortable\"><thead><tr><th>name</th><th>kind</th>");
-        for c in HW_COLUMNS {
+        for c in HwColumn::ALL.map(HwColumn::label) {
             self.push(&format!(
                 "<th>{c}<br><span class=\"muted\">model / thesis (error)</span></th>"
             ));
@@ -972,11 +983,11 @@ impl Page {
             self.push(&format!(
                 "<tr><td><code>{}</code></td><td>{}</td>",
                 escape(&row.name),
-                escape(&row.kind)
+                escape(row.kind.name())
             ));
-            for c in 0..6 {
-                let error = row.error_pct.as_ref().and_then(|e| e[c]);
-                let thesis = row.thesis.map(|t| t[c]);
+            for (c, model) in row.model.columns() {
+                let error = row.error_pct.as_ref().and_then(|e| e.get(c));
+                let thesis = row.thesis.map(|t| t.get(c));
                 let detail = match (thesis, error) {
                     (Some(t), Some(e)) => format!(
                         " <span class=\"thesis-v\">/ {} ({:+.1} %)</span>",
@@ -987,7 +998,7 @@ impl Page {
                         format!(" <span class=\"thesis-v\">/ {} (—)</span>", count(t))
                     }
                     // The IP-core rows are table 7's own figures: the model's input.
-                    (None, _) if row.kind == "IP core" => {
+                    (None, _) if row.kind == HwRowKind::IpCore => {
                         " <span class=\"thesis-v\">(thesis input)</span>".to_string()
                     }
                     (None, _) => " <span class=\"thesis-v\">(no thesis figure)</span>".to_string(),
@@ -995,8 +1006,8 @@ impl Page {
                 self.push(&format!(
                     "<td class=\"num {}\" data-v=\"{}\">{}{detail}</td>",
                     error_class(error),
-                    row.model[c],
-                    count(row.model[c])
+                    model,
+                    count(model)
                 ));
             }
             self.push("</tr>");
@@ -1134,8 +1145,8 @@ impl Page {
                 if h.fits { "yes" } else { "no" },
                 h.emulator_rms,
                 number(h.emulator_rms, 2),
-                band_class(&h.emulator_band),
-                escape(&h.emulator_band)
+                band_class(h.emulator_band),
+                escape(h.emulator_band.name())
             ));
         }
         self.push("</tbody></table>\n<h3>Emulator and software images</h3>\n<p>Each pair: the software's diffuse-only gray render and the hardware emulator's image of the same scene.</p>\n<div class=\"scene-images\" style=\"grid-template-columns: repeat(6, minmax(0, 1fr))\">");
@@ -1162,10 +1173,10 @@ impl Page {
         match find_chart(charts, "time-vs-primitives") {
             Some(c) => {
                 self.push(&chart_figure(c));
-                let mut medians: BTreeMap<(String, u64), f64> = BTreeMap::new();
-                for s in r.scenes.iter().filter(|s| ["balls", "cylinder", "both"].contains(&s.family.as_str())) {
+                let mut medians: BTreeMap<(SceneFamily, u64), f64> = BTreeMap::new();
+                for s in r.scenes.iter().filter(|s| SceneFamily::TEST_BENCHES.contains(&s.family)) {
                     if let Some(b) = r.baseline(s) {
-                        medians.insert((s.family.clone(), s.primitives), b.time.median);
+                        medians.insert((s.family, s.primitives), b.time.median);
                     }
                 }
                 self.push("<table><thead><tr><th>family</th>");
@@ -1173,11 +1184,11 @@ impl Page {
                     self.push(&format!("<th>{n}</th>"));
                 }
                 self.push("</tr></thead><tbody>");
-                for family in ["balls", "cylinder", "both"] {
+                for family in SceneFamily::TEST_BENCHES {
                     self.push(&format!("<tr><td>{family}</td>"));
                     for n in 1..=7u64 {
                         let cell = medians
-                            .get(&(family.to_string(), n))
+                            .get(&(family, n))
                             .map_or_else(|| "<span class=\"muted\">–</span>".to_string(), |m| seconds(*m));
                         self.push(&format!("<td class=\"num\">{cell}</td>"));
                     }
@@ -1200,7 +1211,7 @@ impl Page {
         let scenes: Vec<&SceneResult> = r
             .scenes
             .iter()
-            .filter(|s| s.spd || s.family == "spd")
+            .filter(|s| s.spd || s.family == SceneFamily::Spd)
             .collect();
         if scenes.is_empty() {
             self.push(&empty_note(
@@ -1323,7 +1334,7 @@ impl Page {
             self.push("<p>No failures: every scene and variant of the suite ran.</p>\n");
         } else {
             self.push(&format!(
-                "<p class=\"warn\">{} of the run failed; the rest of the results stand.</p>\n<table><thead><tr><th>scene</th><th>variant</th><th>message</th></tr></thead><tbody>",
+                "<p class=\"warn\">{} of the run failed; the rest of the results stand.</p>\n<table><thead><tr><th>where</th><th>message</th></tr></thead><tbody>",
                 if r.failures.len() == 1 {
                     "1 part".to_string()
                 } else {
@@ -1332,11 +1343,8 @@ impl Page {
             ));
             for f in &r.failures {
                 self.push(&format!(
-                    "<tr><td>{}</td><td>{}</td><td>{}</td></tr>",
-                    escape(&f.scene),
-                    f.variant
-                        .as_deref()
-                        .map_or_else(|| "(all)".to_string(), escape),
+                    "<tr><td>{}</td><td>{}</td></tr>",
+                    escape(&f.place()),
                     escape(&f.message)
                 ));
             }
@@ -1379,7 +1387,7 @@ impl Page {
             self.section_end();
             return;
         }
-        let lookup = |run: &Run, key: &(String, u32, u32, String)| -> Option<VariantResult> {
+        let lookup = |run: &Run, key: &(String, u32, u32, VariantName)| -> Option<VariantResult> {
             run.results
                 .scenes
                 .iter()

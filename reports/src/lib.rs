@@ -1,17 +1,18 @@
 //! `reports`: the results of an rtprof suite and the reports made from them.
 //!
 //! Data flows one way: the suite runner fills [`results::Results`] (plain serde data,
-//! schema `rtprof.results/1`), this crate turns it into charts (SVG), one
+//! schema `rtprof.results/2`, defined in the `results` crate), this crate turns it into charts (SVG), one
 //! self-contained HTML file and a typeset PDF. It never renders a scene.
 
 pub mod charts;
 pub mod findings;
 pub mod gallery;
-pub mod gate;
 pub mod html;
 pub mod pdf;
-pub mod results;
 pub mod sample;
+
+pub use results;
+pub use results::gate;
 
 use std::path::PathBuf;
 

@@ -24,7 +24,8 @@ use crate::charts::{self, Chart};
 use crate::findings;
 use crate::gallery::{self, Picture};
 use crate::results::{
-    Estimate, HwRow, Profile, ProfileResult, Quality, Results, SceneResult, VariantResult,
+    Estimate, HwRow, Profile, ProfileResult, Quality, Results, SceneFamily, SceneResult,
+    VariantResult,
 };
 
 /// Why no PDF could be made.
@@ -517,7 +518,7 @@ impl Builder<'_> {
                 let base = r.baseline(scene);
                 vec![
                     lit(&scene.name),
-                    lit(&scene.family),
+                    lit(scene.family.name()),
                     lit(&group(scene.primitives)),
                     lit(&kinds(scene)),
                     lit(&format!(
@@ -690,7 +691,7 @@ fn summary_pairs(r: &Results) -> Vec<(String, String)> {
                 secs(s.wall_seconds)
             ),
         ),
-        ("Variants".into(), s.variants.join(", ")),
+        ("Variants".into(), crate::html::join_names(&s.variants)),
         ("Created".into(), r.created.clone()),
         (
             "Failures".into(),
@@ -1011,7 +1012,7 @@ impl<'a, 'e> RunWriter<'a, 'e> {
                     lit(&v.variant),
                     lit(&secs(v.time.median)),
                     lit(&interval(&v.time)),
-                    speedup_cell(v.speedup),
+                    speedup_cell(v.speedup.unwrap_or(f64::NAN)),
                     lit(&rms),
                     lit(&band),
                     lit(&psnr),
@@ -1080,7 +1081,7 @@ impl<'a, 'e> RunWriter<'a, 'e> {
             let heat: Vec<String> = chunk
                 .iter()
                 .map(|v| {
-                    if v.variant == "baseline" {
+                    if v.variant.is_reference() {
                         "muted(text(size: 6.5pt)[reference])".to_string()
                     } else {
                         self.b
@@ -1108,7 +1109,11 @@ impl<'a, 'e> RunWriter<'a, 'e> {
                     format!(
                         "text(size: 6.5pt, {} + \"\\n\" + {})",
                         lit(&text),
-                        lit(&format!("{} · {}", secs(v.time.median), times(v.speedup)))
+                        lit(&format!(
+                            "{} · {}",
+                            secs(v.time.median),
+                            times(v.speedup.unwrap_or(f64::NAN))
+                        ))
                     )
                 })
                 .collect();
@@ -1221,24 +1226,24 @@ impl<'a, 'e> RunWriter<'a, 'e> {
         let body: Vec<Vec<String>> = rows
             .iter()
             .map(|row| {
-                let mut cells = vec![lit(&row.name), lit(&row.kind)];
-                for i in 0..6 {
-                    let model = lit(&group(row.model[i]));
+                let mut cells = vec![lit(&row.name), lit(row.kind.name())];
+                for (c, figure) in row.model.columns() {
+                    let model = lit(&group(figure));
                     let sub = match (&row.thesis, &row.error_pct) {
                         (Some(t), Some(e)) => {
-                            let err = match e[i] {
+                            let err = match e.get(c) {
                                 Some(x) => signed(x, 1) + " %",
                                 None => "n/a".to_string(),
                             };
-                            let text = lit(&format!("{} · {err}", group(t[i])));
-                            if e[i].is_some_and(|x| x.abs() > 10.0) {
+                            let text = lit(&format!("{} · {err}", group(t.get(c))));
+                            if e.get(c).is_some_and(|x| x.abs() > 10.0) {
                                 format!("bad(text(size: 6pt, {text}))")
                             } else {
                                 format!("muted(text(size: 6pt, {text}))")
                             }
                         }
                         (Some(t), None) => {
-                            format!("muted(text(size: 6pt, {}))", lit(&group(t[i])))
+                            format!("muted(text(size: 6pt, {}))", lit(&group(t.get(c))))
                         }
                         _ => {
                             cells.push(model);
@@ -1376,7 +1381,7 @@ impl<'a, 'e> RunWriter<'a, 'e> {
             ("fastest variant", "1fr", "left"),
         ];
         let mut scenes: Vec<&SceneResult> = self.r().scenes.iter().collect();
-        scenes.sort_by(|a, b| (&a.family, a.primitives).cmp(&(&b.family, b.primitives)));
+        scenes.sort_by(|a, b| (a.family, a.primitives).cmp(&(b.family, b.primitives)));
         let rows: Vec<Vec<String>> = scenes
             .iter()
             .map(|s| {
@@ -1392,7 +1397,7 @@ impl<'a, 'e> RunWriter<'a, 'e> {
                     );
                 vec![
                     lit(&s.name),
-                    lit(&s.family),
+                    lit(s.family.name()),
                     lit(&group(s.primitives)),
                     lit(&format!("{}×{}", s.width, s.height)),
                     lit(&base.map_or_else(|| "–".to_string(), |v| secs(v.time.median))),
@@ -1414,7 +1419,7 @@ impl<'a, 'e> RunWriter<'a, 'e> {
             .r()
             .scenes
             .iter()
-            .filter(|s| s.spd || s.family == "spd")
+            .filter(|s| s.spd || s.family == SceneFamily::Spd)
             .cloned()
             .collect();
         self.h1("spd");
@@ -1561,20 +1566,10 @@ impl<'a, 'e> RunWriter<'a, 'e> {
         } else {
             self.b
                 .line("These parts of the run failed; the rest of the results stand.\n");
-            let spec = [
-                ("Scene", "auto", "left"),
-                ("Variant", "auto", "left"),
-                ("What happened", "1fr", "left"),
-            ];
+            let spec = [("Where", "auto", "left"), ("What happened", "1fr", "left")];
             let rows: Vec<Vec<String>> = failures
                 .iter()
-                .map(|f| {
-                    vec![
-                        lit(&f.scene),
-                        lit(f.variant.as_deref().unwrap_or("(all)")),
-                        lit(&f.message),
-                    ]
-                })
+                .map(|f| vec![lit(&f.place()), lit(&f.message)])
                 .collect();
             self.b.table(&spec, &rows, "8pt");
         }
@@ -1667,7 +1662,7 @@ fn quality_cells(q: Option<&Quality>) -> (String, String, String, String) {
         None => ("–".into(), "reference".into(), "–".into(), "–".into()),
         Some(q) => (
             format!("{:.2}", q.rms),
-            q.band.clone(),
+            q.band.to_string(),
             q.psnr
                 .map_or_else(|| "∞".to_string(), |p| format!("{p:.1}")),
             format!("{:.4}", q.ssim),

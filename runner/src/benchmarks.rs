@@ -10,7 +10,7 @@ use std::path::{Path, PathBuf};
 
 use serde::Deserialize;
 
-use reports::results::{CriterionEstimate, Estimate, InstructionCount, rfc3339_utc};
+use results::{CriterionEstimate, Estimate, InstructionCount, rfc3339_utc};
 
 /// A harness directory that cannot be read.
 #[derive(Debug, thiserror::Error)]

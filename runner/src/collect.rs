@@ -7,7 +7,7 @@ use std::path::Path;
 
 use analysis::Comparison;
 use analysis::profile::folded::flamegraph_svg;
-use reports::results::{AmdahlRow, FlatRow, Profile, Quality};
+use results::{AmdahlRow, FlatRow, Profile, Quality, VariantName, slug};
 
 use crate::error::RunError;
 use crate::profile_job::VariantProfile;
@@ -26,16 +26,11 @@ pub fn count_map(counts: &tracer::Counts) -> BTreeMap<String, u64> {
 pub fn quality(c: &Comparison) -> Quality {
     Quality {
         rms: c.rms,
-        band: c.band.to_string(),
+        band: c.band,
         psnr: c.psnr.is_finite().then_some(c.psnr),
         ssim: c.ssim,
         max_abs_diff: u32::from(c.max_abs_diff),
     }
-}
-
-/// A file-name part made of `text`: lower-case letters, digits and `-`.
-pub fn slug(text: &str) -> String {
-    reports::html::slug(text)
 }
 
 /// Saves a profile's texts and flamegraph under `out/dir` and returns its results entry.
@@ -56,7 +51,7 @@ pub fn save_profile(
     let svg = flamegraph_svg(&p.folded, title).map_err(|e| RunError::Profile(e.to_string()))?;
     let flame_svg = save(out, &format!("{dir}/flame-{v}.svg"), svg.as_bytes())?;
     Ok(Profile {
-        variant: p.variant.clone(),
+        variant: VariantName::parse(&p.variant)?,
         samples: p.samples,
         seconds_per_sample: p.seconds_per_sample,
         flat: p

@@ -9,10 +9,10 @@ use analysis::{Comparison, RgbImage, compare};
 use hwmodel::blocks::Pipeline;
 use hwmodel::design::Design;
 use hwmodel::device::{demand, fit, largest_units};
+use hwmodel::frame_timing::{FrameTiming, frame_timing};
 use hwmodel::hw_scene::HwScene;
 use hwmodel::library::Library;
-use hwmodel::frame_timing::{FrameTiming, frame_timing};
-use reports::results::{DeviceUse, HardwareResult, HwRow};
+use results::{DeviceUse, HardwareResult, HwRow};
 use tracer::{NoCount, RenderOptions, Sampling, Scene, ShadingMode, VariantSet, render_variant};
 
 use crate::error::RunError;
@@ -97,26 +97,6 @@ pub fn run_hardware(
 pub fn hardware_tables() -> HardwareResult {
     let lib = Library::cyclone_iv_e();
     let t = hwmodel::table::tables(&lib, &Design::thesis());
-    let row = |r: &hwmodel::table::Row| HwRow {
-        name: r.model.name.clone(),
-        kind: r.kind.to_string(),
-        model: [
-            u64::from(r.model.latency),
-            r.model.le,
-            r.model.comb,
-            r.model.regs,
-            r.model.mem_bits,
-            r.model.mult,
-        ],
-        thesis: r
-            .thesis
-            .as_ref()
-            .map(|t| [t.latency, t.le, t.comb, t.regs, t.mem_bits, t.mult]),
-        error_pct: r
-            .error_pct
-            .as_ref()
-            .map(|e| [e.latency, e.le, e.comb, e.regs, e.mem_bits, e.mult]),
-    };
     let mut devices = Vec::new();
     for family in Library::embedded() {
         let pipeline = Pipeline::build(&family, &Design::thesis());
@@ -142,8 +122,8 @@ pub fn hardware_tables() -> HardwareResult {
     }
     HardwareResult {
         family: lib.family.clone(),
-        ops: t.ops.iter().map(row).collect(),
-        blocks: t.blocks.iter().map(row).collect(),
+        ops: t.ops.iter().map(HwRow::from_model_row).collect(),
+        blocks: t.blocks.iter().map(HwRow::from_model_row).collect(),
         devices,
     }
 }

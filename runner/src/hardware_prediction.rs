@@ -8,9 +8,9 @@ use std::sync::atomic::AtomicBool;
 use hwmodel::blocks::Pipeline;
 use hwmodel::design::Design;
 use hwmodel::device::{Fit, demand, fit, largest_units};
+use hwmodel::frame_timing::{FrameTiming, frame_timing};
 use hwmodel::hw_scene::HwScene;
 use hwmodel::library::{DeviceSpec, Library};
-use hwmodel::frame_timing::{FrameTiming, frame_timing};
 use serde::Serialize;
 use tracer::Scene;
 

@@ -2,7 +2,7 @@
 //! (rtprof version, rustc, git commit, profile; recorded by `build.rs`), the command
 //! line that reproduces it and when it started.
 
-use reports::results::{Build, Machine, rfc3339_utc};
+use results::{Build, Machine, rfc3339_utc};
 
 fn first_line(path: &str, prefix: &str) -> Option<String> {
     std::fs::read_to_string(path).ok()?.lines().find_map(|l| {

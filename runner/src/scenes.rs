@@ -4,6 +4,8 @@
 
 use std::path::{Path, PathBuf};
 
+use results::SceneFamily;
+
 use crate::error::RunError;
 
 /// A scene to run.
@@ -12,24 +14,9 @@ pub struct SceneSpec {
     pub name: String,
     /// `builtin`, `generated` or the file's path.
     pub source: String,
-    /// `balls`, `cylinder`, `both` (the thesis's test bench), `generated`, `spd` or
-    /// `other`.
-    pub family: String,
+    pub family: SceneFamily,
     pub text: String,
     pub size: (u32, u32),
-}
-
-/// The test-bench family of a built-in name (`balls7` → `balls`), else `other`.
-pub fn family_of(name: &str) -> String {
-    for family in ["balls", "cylinder", "both"] {
-        if let Some(rest) = name.strip_prefix(family)
-            && !rest.is_empty()
-            && rest.chars().all(|c| c.is_ascii_digit())
-        {
-            return family.to_string();
-        }
-    }
-    "other".to_string()
 }
 
 /// Resolves one suite entry; relative paths start at `base`.
@@ -55,7 +42,7 @@ pub fn resolve_scene(entry: &str, size: (u32, u32), base: &Path) -> Result<Scene
         return Ok(SceneSpec {
             name: format!("{kind}{n}"),
             source: "generated".into(),
-            family: "generated".into(),
+            family: SceneFamily::Generated,
             text,
             size,
         });
@@ -64,7 +51,7 @@ pub fn resolve_scene(entry: &str, size: (u32, u32), base: &Path) -> Result<Scene
         return Ok(SceneSpec {
             name: b.name.to_string(),
             source: "builtin".into(),
-            family: family_of(b.name),
+            family: SceneFamily::of_builtin(b.name),
             text: b.text.to_string(),
             size,
         });
@@ -81,7 +68,7 @@ pub fn resolve_scene(entry: &str, size: (u32, u32), base: &Path) -> Result<Scene
             .file_stem()
             .map_or_else(|| entry.to_string(), |s| s.to_string_lossy().into_owned()),
         source: path.display().to_string(),
-        family: "other".into(),
+        family: SceneFamily::Other,
         text,
         size,
     })
@@ -115,7 +102,11 @@ pub fn extra_scenes(dir: &Path, size: (u32, u32)) -> Result<Vec<SceneSpec>, RunE
                     .file_stem()
                     .map_or_else(String::new, |s| s.to_string_lossy().into_owned()),
                 source: path.display().to_string(),
-                family: if spd { "spd" } else { "other" }.into(),
+                family: if spd {
+                    SceneFamily::Spd
+                } else {
+                    SceneFamily::Other
+                },
                 text,
                 size,
             })
@@ -128,21 +119,16 @@ mod tests {
     use super::*;
 
     #[test]
-    fn families_come_from_test_bench_names() {
-        assert_eq!(family_of("balls7"), "balls");
-        assert_eq!(family_of("cylinder12"), "cylinder");
-        assert_eq!(family_of("ballsX"), "other");
-        assert_eq!(family_of("balls"), "other");
-    }
-
-    #[test]
     fn entries_resolve_to_builtins_generators_and_files() {
         let b = resolve_scene("both3", (8, 6), Path::new(".")).unwrap();
-        assert_eq!((b.source.as_str(), b.family.as_str()), ("builtin", "both"));
+        assert_eq!(
+            (b.source.as_str(), b.family),
+            ("builtin", SceneFamily::Both)
+        );
         let g = resolve_scene("sphereflake:1", (8, 6), Path::new(".")).unwrap();
         assert_eq!(
-            (g.name.as_str(), g.family.as_str()),
-            ("sphereflake1", "generated")
+            (g.name.as_str(), g.family),
+            ("sphereflake1", SceneFamily::Generated)
         );
         let err = resolve_scene("cube:2", (8, 6), Path::new(".")).unwrap_err();
         assert!(err.to_string().contains("unknown generator"), "{err}");

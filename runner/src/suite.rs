@@ -10,13 +10,13 @@ use std::time::Instant;
 
 use analysis::{Band, compare, difference_heat_map, gray_histogram};
 use hwmodel::hw_scene::HwScene;
-use reports::results::{
-    Estimate, Failure, ProfileResult, Results, SCHEMA, SceneHardware, SceneResult, SuiteInfo,
-    VariantResult,
+use results::{
+    FailedPart, Failure, ProfileResult, Results, SCHEMA, SceneHardware, SceneResult, SuiteInfo,
+    VariantName, VariantResult, slug,
 };
 use tracer::{RenderOptions, Sampling, Scene, ShadingMode, VariantSet, parse_nff};
 
-use crate::collect::{count_map, quality, save_profile, slug};
+use crate::collect::{count_map, quality, save_profile};
 use crate::definition::SuiteDef;
 use crate::error::RunError;
 use crate::hardware_job::{hardware_tables, run_hardware};
@@ -44,14 +44,6 @@ pub struct RunContext<'a> {
     pub progress: &'a dyn Progress,
     /// Set when the user asks the run to stop; checked before every render.
     pub stop: &'a AtomicBool,
-}
-
-fn est(e: analysis::Estimate) -> Estimate {
-    Estimate {
-        median: e.median,
-        low: e.low,
-        high: e.high,
-    }
 }
 
 impl Suite {
@@ -118,11 +110,11 @@ impl Suite {
                 }
                 Ok((Err(e), local)) => {
                     failures.extend(local);
-                    failures.push(failure(&spec.name, None, &e));
+                    failures.push(failure(Some(&spec.name), FailedPart::Scene, &e));
                 }
                 Err(_) => failures.push(Failure {
-                    scene: spec.name.clone(),
-                    variant: None,
+                    scene: Some(spec.name.clone()),
+                    part: FailedPart::Scene,
                     message: "internal error (panic) while running this scene; please report it"
                         .into(),
                 }),
@@ -139,7 +131,7 @@ impl Suite {
                 return Err(RunError::StoppedAfter { done: total, total });
             }
             Err(e) => {
-                failures.push(failure("profile", None, &e));
+                failures.push(failure(None, FailedPart::Profile, &e));
                 None
             }
         };
@@ -155,10 +147,14 @@ impl Suite {
             suite: SuiteInfo {
                 name: self.def.name.clone(),
                 quick: self.quick,
-                repeats: policy.min_repeats,
-                min_seconds: policy.min_seconds,
                 threads: pool.current_num_threads() as u32,
-                variants: self.def.variants.clone(),
+                variants: self
+                    .def
+                    .variants
+                    .iter()
+                    .map(|v| VariantName::parse(v))
+                    .collect::<Result<_, _>>()?,
+                timing: policy.record(),
                 wall_seconds: started.elapsed().as_secs_f64(),
             },
             scenes,
@@ -171,10 +167,10 @@ impl Suite {
     }
 }
 
-fn failure(scene: &str, variant: Option<&str>, e: &RunError) -> Failure {
+fn failure(scene: Option<&str>, part: FailedPart, e: &RunError) -> Failure {
     Failure {
-        scene: scene.to_string(),
-        variant: variant.map(str::to_string),
+        scene: scene.map(str::to_string),
+        part,
         message: e.to_string(),
     }
 }
@@ -208,20 +204,27 @@ impl SceneRunner<'_> {
         };
         let mut variants: Vec<VariantResult> = Vec::new();
         let mut reference: Option<analysis::RgbImage> = None;
-        let mut reference_median = f64::NAN;
+        let mut reference_median: Option<f64> = None;
         for name in &self.def.variants {
             self.ctx.progress.message(&format!("{} {name}", spec.name));
             match self.run_variant(spec, &setup, name, reference.as_ref()) {
                 Ok((mut v, image)) => {
-                    if reference.is_none() {
-                        reference_median = v.time.median;
+                    if v.variant.is_reference() {
+                        reference_median = Some(v.time.median);
                         reference = Some(image);
                     }
-                    v.speedup = reference_median / v.time.median;
+                    v.speedup = reference_median
+                        .map(|r| r / v.time.median)
+                        .filter(|s| s.is_finite());
                     variants.push(v);
                 }
                 Err(RunError::Stopped) => return Err(RunError::Stopped),
-                Err(e) => failures.push(failure(&spec.name, Some(name), &e)),
+                Err(e) => {
+                    // The suite's variant names were checked when it was read.
+                    let part =
+                        VariantName::parse(name).map_or(FailedPart::Scene, FailedPart::Variant);
+                    failures.push(failure(Some(&spec.name), part, &e));
+                }
             }
             self.ctx.progress.advance(1);
         }
@@ -230,7 +233,7 @@ impl SceneRunner<'_> {
                 Ok(h) => Some(h),
                 Err(RunError::Stopped) => return Err(RunError::Stopped),
                 Err(e) => {
-                    failures.push(failure(&spec.name, Some("hardware"), &e));
+                    failures.push(failure(Some(&spec.name), FailedPart::Hardware, &e));
                     None
                 }
             },
@@ -269,26 +272,28 @@ impl SceneRunner<'_> {
         reference: Option<&analysis::RgbImage>,
     ) -> Result<(VariantResult, analysis::RgbImage), RunError> {
         let set = VariantSet::parse(name)?;
+        let variant = VariantName::of(&set);
         let m = setup.measure(&set, &self.def.timing())?;
         let out = self.ctx.out;
         let stem = format!("images/{}-{}", slug(&spec.name), slug(name));
         let image_rel = save_png(out, &format!("{stem}.png"), &m.image)?;
         let (quality, heat_map) = match reference {
-            Some(base) => {
+            Some(base) if !variant.is_reference() => {
                 let c = compare(base, &m.image)?;
                 let heat = difference_heat_map(base, &m.image)?;
                 let heat_rel = save_png(out, &format!("{stem}-diff.png"), &heat)?;
                 (Some(quality(&c)), Some(heat_rel))
             }
-            None => (None, None),
+            _ => (None, None),
         };
         let histogram = gray_histogram(&m.image).to_vec();
         Ok((
             VariantResult {
-                variant: name.to_string(),
-                time: est(m.time),
+                variant,
+                time: m.time,
                 samples: m.samples,
-                speedup: 1.0,
+                preprocessing_seconds: Some(m.preprocessing),
+                speedup: None,
                 counts: count_map(&m.counts),
                 image: Some(image_rel),
                 heat_map,
@@ -317,7 +322,7 @@ impl SceneRunner<'_> {
         )?;
         let out = self.ctx.out;
         let stem = format!("images/{}", slug(&spec.name));
-        let software_seconds = est(m.software.time);
+        let software_seconds = m.software.time;
         Ok(SceneHardware {
             primitives: m.primitives,
             cycles: m.timing.cycles,
@@ -326,7 +331,7 @@ impl SceneRunner<'_> {
             speedup: software_seconds.median / m.timing.seconds,
             software_seconds,
             emulator_rms: m.comparison.rms,
-            emulator_band: Band::of(m.comparison.rms).to_string(),
+            emulator_band: m.comparison.band,
             emulator_image: Some(save_png(out, &format!("{stem}-hw.png"), &m.emulator_image)?),
             software_image: Some(save_png(
                 out,
@@ -343,7 +348,10 @@ impl SceneRunner<'_> {
         specs: &[SceneSpec],
         results: &[SceneResult],
     ) -> Result<Option<ProfileResult>, RunError> {
-        let reference = |s: &SceneResult| s.variants.first().map(|v| v.time.median);
+        let reference = |s: &SceneResult| {
+            let v = s.variants.iter().find(|v| v.variant.is_reference())?;
+            Some(v.time.median)
+        };
         let Some(heaviest) = results
             .iter()
             .filter_map(|s| Some((s, reference(s)?)))
@@ -355,13 +363,16 @@ impl SceneRunner<'_> {
         let best = heaviest
             .variants
             .iter()
-            .skip(1)
+            .filter(|v| !v.variant.is_reference())
             .filter(|v| {
                 v.quality
                     .as_ref()
-                    .is_some_and(|q| Band::of(q.rms) == Band::VisuallyIdentical)
+                    .is_some_and(|q| q.band == Band::VisuallyIdentical)
             })
-            .max_by(|a, b| a.speedup.total_cmp(&b.speedup))
+            .max_by(|a, b| {
+                let s = |v: &VariantResult| v.speedup.unwrap_or(f64::NEG_INFINITY);
+                s(a).total_cmp(&s(b))
+            })
             .map(|v| v.variant.clone());
         let Some(spec) = specs.iter().find(|s| s.name == heaviest.name) else {
             return Ok(None);

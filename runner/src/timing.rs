@@ -56,6 +56,19 @@ impl TimingPolicy {
         }
     }
 
+    /// The policy as results.json records it.
+    pub fn record(&self) -> results::TimingPolicy {
+        results::TimingPolicy {
+            min_repeats: self.min_repeats,
+            min_seconds: self.min_seconds,
+            max_repeats: self.max_repeats,
+            bootstrap_resamples: self.resamples as u32,
+            confidence: self.confidence,
+            seed: self.seed,
+            covers: results::TimeCovers::Tracing,
+        }
+    }
+
     /// Median and interval of `samples` under this policy.
     pub fn estimate(&self, samples: &[f64]) -> Result<Estimate, RunError> {
         Ok(median_with_bootstrap(

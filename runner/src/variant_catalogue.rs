@@ -4,11 +4,11 @@
 
 use serde::Serialize;
 use tracer::Variant;
+use tracer::variants::diffuse::{DiffuseErrors, diffuse_form_errors};
 use tracer::variants::fast_sqrt::{
     BitTrickSqrt, NewtonBitTrickSqrt, SqrtError, SquareRoot, StdSqrt, TunedBitTrickSqrt,
     scan_relative_error,
 };
-use tracer::variants::diffuse::{DiffuseErrors, diffuse_form_errors};
 
 /// One variant's entry.
 #[derive(Serialize)]

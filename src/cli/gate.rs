@@ -25,7 +25,7 @@ pub struct GateArgs {
 pub fn run(args: &GateArgs) -> Result<()> {
     let old = super::report::load_results(&args.old)?;
     let new = super::report::load_results(&args.new)?;
-    let gate = reports::gate::compare_runs(&old, &new, args.threshold / 100.0);
+    let gate = results::gate::compare_runs(&old, &new, args.threshold / 100.0);
     if args.json {
         println!("{}", serde_json::to_string_pretty(&gate)?);
     } else {

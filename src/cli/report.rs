@@ -3,7 +3,7 @@
 
 use anyhow::{Context, Result};
 use reports::Run;
-use reports::results::Results;
+use results::Results;
 use std::path::{Path, PathBuf};
 use tracer::image_io::write_atomically;
 

@@ -129,14 +129,10 @@ pub fn run(args: &SuiteArgs) -> Result<()> {
         args.output.display()
     );
     for f in &results.failures {
-        let variant = f
-            .variant
-            .as_ref()
-            .map_or(String::new(), |v| format!(" / {v}"));
-        eprintln!("  failed: {}{variant}: {}", f.scene, f.message);
+        eprintln!("  failed: {}: {}", f.place(), f.message);
     }
     if let Some(old) = old {
-        let gate = reports::gate::compare_runs(&old, &results, args.threshold / 100.0);
+        let gate = results::gate::compare_runs(&old, &results, args.threshold / 100.0);
         let text = gate.to_text();
         print!("{text}");
         save(&args.output, "gate.txt", text.as_bytes())?;
