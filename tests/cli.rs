@@ -790,7 +790,7 @@ fn suite_writes_results_and_reports_and_the_gate_sets_the_exit_code() {
     let results_path = first.join("results.json");
     let text = String::from_utf8(read(&results_path)).unwrap();
     let v: serde_json::Value = serde_json::from_str(&text).unwrap();
-    assert_eq!(v["schema"], "rtprof.results/1");
+    assert_eq!(v["schema"], "rtprof.results/2");
     assert_eq!(v["scenes"].as_array().unwrap().len(), 2);
     // The hardware runs on these sphere/cylinder scenes; counts are exact.
     assert!(v["scenes"][0]["hardware"]["emulator_rms"].as_f64().unwrap() <= 15.0);

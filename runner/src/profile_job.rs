@@ -10,7 +10,7 @@ use analysis::profile::amdahl::{AmdahlRow, amdahl_table, amdahl_text};
 use analysis::profile::folded::{differential_svg, flamegraph_svg, folded};
 use analysis::profile::gprof::{CallGraph, FlatProfile, call_graph, flat_profile};
 use analysis::profile::names::{BareMethods, display_name};
-use analysis::profile::sampler::sample;
+use analysis::profile::sampler::{process_cpu_time, sample};
 use analysis::profile::{CallCounts, Stack, StackSamples};
 use serde::Serialize;
 use tracer::{Count, NoCount, RenderOptions, Scene, VariantSet, render_variant};
@@ -95,20 +95,22 @@ impl ProfileJob<'_> {
             .ok_or_else(|| RunError::Profile("the counted render returned no counts".into()))?;
         progress.message(&format!("sampling {set}"));
         // A fast render (a BVH on a small image) can finish between two samples: render
-        // again until the sampler has had `min_sampled` time, and scale the calls to match.
+        // again until the sampler has had `min_sampled` of CPU time, and scale the calls
+        // to match. CPU, not wall, time: SIGPROF samples CPU time, and on a loaded
+        // machine a wall-clock budget can pass with almost no CPU and no samples.
         let run = sample(
             self.frequency,
             |name| name.starts_with("tracer::"),
             || {
-                let start = Instant::now();
+                let start = process_cpu_time();
                 let mut renders = 0u64;
                 loop {
                     renders += 1;
                     let out = self.pool.install(|| {
                         render_variant::<NoCount>(self.scene, &self.options, set, &|_| {})
                     });
-                    if out.is_err() || start.elapsed() >= self.min_sampled || renders >= MAX_RENDERS
-                    {
+                    let sampled = process_cpu_time().saturating_sub(start);
+                    if out.is_err() || sampled >= self.min_sampled || renders >= MAX_RENDERS {
                         return out.map(|_| renders);
                     }
                 }
