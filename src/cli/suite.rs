@@ -909,11 +909,7 @@ pub fn run(args: &SuiteArgs) -> Result<()> {
     }
     // Read the old results first: a bad --baseline should fail before the work.
     let old = match &args.baseline {
-        Some(path) => {
-            let text = std::fs::read_to_string(path)
-                .with_context(|| format!("cannot read {}", path.display()))?;
-            Some(Results::from_json(&text).with_context(|| path.display().to_string())?)
-        }
+        Some(path) => Some(Results::read_file(path)?),
         None => None,
     };
     let base_dir = args
