@@ -740,7 +740,7 @@ mod tests {
 
         let f = find(&findings, "failed");
         assert!(
-            f.starts_with("1 part of the run failed") && f.contains("rings/ortho"),
+            f.starts_with("1 part of the run failed") && f.contains("rings / ortho"),
             "{f}"
         );
     }

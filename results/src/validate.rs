@@ -62,6 +62,15 @@ pub mod limits {
 
 use limits::*;
 
+/// A number as a message shows it: exponent form when very large or small.
+fn shown(x: f64) -> String {
+    if x != 0.0 && !(1e-4..1e6).contains(&x.abs()) {
+        format!("{x:e}")
+    } else {
+        x.to_string()
+    }
+}
+
 /// Walks a results value, keeping the JSON path of where it is.
 struct Check {
     path: String,
@@ -114,11 +123,15 @@ impl Check {
             Err(self.err(format!("{x} is not a finite number")))
         } else if x < low {
             Err(self.err(format!(
-                "{x}{unit} is below the plausible range (at least {low}{unit})"
+                "{}{unit} is below the plausible range (at least {}{unit})",
+                shown(x),
+                shown(low)
             )))
         } else if x > high {
             Err(self.err(format!(
-                "{x}{unit} is beyond the plausible range (at most {high:e}{unit})"
+                "{}{unit} is beyond the plausible range (at most {}{unit})",
+                shown(x),
+                shown(high)
             )))
         } else {
             Ok(())

@@ -87,9 +87,7 @@ pub fn write_reports(runs: &[Run], dir: &Path) -> Result<()> {
 
 /// Reads a results file (any supported schema version), validated.
 pub fn load_results(path: &Path) -> Result<Results> {
-    let text =
-        std::fs::read_to_string(path).with_context(|| format!("cannot read {}", path.display()))?;
-    Results::from_json(&text).with_context(|| path.display().to_string())
+    Ok(Results::read_file(path)?)
 }
 
 pub fn run(args: &ReportArgs) -> Result<()> {
