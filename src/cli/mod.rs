@@ -1,4 +1,5 @@
-//! Command-line definition and dispatch (the stable contract of docs/design.md).
+//! Command-line definition and dispatch. The commands, flags and JSON keys are a stable
+//! contract (README.md lists them): tests and users depend on them.
 
 mod compare;
 mod count;

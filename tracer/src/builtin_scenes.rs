@@ -123,7 +123,7 @@ mod tests {
         [a[0] / len, a[1] / len, a[2] / len]
     }
 
-    /// Camera frame: (forward, right, up), right = forward × up as docs/nff-and-spd.md says.
+    /// Camera frame: (forward, right, up), right = forward × up as the NFF format defines it.
     fn camera_frame(scene: &Scene) -> (V, V, V, V) {
         let eye = v64(scene.view.from);
         let forward = unit(sub(v64(scene.view.at), eye));

@@ -2,7 +2,8 @@
 //!
 //! Colour = ambient + Σ over lights reached by a shadow ray of (Lambert diffuse + Phong
 //! highlight), + Ks × reflected colour + T × refracted colour, to depth 5 with the eye
-//! ray at depth 1. Rules (docs/nff-and-spd.md), and how they are read here:
+//! ray at depth 1. Rules (the SPD rules; README.md, "SPD rules as implemented"), and
+//! how they are read here:
 //! - every surface is hit from both sides and shaded with its normal turned toward the
 //!   incoming ray (a negative radius makes a quadric inside-only instead); NFF allows
 //!   opaque one-sided surfaces but does not require them, and two-sided shading keeps
