@@ -252,7 +252,7 @@ impl SceneRunner<'_> {
         Ok(SceneResult {
             name: spec.name.clone(),
             source: spec.source.clone(),
-            family: spec.family.clone(),
+            family: spec.family,
             primitives: scene.primitive_count() as u64,
             primitive_counts,
             width,
