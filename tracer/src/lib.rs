@@ -2,7 +2,7 @@
 //!
 //! It parses NFF scenes ([`nff`]), builds primitives ([`primitives`]), shoots eye rays
 //! ([`camera`]), answers intersection queries ([`accel`]), shades under the SPD rules
-//! ([`shading`]) and renders in parallel ([`render`]). Every vector operation, square
+//! ([`shading`]) and renders in parallel ([`mod@render`]). Every vector operation, square
 //! root, power, intersection test and ray is counted exactly through the [`counter`]
 //! layer, whose counters are declared once in its table ([`counter::table`]); with
 //! [`NoCount`] the counting compiles away, so one binary renders counted and uncounted.

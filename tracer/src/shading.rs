@@ -98,7 +98,7 @@ impl<'s, I: Intersector> Shader<'s, I> {
     }
 
     /// The same shader with another maximum ray-tree depth (the eye ray is depth 1;
-    /// [`crate::render`] checks it against [`crate::Limits::max_ray_depth`]).
+    /// [`crate::render()`] checks it against [`crate::Limits::max_ray_depth`]).
     pub fn with_max_depth(mut self, max_depth: u32) -> Self {
         self.max_depth = max_depth;
         self
