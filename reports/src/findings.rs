@@ -7,21 +7,15 @@
 //! validated device and what runs out, the model's worst error against table 8, and
 //! failures. A sentence whose data is missing is left out.
 
+use analysis::Band;
+
 use crate::charts::short_name;
+use crate::format::{join_list, percent_of};
 use crate::results::{CriterionEstimate, DeviceUse, HwRow, InstructionCount, Results};
+use crate::sections::access::{self, HW_COLUMNS};
 
 /// The thesis's best band (table 2).
-pub const IDENTICAL_BAND: &str = "visually identical";
-
-/// Names of the six columns of tables 7 and 8.
-pub const HW_COLUMNS: [&str; 6] = [
-    "latency",
-    "logic elements",
-    "combinational functions",
-    "registers",
-    "memory bits",
-    "multipliers",
-];
+const IDENTICAL: Band = Band::VisuallyIdentical;
 
 /// 4-8 sentences about the run, most important first.
 pub fn headline_findings(results: &Results) -> Vec<String> {
@@ -83,7 +77,7 @@ fn profile_finding(results: &Results) -> Option<String> {
 struct ImageError {
     scene: String,
     rms: f64,
-    band: String,
+    band: Band,
 }
 
 /// What one variant (not baseline) did over the scenes it ran on.
@@ -116,7 +110,7 @@ fn variant_stats(results: &Results) -> Vec<VariantStats> {
                 stats[index].errors.push(ImageError {
                     scene: scene.name.clone(),
                     rms: q.rms,
-                    band: q.band.clone(),
+                    band: access::band(q),
                 });
             }
         }
@@ -172,7 +166,7 @@ fn quality_finding(results: &Results) -> Option<String> {
             let outside: Vec<&ImageError> = s
                 .errors
                 .iter()
-                .filter(|e| e.band != IDENTICAL_BAND)
+                .filter(|e| e.band != IDENTICAL)
                 .collect();
             let worst = outside.iter().max_by(|a, b| a.rms.total_cmp(&b.rms))?;
             Some(format!(
@@ -188,11 +182,11 @@ fn quality_finding(results: &Results) -> Option<String> {
         .collect();
     Some(if leaving.is_empty() {
         format!(
-            "Every variant's images stay in the \"{IDENTICAL_BAND}\" band against baseline (RMS below 15)."
+            "Every variant's images stay in the \"{IDENTICAL}\" band against baseline (RMS below 15)."
         )
     } else {
         format!(
-            "Images leave the \"{IDENTICAL_BAND}\" band with {}.",
+            "Images leave the \"{IDENTICAL}\" band with {}.",
             join_list(&leaving)
         )
     })
@@ -253,14 +247,6 @@ pub fn exhausted_resources(d: &DeviceUse) -> Vec<String> {
     out
 }
 
-fn percent(used: u64, capacity: u64) -> f64 {
-    if capacity == 0 {
-        f64::NAN
-    } else {
-        used as f64 / capacity as f64 * 100.0
-    }
-}
-
 fn device_finding(results: &Results) -> Option<String> {
     let hardware = results.hardware.as_ref()?;
     let d = hardware
@@ -272,8 +258,8 @@ fn device_finding(results: &Results) -> Option<String> {
     let exhausted = exhausted_resources(d);
     let use_text = format!(
         "{:.0} % of its logic elements and {:.0} % of its memory bits",
-        percent(d.le, d.le_capacity),
-        percent(d.mem_bits, d.mem_capacity)
+        percent_of(d.le, d.le_capacity),
+        percent_of(d.mem_bits, d.mem_capacity)
     );
     let runs_out = if exhausted.is_empty() {
         "nothing runs out".to_string()
@@ -321,7 +307,7 @@ fn model_error_finding(results: &Results) -> Option<String> {
         .unwrap_or_default();
     Some(format!(
         "The hardware model's worst error against table 8 is {error:+.1} % ({block}, {}){latency}.",
-        HW_COLUMNS[column]
+        HW_COLUMNS[column].0
     ))
 }
 
@@ -502,15 +488,6 @@ pub fn instruction_time_disagreements(results: &Results) -> Vec<String> {
         ));
     }
     sentences
-}
-
-/// "a", "a and b", "a, b and c".
-fn join_list(items: &[String]) -> String {
-    match items {
-        [] => String::new(),
-        [one] => one.clone(),
-        [rest @ .., last] => format!("{} and {last}", rest.join(", ")),
-    }
 }
 
 /// Every (scene, width, height, variant) of any of `runs`, in first-seen order: the
@@ -781,9 +758,5 @@ mod tests {
         assert_eq!(geometric_mean([f64::NAN, -1.0]), None);
         let (m, n) = geometric_mean([2.0, 8.0, f64::INFINITY]).expect("mean");
         assert!((m - 4.0).abs() < 1e-12 && n == 2);
-        assert_eq!(
-            join_list(&["a".into(), "b".into(), "c".into()]),
-            "a, b and c"
-        );
     }
 }

@@ -1,18 +1,27 @@
 //! `reports`: the results of an rtprof suite and the reports made from them.
 //!
 //! Data flows one way: the suite runner fills [`results::Results`] (plain serde data,
-//! schema `rtprof.results/1`), this crate turns it into charts (SVG), one
-//! self-contained HTML file and a typeset PDF. It never renders a scene.
+//! schema `rtprof.results/1`); [`document::build`] turns the runs into one report
+//! [`document::Document`] (sections of paragraphs, tables of typed cells, charts,
+//! image grids, flamegraphs, notes), with the section builders of [`sections`], the
+//! charts of [`charts`] and the numbers written by [`format`]. Renderers only lay the
+//! document out: [`html`] (one self-contained file), [`pdf`] (typst, with the
+//! template `templates/report.typ`) and [`text`] (tables on a terminal). This crate
+//! never renders a scene.
 
 pub mod benchmarks;
 pub mod charts;
+pub mod document;
 pub mod findings;
+pub mod format;
 pub mod gallery;
 pub mod gate;
 pub mod html;
 pub mod pdf;
 pub mod results;
 pub mod sample;
+pub mod sections;
+pub mod text;
 
 use std::path::PathBuf;
 
@@ -23,4 +32,18 @@ pub struct Run {
     pub label: String,
     pub results: results::Results,
     pub base_dir: PathBuf,
+}
+
+/// An id- and file-name-safe form of a name (ASCII letters, digits and '-'; the
+/// rest become '_').
+pub fn slug(s: &str) -> String {
+    s.chars()
+        .map(|c| {
+            if c.is_ascii_alphanumeric() || c == '-' {
+                c
+            } else {
+                '_'
+            }
+        })
+        .collect()
 }

@@ -21,7 +21,7 @@ use hwmodel::hw_scene::HwScene;
 use hwmodel::library::Library;
 use hwmodel::pipeline::frame_timing;
 use indicatif::{MultiProgress, ProgressBar, ProgressStyle};
-use reports::html::slug;
+use reports::slug;
 use reports::results::{
     AmdahlRow, Build, DeviceUse, Estimate, Failure, FlatRow, HardwareResult, HwRow, Machine,
     Profile, ProfileResult, Quality, Results, SCHEMA, SceneHardware, SceneResult, SuiteInfo,
@@ -753,11 +753,9 @@ impl Runner<'_> {
     }
 }
 
-/// Tables 7 and 8 and the thesis design's fit on every device (7 primitives, 640x480).
-fn hardware_tables() -> HardwareResult {
-    let lib = Library::cyclone_iv_e();
-    let t = hwmodel::table::tables(&lib, &Design::thesis());
-    let row = |r: &hwmodel::table::Row| HwRow {
+/// A row of the model's tables 7 and 8 as results hold it.
+pub fn hw_row(r: &hwmodel::table::Row) -> HwRow {
+    HwRow {
         name: r.model.name.clone(),
         kind: r.kind.to_string(),
         model: [
@@ -776,7 +774,13 @@ fn hardware_tables() -> HardwareResult {
             .error_pct
             .as_ref()
             .map(|e| [e.latency, e.le, e.comb, e.regs, e.mem_bits, e.mult]),
-    };
+    }
+}
+
+/// Tables 7 and 8 and the thesis design's fit on every device (7 primitives, 640x480).
+fn hardware_tables() -> HardwareResult {
+    let lib = Library::cyclone_iv_e();
+    let t = hwmodel::table::tables(&lib, &Design::thesis());
     let mut devices = Vec::new();
     for family in Library::embedded() {
         let pipeline = Pipeline::build(&family, &Design::thesis());
@@ -802,8 +806,8 @@ fn hardware_tables() -> HardwareResult {
     }
     HardwareResult {
         family: lib.family.clone(),
-        ops: t.ops.iter().map(row).collect(),
-        blocks: t.blocks.iter().map(row).collect(),
+        ops: t.ops.iter().map(hw_row).collect(),
+        blocks: t.blocks.iter().map(hw_row).collect(),
         devices,
     }
 }
