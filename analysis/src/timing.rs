@@ -14,6 +14,17 @@ pub struct Estimate {
     pub high: f64,
 }
 
+impl Estimate {
+    /// The same estimate in another unit (`1e-9` turns nanoseconds into seconds).
+    pub fn scaled(&self, factor: f64) -> Estimate {
+        Estimate {
+            median: self.median * factor,
+            low: self.low * factor,
+            high: self.high * factor,
+        }
+    }
+}
+
 /// Median of `xs` (mean of the two middle values for even lengths); `None` when `xs` is
 /// empty or holds a NaN, which has no place in an ordering.
 pub fn median(xs: &[f64]) -> Option<f64> {

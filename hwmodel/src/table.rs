@@ -3,7 +3,9 @@
 //! The thesis's figures here are the reference the model is judged by, not inputs to
 //! it: the model computes every composite and block from the IP-core rows alone.
 
-use serde::Serialize;
+use std::fmt;
+
+use serde::{Deserialize, Serialize};
 
 use crate::blocks::{BlockFigures, Pipeline};
 use crate::composites::{
@@ -32,9 +34,57 @@ pub const TABLE_8: [ThesisRow; 4] = [
     ("shading", [121, 34512, 24999, 20826, 8448, 201]),
 ];
 
-/// The thesis's figures for one row.
-#[derive(Clone, Debug, PartialEq, Serialize)]
-pub struct ThesisFigures {
+/// A column of tables 7 and 8.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum Column {
+    Latency,
+    Le,
+    Comb,
+    Regs,
+    MemBits,
+    Mult,
+}
+
+impl Column {
+    /// The columns in the thesis's order.
+    pub const ALL: [Column; 6] = [
+        Column::Latency,
+        Column::Le,
+        Column::Comb,
+        Column::Regs,
+        Column::MemBits,
+        Column::Mult,
+    ];
+
+    /// The field name in [`Figures`] and [`Errors`] (and in JSON).
+    pub fn key(self) -> &'static str {
+        match self {
+            Column::Latency => "latency",
+            Column::Le => "le",
+            Column::Comb => "comb",
+            Column::Regs => "regs",
+            Column::MemBits => "mem_bits",
+            Column::Mult => "mult",
+        }
+    }
+
+    /// What it measures, for a reader.
+    pub fn label(self) -> &'static str {
+        match self {
+            Column::Latency => "latency",
+            Column::Le => "logic elements",
+            Column::Comb => "combinational functions",
+            Column::Regs => "registers",
+            Column::MemBits => "memory bits",
+            Column::Mult => "multipliers",
+        }
+    }
+}
+
+/// One row's figures, the model's or the thesis's: latency (cycles), logic elements,
+/// combinational functions, registers, memory bits, 9-bit multipliers.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+pub struct Figures {
     pub latency: u64,
     pub le: u64,
     pub comb: u64,
@@ -43,9 +93,51 @@ pub struct ThesisFigures {
     pub mult: u64,
 }
 
+impl Figures {
+    /// The figures in the thesis's column order, as the tables print them.
+    pub fn from_columns(c: [u64; 6]) -> Self {
+        Self {
+            latency: c[0],
+            le: c[1],
+            comb: c[2],
+            regs: c[3],
+            mem_bits: c[4],
+            mult: c[5],
+        }
+    }
+
+    /// A model row's figures (without its name).
+    pub fn of_block(b: &BlockFigures) -> Self {
+        Self {
+            latency: u64::from(b.latency),
+            le: b.le,
+            comb: b.comb,
+            regs: b.regs,
+            mem_bits: b.mem_bits,
+            mult: b.mult,
+        }
+    }
+
+    pub fn get(&self, column: Column) -> u64 {
+        match column {
+            Column::Latency => self.latency,
+            Column::Le => self.le,
+            Column::Comb => self.comb,
+            Column::Regs => self.regs,
+            Column::MemBits => self.mem_bits,
+            Column::Mult => self.mult,
+        }
+    }
+
+    /// Each column with its figure, in the thesis's order.
+    pub fn columns(&self) -> [(Column, u64); 6] {
+        Column::ALL.map(|c| (c, self.get(c)))
+    }
+}
+
 /// Percentage error of the model per column (`None` where the thesis has 0 and the
 /// model does not).
-#[derive(Clone, Debug, PartialEq, Serialize)]
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
 pub struct Errors {
     pub latency: Option<f64>,
     pub le: Option<f64>,
@@ -55,15 +147,75 @@ pub struct Errors {
     pub mult: Option<f64>,
 }
 
+impl Errors {
+    /// The signed percentage errors of `model` against `thesis`, per column.
+    pub fn of(model: &Figures, thesis: &Figures) -> Self {
+        let e = |c| pct_error(model.get(c), thesis.get(c));
+        Self {
+            latency: e(Column::Latency),
+            le: e(Column::Le),
+            comb: e(Column::Comb),
+            regs: e(Column::Regs),
+            mem_bits: e(Column::MemBits),
+            mult: e(Column::Mult),
+        }
+    }
+
+    pub fn get(&self, column: Column) -> Option<f64> {
+        match column {
+            Column::Latency => self.latency,
+            Column::Le => self.le,
+            Column::Comb => self.comb,
+            Column::Regs => self.regs,
+            Column::MemBits => self.mem_bits,
+            Column::Mult => self.mult,
+        }
+    }
+
+    /// Each column with its error, in the thesis's order.
+    pub fn columns(&self) -> [(Column, Option<f64>); 6] {
+        Column::ALL.map(|c| (c, self.get(c)))
+    }
+}
+
+/// Where a row of the tables comes from.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum RowKind {
+    /// An IP core of the library (table 7's first rows; the thesis gives no figures
+    /// to compare, they are the library itself).
+    IpCore,
+    /// A vector operation of table 7, built from IP cores.
+    Composite,
+    /// A pipeline block of table 8.
+    Block,
+}
+
+impl RowKind {
+    /// How the tables name it.
+    pub fn name(self) -> &'static str {
+        match self {
+            RowKind::IpCore => "IP core",
+            RowKind::Composite => "composite",
+            RowKind::Block => "block",
+        }
+    }
+}
+
+impl fmt::Display for RowKind {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.pad(self.name())
+    }
+}
+
 /// One row of the comparison: model figures (flattened: `name, latency, le, …`), the
 /// thesis's, and the errors.
 #[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct Row {
     #[serde(flatten)]
     pub model: BlockFigures,
-    /// Where the row comes from ("table 7 IP core", "composite", "block").
-    pub kind: &'static str,
-    pub thesis: Option<ThesisFigures>,
+    pub kind: RowKind,
+    pub thesis: Option<Figures>,
     pub error_pct: Option<Errors>,
 }
 
@@ -85,23 +237,11 @@ pub fn pct_error(model: u64, thesis: u64) -> Option<f64> {
     }
 }
 
-fn compare(model: BlockFigures, kind: &'static str, thesis: Option<[u64; 6]>) -> Row {
-    let thesis = thesis.map(|t| ThesisFigures {
-        latency: t[0],
-        le: t[1],
-        comb: t[2],
-        regs: t[3],
-        mem_bits: t[4],
-        mult: t[5],
-    });
-    let error_pct = thesis.as_ref().map(|t| Errors {
-        latency: pct_error(u64::from(model.latency), t.latency),
-        le: pct_error(model.le, t.le),
-        comb: pct_error(model.comb, t.comb),
-        regs: pct_error(model.regs, t.regs),
-        mem_bits: pct_error(model.mem_bits, t.mem_bits),
-        mult: pct_error(model.mult, t.mult),
-    });
+fn compare(model: BlockFigures, kind: RowKind, thesis: Option<[u64; 6]>) -> Row {
+    let thesis = thesis.map(Figures::from_columns);
+    let error_pct = thesis
+        .as_ref()
+        .map(|t| Errors::of(&Figures::of_block(&model), t));
     Row {
         model,
         kind,
@@ -171,7 +311,7 @@ pub fn tables(lib: &Library, design: &Design) -> Tables {
         let figures = BlockFigures::of(op.key(), spec.latency, spec.resources);
         Row {
             model: figures,
-            kind: "IP core",
+            kind: RowKind::IpCore,
             thesis: None,
             error_pct: None,
         }
@@ -179,7 +319,7 @@ pub fn tables(lib: &Library, design: &Design) -> Tables {
     .collect();
     ops.extend(composite_figures(lib).into_iter().map(|f| {
         let t = thesis_row(&TABLE_7_COMPOSITES, &f.name);
-        compare(f, "composite", t)
+        compare(f, RowKind::Composite, t)
     }));
     let pipeline = Pipeline::build(lib, design);
     let blocks = pipeline
@@ -187,7 +327,7 @@ pub fn tables(lib: &Library, design: &Design) -> Tables {
         .into_iter()
         .map(|b| {
             let f = BlockFigures::of(b.name, b.latency(), b.resources());
-            compare(f, "block", thesis_row(&TABLE_8, b.name))
+            compare(f, RowKind::Block, thesis_row(&TABLE_8, b.name))
         })
         .collect();
     Tables {

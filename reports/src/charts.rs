@@ -24,7 +24,7 @@ use plotters::coord::Shift;
 use plotters::prelude::*;
 use plotters::style::text_anchor::{HPos, Pos, VPos};
 
-use crate::results::{Results, SceneResult, VariantResult};
+use crate::results::{Results, SceneFamily, SceneResult, VariantName, VariantResult};
 
 /// One chart: a stable id (for anchors and file names), a title, a caption saying what
 /// it shows and where the thesis has it, and the SVG document.
@@ -336,14 +336,14 @@ fn x_label_layout(labels: &[String], plot_width: f64) -> (bool, u32) {
 
 /// The colour of a variant: its place among the run's variants (baseline is dark).
 fn variant_colour(results: &Results, variant: &str) -> RGBColor {
-    if variant == "baseline" {
+    if variant == VariantName::reference().as_str() {
         return BASELINE_INK;
     }
-    let others: Vec<&String> = results
+    let others: Vec<&VariantName> = results
         .suite
         .variants
         .iter()
-        .filter(|v| v.as_str() != "baseline")
+        .filter(|v| !v.is_reference())
         .collect();
     let index = others
         .iter()
@@ -557,11 +557,11 @@ pub fn quality_speed_chart(results: &Results) -> Option<Chart> {
     for scene in &results.scenes {
         for v in &scene.variants {
             if let Some(q) = &v.quality
-                && finite_positive(v.speedup)
+                && finite_positive(v.speedup.unwrap_or(f64::NAN))
                 && q.rms.is_finite()
                 && q.rms >= 0.0
             {
-                points.push((v.variant.as_str(), v.speedup, q.rms));
+                points.push((v.variant.as_str(), v.speedup.unwrap_or(f64::NAN), q.rms));
             }
         }
     }
@@ -898,7 +898,7 @@ fn box_stats(samples: &[f64]) -> Option<BoxStats> {
 /// Baseline render time against primitive count, box plots per test-bench family, with
 /// the hardware model's time (thesis fig. 47, 48).
 pub fn time_vs_primitives_chart(results: &Results) -> Option<Chart> {
-    const FAMILIES: [&str; 3] = ["balls", "cylinder", "both"];
+    const FAMILIES: [SceneFamily; 3] = SceneFamily::TEST_BENCHES;
     let mut boxes: Vec<(usize, u64, BoxStats)> = Vec::new();
     for (f, family) in FAMILIES.iter().enumerate() {
         for count in 1..=7u64 {
@@ -983,7 +983,7 @@ pub fn time_vs_primitives_chart(results: &Results) -> Option<Chart> {
                         let x = *count as f64 + offset;
                         Rectangle::new([(x - 0.11, b.q1), (x + 0.11, b.q3)], colour.mix(0.35).filled())
                     }))?
-                    .label(*family)
+                    .label(family.name())
                     .legend(move |(x, y)| Rectangle::new([(x, y - 5), (x + 14, y + 5)], colour.filled()));
                 chart.draw_series(mine.iter().flat_map(|(_, count, b)| {
                     let x = *count as f64 + offset;
@@ -1178,12 +1178,12 @@ pub fn scene_histograms(results: &Results, scene: &SceneResult) -> Option<Chart>
     let baseline = results.baseline(scene)?;
     let mut shown = vec![baseline];
     shown.extend(scene.variants.iter().filter(|v| {
-        v.variant != "baseline" && v.histogram.len() == 256 && v.histogram != baseline.histogram
+        !v.variant.is_reference() && v.histogram.len() == 256 && v.histogram != baseline.histogram
     }));
     let hidden: Vec<&str> = scene
         .variants
         .iter()
-        .filter(|v| v.variant != "baseline" && !shown.iter().any(|s| s.variant == v.variant))
+        .filter(|v| !v.variant.is_reference() && !shown.iter().any(|s| s.variant == v.variant))
         .map(|v| v.variant.as_str())
         .collect();
     let mut chart = gray_histograms(results, scene, &shown, (640, 300))?;
@@ -1233,7 +1233,7 @@ fn gray_histograms(
                 points.push((bin as f64 + 1.0, y));
             }
             (
-                v.variant.clone(),
+                v.variant.to_string(),
                 variant_colour(results, &v.variant),
                 points,
             )
@@ -1375,7 +1375,7 @@ mod tests {
         let mut r = sample_results();
         for s in &mut r.scenes {
             for v in &mut s.variants {
-                v.speedup = f64::NAN;
+                v.speedup = None;
                 v.samples = vec![f64::NAN, f64::INFINITY, -1.0];
                 v.time.median = f64::NAN;
                 v.histogram.clear();

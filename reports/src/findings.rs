@@ -7,15 +7,11 @@
 //! validated device and what runs out, the model's worst error against table 8, and
 //! failures. A sentence whose data is missing is left out.
 
-use analysis::Band;
-
 use crate::charts::short_name;
 use crate::format::{join_list, percent_of};
-use crate::results::{CriterionEstimate, DeviceUse, HwRow, InstructionCount, Results};
-use crate::sections::access::{self, HW_COLUMNS};
-
-/// The thesis's best band (table 2).
-const IDENTICAL: Band = Band::VisuallyIdentical;
+use crate::results::{
+    Band, CriterionEstimate, DeviceUse, HwColumn, HwRow, InstructionCount, Results, VariantName,
+};
 
 /// 4-8 sentences about the run, most important first.
 pub fn headline_findings(results: &Results) -> Vec<String> {
@@ -82,7 +78,7 @@ struct ImageError {
 
 /// What one variant (not baseline) did over the scenes it ran on.
 struct VariantStats {
-    variant: String,
+    variant: VariantName,
     /// (scene, speed-up over baseline).
     speedups: Vec<(String, f64)>,
     /// Image errors with a finite RMS.
@@ -93,7 +89,7 @@ struct VariantStats {
 fn variant_stats(results: &Results) -> Vec<VariantStats> {
     let mut stats: Vec<VariantStats> = Vec::new();
     for scene in &results.scenes {
-        for v in scene.variants.iter().filter(|v| v.variant != "baseline") {
+        for v in scene.variants.iter().filter(|v| !v.variant.is_reference()) {
             let index = match stats.iter().position(|s| s.variant == v.variant) {
                 Some(i) => i,
                 None => {
@@ -105,12 +101,14 @@ fn variant_stats(results: &Results) -> Vec<VariantStats> {
                     stats.len() - 1
                 }
             };
-            stats[index].speedups.push((scene.name.clone(), v.speedup));
+            stats[index]
+                .speedups
+                .push((scene.name.clone(), v.speedup.unwrap_or(f64::NAN)));
             if let Some(q) = v.quality.as_ref().filter(|q| q.rms.is_finite()) {
                 stats[index].errors.push(ImageError {
                     scene: scene.name.clone(),
                     rms: q.rms,
-                    band: access::band(q),
+                    band: q.band,
                 });
             }
         }
@@ -166,7 +164,7 @@ fn quality_finding(results: &Results) -> Option<String> {
             let outside: Vec<&ImageError> = s
                 .errors
                 .iter()
-                .filter(|e| e.band != IDENTICAL)
+                .filter(|e| e.band != Band::VisuallyIdentical)
                 .collect();
             let worst = outside.iter().max_by(|a, b| a.rms.total_cmp(&b.rms))?;
             Some(format!(
@@ -182,11 +180,13 @@ fn quality_finding(results: &Results) -> Option<String> {
         .collect();
     Some(if leaving.is_empty() {
         format!(
-            "Every variant's images stay in the \"{IDENTICAL}\" band against baseline (RMS below 15)."
+            "Every variant's images stay in the \"{}\" band against baseline (RMS below 15).",
+            Band::VisuallyIdentical
         )
     } else {
         format!(
-            "Images leave the \"{IDENTICAL}\" band with {}.",
+            "Images leave the \"{}\" band with {}.",
+            Band::VisuallyIdentical,
             join_list(&leaving)
         )
     })
@@ -279,11 +279,11 @@ fn device_finding(results: &Results) -> Option<String> {
 }
 
 /// The largest |error| of `rows` against the thesis: (row, column, signed error %).
-pub fn worst_error(rows: &[HwRow]) -> Option<(&str, usize, f64)> {
+pub fn worst_error(rows: &[HwRow]) -> Option<(&str, HwColumn, f64)> {
     rows.iter()
         .filter_map(|r| r.error_pct.as_ref().map(|e| (r, e)))
         .flat_map(|(r, errors)| {
-            errors.iter().enumerate().filter_map(move |(c, e)| {
+            errors.columns().into_iter().filter_map(move |(c, e)| {
                 e.filter(|e| e.is_finite()).map(|e| (r.name.as_str(), c, e))
             })
         })
@@ -296,7 +296,7 @@ fn model_error_finding(results: &Results) -> Option<String> {
     let latency_worst = hardware
         .blocks
         .iter()
-        .filter_map(|r| r.error_pct.as_ref().and_then(|e| e[0]))
+        .filter_map(|r| r.error_pct.as_ref().and_then(|e| e.latency))
         .filter(|e| e.is_finite())
         .map(f64::abs)
         .fold(None, |acc: Option<f64>, e| {
@@ -307,17 +307,14 @@ fn model_error_finding(results: &Results) -> Option<String> {
         .unwrap_or_default();
     Some(format!(
         "The hardware model's worst error against table 8 is {error:+.1} % ({block}, {}){latency}.",
-        HW_COLUMNS[column].0
+        column.label()
     ))
 }
 
 fn failures_finding(results: &Results) -> Option<String> {
     let first = results.failures.first()?;
     let n = results.failures.len();
-    let what = match &first.variant {
-        Some(v) => format!("{}/{v}", first.scene),
-        None => first.scene.clone(),
-    };
+    let what = first.place();
     Some(format!(
         "{n} part{} of the run failed (first: {what}: {}); the other results stand.",
         if n == 1 { "" } else { "s" },
@@ -492,7 +489,7 @@ pub fn instruction_time_disagreements(results: &Results) -> Vec<String> {
 
 /// Every (scene, width, height, variant) of any of `runs`, in first-seen order: the
 /// rows of the side-by-side comparison.
-pub fn comparison_keys(runs: &[crate::Run]) -> Vec<(String, u32, u32, String)> {
+pub fn comparison_keys(runs: &[crate::Run]) -> Vec<(String, u32, u32, VariantName)> {
     let mut keys = Vec::new();
     let mut seen = std::collections::BTreeSet::new();
     for run in runs {
@@ -511,15 +508,16 @@ pub fn comparison_keys(runs: &[crate::Run]) -> Vec<(String, u32, u32, String)> {
 /// How many timed renders each figure rests on, in words ("3 timed repeats, more
 /// until 0.2 s").
 pub fn repeats_text(s: &crate::results::SuiteInfo) -> String {
+    let t = &s.timing;
     let base = format!(
         "{} timed repeat{}",
-        s.repeats,
-        if s.repeats == 1 { "" } else { "s" }
+        t.min_repeats,
+        if t.min_repeats == 1 { "" } else { "s" }
     );
-    if s.min_seconds > 0.0 {
+    if t.min_seconds > 0.0 {
         format!(
-            "{base} (more, up to 100, until {} s is measured)",
-            s.min_seconds
+            "{base} (more, up to {}, until {} s is measured)",
+            t.max_repeats, t.min_seconds
         )
     } else {
         base
@@ -664,7 +662,7 @@ mod tests {
         // Fastest variant by geometric mean.
         let mut best = (String::new(), 0.0);
         for variant in &r.suite.variants {
-            if variant == "baseline" {
+            if variant.is_reference() {
                 continue;
             }
             let speedups: Vec<f64> = r
@@ -672,11 +670,11 @@ mod tests {
                 .iter()
                 .flat_map(|s| s.variants.iter())
                 .filter(|v| &v.variant == variant)
-                .map(|v| v.speedup)
+                .filter_map(|v| v.speedup)
                 .collect();
             let mean = (speedups.iter().map(|s| s.ln()).sum::<f64>() / speedups.len() as f64).exp();
             if mean > best.1 {
-                best = (variant.clone(), mean);
+                best = (variant.to_string(), mean);
             }
         }
         let f = find(&findings, "fastest variant");
@@ -726,7 +724,7 @@ mod tests {
 
         let f = find(&findings, "failed");
         assert!(
-            f.starts_with("1 part of the run failed") && f.contains("rings/ortho"),
+            f.starts_with("1 part of the run failed") && f.contains("rings / ortho"),
             "{f}"
         );
     }
@@ -743,7 +741,7 @@ mod tests {
         let mut r = sample_results();
         for s in &mut r.scenes {
             for v in &mut s.variants {
-                v.speedup = f64::NAN;
+                v.speedup = None;
                 if let Some(q) = &mut v.quality {
                     q.rms = f64::NAN;
                 }

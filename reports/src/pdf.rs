@@ -111,7 +111,8 @@ pub fn section_headings(typeset: &PagedDocument) -> Vec<(String, String)> {
         .iter()
         .filter_map(|heading| {
             let label = heading.label()?;
-            Some((label.resolve().to_string(), heading.plain_text().to_string()))
+            let body = &heading.to_packed::<HeadingElem>()?.body;
+            Some((label.resolve().to_string(), body.plain_text().to_string()))
         })
         .collect()
 }

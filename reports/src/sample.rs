@@ -18,9 +18,10 @@ use std::collections::BTreeMap;
 use std::path::Path;
 
 use crate::results::{
-    AmdahlRow, Build, CriterionEstimate, DeviceUse, Estimate, Failure, FlatRow, HardwareResult,
-    HwRow, InstructionCount, Machine, Profile, ProfileResult, Quality, Results, SCHEMA,
-    SceneHardware, SceneResult, SuiteInfo, VariantResult,
+    AmdahlRow, Band, Build, CriterionEstimate, DeviceUse, Estimate, FailedPart, Failure, FlatRow,
+    HardwareResult, HwRow, InstructionCount, Machine, Profile, ProfileResult, Quality, Results,
+    SCHEMA, SceneFamily, SceneHardware, SceneResult, SuiteInfo, TimeCovers, TimingPolicy,
+    VariantName, VariantResult,
 };
 
 /// A valid 1x1 8-bit grayscale PNG (one mid-gray pixel).
@@ -36,6 +37,14 @@ pub const TINY_PNG: [u8; 67] = [
 pub const SAMPLE_VARIANTS: [&str; 6] =
     ["baseline", "simd", "bvh", "fast-sqrt", "ortho", "pixel-avg"];
 
+/// The name of one of [`SAMPLE_VARIANTS`] (all are tracer's single variants).
+fn variant_name(name: &str) -> VariantName {
+    tracer::Variant::ALL
+        .into_iter()
+        .find(|v| v.name() == name)
+        .map_or_else(VariantName::reference, VariantName::from)
+}
+
 /// Frame-time constants of the thesis's design (eq. 49): 50 MHz, 3 cycles per primitive.
 const HW_CLOCK_HZ: f64 = 50e6;
 const HW_FILL_CYCLES: u64 = 342;
@@ -43,7 +52,7 @@ const HW_FILL_CYCLES: u64 = 342;
 /// One scene of the sample: name, family, spheres, cylinders, polygons, size.
 struct SceneSpec {
     name: &'static str,
-    family: &'static str,
+    family: SceneFamily,
     spheres: u64,
     cylinders: u64,
     polygons: u64,
@@ -52,19 +61,19 @@ struct SceneSpec {
 }
 
 const SCENES: [SceneSpec; 11] = [
-    tb("balls1", "balls", 1, 0),
-    tb("balls2", "balls", 2, 0),
-    tb("balls4", "balls", 4, 0),
-    tb("balls7", "balls", 7, 0),
-    tb("cylinder1", "cylinder", 0, 1),
-    tb("cylinder4", "cylinder", 0, 4),
-    tb("cylinder7", "cylinder", 0, 7),
-    tb("both1", "both", 1, 0),
-    tb("both5", "both", 3, 2),
-    tb("both7", "both", 4, 3),
+    tb("balls1", SceneFamily::Balls, 1, 0),
+    tb("balls2", SceneFamily::Balls, 2, 0),
+    tb("balls4", SceneFamily::Balls, 4, 0),
+    tb("balls7", SceneFamily::Balls, 7, 0),
+    tb("cylinder1", SceneFamily::Cylinder, 0, 1),
+    tb("cylinder4", SceneFamily::Cylinder, 0, 4),
+    tb("cylinder7", SceneFamily::Cylinder, 0, 7),
+    tb("both1", SceneFamily::Both, 1, 0),
+    tb("both5", SceneFamily::Both, 3, 2),
+    tb("both7", SceneFamily::Both, 4, 3),
     SceneSpec {
         name: "rings",
-        family: "spd",
+        family: SceneFamily::Spd,
         spheres: 4200,
         cylinders: 4200,
         polygons: 2,
@@ -73,7 +82,7 @@ const SCENES: [SceneSpec; 11] = [
     },
 ];
 
-const fn tb(name: &'static str, family: &'static str, spheres: u64, cylinders: u64) -> SceneSpec {
+const fn tb(name: &'static str, family: SceneFamily, spheres: u64, cylinders: u64) -> SceneSpec {
     SceneSpec {
         name,
         family,
@@ -90,7 +99,7 @@ impl SceneSpec {
         self.spheres + self.cylinders + self.polygons
     }
     fn is_spd(&self) -> bool {
-        self.family == "spd"
+        matches!(self.family, SceneFamily::Spd)
     }
     fn pixels(&self) -> u64 {
         u64::from(self.width) * u64::from(self.height)
@@ -108,19 +117,6 @@ fn unit_hash(key: &str) -> f64 {
     h = h.wrapping_mul(0xff51_afd7_ed55_8ccd);
     h ^= h >> 33;
     (h >> 11) as f64 / (1u64 << 53) as f64
-}
-
-/// The thesis's RMS rating bands (table 2).
-pub fn rms_band(rms: f64) -> &'static str {
-    if rms < 15.0 {
-        "visually identical"
-    } else if rms < 50.0 {
-        "visually similar"
-    } else if rms < 85.0 {
-        "notable changes"
-    } else {
-        "totally different"
-    }
 }
 
 /// Baseline median time of a scene, seconds.
@@ -307,7 +303,7 @@ fn sample_variant(s: &SceneSpec, variant: &str, base_median: f64) -> VariantResu
         let rms = variant_rms(s, variant);
         Quality {
             rms,
-            band: rms_band(rms).to_string(),
+            band: Band::of(rms),
             psnr: (rms > 0.0).then(|| 20.0 * (255.0 / rms).log10()),
             ssim: if rms > 0.0 { 1.0 - rms / 260.0 } else { 1.0 },
             max_abs_diff: (rms * 4.2).min(255.0) as u32,
@@ -327,10 +323,12 @@ fn sample_variant(s: &SceneSpec, variant: &str, base_median: f64) -> VariantResu
     let heat_map = (variant != "baseline" && image.is_some())
         .then(|| image_path(s.name, &format!("{variant}-diff")));
     VariantResult {
-        variant: variant.to_string(),
+        variant: variant_name(variant),
         time,
         samples,
-        speedup,
+        // Camera space and structure build: a few microseconds per primitive.
+        preprocessing_seconds: Some(4e-6 * s.primitives() as f64),
+        speedup: Some(speedup),
         counts,
         image,
         heat_map,
@@ -354,7 +352,7 @@ fn sample_scene_hardware(s: &SceneSpec, base_median: f64) -> SceneHardware {
         software_seconds,
         speedup: software_seconds.median / seconds,
         emulator_rms,
-        emulator_band: rms_band(emulator_rms).to_string(),
+        emulator_band: Band::of(emulator_rms),
         emulator_image: Some(image_path(s.name, "emulator")),
         software_image: Some(image_path(s.name, "software-gray")),
     }
@@ -384,7 +382,7 @@ fn sample_scene(s: &SceneSpec, failed: &[(&str, &str)]) -> SceneResult {
         } else {
             "builtin".to_string()
         },
-        family: s.family.to_string(),
+        family: s.family,
         primitives: s.primitives(),
         primitive_counts,
         width: s.width,
@@ -539,7 +537,7 @@ fn sample_profile(
         .collect();
     let stem = format!("profile/{}-{variant}", scene.name);
     Profile {
-        variant: variant.to_string(),
+        variant: variant_name(variant),
         samples: (total / seconds_per_sample).round() as u64,
         seconds_per_sample,
         flat,
@@ -550,118 +548,15 @@ fn sample_profile(
     }
 }
 
-/// Tables 7 and 8: (name, kind, model, thesis) as `rtprof hw table` prints them.
-type HwFigures = (&'static str, &'static str, [u64; 6], [u64; 6]);
-
-const TABLE_7: [HwFigures; 9] = [
-    (
-        "add_sub",
-        "IP core",
-        [7, 906, 802, 415, 0, 0],
-        [7, 906, 802, 415, 0, 0],
-    ),
-    (
-        "multiply",
-        "IP core",
-        [5, 301, 222, 218, 0, 7],
-        [5, 301, 222, 218, 0, 7],
-    ),
-    (
-        "sqrt",
-        "IP core",
-        [16, 1207, 826, 670, 0, 0],
-        [16, 1207, 826, 670, 0, 0],
-    ),
-    (
-        "divide",
-        "IP core",
-        [6, 352, 260, 237, 4608, 16],
-        [6, 352, 260, 237, 4608, 16],
-    ),
-    (
-        "inv_sqrt",
-        "IP core",
-        [26, 1948, 1225, 1818, 0, 34],
-        [26, 1948, 1225, 1818, 0, 34],
-    ),
-    (
-        "dot_product",
-        "composite",
-        [19, 2939, 2270, 1708, 0, 21],
-        [19, 3947, 3288, 2144, 0, 28],
-    ),
-    (
-        "vector_scale",
-        "composite",
-        [7, 903, 666, 654, 0, 21],
-        [7, 883, 638, 654, 0, 21],
-    ),
-    (
-        "normalize",
-        "composite",
-        [50, 5790, 4161, 4180, 4320, 76],
-        [50, 6812, 4127, 4813, 0, 76],
-    ),
-    (
-        "vector_add_sub",
-        "composite",
-        [7, 2718, 2406, 1245, 0, 0],
-        [7, 2719, 2411, 1246, 0, 0],
-    ),
-];
-
-const TABLE_8: [HwFigures; 4] = [
-    (
-        "primary_ray",
-        "block",
-        [64, 13128, 10305, 8074, 4320, 118],
-        [62, 14008, 11362, 9889, 0, 118],
-    ),
-    (
-        "intersection",
-        "block",
-        [137, 38802, 29761, 21941, 53758, 228],
-        [136, 43173, 32384, 24302, 21152, 221],
-    ),
-    (
-        "min_distance",
-        "block",
-        [4, 269, 80, 197, 0, 0],
-        [4, 290, 254, 173, 0, 0],
-    ),
-    (
-        "shading",
-        "block",
-        [122, 27693, 21533, 16821, 17815, 222],
-        [121, 34512, 24999, 20826, 8448, 201],
-    ),
-];
-
-/// Signed percentage error, `None` where the thesis has 0 and the model does not.
-fn pct_error(model: u64, thesis: u64) -> Option<f64> {
-    if thesis == 0 {
-        (model == 0).then_some(0.0)
-    } else {
-        Some((model as f64 - thesis as f64) / thesis as f64 * 100.0)
-    }
-}
-
-fn hw_row(&(name, kind, model, thesis): &HwFigures) -> HwRow {
-    let errors: [Option<f64>; 6] = std::array::from_fn(|i| pct_error(model[i], thesis[i]));
-    HwRow {
-        name: name.to_string(),
-        kind: kind.to_string(),
-        model,
-        thesis: Some(thesis),
-        error_pct: Some(errors),
-    }
-}
-
+/// Tables 7 and 8 as the model computes them for the thesis's design (the thesis's
+/// figures come with them from `hwmodel`, the one place they are typed).
 fn sample_hardware() -> HardwareResult {
+    let lib = hwmodel::library::Library::cyclone_iv_e();
+    let tables = hwmodel::table::tables(&lib, &hwmodel::design::Design::thesis());
     HardwareResult {
-        family: "Cyclone IV E".to_string(),
-        ops: TABLE_7.iter().map(hw_row).collect(),
-        blocks: TABLE_8.iter().map(hw_row).collect(),
+        family: tables.family.clone(),
+        ops: tables.ops.iter().map(HwRow::from_model_row).collect(),
+        blocks: tables.blocks.iter().map(HwRow::from_model_row).collect(),
         devices: vec![
             DeviceUse {
                 device: "EP4CE115".to_string(),
@@ -736,18 +631,25 @@ pub fn sample_results() -> Results {
         suite: SuiteInfo {
             name: "default".to_string(),
             quick: false,
-            repeats: 5,
-            min_seconds: 0.2,
             threads: 2,
-            variants: SAMPLE_VARIANTS.iter().map(|v| (*v).to_string()).collect(),
+            variants: SAMPLE_VARIANTS.iter().map(|v| variant_name(v)).collect(),
+            timing: TimingPolicy {
+                min_repeats: 5,
+                min_seconds: 0.2,
+                max_repeats: 100,
+                bootstrap_resamples: 2000,
+                confidence: 0.95,
+                seed: 0x5eed,
+                covers: TimeCovers::Tracing,
+            },
             wall_seconds: 96.4,
         },
         scenes,
         profile,
         hardware: Some(sample_hardware()),
         failures: vec![Failure {
-            scene: "rings".to_string(),
-            variant: Some("ortho".to_string()),
+            scene: Some("rings".to_string()),
+            part: FailedPart::Variant(variant_name("ortho")),
             message: "render exceeded the 60 s budget for one repeat; skipped".to_string(),
         }],
         // The bit trick runs more instructions than `sqrtss` yet takes less time: the
@@ -926,6 +828,13 @@ mod tests {
     use super::*;
 
     #[test]
+    fn sample_variant_names_are_tracer_variants() {
+        for v in SAMPLE_VARIANTS {
+            assert_eq!(variant_name(v).as_str(), v);
+        }
+    }
+
+    #[test]
     fn sample_is_consistent_and_round_trips() {
         let r = sample_results();
         assert!(r.scenes.len() >= 6);
@@ -937,13 +846,13 @@ mod tests {
                 assert_eq!(sum, u64::from(scene.width) * u64::from(scene.height));
                 let ratio = base.time.median / v.time.median;
                 assert!(
-                    (ratio - v.speedup).abs() < 1e-9,
+                    v.speedup.is_some_and(|s| (ratio - s).abs() < 1e-9),
                     "{}/{}",
                     scene.name,
                     v.variant
                 );
                 assert!(v.time.low <= v.time.median && v.time.median <= v.time.high);
-                assert_eq!(v.quality.is_none(), v.variant == "baseline");
+                assert_eq!(v.quality.is_none(), v.variant.is_reference());
             }
             assert_eq!(scene.hardware.is_none(), scene.spd);
         }
@@ -961,7 +870,7 @@ mod tests {
             }
         }
         assert!(back.failures == r.failures && back.machine == r.machine);
-        let models = |r: &Results| -> Vec<[u64; 6]> {
+        let models = |r: &Results| -> Vec<crate::results::HwFigures> {
             r.hardware
                 .iter()
                 .flat_map(|h| h.ops.iter().chain(&h.blocks))

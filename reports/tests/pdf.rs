@@ -105,7 +105,8 @@ fn typst_syntax_in_user_text_is_only_text() {
     let mut run = sample_run(&dir, "host #1 *x*");
     let name = r#"#set text(red) *bold* $x$ "quote" back\slash _u_ @ref <lbl> [b] `t` // c /* d"#;
     run.results.scenes[0].name = name.to_string();
-    run.results.scenes[0].variants[0].variant = "]#panic(\"no\")[".to_string();
+    // Variant names are checked names now; a failure's scene is still free text.
+    run.results.failures[0].scene = Some("]#panic(\"no\")[".to_string());
     run.results.command = "rtprof suite --scenes \"dir with \\\"quotes\\\"\" #{1/0}".to_string();
     run.results.failures[0].message = "line one\nline two\t$$ #}".to_string();
     run.results.machine.cpu_model = "\u{0}\u{7}ctrl".to_string();

@@ -13,7 +13,8 @@ use hwmodel::hw_scene::HwScene;
 use hwmodel::library::{DeviceSpec, Library, device_names, find_device};
 use hwmodel::pipeline::{FrameTiming, frame_timing};
 use hwmodel::table::{Row, Tables, tables};
-use reports::sections::hardware::{HwLine, hw_line, hw_table};
+use reports::sections::hardware::hw_table;
+use results::HwRow;
 use serde::Serialize;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
@@ -197,11 +198,8 @@ fn table(args: &TableArgs) -> Result<()> {
 
 /// One of tables 7 and 8 as the report's table model, printed in columns.
 fn format_rows(rows: &[Row]) -> String {
-    let lines: Vec<HwLine> = rows
-        .iter()
-        .map(|r| hw_line(&super::suite::hw_row(r)))
-        .collect();
-    reports::text::table(&hw_table(&lines))
+    let rows: Vec<HwRow> = rows.iter().map(HwRow::from_model_row).collect();
+    reports::text::table(&hw_table(&rows))
 }
 
 fn format_tables(t: &Tables, lib: &Library, device: &DeviceSpec) -> String {

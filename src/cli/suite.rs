@@ -4,7 +4,7 @@
 //! and writes `results.json`, `report.html` and `report.pdf`. With `--baseline` it
 //! then gates the run against an earlier one.
 //!
-//! Stages are joined by plain data (`reports::results`): measurement here, analysis in
+//! Stages are joined by plain data (the `results` crate): measurement here, analysis in
 //! `analysis`, reporting in `reports`. A failing scene is recorded and skipped; the
 //! rest of the run stands.
 
@@ -22,10 +22,10 @@ use hwmodel::library::Library;
 use hwmodel::pipeline::frame_timing;
 use indicatif::{MultiProgress, ProgressBar, ProgressStyle};
 use reports::slug;
-use reports::results::{
-    AmdahlRow, Build, DeviceUse, Estimate, Failure, FlatRow, HardwareResult, HwRow, Machine,
-    Profile, ProfileResult, Quality, Results, SCHEMA, SceneHardware, SceneResult, SuiteInfo,
-    VariantResult,
+use results::{
+    AmdahlRow, Build, DeviceUse, Estimate, FailedPart, Failure, FlatRow, HardwareResult, HwRow,
+    Machine, Profile, ProfileResult, Quality, Results, SCHEMA, SceneFamily, SceneHardware,
+    SceneResult, SuiteInfo, TimeCovers, TimingPolicy, VariantName, VariantResult,
 };
 use serde::Deserialize;
 use std::collections::BTreeMap;
@@ -77,6 +77,10 @@ pub(super) fn parse_threshold(text: &str) -> Result<f64, String> {
 
 /// The most timed renders of one scene and variant, whatever `min_seconds` asks.
 const MAX_REPEATS: usize = 100;
+/// The bootstrap of every time's interval: resamples, confidence and seed.
+const BOOTSTRAP_RESAMPLES: usize = 2000;
+const CONFIDENCE: f64 = 0.95;
+const BOOTSTRAP_SEED: u64 = 0x5eed;
 
 fn default_profile_seconds() -> f64 {
     super::profile::MIN_SAMPLED.as_secs_f64()
@@ -178,21 +182,9 @@ impl SuiteDef {
 struct SceneSpec {
     name: String,
     source: String,
-    family: String,
+    family: SceneFamily,
     text: String,
     size: (u32, u32),
-}
-
-fn family_of(name: &str) -> String {
-    for family in ["balls", "cylinder", "both"] {
-        if let Some(rest) = name.strip_prefix(family)
-            && !rest.is_empty()
-            && rest.chars().all(|c| c.is_ascii_digit())
-        {
-            return family.to_string();
-        }
-    }
-    "other".to_string()
 }
 
 fn resolve_scene(entry: &str, size: (u32, u32), base: &Path) -> Result<SceneSpec> {
@@ -208,7 +200,7 @@ fn resolve_scene(entry: &str, size: (u32, u32), base: &Path) -> Result<SceneSpec
         return Ok(SceneSpec {
             name: format!("{kind}{n}"),
             source: "generated".into(),
-            family: "generated".into(),
+            family: SceneFamily::Generated,
             text,
             size,
         });
@@ -217,7 +209,7 @@ fn resolve_scene(entry: &str, size: (u32, u32), base: &Path) -> Result<SceneSpec
         return Ok(SceneSpec {
             name: b.name.to_string(),
             source: "builtin".into(),
-            family: family_of(b.name),
+            family: SceneFamily::of_builtin(b.name),
             text: b.text.to_string(),
             size,
         });
@@ -234,7 +226,7 @@ fn resolve_scene(entry: &str, size: (u32, u32), base: &Path) -> Result<SceneSpec
             .file_stem()
             .map_or_else(|| entry.to_string(), |s| s.to_string_lossy().into_owned()),
         source: path.display().to_string(),
-        family: "other".into(),
+        family: SceneFamily::Other,
         text,
         size,
     })
@@ -261,7 +253,11 @@ fn extra_scenes(dir: &Path, size: (u32, u32)) -> Result<Vec<SceneSpec>> {
                     .file_stem()
                     .map_or_else(String::new, |s| s.to_string_lossy().into_owned()),
                 source: path.display().to_string(),
-                family: if spd { "spd" } else { "extra" }.into(),
+                family: if spd {
+                    SceneFamily::Spd
+                } else {
+                    SceneFamily::Other
+                },
                 text,
                 size,
             })
@@ -299,12 +295,46 @@ fn flatten_counts(counts: &tracer::Counts) -> BTreeMap<String, u64> {
 }
 
 fn estimate(samples: &[f64]) -> Result<Estimate> {
-    let e = median_with_bootstrap(samples, 2000, 0.95, 0x5eed)?;
-    Ok(Estimate {
-        median: e.median,
-        low: e.low,
-        high: e.high,
-    })
+    Ok(median_with_bootstrap(
+        samples,
+        BOOTSTRAP_RESAMPLES,
+        CONFIDENCE,
+        BOOTSTRAP_SEED,
+    )?)
+}
+
+/// The timing policy the suite's times follow, as results.json records it.
+fn timing_policy(def: &SuiteDef) -> TimingPolicy {
+    TimingPolicy {
+        min_repeats: def.repeats,
+        min_seconds: def.min_seconds,
+        max_repeats: MAX_REPEATS as u32,
+        bootstrap_resamples: BOOTSTRAP_RESAMPLES as u32,
+        confidence: CONFIDENCE,
+        seed: BOOTSTRAP_SEED,
+        covers: TimeCovers::Tracing,
+    }
+}
+
+/// Seconds of one timed render's two phases.
+struct Phases {
+    preprocessing: f64,
+    tracing: f64,
+}
+
+impl<C> From<&tracer::VariantRender<C>> for Phases {
+    fn from(r: &tracer::VariantRender<C>) -> Self {
+        Phases {
+            preprocessing: r.preprocessing.as_secs_f64(),
+            tracing: r.tracing.as_secs_f64(),
+        }
+    }
+}
+
+/// The timed repeats of one job: tracing and preprocessing seconds of each.
+struct Timed {
+    tracing: Vec<f64>,
+    preprocessing: Vec<f64>,
 }
 
 /// The suite's staging directory, `<output>/.rtprof-suite-<pid>.partial`: removed
@@ -421,21 +451,24 @@ impl Runner<'_> {
         let options = RenderOptions::new(width, height, Sampling::PixelCenters, ShadingMode::Color);
         let mut variants: Vec<VariantResult> = Vec::new();
         let mut baseline_image: Option<RgbImage> = None;
-        let mut baseline_median = f64::NAN;
+        let mut baseline_median: Option<f64> = None;
         for name in &self.def.variants {
             bar.set_message(format!("{} {name}", spec.name));
             match self.run_variant(spec, &scene, &options, name, baseline_image.as_ref()) {
                 Ok((mut v, image)) => {
-                    if name == "baseline" {
-                        baseline_median = v.time.median;
+                    if v.variant.is_reference() {
+                        baseline_median = Some(v.time.median);
                         baseline_image = Some(image);
                     }
-                    v.speedup = baseline_median / v.time.median;
+                    v.speedup = baseline_median
+                        .map(|b| b / v.time.median)
+                        .filter(|s| s.is_finite());
                     variants.push(v);
                 }
                 Err(e) => failures.push(Failure {
-                    scene: spec.name.clone(),
-                    variant: Some(name.clone()),
+                    scene: Some(spec.name.clone()),
+                    // The suite's variants were checked when it was read.
+                    part: VariantName::parse(name).map_or(FailedPart::Scene, FailedPart::Variant),
                     message: format!("{e:#}"),
                 }),
             }
@@ -446,8 +479,8 @@ impl Runner<'_> {
                 Ok(h) => Some(h),
                 Err(e) => {
                     failures.push(Failure {
-                        scene: spec.name.clone(),
-                        variant: Some("hardware".into()),
+                        scene: Some(spec.name.clone()),
+                        part: FailedPart::Hardware,
                         message: format!("{e:#}"),
                     });
                     None
@@ -468,7 +501,7 @@ impl Runner<'_> {
         Ok(SceneResult {
             name: spec.name.clone(),
             source: spec.source.clone(),
-            family: spec.family.clone(),
+            family: spec.family,
             primitives: scene.primitive_count() as u64,
             primitive_counts,
             width,
@@ -479,25 +512,29 @@ impl Runner<'_> {
         })
     }
 
-    /// Seconds of `repeats` runs of `render`, more while less than `min_seconds` is
-    /// measured (at most [`MAX_REPEATS`]).
-    fn timed_n(&self, repeats: u32, mut render: impl FnMut() -> Result<()>) -> Result<Vec<f64>> {
-        let mut samples = Vec::with_capacity(repeats as usize);
-        while samples.len() < repeats as usize
-            || (samples.iter().sum::<f64>() < self.def.min_seconds && samples.len() < MAX_REPEATS)
+    /// The phases of `repeats` runs of `render`, more while less than `min_seconds` of
+    /// tracing is measured (at most [`MAX_REPEATS`]).
+    fn timed_n(&self, repeats: u32, mut render: impl FnMut() -> Result<Phases>) -> Result<Timed> {
+        let mut timed = Timed {
+            tracing: Vec::with_capacity(repeats as usize),
+            preprocessing: Vec::with_capacity(repeats as usize),
+        };
+        while timed.tracing.len() < repeats as usize
+            || (timed.tracing.iter().sum::<f64>() < self.def.min_seconds
+                && timed.tracing.len() < MAX_REPEATS)
         {
             if super::interrupt::requested() {
                 anyhow::bail!("interrupted");
             }
-            let start = Instant::now();
-            render()?;
-            samples.push(start.elapsed().as_secs_f64());
+            let phases = render()?;
+            timed.tracing.push(phases.tracing);
+            timed.preprocessing.push(phases.preprocessing);
         }
-        Ok(samples)
+        Ok(timed)
     }
 
     /// [`Self::timed_n`] with the suite's `repeats`.
-    fn timed(&self, render: impl FnMut() -> Result<()>) -> Result<Vec<f64>> {
+    fn timed(&self, render: impl FnMut() -> Result<Phases>) -> Result<Timed> {
         self.timed_n(self.def.repeats, render)
     }
 
@@ -516,12 +553,13 @@ impl Runner<'_> {
             .pool
             .install(|| render_variant::<Count>(scene, options, &set, &|_| {}))?;
         let mut frame = None;
-        let samples = self.timed(|| {
+        let timed = self.timed(|| {
             let out = self
                 .pool
                 .install(|| render_variant::<NoCount>(scene, options, &set, &|_| {}))?;
+            let phases = Phases::from(&out);
             frame = Some(out.rendered.frame);
-            Ok(())
+            Ok(phases)
         })?;
         let counts = counted
             .rendered
@@ -536,15 +574,16 @@ impl Runner<'_> {
         };
         let stem = format!("images/{}-{}", slug(&spec.name), slug(name));
         let image_rel = save_png(self.out, &format!("{stem}.png"), &image)?;
+        let variant = VariantName::of(&set);
         let (quality, heat_map) = match baseline {
-            Some(base) if name != "baseline" => {
+            Some(base) if !variant.is_reference() => {
                 let c = compare(base, &image)?;
                 let heat = difference_heat_map(base, &image)?;
                 let heat_rel = save_png(self.out, &format!("{stem}-diff.png"), &heat)?;
                 (
                     Some(Quality {
                         rms: c.rms,
-                        band: c.band.to_string(),
+                        band: c.band,
                         psnr: c.psnr.is_finite().then_some(c.psnr),
                         ssim: c.ssim,
                         max_abs_diff: u32::from(c.max_abs_diff),
@@ -557,10 +596,11 @@ impl Runner<'_> {
         let histogram = gray_histogram(&image).to_vec();
         Ok((
             VariantResult {
-                variant: name.to_string(),
-                time: estimate(&samples)?,
-                samples,
-                speedup: 1.0,
+                variant,
+                time: estimate(&timed.tracing)?,
+                samples: timed.tracing,
+                preprocessing_seconds: analysis::median(&timed.preprocessing),
+                speedup: None,
                 counts,
                 image: Some(image_rel),
                 heat_map,
@@ -594,12 +634,13 @@ impl Runner<'_> {
         );
         let set = VariantSet::parse("baseline")?;
         let mut frame = None;
-        let samples = self.timed_n(self.def.hardware_repeats.max(1), || {
+        let timed = self.timed_n(self.def.hardware_repeats.max(1), || {
             let out = self
                 .one_thread
                 .install(|| render_variant::<NoCount>(scene, &options, &set, &|_| {}))?;
+            let phases = Phases::from(&out);
             frame = Some(out.rendered.frame);
-            Ok(())
+            Ok(phases)
         })?;
         let frame = frame.context("no software render ran")?;
         let sw_img = RgbImage {
@@ -609,7 +650,7 @@ impl Runner<'_> {
         };
         let c = compare(&sw_img, &emu_img)?;
         let stem = format!("images/{}", slug(&spec.name));
-        let software_seconds = estimate(&samples)?;
+        let software_seconds = estimate(&timed.tracing)?;
         Ok(SceneHardware {
             primitives: n,
             cycles: timing.cycles,
@@ -618,7 +659,7 @@ impl Runner<'_> {
             speedup: software_seconds.median / timing.seconds,
             software_seconds,
             emulator_rms: c.rms,
-            emulator_band: Band::of(c.rms).to_string(),
+            emulator_band: Band::of(c.rms),
             emulator_image: Some(save_png(self.out, &format!("{stem}-hw.png"), &emu_img)?),
             software_image: Some(save_png(
                 self.out,
@@ -637,7 +678,7 @@ impl Runner<'_> {
     ) -> Result<Option<ProfileResult>> {
         let Some(heaviest) = results
             .iter()
-            .filter_map(|s| Some((s, s.variants.iter().find(|v| v.variant == "baseline")?)))
+            .filter_map(|s| Some((s, s.variants.iter().find(|v| v.variant.is_reference())?)))
             .max_by(|a, b| a.1.time.median.total_cmp(&b.1.time.median))
             .map(|(s, _)| s)
         else {
@@ -646,9 +687,12 @@ impl Runner<'_> {
         let best = heaviest
             .variants
             .iter()
-            .filter(|v| v.variant != "baseline")
+            .filter(|v| !v.variant.is_reference())
             .filter(|v| v.quality.as_ref().is_some_and(|q| q.rms < 15.0))
-            .max_by(|a, b| a.speedup.total_cmp(&b.speedup))
+            .max_by(|a, b| {
+                let s = |v: &VariantResult| v.speedup.unwrap_or(f64::NEG_INFINITY);
+                s(a).total_cmp(&s(b))
+            })
             .map(|v| v.variant.clone());
         let Some(spec) = specs.iter().find(|s| s.name == heaviest.name) else {
             return Ok(None);
@@ -720,7 +764,7 @@ impl Runner<'_> {
         let svg = analysis::profile::folded::flamegraph_svg(&p.folded, title)?;
         let flame_svg = save(self.out, &format!("{dir}/flame-{v}.svg"), svg.as_bytes())?;
         Ok(Profile {
-            variant: p.variant.clone(),
+            variant: VariantName::parse(&p.variant)?,
             samples: p.samples,
             seconds_per_sample: p.seconds_per_sample,
             flat: p
@@ -753,30 +797,6 @@ impl Runner<'_> {
     }
 }
 
-/// A row of the model's tables 7 and 8 as results hold it.
-pub fn hw_row(r: &hwmodel::table::Row) -> HwRow {
-    HwRow {
-        name: r.model.name.clone(),
-        kind: r.kind.to_string(),
-        model: [
-            u64::from(r.model.latency),
-            r.model.le,
-            r.model.comb,
-            r.model.regs,
-            r.model.mem_bits,
-            r.model.mult,
-        ],
-        thesis: r
-            .thesis
-            .as_ref()
-            .map(|t| [t.latency, t.le, t.comb, t.regs, t.mem_bits, t.mult]),
-        error_pct: r
-            .error_pct
-            .as_ref()
-            .map(|e| [e.latency, e.le, e.comb, e.regs, e.mem_bits, e.mult]),
-    }
-}
-
 /// Tables 7 and 8 and the thesis design's fit on every device (7 primitives, 640x480).
 fn hardware_tables() -> HardwareResult {
     let lib = Library::cyclone_iv_e();
@@ -806,8 +826,8 @@ fn hardware_tables() -> HardwareResult {
     }
     HardwareResult {
         family: lib.family.clone(),
-        ops: t.ops.iter().map(hw_row).collect(),
-        blocks: t.blocks.iter().map(hw_row).collect(),
+        ops: t.ops.iter().map(HwRow::from_model_row).collect(),
+        blocks: t.blocks.iter().map(HwRow::from_model_row).collect(),
         devices,
     }
 }
@@ -892,10 +912,7 @@ pub fn run(args: &SuiteArgs) -> Result<()> {
         Some(path) => {
             let text = std::fs::read_to_string(path)
                 .with_context(|| format!("cannot read {}", path.display()))?;
-            Some(
-                reports::results::Results::from_json(&text)
-                    .with_context(|| path.display().to_string())?,
-            )
+            Some(Results::from_json(&text).with_context(|| path.display().to_string())?)
         }
         None => None,
     };
@@ -928,7 +945,7 @@ pub fn run(args: &SuiteArgs) -> Result<()> {
         bars: MultiProgress::new(),
     };
     let threads = runner.pool.current_num_threads() as u32;
-    let created = reports::results::rfc3339_utc(
+    let created = results::rfc3339_utc(
         std::time::SystemTime::now()
             .duration_since(std::time::UNIX_EPOCH)
             .map_or(0, |d| d.as_secs()),
@@ -954,14 +971,14 @@ pub fn run(args: &SuiteArgs) -> Result<()> {
             Ok((Err(e), local)) => {
                 failures.extend(local);
                 failures.push(Failure {
-                    scene: spec.name.clone(),
-                    variant: None,
+                    scene: Some(spec.name.clone()),
+                    part: FailedPart::Scene,
                     message: format!("{e:#}"),
                 });
             }
             Err(_) => failures.push(Failure {
-                scene: spec.name.clone(),
-                variant: None,
+                scene: Some(spec.name.clone()),
+                part: FailedPart::Scene,
                 message: "internal error (panic) while running this scene; please report it".into(),
             }),
         }
@@ -974,8 +991,8 @@ pub fn run(args: &SuiteArgs) -> Result<()> {
         Ok(p) => p,
         Err(e) => {
             failures.push(Failure {
-                scene: "profile".into(),
-                variant: None,
+                scene: None,
+                part: FailedPart::Profile,
                 message: format!("{e:#}"),
             });
             None
@@ -992,10 +1009,13 @@ pub fn run(args: &SuiteArgs) -> Result<()> {
         suite: SuiteInfo {
             name: def.name.clone(),
             quick: args.quick,
-            repeats: def.repeats,
-            min_seconds: def.min_seconds,
             threads,
-            variants: def.variants.clone(),
+            variants: def
+                .variants
+                .iter()
+                .map(|v| VariantName::parse(v))
+                .collect::<Result<_, _>>()?,
+            timing: timing_policy(&def),
             wall_seconds: started.elapsed().as_secs_f64(),
         },
         scenes,
@@ -1031,17 +1051,10 @@ pub fn run(args: &SuiteArgs) -> Result<()> {
         args.output.display()
     );
     for f in &results.failures {
-        eprintln!(
-            "  failed: {}{}: {}",
-            f.scene,
-            f.variant
-                .as_ref()
-                .map_or(String::new(), |v| format!(" / {v}")),
-            f.message
-        );
+        eprintln!("  failed: {}: {}", f.place(), f.message);
     }
     if let Some(old) = old {
-        let gate = reports::gate::compare_runs(&old, &results, args.threshold / 100.0);
+        let gate = results::gate::compare_runs(&old, &results, args.threshold / 100.0);
         let text = gate.to_text();
         print!("{text}");
         save(&args.output, "gate.txt", text.as_bytes())?;
@@ -1084,7 +1097,7 @@ mod tests {
             err.contains("[quick]") && err.contains("min_seconds"),
             "{err}"
         );
-        assert_eq!(family_of("balls7"), "balls");
-        assert_eq!(family_of("ballsX"), "other");
+        assert_eq!(SceneFamily::of_builtin("balls7"), SceneFamily::Balls);
+        assert_eq!(SceneFamily::of_builtin("ballsX"), SceneFamily::Other);
     }
 }

@@ -8,7 +8,7 @@ use crate::Run;
 use crate::document::{Block, Builder, Cell, Column, Inline, Section, Table, Tone};
 use crate::findings::comparison_keys;
 use crate::format;
-use crate::results::VariantResult;
+use crate::results::{VariantName, VariantResult};
 
 /// Differing counters a counts cell names before leaving the rest to the hover text.
 const COUNTERS_NAMED: usize = 2;
@@ -56,7 +56,7 @@ pub fn comparison(b: &mut Builder) -> Section {
             .collect();
         let mut row = vec![
             Cell::text(&key.0).detail(format::size(key.1, key.2)),
-            Cell::text(&key.3),
+            Cell::text(key.3.as_str()),
         ];
         for v in &found {
             row.push(match v {
@@ -106,7 +106,7 @@ fn machines(runs: &[Run]) -> Table {
 }
 
 /// The result of one scene × variant in a run.
-fn lookup<'a>(run: &'a Run, key: &(String, u32, u32, String)) -> Option<&'a VariantResult> {
+fn lookup<'a>(run: &'a Run, key: &(String, u32, u32, VariantName)) -> Option<&'a VariantResult> {
     run.results
         .scenes
         .iter()

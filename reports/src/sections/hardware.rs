@@ -4,29 +4,26 @@
 //! [`hw_table`] is public: `rtprof hw table` prints the same table model as text.
 
 use super::GRID_COLUMNS;
-use super::access;
 use crate::document::{
     Block, Builder, Cell, Column, ImageGrid, Inline, Section, Table, Tile, Tone,
 };
 use crate::format;
-use crate::results::{DeviceUse, SceneResult};
-
-pub use super::access::{HW_COLUMNS, HwFigure, HwLine, hw_line};
+use crate::results::{DeviceUse, HwColumn, HwRow, HwRowKind, SceneResult};
 
 /// Tables 7 or 8: each cell the model's figure, its detail the thesis's figure and the
 /// model's signed error, its tone the size of that error ([`Tone::of_error`]).
-pub fn hw_table(rows: &[HwLine]) -> Table {
+pub fn hw_table(rows: &[HwRow]) -> Table {
     let mut columns = vec![Column::text("name"), Column::text("kind")];
     columns.extend(
-        HW_COLUMNS
-            .iter()
-            .map(|(name, _)| Column::number(*name).detail("model / thesis (error)")),
+        HwColumn::ALL.map(|c| Column::number(c.label()).detail("model / thesis (error)")),
     );
     let mut t = Table::new(columns).sortable();
     for row in rows {
-        let mut cells = vec![Cell::text(&row.name).code(), Cell::text(&row.kind)];
-        for figure in &row.figures {
-            let detail = match (figure.thesis, figure.error_pct) {
+        let mut cells = vec![Cell::text(&row.name).code(), Cell::text(row.kind.name())];
+        for (column, model) in row.model.columns() {
+            let thesis = row.thesis.map(|t| t.get(column));
+            let error = row.error_pct.as_ref().and_then(|e| e.get(column));
+            let detail = match (thesis, error) {
                 (Some(t), Some(e)) => format!(
                     "/ {} ({})",
                     format::count(t),
@@ -34,13 +31,13 @@ pub fn hw_table(rows: &[HwLine]) -> Table {
                 ),
                 (Some(t), None) => format!("/ {} (—)", format::count(t)),
                 // The IP-core rows are table 7's own figures: the model's input.
-                (None, _) if row.is_ip_core() => "(thesis input)".to_string(),
+                (None, _) if row.kind == HwRowKind::IpCore => "(thesis input)".to_string(),
                 (None, _) => "(no thesis figure)".to_string(),
             };
             cells.push(
-                Cell::count(figure.model)
+                Cell::count(model)
                     .detail(detail)
-                    .tone(Tone::of_error(figure.error_pct)),
+                    .tone(Tone::of_error(error)),
             );
         }
         t.rows.push(cells);
@@ -86,8 +83,7 @@ pub fn hardware_tables(b: &mut Builder) -> Section {
         if rows.is_empty() {
             s.blocks.push(Block::empty(empty));
         } else {
-            let lines: Vec<HwLine> = rows.iter().map(access::hw_line).collect();
-            s.blocks.push(Block::Table(hw_table(&lines)));
+            s.blocks.push(Block::Table(hw_table(rows)));
         }
     }
     s.blocks.push(Block::note(
@@ -213,7 +209,7 @@ pub fn sw_hw(b: &mut Builder) -> Section {
     .sortable();
     for scene in &scenes {
         let Some(h) = &scene.hardware else { continue };
-        let band = access::emulator_band(h);
+        let band = h.emulator_band;
         t.rows.push(vec![
             Cell::text(&scene.name),
             Cell::count(h.primitives),
@@ -242,7 +238,7 @@ pub fn sw_hw(b: &mut Builder) -> Section {
         for scene in chunk {
             let Some(h) = &scene.hardware else { continue };
             let size = (scene.width, scene.height);
-            let band = access::emulator_band(h);
+            let band = h.emulator_band;
             software.push(Tile {
                 visual: b.picture(
                     h.software_image.as_deref(),

@@ -1,7 +1,7 @@
 //! The images section: for a few scenes, every variant's image above its difference
 //! heat map, then the scene's gray histograms.
 
-use super::{GRID_COLUMNS, access};
+use super::GRID_COLUMNS;
 use crate::charts;
 use crate::document::{Block, Builder, ImageGrid, Section, Tile, Tone, Visual};
 use crate::format;
@@ -69,7 +69,7 @@ fn grid(
     for v in variants {
         let (caption, tone) = match &v.quality {
             Some(q) => {
-                let band = access::band(q);
+                let band = q.band;
                 (
                     format!(
                         "{} · RMS {} ({})",
@@ -80,7 +80,7 @@ fn grid(
                     Tone::of_band(band),
                 )
             }
-            None => (v.variant.clone(), Tone::Neutral),
+            None => (v.variant.to_string(), Tone::Neutral),
         };
         images.push(Tile {
             visual: b.picture(
@@ -93,7 +93,7 @@ fn grid(
         });
     }
     for v in variants {
-        let visual = if access::is_reference(v) {
+        let visual = if v.variant.is_reference() {
             Visual::Placeholder {
                 text: "reference image: no heat map".to_string(),
             }

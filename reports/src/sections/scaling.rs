@@ -35,7 +35,7 @@ pub fn time_vs_primitives(b: &mut Builder) -> Section {
     .sortable()
     .caption("Scenes by family and primitive count");
     let mut scenes: Vec<&SceneResult> = r.scenes.iter().collect();
-    scenes.sort_by(|a, b| (&a.family, a.primitives).cmp(&(&b.family, b.primitives)));
+    scenes.sort_by(|a, b| (a.family, a.primitives).cmp(&(b.family, b.primitives)));
     for scene in scenes {
         let fastest = scene
             .variants
@@ -44,7 +44,7 @@ pub fn time_vs_primitives(b: &mut Builder) -> Section {
             .min_by(|a, b| a.time.median.total_cmp(&b.time.median));
         t.rows.push(vec![
             Cell::text(&scene.name),
-            Cell::text(&scene.family),
+            Cell::text(scene.family.name()),
             Cell::count(scene.primitives),
             Cell::text(format::size(scene.width, scene.height)),
             match access::reference(r, scene) {
@@ -141,7 +141,7 @@ fn spd_row(v: &VariantResult, pixels: u64) -> Vec<Cell> {
             Cell::dash()
         }
     };
-    let mut row = vec![Cell::text(&v.variant)];
+    let mut row = vec![Cell::text(v.variant.as_str())];
     row.extend(RAY_KINDS.iter().map(|(key, _)| Cell::count(get(key))));
     row.push(ratio(rays, pixels, 2));
     row.push(Cell::count(tests));

@@ -115,7 +115,22 @@ pub fn run_pairs(label: &str, r: &Results) -> Vec<Pair> {
                 format::seconds(s.wall_seconds)
             ),
         ),
-        Pair::new("Variants", s.variants.join(", ")),
+        Pair::new(
+            "Variants",
+            s.variants
+                .iter()
+                .map(|v| v.as_str())
+                .collect::<Vec<_>>()
+                .join(", "),
+        ),
+        Pair::new(
+            "Times",
+            format!(
+                "{}; {} bootstrap resamples for each 95 % interval",
+                super::variants::time_covers(s.timing.covers),
+                s.timing.bootstrap_resamples
+            ),
+        ),
         Pair::new(
             "Failures",
             if r.failures.is_empty() {
@@ -149,7 +164,7 @@ pub fn scene_line(scene: &SceneResult) -> String {
     let kinds = kinds(scene);
     format!(
         "{} · {}{} · {} · {}{}",
-        scene.family,
+        scene.family.name(),
         format::kind_count(scene.primitives, "primitives"),
         if kinds.is_empty() {
             String::new()
@@ -178,7 +193,7 @@ fn scenes_table(r: &Results) -> Table {
         let base = access::reference(r, scene);
         t.rows.push(vec![
             Cell::text(&scene.name),
-            Cell::text(&scene.family),
+            Cell::text(scene.family.name()),
             Cell::count(scene.primitives),
             Cell::text(kinds(scene)),
             Cell::text(format!(

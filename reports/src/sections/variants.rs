@@ -7,7 +7,17 @@ use super::access;
 use super::summary::scene_line;
 use crate::document::{Block, Builder, Cell, Column, Section, Table, Tone};
 use crate::format;
-use crate::results::{Quality, SceneResult, VariantResult};
+use crate::results::{Quality, SceneResult, TimeCovers, VariantResult};
+
+/// What a time of the run covers, in words.
+pub fn time_covers(covers: TimeCovers) -> &'static str {
+    match covers {
+        TimeCovers::Tracing => "tracing only (scene preparation and structure build apart)",
+        TimeCovers::PreprocessingAndTracing => {
+            "scene preparation, structure build and tracing together (an rtprof.results/1 file)"
+        }
+    }
+}
 
 /// Counters shown as their own columns: key and header.
 const MAIN_COUNTERS: [(&str, &str); 5] = [
@@ -32,9 +42,10 @@ pub fn variants(b: &mut Builder) -> Section {
             .push(Block::empty("No scene has a variant result (see Failures)."));
         return s;
     }
-    s.blocks.push(Block::text(
-        "Time: tracing time, the median of the timed repeats with its 95 % bootstrap interval. Speed-up: baseline median / variant median. RMS, PSNR, SSIM: the image against baseline (PSNR ∞: identical); the band is the thesis's table 2. Count columns: baseline's exact count, and each variant's change from it; the last column names the other counters that changed.",
-    ));
+    s.blocks.push(Block::text(format!(
+        "Time: {}, the median of the timed repeats with its 95 % bootstrap interval. Speed-up: baseline median / variant median. RMS, PSNR, SSIM: the image against baseline (PSNR ∞: identical); the band is the thesis's table 2. Count columns: baseline's exact count, and each variant's change from it; the last column names the other counters that changed.",
+        time_covers(r.suite.timing.covers)
+    )));
     if let Some(figure) = b.chart("quality-speed", 11.0) {
         s.blocks.push(figure);
     }
@@ -61,26 +72,43 @@ pub fn variants(b: &mut Builder) -> Section {
     s
 }
 
+/// The variants of one scene; a preprocessing column when the file has the figure.
 fn variant_table(scene: &SceneResult, base: Option<&VariantResult>) -> Table {
+    let preprocessing = scene
+        .variants
+        .iter()
+        .any(|v| v.preprocessing_seconds.is_some());
     let mut columns = vec![
         Column::text("variant"),
         Column::number("time").detail("[95 % interval]"),
+    ];
+    if preprocessing {
+        columns.push(Column::number("preprocessing"));
+    }
+    columns.extend([
         Column::number("speed-up"),
         Column::number("RMS"),
         Column::text("band"),
         Column::number("PSNR"),
         Column::number("SSIM"),
         Column::number("max diff"),
-    ];
+    ]);
     columns.extend(MAIN_COUNTERS.iter().map(|(_, name)| Column::number(*name)));
     columns.push(Column::text("other count changes").grow());
     let mut t = Table::new(columns).sortable().dense();
     for v in &scene.variants {
         let mut row = vec![
-            Cell::text(&v.variant),
+            Cell::text(v.variant.as_str()),
             Cell::estimate(v.time.median, v.time.low, v.time.high),
-            Cell::number(format::speedup(v.speedup), v.speedup).tone(Tone::of_speedup(v.speedup)),
         ];
+        if preprocessing {
+            row.push(match v.preprocessing_seconds {
+                Some(s) => Cell::number(format::seconds(s), s),
+                None => Cell::dash(),
+            });
+        }
+        let speedup = access::speedup(v);
+        row.push(Cell::number(format::speedup(speedup), speedup).tone(Tone::of_speedup(speedup)));
         row.extend(quality_cells(v));
         for (key, _) in MAIN_COUNTERS {
             row.push(counter_cell(v, base, key));
@@ -95,7 +123,7 @@ fn variant_table(scene: &SceneResult, base: Option<&VariantResult>) -> Table {
 fn quality_cells(v: &VariantResult) -> Vec<Cell> {
     match &v.quality {
         Some(q) => quality(q),
-        None if access::is_reference(v) => {
+        None if v.variant.is_reference() => {
             vec![Cell::text("reference image").tone(Tone::Muted).span(5)]
         }
         None => vec![Cell::text("no image metrics").tone(Tone::Muted).span(5)],
@@ -103,7 +131,7 @@ fn quality_cells(v: &VariantResult) -> Vec<Cell> {
 }
 
 fn quality(q: &Quality) -> Vec<Cell> {
-    let band = access::band(q);
+    let band = q.band;
     vec![
         Cell::number(format::fixed(q.rms, 2), q.rms),
         Cell::text(band.name()).tone(Tone::of_band(band)),
@@ -121,7 +149,7 @@ fn counter_cell(v: &VariantResult, base: Option<&VariantResult>, key: &str) -> C
     let value = v.counts.get(key).copied();
     let reference = base.and_then(|b| b.counts.get(key).copied());
     match (value, reference) {
-        (Some(n), _) if access::is_reference(v) => Cell::count(n),
+        (Some(n), _) if v.variant.is_reference() => Cell::count(n),
         (Some(n), Some(b)) if n == b => Cell::number("=", 0.0)
             .tone(Tone::Muted)
             .hover(format::count(n)),
@@ -146,7 +174,7 @@ fn other_changes(base: Option<&VariantResult>, v: &VariantResult) -> Cell {
     let Some(base) = base else {
         return Cell::text("no baseline").tone(Tone::Muted);
     };
-    if access::is_reference(v) {
+    if v.variant.is_reference() {
         return Cell::text("reference").tone(Tone::Muted);
     }
     let keys: BTreeSet<&String> = base.counts.keys().chain(v.counts.keys()).collect();

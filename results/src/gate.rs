@@ -11,7 +11,8 @@
 
 use serde::Serialize;
 
-use crate::results::{Results, VariantResult};
+use crate::schema::{Results, VariantResult};
+use crate::variant_name::VariantName;
 
 /// What happened to one scene × variant.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
@@ -26,7 +27,7 @@ pub enum Verdict {
 #[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct Entry {
     pub scene: String,
-    pub variant: String,
+    pub variant: VariantName,
     pub old_median: f64,
     pub old_interval: (f64, f64),
     pub new_median: f64,

@@ -3,24 +3,30 @@
 
 use std::collections::BTreeMap;
 
-use reports::gate::{Verdict, compare_runs};
-use reports::results::{
-    Build, Estimate, Machine, Results, SCHEMA, SceneResult, SuiteInfo, VariantResult,
+use results::gate::{Verdict, compare_runs};
+use results::{
+    Build, Estimate, Machine, Results, SCHEMA, SceneFamily, SceneResult, SuiteInfo, TimeCovers,
+    TimingPolicy, VariantName, VariantResult,
 };
+
+fn name(v: &str) -> VariantName {
+    VariantName::parse(v).expect("a tracer variant")
+}
 
 fn variant(name: &str, median: f64, spread: f64, dots: u64) -> VariantResult {
     let mut counts = BTreeMap::new();
     counts.insert("ops.dot".to_string(), dots);
     counts.insert("rays.primary".to_string(), 307_200);
     VariantResult {
-        variant: name.to_string(),
+        variant: self::name(name),
         time: Estimate {
             median,
             low: median - spread,
             high: median + spread,
         },
         samples: vec![median - spread, median, median + spread],
-        speedup: 1.0,
+        preprocessing_seconds: Some(0.001),
+        speedup: Some(1.0),
         counts,
         image: None,
         heat_map: None,
@@ -49,16 +55,23 @@ fn results(baseline_s: f64, bvh_s: f64, dots: u64) -> Results {
         suite: SuiteInfo {
             name: "test".into(),
             quick: true,
-            repeats: 3,
-            min_seconds: 0.0,
             threads: 2,
-            variants: vec!["baseline".into(), "bvh".into()],
+            variants: vec![name("baseline"), name("bvh")],
+            timing: TimingPolicy {
+                min_repeats: 3,
+                min_seconds: 0.0,
+                max_repeats: 100,
+                bootstrap_resamples: 2000,
+                confidence: 0.95,
+                seed: 1,
+                covers: TimeCovers::Tracing,
+            },
             wall_seconds: 1.0,
         },
         scenes: vec![SceneResult {
             name: "balls3".into(),
             source: "builtin".into(),
-            family: "balls".into(),
+            family: SceneFamily::Balls,
             primitives: 3,
             primitive_counts: BTreeMap::new(),
             width: 64,

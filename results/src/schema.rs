@@ -1,17 +1,24 @@
-//! The results file, `results.json`: schema `rtprof.results/1`.
+//! The results file, `results.json`, schema `rtprof.results/2`.
 //!
 //! Everything a report shows is here, so a report can be rebuilt from the file alone
 //! (`rtprof report results.json`) and two machines' files can be set side by side.
 //! Images are PNG files next to `results.json`, referenced by relative path.
 //! Counts are flattened to `"ops.dot": n` pairs so the regression gate can compare any
-//! two files without knowing the counter layout.
+//! two files without knowing the counter layout. Every enumeration has one spelling
+//! (snake case); `/1` files are read through [`crate::v1`].
 
 use std::collections::BTreeMap;
 
 use serde::{Deserialize, Serialize};
 
+pub use analysis::{Band, Estimate};
+
+use crate::hardware::{HardwareResult, SceneHardware};
+use crate::timing_policy::TimingPolicy;
+use crate::variant_name::VariantName;
+
 /// The schema identifier written in every file.
-pub const SCHEMA: &str = "rtprof.results/1";
+pub const SCHEMA: &str = "rtprof.results/2";
 
 /// A whole suite run.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
@@ -66,33 +73,68 @@ pub struct Build {
 pub struct SuiteInfo {
     pub name: String,
     pub quick: bool,
-    /// Timed renders per scene and variant (at least).
-    pub repeats: u32,
-    /// More renders were timed, up to 100, until this many seconds were measured.
-    #[serde(default)]
-    pub min_seconds: f64,
     pub threads: u32,
-    pub variants: Vec<String>,
+    /// The variants in the order they ran; the first is the reference.
+    pub variants: Vec<VariantName>,
+    /// How every time of the run was measured and what it covers.
+    pub timing: TimingPolicy,
     /// Wall time of the whole suite, seconds.
     pub wall_seconds: f64,
 }
 
-/// Median and 95 % bootstrap interval.
-#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
-pub struct Estimate {
-    pub median: f64,
-    pub low: f64,
-    pub high: f64,
+/// Which test bench a scene belongs to.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum SceneFamily {
+    /// The thesis's `ballsN` scenes.
+    Balls,
+    /// The thesis's `cylinderN` scenes.
+    Cylinder,
+    /// The thesis's `bothN` scenes (spheres and cylinders).
+    Both,
+    /// A Standard Procedural Database scene (`--scenes DIR` with DIR named `spd`).
+    Spd,
+    /// Made by a generator (`sphereflake:N`, `lattice:N`).
+    Generated,
+    /// Anything else (a built-in outside the test benches, an NFF file).
+    Other,
 }
 
-impl Estimate {
-    /// The same estimate in another unit (`1e-9` turns nanoseconds into seconds).
-    pub fn scaled(&self, factor: f64) -> Estimate {
-        Estimate {
-            median: self.median * factor,
-            low: self.low * factor,
-            high: self.high * factor,
+impl SceneFamily {
+    /// The three test benches of the thesis, in its order.
+    pub const TEST_BENCHES: [SceneFamily; 3] =
+        [SceneFamily::Balls, SceneFamily::Cylinder, SceneFamily::Both];
+
+    /// The family's name as the file spells it.
+    pub fn name(self) -> &'static str {
+        match self {
+            SceneFamily::Balls => "balls",
+            SceneFamily::Cylinder => "cylinder",
+            SceneFamily::Both => "both",
+            SceneFamily::Spd => "spd",
+            SceneFamily::Generated => "generated",
+            SceneFamily::Other => "other",
         }
+    }
+
+    /// The test-bench family of a built-in scene's name: `balls7` is `Balls`, a name
+    /// without the family's number is `Other`.
+    pub fn of_builtin(name: &str) -> SceneFamily {
+        for family in Self::TEST_BENCHES {
+            if let Some(rest) = name.strip_prefix(family.name())
+                && !rest.is_empty()
+                && rest.chars().all(|c| c.is_ascii_digit())
+            {
+                return family;
+            }
+        }
+        SceneFamily::Other
+    }
+}
+
+impl std::fmt::Display for SceneFamily {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.pad(self.name())
     }
 }
 
@@ -102,8 +144,7 @@ pub struct SceneResult {
     pub name: String,
     /// `builtin`, `generated` or the file's path.
     pub source: String,
-    /// `balls`, `cylinder`, `both`, `spd`, `generated` or `other`.
-    pub family: String,
+    pub family: SceneFamily,
     /// Primitives of every kind.
     pub primitives: u64,
     /// Per kind: `spheres`, `cylinders`, `cones`, `polygons`, `patches`.
@@ -120,13 +161,18 @@ pub struct SceneResult {
 /// One variant on one scene.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct VariantResult {
-    pub variant: String,
-    /// Tracing time (median and interval over the repeats), seconds.
+    pub variant: VariantName,
+    /// Tracing time (median and interval over the repeats), seconds; what it covers
+    /// is [`SuiteInfo::timing`]'s `covers`.
     pub time: Estimate,
     /// Every timed repeat, seconds.
     pub samples: Vec<f64>,
-    /// Baseline median / this median.
-    pub speedup: f64,
+    /// Scene preparation and structure build (camera space, SIMD lanes, BVH) before
+    /// tracing, seconds: the median over the repeats. `None` in files whose times
+    /// include it (`/1`).
+    pub preprocessing_seconds: Option<f64>,
+    /// Baseline median / this median; None when baseline did not run on the scene.
+    pub speedup: Option<f64>,
     /// Exact counts, flattened (`ops.dot`, `rays.primary`, …).
     pub counts: BTreeMap<String, u64>,
     /// The image, relative to results.json.
@@ -135,7 +181,7 @@ pub struct VariantResult {
     pub heat_map: Option<String>,
     /// Image metrics against baseline (None for baseline itself).
     pub quality: Option<Quality>,
-    /// Gray histogram (256 bins) of the image.
+    /// Gray histogram (256 bins) of the image; empty when there is no image.
     pub histogram: Vec<u64>,
 }
 
@@ -143,32 +189,12 @@ pub struct VariantResult {
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct Quality {
     pub rms: f64,
-    /// The thesis's band: `visually identical`, `visually similar`, …
-    pub band: String,
+    /// The thesis's band for `rms`.
+    pub band: Band,
     /// dB; None when the images are identical (infinite).
     pub psnr: Option<f64>,
     pub ssim: f64,
     pub max_abs_diff: u32,
-}
-
-/// The FPGA model and emulator on one scene.
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
-pub struct SceneHardware {
-    pub primitives: u64,
-    pub cycles: u64,
-    pub seconds: f64,
-    pub fits: bool,
-    /// Software time of the same job (baseline, diffuse-only gray), seconds.
-    pub software_seconds: Estimate,
-    /// Software seconds / hardware seconds.
-    pub speedup: f64,
-    /// RMS between the emulator's image and the software's diffuse-only render.
-    pub emulator_rms: f64,
-    pub emulator_band: String,
-    /// Emulator image, relative to results.json.
-    pub emulator_image: Option<String>,
-    /// Software diffuse-only image, relative to results.json.
-    pub software_image: Option<String>,
 }
 
 /// One function of a flat profile.
@@ -197,7 +223,7 @@ pub struct AmdahlRow {
 /// A sampled profile of one scene and variant.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct Profile {
-    pub variant: String,
+    pub variant: VariantName,
     pub samples: u64,
     pub seconds_per_sample: f64,
     pub flat: Vec<FlatRow>,
@@ -221,51 +247,49 @@ pub struct ProfileResult {
     pub diff_flame_svg: Option<String>,
 }
 
-/// One row of tables 7 or 8: the model's figures, the thesis's, the errors (%).
+/// The part of a suite run that failed.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
-pub struct HwRow {
-    pub name: String,
-    /// `IP core`, `composite` or `block`.
-    pub kind: String,
-    /// latency, le, comb, regs, mem_bits, mult.
-    pub model: [u64; 6],
-    pub thesis: Option<[u64; 6]>,
-    pub error_pct: Option<[Option<f64>; 6]>,
+#[serde(rename_all = "snake_case")]
+pub enum FailedPart {
+    /// The scene as a whole (it could not be read, or its run stopped).
+    Scene,
+    /// One variant on the scene.
+    Variant(VariantName),
+    /// The hardware model and emulator on the scene.
+    Hardware,
+    /// The profile of the heaviest scene.
+    Profile,
 }
 
-/// Device utilization of the thesis design.
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
-pub struct DeviceUse {
-    pub device: String,
-    pub validated: bool,
-    pub le: u64,
-    pub le_capacity: u64,
-    pub mult: u64,
-    pub mult_capacity: u64,
-    pub soft_mult_elements: u64,
-    pub mem_bits: u64,
-    pub mem_capacity: u64,
-    pub plls: u32,
-    pub pll_capacity: u32,
-    pub fits: bool,
-    pub largest_units: Option<u32>,
-}
-
-/// The FPGA model's tables and fit.
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
-pub struct HardwareResult {
-    pub family: String,
-    pub ops: Vec<HwRow>,
-    pub blocks: Vec<HwRow>,
-    pub devices: Vec<DeviceUse>,
+impl std::fmt::Display for FailedPart {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            FailedPart::Scene => f.write_str("scene"),
+            FailedPart::Variant(name) => write!(f, "{name}"),
+            FailedPart::Hardware => f.write_str("hardware"),
+            FailedPart::Profile => f.write_str("profile"),
+        }
+    }
 }
 
 /// Something that failed; the run went on.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct Failure {
-    pub scene: String,
-    pub variant: Option<String>,
+    /// The scene it happened on (for the profile: the scene profiled, when known).
+    pub scene: Option<String>,
+    pub part: FailedPart,
     pub message: String,
+}
+
+impl Failure {
+    /// Where it failed, for a reader: `balls3 / bvh`, `balls3 / hardware`, `profile`.
+    pub fn place(&self) -> String {
+        match (&self.scene, &self.part) {
+            (Some(scene), FailedPart::Scene) => scene.clone(),
+            (Some(scene), part) => format!("{scene} / {part}"),
+            (None, part) => part.to_string(),
+        }
+    }
 }
 
 /// One criterion benchmark's estimates (nanoseconds).
@@ -295,62 +319,8 @@ pub struct InstructionCount {
 }
 
 impl Results {
-    /// Reads a results file, checking the schema.
-    pub fn from_json(text: &str) -> Result<Self, ResultsError> {
-        let value: serde_json::Value = serde_json::from_str(text)?;
-        match value.get("schema").and_then(|s| s.as_str()) {
-            Some(SCHEMA) => Ok(serde_json::from_value(value)?),
-            Some(other) => Err(ResultsError::Schema(other.to_string())),
-            None => Err(ResultsError::Schema("(none)".to_string())),
-        }
-    }
-
-    /// The baseline result of a scene, if it ran.
+    /// The reference (baseline) result of a scene, if it ran.
     pub fn baseline<'a>(&self, scene: &'a SceneResult) -> Option<&'a VariantResult> {
-        scene.variants.iter().find(|v| v.variant == "baseline")
-    }
-}
-
-/// Seconds since the epoch as RFC 3339 UTC (civil-from-days, no time-zone crate).
-pub fn rfc3339_utc(secs: u64) -> String {
-    let days = (secs / 86_400) as i64;
-    let rem = secs % 86_400;
-    let z = days + 719_468;
-    let era = z.div_euclid(146_097);
-    let doe = z.rem_euclid(146_097);
-    let yoe = (doe - doe / 1460 + doe / 36_524 - doe / 146_096) / 365;
-    let doy = doe - (365 * yoe + yoe / 4 - yoe / 100);
-    let mp = (5 * doy + 2) / 153;
-    let day = doy - (153 * mp + 2) / 5 + 1;
-    let month = if mp < 10 { mp + 3 } else { mp - 9 };
-    let year = yoe + era * 400 + i64::from(month <= 2);
-    format!(
-        "{year:04}-{month:02}-{day:02}T{:02}:{:02}:{:02}Z",
-        rem / 3600,
-        rem / 60 % 60,
-        rem % 60
-    )
-}
-
-/// A results file that cannot be read.
-#[derive(Debug, thiserror::Error)]
-pub enum ResultsError {
-    #[error("not a results file: {0}")]
-    Json(#[from] serde_json::Error),
-    #[error("results schema '{0}' is not {SCHEMA}: rebuild it with this rtprof version")]
-    Schema(String),
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn rfc3339_matches_known_instants() {
-        assert_eq!(rfc3339_utc(0), "1970-01-01T00:00:00Z");
-        // 2000-02-29 12:34:56 UTC (a leap day) = 951827696.
-        assert_eq!(rfc3339_utc(951_827_696), "2000-02-29T12:34:56Z");
-        // 2026-11-21 00:00:00 UTC = 1795219200.
-        assert_eq!(rfc3339_utc(1_795_219_200), "2026-11-21T00:00:00Z");
+        scene.variants.iter().find(|v| v.variant.is_reference())
     }
 }

@@ -1,0 +1,28 @@
+//! `results`: the contract between an rtprof suite and everything that reads its
+//! output. This crate defines ONLY the serde types of `rtprof.results/N` (the current
+//! schema [`SCHEMA`], `rtprof.results/2`, in [`schema`] and [`hardware`]; the previous
+//! one in [`v1`], read and upgraded), their validation on read ([`Results::from_json`]),
+//! and the regression gate ([`gate`]).
+//!
+//! Other crates' types appear here only where the contract is theirs: variant names
+//! are checked with `tracer`'s variant set, the RMS band and the estimate are
+//! `analysis`'s, the hardware tables' figures are `hwmodel`'s.
+
+pub mod created;
+pub mod gate;
+pub mod hardware;
+mod read;
+pub mod schema;
+pub mod timing_policy;
+pub mod v1;
+pub mod validate;
+pub mod variant_name;
+
+pub use created::rfc3339_utc;
+pub use hardware::{
+    DeviceUse, HardwareResult, HwColumn, HwErrors, HwFigures, HwRow, HwRowKind, SceneHardware,
+};
+pub use read::ResultsError;
+pub use schema::*;
+pub use timing_policy::{TimeCovers, TimingPolicy};
+pub use variant_name::VariantName;
