@@ -8,6 +8,7 @@
 //! failures. A sentence whose data is missing is left out.
 
 use crate::charts::short_name;
+use crate::format::{join_list, percent_of};
 use crate::results::{
     Band, CriterionEstimate, DeviceUse, HwColumn, HwRow, InstructionCount, Results, VariantName,
 };
@@ -246,14 +247,6 @@ pub fn exhausted_resources(d: &DeviceUse) -> Vec<String> {
     out
 }
 
-fn percent(used: u64, capacity: u64) -> f64 {
-    if capacity == 0 {
-        f64::NAN
-    } else {
-        used as f64 / capacity as f64 * 100.0
-    }
-}
-
 fn device_finding(results: &Results) -> Option<String> {
     let hardware = results.hardware.as_ref()?;
     let d = hardware
@@ -265,8 +258,8 @@ fn device_finding(results: &Results) -> Option<String> {
     let exhausted = exhausted_resources(d);
     let use_text = format!(
         "{:.0} % of its logic elements and {:.0} % of its memory bits",
-        percent(d.le, d.le_capacity),
-        percent(d.mem_bits, d.mem_capacity)
+        percent_of(d.le, d.le_capacity),
+        percent_of(d.mem_bits, d.mem_capacity)
     );
     let runs_out = if exhausted.is_empty() {
         "nothing runs out".to_string()
@@ -492,15 +485,6 @@ pub fn instruction_time_disagreements(results: &Results) -> Vec<String> {
         ));
     }
     sentences
-}
-
-/// "a", "a and b", "a, b and c".
-fn join_list(items: &[String]) -> String {
-    match items {
-        [] => String::new(),
-        [one] => one.clone(),
-        [rest @ .., last] => format!("{} and {last}", rest.join(", ")),
-    }
 }
 
 /// Every (scene, width, height, variant) of any of `runs`, in first-seen order: the
@@ -772,9 +756,5 @@ mod tests {
         assert_eq!(geometric_mean([f64::NAN, -1.0]), None);
         let (m, n) = geometric_mean([2.0, 8.0, f64::INFINITY]).expect("mean");
         assert!((m - 4.0).abs() < 1e-12 && n == 2);
-        assert_eq!(
-            join_list(&["a".into(), "b".into(), "c".into()]),
-            "a, b and c"
-        );
     }
 }

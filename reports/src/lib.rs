@@ -1,15 +1,24 @@
 //! `reports`: the results of an rtprof suite and the reports made from them.
 //!
-//! Data flows one way: the suite runner fills [`results::Results`] (plain serde data,
-//! schema `rtprof.results/2`, defined in the `results` crate), this crate turns it into charts (SVG), one
-//! self-contained HTML file and a typeset PDF. It never renders a scene.
+//! Data flows one way: the suite runner fills [`results::Results`] (schema
+//! `rtprof.results/2`, the `results` crate); [`document::build`] turns the runs into
+//! one report [`document::Document`] (sections of paragraphs, tables of typed cells,
+//! charts, image grids, flamegraphs, notes), with the section builders of
+//! [`sections`], the charts of [`charts`] and the numbers written by [`format`].
+//! Renderers only lay the document out: [`html`] (one self-contained file), [`pdf`]
+//! (typst, with the template `templates/report.typ`) and [`text`] (tables on a
+//! terminal). This crate never renders a scene.
 
 pub mod charts;
+pub mod document;
 pub mod findings;
+pub mod format;
 pub mod gallery;
 pub mod html;
 pub mod pdf;
 pub mod sample;
+pub mod sections;
+pub mod text;
 
 pub use results;
 pub use results::gate;
@@ -24,3 +33,5 @@ pub struct Run {
     pub results: results::Results,
     pub base_dir: PathBuf,
 }
+
+pub use results::slug;

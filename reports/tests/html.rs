@@ -4,7 +4,8 @@
 use std::path::{Path, PathBuf};
 
 use reports::Run;
-use reports::html::{SECTIONS, render_html};
+use reports::document::SECTIONS;
+use reports::html::render_html;
 use reports::sample::{sample_results, write_sample_files};
 
 /// A fresh directory under the system temp dir, removed on drop.
@@ -129,8 +130,8 @@ fn two_runs_give_the_comparison_section() {
     let html = render_html(&[first, second]).expect("render");
     assert!(html.contains("<section id=\"comparison\">"));
     assert!(html.contains("<a href=\"#comparison\">"));
-    assert!(html.contains("bench-2 / bench-1"));
-    assert!(html.contains("1.200×"), "ratio of the medians");
+    assert!(html.contains("bench-2 vs bench-1"));
+    assert!(html.contains("+20.0 %"), "change of the medians");
     assert!(html.contains("⚑ 1 differ"), "a flagged count difference");
     assert!(html.contains("ops.dot: "));
 }

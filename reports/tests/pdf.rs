@@ -205,7 +205,7 @@ fn several_runs_get_a_comparison() {
         std::fs::write(out, &pdf).expect("write RTPROF_PDF_COMPARE_OUT");
     }
     if let Some(text) = pdf_text(&path) {
-        assert!(text.contains("Comparison of runs"));
+        assert!(text.contains("Side-by-side comparison of runs"));
         assert!(text.contains("bench-2 vs bench-1"));
         assert!(text.contains("+20.0 %"));
     }
@@ -254,7 +254,7 @@ fn an_empty_run_still_has_every_section() {
     std::fs::write(&path, &pdf).expect("write");
     assert!(page_count(&pdf, &path) >= 8);
     if let Some(text) = pdf_text(&path) {
-        assert!(text.contains("This run has no profile"));
+        assert!(text.contains("No profile in this run"));
         assert!(text.contains("No SPD scene ran"));
     }
     let _ = std::fs::remove_dir_all(&dir);

@@ -10,6 +10,8 @@ use hwmodel::design::Design;
 use hwmodel::hw_scene::HwScene;
 use hwmodel::library::{DeviceSpec, Library, device_names, find_device};
 use hwmodel::table::{Row, Tables, tables};
+use reports::sections::hardware::hw_table;
+use results::HwRow;
 use runner::hardware_prediction::{TimeRequest, time_report};
 use std::path::{Path, PathBuf};
 use tracer::{Scene, load_nff};
@@ -190,45 +192,16 @@ fn table(args: &TableArgs) -> Result<()> {
     Ok(())
 }
 
-fn cell(model: u64, thesis: Option<u64>, err: Option<Option<f64>>) -> String {
-    match (thesis, err) {
-        (Some(t), Some(Some(e))) => format!("{model}/{t} ({e:+.1}%)"),
-        (Some(t), _) => format!("{model}/{t} (—)"),
-        (None, _) => model.to_string(),
-    }
-}
-
+/// One of tables 7 and 8 as the report's table model, printed in columns.
 fn format_rows(rows: &[Row]) -> String {
-    let mut out = format!(
-        "{:<15} {:>20} {:>22} {:>22} {:>22} {:>22} {:>17}\n",
-        "", "latency", "LEs", "comb", "regs", "mem bits", "mult"
-    );
-    for r in rows {
-        let t = r.thesis.as_ref();
-        let e = r.error_pct.as_ref();
-        let m = &r.model;
-        out += &format!(
-            "{:<15} {:>20} {:>22} {:>22} {:>22} {:>22} {:>17}\n",
-            m.name,
-            cell(
-                u64::from(m.latency),
-                t.map(|t| t.latency),
-                e.map(|e| e.latency)
-            ),
-            cell(m.le, t.map(|t| t.le), e.map(|e| e.le)),
-            cell(m.comb, t.map(|t| t.comb), e.map(|e| e.comb)),
-            cell(m.regs, t.map(|t| t.regs), e.map(|e| e.regs)),
-            cell(m.mem_bits, t.map(|t| t.mem_bits), e.map(|e| e.mem_bits)),
-            cell(m.mult, t.map(|t| t.mult), e.map(|e| e.mult)),
-        );
-    }
-    out
+    let rows: Vec<HwRow> = rows.iter().map(HwRow::from_model_row).collect();
+    reports::text::table(&hw_table(&rows))
 }
 
 fn format_tables(t: &Tables, lib: &Library, device: &DeviceSpec) -> String {
     let mut out = format!(
         "Operator library: {}{}; device {}{}; design: {}\n\
-         cells: model/thesis (error); the thesis's figures are the reference, never inputs\n\n",
+         cells: model / thesis (error); the thesis's figures are the reference, never inputs\n\n",
         lib.family,
         if lib.validated { "" } else { " (unvalidated)" },
         device.name,

@@ -1,0 +1,226 @@
+//! Builds the [`Document`] of some runs: the sections of [`SECTIONS`] in order, each
+//! from its builder in [`crate::sections`], and the assets they embed.
+
+use std::path::Path;
+
+use super::assets::svg_size;
+use super::{AssetKind, Assets, Block, Document, Figure, Image, Metadata, Section, Visual};
+use crate::Run;
+use crate::charts::{self, Chart};
+use crate::gallery::{self, Picture};
+use crate::sections;
+
+/// The report's sections: id and heading, in order (the comparison only with several
+/// runs).
+pub const SECTIONS: [(&str, &str); 16] = [
+    ("summary", "Summary"),
+    ("profile", "Flat profile and call graph"),
+    ("profile-charts", "Calls and self time per function"),
+    ("flamegraphs", "Flamegraphs"),
+    (
+        "amdahl",
+        "Amdahl's law: what speeding up a function would give",
+    ),
+    ("variants", "Optimization variants"),
+    ("images", "Images, difference heat maps and histograms"),
+    ("hardware-tables", "Hardware model: tables 7 and 8"),
+    ("device-utilization", "Device utilization"),
+    ("sw-hw", "Software against hardware"),
+    ("time-vs-primitives", "Render time against primitive count"),
+    ("spd", "SPD scene statistics"),
+    ("criterion", "Micro-benchmarks: time and instructions"),
+    ("failures", "Failures"),
+    ("reproduce", "How to reproduce"),
+    ("comparison", "Side-by-side comparison of runs"),
+];
+
+/// The heading of section `id` (the id itself when it is not one of [`SECTIONS`]).
+pub fn heading_of(id: &str) -> &str {
+    SECTIONS
+        .iter()
+        .find(|(sid, _)| *sid == id)
+        .map_or(id, |(_, heading)| heading)
+}
+
+/// The study the report reproduces.
+const THESIS: &str = "R. A. Herrera Guaitero, J. M. Gómez Cruz and D. A. Sáenz Rodelo, \"Síntesis de una escena mediante ray tracing en FPGA\", undergraduate thesis (Trabajo de Grado, Ingeniería Electrónica), Pontificia Universidad Javeriana, Bogotá, December 2019";
+
+/// The document of `runs` (the first in detail); `None` without runs.
+pub fn build(runs: &[Run]) -> Option<Document> {
+    let main = runs.first()?;
+    let mut b = Builder {
+        runs,
+        run: main,
+        charts: charts::all(&main.results),
+        assets: Assets::default(),
+    };
+    let mut sections_out = vec![
+        sections::summary::summary(&mut b),
+        sections::profile::profile(&mut b),
+        sections::profile::profile_charts(&mut b),
+        sections::profile::flamegraphs(&mut b),
+        sections::profile::amdahl(&mut b),
+        sections::variants::variants(&mut b),
+        sections::images::images(&mut b),
+        sections::hardware::hardware_tables(&mut b),
+        sections::hardware::device_utilization(&mut b),
+        sections::hardware::sw_hw(&mut b),
+        sections::scaling::time_vs_primitives(&mut b),
+        sections::scaling::spd(&mut b),
+        sections::benchmarks::criterion(&mut b),
+        sections::closing::failures(&mut b),
+        sections::closing::reproduce(&mut b),
+    ];
+    if runs.len() > 1 {
+        sections_out.push(sections::comparison::comparison(&mut b));
+    }
+    // A chart no section placed (a new kind) is not lost.
+    if !b.charts.is_empty() {
+        let mut more = b.section("more-charts", None);
+        more.heading = "More charts".to_string();
+        for chart in std::mem::take(&mut b.charts) {
+            let figure = b.figure(chart, 11.0);
+            more.blocks.push(figure);
+        }
+        sections_out.push(more);
+    }
+    let r = &main.results;
+    let labels: Vec<&str> = runs.iter().map(|run| run.label.as_str()).collect();
+    Some(Document {
+        title: "rtprof report".to_string(),
+        metadata: Metadata {
+            subtitle: "Profile, optimization variants and FPGA model of a Whitted ray tracer"
+                .to_string(),
+            byline: format!(
+                "{} · {} · {} · {}",
+                main.label,
+                r.machine.cpu_model,
+                r.created,
+                if runs.len() > 1 {
+                    format!("{} runs compared", runs.len())
+                } else {
+                    "one run".to_string()
+                }
+            ),
+            subject: labels.join(" vs "),
+            reference: THESIS.to_string(),
+            generator: format!("rtprof {}", r.build.rtprof_version),
+        },
+        notices: Vec::new(),
+        sections: sections_out,
+        assets: b.assets,
+    })
+}
+
+/// What the section builders share: the runs, the charts not yet placed, the assets.
+pub struct Builder<'a> {
+    pub runs: &'a [Run],
+    /// The run shown in detail.
+    pub run: &'a Run,
+    charts: Vec<Chart>,
+    assets: Assets,
+}
+
+impl<'a> Builder<'a> {
+    /// The results of the run shown in detail.
+    pub fn results(&self) -> &'a crate::results::Results {
+        &self.run.results
+    }
+
+    /// An empty section `id` with its heading from [`SECTIONS`].
+    pub fn section(&self, id: &str, thesis: Option<&str>) -> Section {
+        Section {
+            id: id.to_string(),
+            heading: heading_of(id).to_string(),
+            thesis: thesis.map(str::to_string),
+            short: false,
+            blocks: Vec::new(),
+        }
+    }
+
+    /// The figure of chart `id` of [`charts::all`], if the data made one (each chart is
+    /// placed once).
+    pub fn chart(&mut self, id: &str, max_height_cm: f64) -> Option<Block> {
+        let at = self.charts.iter().position(|c| c.id == id)?;
+        let chart = self.charts.remove(at);
+        Some(self.figure(chart, max_height_cm))
+    }
+
+    /// A figure of any chart.
+    pub fn figure(&mut self, chart: Chart, max_height_cm: f64) -> Block {
+        let (width, height) = chart_size(&chart);
+        let asset = self.assets.add(AssetKind::Svg, chart.svg.into_bytes());
+        Block::Figure(Figure {
+            id: chart.id.to_string(),
+            title: chart.title.clone(),
+            caption: chart.caption,
+            visual: Visual::Image(Image {
+                asset,
+                width,
+                height,
+                alt: chart.title,
+                file: None,
+            }),
+            max_height_cm,
+        })
+    }
+
+    /// A picture of the run (a PNG relative to its directory) as a thumbnail (see
+    /// [`crate::gallery`]), or why it cannot be shown. `size` is the picture's size
+    /// in pixels (its aspect ratio).
+    pub fn picture(&mut self, rel: Option<&str>, alt: &str, size: (u32, u32)) -> Visual {
+        let Some(rel) = rel else {
+            return Visual::Missing {
+                text: format!("no image recorded for {alt}"),
+            };
+        };
+        match gallery::thumbnail(&self.run.base_dir, rel) {
+            Picture::Png(bytes) => Visual::Image(Image {
+                asset: self.assets.add(AssetKind::Png, bytes),
+                width: f64::from(size.0.max(1)),
+                height: f64::from(size.1.max(1)),
+                alt: alt.to_string(),
+                file: Some(rel.to_string()),
+            }),
+            Picture::Unusable(reason) => Visual::Missing {
+                text: format!("image missing: {rel} ({reason})"),
+            },
+        }
+    }
+
+    /// A flamegraph SVG of the run, or why it cannot be shown.
+    pub fn flamegraph(&mut self, rel: &str, title: &str) -> Visual {
+        match read_text(&self.run.base_dir, rel) {
+            Ok(svg) => {
+                let (width, height) = svg_size(&svg).unwrap_or((1200.0, 600.0));
+                Visual::Image(Image {
+                    asset: self.assets.add(AssetKind::Svg, svg.into_bytes()),
+                    width,
+                    height,
+                    alt: title.to_string(),
+                    file: Some(rel.to_string()),
+                })
+            }
+            Err(reason) => Visual::Missing {
+                text: format!("flamegraph missing: {rel} ({reason})"),
+            },
+        }
+    }
+
+    /// A text file of the run, or why it cannot be read.
+    pub fn text_file(&self, rel: &str) -> Result<String, String> {
+        read_text(&self.run.base_dir, rel)
+    }
+}
+
+/// A chart's size in pixels.
+// TODO(merge wip-charts): `(chart.width, chart.height)` once charts carry their size.
+fn chart_size(chart: &Chart) -> (f64, f64) {
+    svg_size(&chart.svg).unwrap_or((800.0, 420.0))
+}
+
+fn read_text(base: &Path, rel: &str) -> Result<String, String> {
+    std::fs::read(base.join(rel))
+        .map(|bytes| String::from_utf8_lossy(&bytes).into_owned())
+        .map_err(|e| e.kind().to_string())
+}

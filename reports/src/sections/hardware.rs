@@ -1,0 +1,272 @@
+//! The hardware sections: the model against the thesis's tables 7 and 8, the device
+//! fit, and software against hardware on each scene.
+//!
+//! [`hw_table`] is public: `rtprof hw table` prints the same table model as text.
+
+use super::GRID_COLUMNS;
+use crate::document::{
+    Block, Builder, Cell, Column, ImageGrid, Inline, Section, Table, Tile, Tone,
+};
+use crate::format;
+use crate::results::{DeviceUse, HwColumn, HwRow, HwRowKind, SceneResult};
+
+/// Tables 7 or 8: each cell the model's figure, its detail the thesis's figure and the
+/// model's signed error, its tone the size of that error ([`Tone::of_error`]).
+pub fn hw_table(rows: &[HwRow]) -> Table {
+    let mut columns = vec![Column::text("name"), Column::text("kind")];
+    columns.extend(
+        HwColumn::ALL.map(|c| Column::number(c.label()).detail("model / thesis (error)")),
+    );
+    let mut t = Table::new(columns).sortable();
+    for row in rows {
+        let mut cells = vec![Cell::text(&row.name).code(), Cell::text(row.kind.name())];
+        for (column, model) in row.model.columns() {
+            let thesis = row.thesis.map(|t| t.get(column));
+            let error = row.error_pct.as_ref().and_then(|e| e.get(column));
+            let detail = match (thesis, error) {
+                (Some(t), Some(e)) => format!(
+                    "/ {} ({})",
+                    format::count(t),
+                    format::signed_percent(e, 1)
+                ),
+                (Some(t), None) => format!("/ {} (—)", format::count(t)),
+                // The IP-core rows are table 7's own figures: the model's input.
+                (None, _) if row.kind == HwRowKind::IpCore => "(thesis input)".to_string(),
+                (None, _) => "(no thesis figure)".to_string(),
+            };
+            cells.push(
+                Cell::count(model)
+                    .detail(detail)
+                    .tone(Tone::of_error(error)),
+            );
+        }
+        t.rows.push(cells);
+    }
+    t
+}
+
+pub fn hardware_tables(b: &mut Builder) -> Section {
+    let mut s = b.section(
+        "hardware-tables",
+        Some("table 7 (per operation) and table 8 (per block), Quartus figures on the Cyclone IV EP4CE115"),
+    );
+    let Some(hw) = &b.results().hardware else {
+        s.blocks
+            .push(Block::empty("No hardware model in this run."));
+        return s;
+    };
+    let mut legend = vec![Inline::text(format!(
+        "The FPGA model of the thesis's ray caster, operator library {}. Each cell: the model's figure / the thesis's (signed error). Cell colour by |error|: ",
+        hw.family
+    ))];
+    for (tone, text) in Tone::ERROR_LEGEND {
+        legend.push(Inline::Chip {
+            text: text.to_string(),
+            tone,
+        });
+        legend.push(Inline::text(" "));
+    }
+    s.blocks.push(Block::Paragraph { content: legend });
+    for (title, rows, empty) in [
+        (
+            "Table 7: operations",
+            &hw.ops,
+            "The model produced no operation rows.",
+        ),
+        (
+            "Table 8: blocks",
+            &hw.blocks,
+            "The model produced no block rows.",
+        ),
+    ] {
+        s.blocks.push(Block::heading(title));
+        if rows.is_empty() {
+            s.blocks.push(Block::empty(empty));
+        } else {
+            s.blocks.push(Block::Table(hw_table(rows)));
+        }
+    }
+    s.blocks.push(Block::note(
+        Tone::Muted,
+        "Rows without a thesis figure have nothing to compare with: the IP-core rows are the thesis's own figures, the input the model builds everything else from.",
+    ));
+    s
+}
+
+pub fn device_utilization(b: &mut Builder) -> Section {
+    let mut s = b.section(
+        "device-utilization",
+        Some("ch. 8.2: about 100,000 LEs (78 %), all 532 multipliers, 2,412 Kbits of memory, 2 PLLs on the EP4CE115"),
+    );
+    s.short = true;
+    let devices = b
+        .results()
+        .hardware
+        .as_ref()
+        .map(|h| h.devices.as_slice())
+        .unwrap_or(&[]);
+    if devices.is_empty() {
+        s.blocks.push(Block::empty(
+            "No device fit in this run (no hardware model).",
+        ));
+        return s;
+    }
+    s.blocks.push(Block::text(
+        "The thesis's design fitted to each device: used and available resources, and the largest number of intersection units that still fits.",
+    ));
+    let mut t = Table::new(vec![
+        Column::text("device"),
+        Column::text("fits"),
+        Column::number("logic elements"),
+        Column::number("9-bit multipliers"),
+        Column::number("memory bits"),
+        Column::number("PLLs"),
+        Column::number("largest K that fits"),
+    ]);
+    for d in devices {
+        t.rows.push(device_row(d));
+    }
+    s.blocks.push(Block::Table(t));
+    if let Some(figure) = b.chart("device-utilization", 10.0) {
+        s.blocks.push(figure);
+    }
+    s
+}
+
+fn device_row(d: &DeviceUse) -> Vec<Cell> {
+    let usage = |used: u64, capacity: u64, over: bool| {
+        Cell::number(
+            format::usage(used, capacity),
+            format::percent_of(used, capacity),
+        )
+        .tone(if over { Tone::Bad } else { Tone::Neutral })
+    };
+    let mut mult = usage(
+        d.mult,
+        d.mult_capacity,
+        d.mult + d.soft_mult_elements >= d.mult_capacity,
+    );
+    if d.soft_mult_elements > 0 {
+        mult = mult.detail(format!(
+            "+ {} built in logic",
+            format::count(d.soft_mult_elements)
+        ));
+    }
+    let mut device = Cell::text(&d.device);
+    if !d.validated {
+        device = device.detail("(unvalidated)");
+    }
+    vec![
+        device,
+        Cell::text(if d.fits { "yes" } else { "no" }).tone(Tone::of_yes(d.fits)),
+        usage(d.le, d.le_capacity, d.le >= d.le_capacity),
+        mult,
+        usage(d.mem_bits, d.mem_capacity, d.mem_bits >= d.mem_capacity),
+        usage(
+            u64::from(d.plls),
+            u64::from(d.pll_capacity),
+            d.plls >= d.pll_capacity,
+        ),
+        match d.largest_units {
+            Some(k) => Cell::count(u64::from(k)),
+            None => Cell::dash(),
+        },
+    ]
+}
+
+pub fn sw_hw(b: &mut Builder) -> Section {
+    let mut s = b.section(
+        "sw-hw",
+        Some("fig. 49 (software and hardware times), fig. 50 (gain per scene: 4.6 to 18), ch. 7's software-vs-hardware RMS (26.6 on both5)"),
+    );
+    let r = b.results();
+    let scenes: Vec<&SceneResult> = r.scenes.iter().filter(|s| s.hardware.is_some()).collect();
+    if scenes.is_empty() {
+        s.blocks.push(Block::empty(
+            "No scene ran on the hardware model (it takes spheres and cylinders only: the test-bench scenes).",
+        ));
+        return s;
+    }
+    s.blocks.push(Block::text(
+        "The software's diffuse-only gray render (baseline) against the hardware model's frame time, and the emulator's image against the software's.",
+    ));
+    for id in ["sw-hw-times", "hw-speedup"] {
+        if let Some(figure) = b.chart(id, 10.0) {
+            s.blocks.push(figure);
+        }
+    }
+    let mut t = Table::new(vec![
+        Column::text("scene"),
+        Column::number("primitives"),
+        Column::number("cycles"),
+        Column::number("hardware time"),
+        Column::number("software time").detail("[95 % interval]"),
+        Column::number("speed-up"),
+        Column::text("fits"),
+        Column::number("emulator RMS"),
+        Column::text("band"),
+    ])
+    .sortable();
+    for scene in &scenes {
+        let Some(h) = &scene.hardware else { continue };
+        let band = h.emulator_band;
+        t.rows.push(vec![
+            Cell::text(&scene.name),
+            Cell::count(h.primitives),
+            Cell::count(h.cycles),
+            Cell::number(format::seconds(h.seconds), h.seconds),
+            Cell::estimate(
+                h.software_seconds.median,
+                h.software_seconds.low,
+                h.software_seconds.high,
+            ),
+            Cell::number(format::speedup(h.speedup), h.speedup),
+            Cell::text(if h.fits { "yes" } else { "no" }).tone(Tone::of_yes(h.fits)),
+            Cell::number(format::fixed(h.emulator_rms, 2), h.emulator_rms),
+            Cell::text(band.name()).tone(Tone::of_band(band)),
+        ]);
+    }
+    s.blocks.push(Block::Table(t));
+    s.blocks.push(Block::heading("Emulator and software images"));
+    s.blocks.push(Block::text(
+        "Each column: the software's diffuse-only gray render above the hardware emulator's image of the same scene.",
+    ));
+    let columns = scenes.len().min(GRID_COLUMNS);
+    for chunk in scenes.chunks(GRID_COLUMNS) {
+        let mut software = Vec::new();
+        let mut emulator = Vec::new();
+        for scene in chunk {
+            let Some(h) = &scene.hardware else { continue };
+            let size = (scene.width, scene.height);
+            let band = h.emulator_band;
+            software.push(Tile {
+                visual: b.picture(
+                    h.software_image.as_deref(),
+                    &format!("{} software", scene.name),
+                    size,
+                ),
+                caption: scene.name.clone(),
+                tone: Tone::Neutral,
+            });
+            emulator.push(Tile {
+                visual: b.picture(
+                    h.emulator_image.as_deref(),
+                    &format!("{} emulator", scene.name),
+                    size,
+                ),
+                caption: format!(
+                    "RMS {} ({})",
+                    format::fixed(h.emulator_rms, 1),
+                    band.name()
+                ),
+                tone: Tone::of_band(band),
+            });
+        }
+        s.blocks.push(Block::ImageGrid(ImageGrid::from_rows(
+            columns,
+            vec!["software".to_string(), "emulator".to_string()],
+            vec![software, emulator],
+        )));
+    }
+    s
+}
