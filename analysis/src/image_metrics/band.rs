@@ -20,18 +20,32 @@ pub enum Band {
 }
 
 impl Band {
+    /// Every band, from the most alike.
+    pub const ALL: [Band; 4] = [
+        Band::VisuallyIdentical,
+        Band::Similar,
+        Band::NotableChanges,
+        Band::Different,
+    ];
+
+    /// The RMS below which the band ends (the next band's lower edge): the thesis's
+    /// table 2 limits, 15, 50 and 85; `None` for `Different`, which has no end.
+    pub fn upper_limit(self) -> Option<f64> {
+        match self {
+            Band::VisuallyIdentical => Some(15.0),
+            Band::Similar => Some(50.0),
+            Band::NotableChanges => Some(85.0),
+            Band::Different => None,
+        }
+    }
+
     /// Each band includes its lower edge. A NaN RMS cannot be called alike, so it is
     /// `Different`.
     pub fn of(rms: f64) -> Band {
-        if rms < 15.0 {
-            Band::VisuallyIdentical
-        } else if rms < 50.0 {
-            Band::Similar
-        } else if rms < 85.0 {
-            Band::NotableChanges
-        } else {
-            Band::Different
-        }
+        Self::ALL
+            .into_iter()
+            .find(|b| b.upper_limit().is_some_and(|limit| rms < limit))
+            .unwrap_or(Band::Different)
     }
 
     pub fn name(self) -> &'static str {

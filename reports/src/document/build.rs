@@ -213,10 +213,9 @@ impl<'a> Builder<'a> {
     }
 }
 
-/// A chart's size in pixels.
-// TODO(merge wip-charts): `(chart.width, chart.height)` once charts carry their size.
+/// A chart's size in pixels, as the chart carries it.
 fn chart_size(chart: &Chart) -> (f64, f64) {
-    svg_size(&chart.svg).unwrap_or((800.0, 420.0))
+    (f64::from(chart.width), f64::from(chart.height))
 }
 
 fn read_text(base: &Path, rel: &str) -> Result<String, String> {

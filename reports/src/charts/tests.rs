@@ -1,0 +1,304 @@
+//! Tests over every chart of the synthetic sample run: content, declared size, and that
+//! what is drawn follows the data.
+
+use super::*;
+use crate::results::{SceneResult, VariantResult};
+use crate::sample::sample_results;
+
+/// Every chart the sample gives: [`all`], each scene's histograms, each variant's.
+fn every_chart() -> Vec<Chart> {
+    let r = sample_results();
+    let mut charts = all(&r);
+    for scene in &r.scenes {
+        charts.extend(scene_histograms(&r, scene));
+        charts.extend(
+            scene
+                .variants
+                .iter()
+                .filter_map(|v| variant_histogram(scene, v)),
+        );
+    }
+    charts
+}
+
+/// The value of attribute `name` of the SVG's root element.
+fn root_attribute(svg: &str, name: &str) -> Option<String> {
+    let tag = svg.split('>').next()?;
+    let start = tag.find(&format!(" {name}=\""))? + name.len() + 3;
+    Some(tag[start..].split('"').next()?.to_string())
+}
+
+/// The points of the first `<polygon>` of an SVG.
+fn polygon_points(svg: &str) -> Vec<(f64, f64)> {
+    let Some(at) = svg.find("<polygon") else {
+        return Vec::new();
+    };
+    let points = svg[at..].split("points=\"").nth(1).unwrap_or("");
+    let points = points.split('"').next().unwrap_or("");
+    points
+        .split_whitespace()
+        .filter_map(|p| {
+            let (x, y) = p.split_once(',')?;
+            Some((x.parse().ok()?, y.parse().ok()?))
+        })
+        .collect()
+}
+
+/// The `(x, y, width, height)` of the filled `<rect>`s of colour `fill` (as `#RRGGBB`).
+fn rects(svg: &str, fill: &str) -> Vec<[f64; 4]> {
+    svg.split("<rect")
+        .skip(1)
+        .filter(|r| r.contains(&format!("fill=\"{fill}\"")))
+        .filter_map(|r| {
+            let value = |k: &str| -> Option<f64> {
+                r.split(&format!(" {k}=\""))
+                    .nth(1)?
+                    .split('"')
+                    .next()?
+                    .parse()
+                    .ok()
+            };
+            Some([value("x")?, value("y")?, value("width")?, value("height")?])
+        })
+        .collect()
+}
+
+#[test]
+fn every_chart_of_the_sample_is_svg_with_its_axis_titles() {
+    let charts = all(&sample_results());
+    let expected: [(&str, &[&str]); 8] = [
+        (
+            "calls",
+            &[
+                "calls per render (log scale)",
+                "Sphere::intersect",
+                "vec3::dot",
+            ],
+        ),
+        ("self-seconds", &["self time (s)", "Cylinder::intersect"]),
+        (
+            "quality-speed",
+            &[
+                "speed-up over baseline",
+                "RMS error against baseline",
+                "fast-sqrt",
+            ],
+        ),
+        (
+            "sw-hw-times",
+            &["frame time (s, log scale)", "scene", "balls4"],
+        ),
+        ("hw-speedup", &["hardware speed-up (×)", "break-even"]),
+        (
+            "time-vs-primitives",
+            &[
+                "primitives in the scene",
+                "render time (s, log scale)",
+                "cylinder",
+            ],
+        ),
+        (
+            "device-utilization",
+            &[
+                "utilization (% of the device)",
+                "EP4CE115",
+                "5CGXFC9 (unvalidated)",
+            ],
+        ),
+        (
+            "histogram",
+            &["gray level (0-255)", "pixels (log scale)", "baseline"],
+        ),
+    ];
+    let ids: Vec<&str> = charts.iter().map(|c| c.id).collect();
+    assert_eq!(ids, expected.map(|e| e.0), "the charts, in report order");
+    for (c, (id, texts)) in charts.iter().zip(expected) {
+        assert!(
+            c.svg.starts_with("<svg") && c.svg.trim_end().ends_with("</svg>"),
+            "{id}"
+        );
+        assert!(!c.svg.contains("could not be drawn"), "{id}: {}", c.svg);
+        assert!(!c.title.is_empty() && !c.caption.is_empty(), "{id}");
+        assert!(c.svg.contains(&c.title), "{id}: the title is drawn");
+        for text in texts {
+            assert!(c.svg.contains(text), "{id} lacks '{text}'");
+        }
+    }
+}
+
+#[test]
+fn each_chart_carries_the_size_its_svg_declares() {
+    let charts = every_chart();
+    assert!(charts.len() > 8, "histograms are included");
+    for c in &charts {
+        let declared = ["width", "height"].map(|a| root_attribute(&c.svg, a));
+        let carried = [c.width, c.height].map(|v| Some(v.to_string()));
+        assert_eq!(declared, carried, "{} ({})", c.id, c.title);
+        let view_box = format!("0 0 {} {}", c.width, c.height);
+        assert_eq!(
+            root_attribute(&c.svg, "viewBox"),
+            Some(view_box),
+            "{}",
+            c.id
+        );
+    }
+}
+
+#[test]
+fn a_chart_that_fails_to_draw_says_so_at_its_declared_size() {
+    let c = frame::render("broken", "t".into(), "c".into(), (300, 200), |_| {
+        Err("no <room> & no luck".into())
+    });
+    assert!(
+        c.svg.contains("chart 'broken' could not be drawn"),
+        "{}",
+        c.svg
+    );
+    assert!(c.svg.contains("no &lt;room&gt; &amp; no luck"), "{}", c.svg);
+    let declared = ["width", "height"].map(|a| root_attribute(&c.svg, a));
+    assert_eq!(declared, [c.width, c.height].map(|v| Some(v.to_string())));
+}
+
+#[test]
+fn a_variant_histogram_rises_with_the_log_of_each_bin() {
+    let r = sample_results();
+    let scene: &SceneResult = &r.scenes[0];
+    let variant = scene
+        .variants
+        .iter()
+        .find(|v| v.histogram.len() == 256)
+        .expect("a histogram");
+    let c = variant_histogram(scene, variant).expect("chart");
+    // The area: the bottom-left corner, two corners per bin, the bottom-right corner.
+    let points = polygon_points(&c.svg);
+    assert_eq!(points.len(), 2 + 2 * 256, "{}", c.svg.len());
+    let bottom = points[0].1;
+    let top_count = *variant.histogram.iter().max().expect("bins") as f64;
+    // Height over the bottom / full height = ln(count / 0.8) / ln(max / 0.8), to a pixel.
+    let full = (top_count / 0.8).ln();
+    let plot_height = f64::from(c.height) - 1.0;
+    for (bin, count) in variant.histogram.iter().enumerate() {
+        let (left, right) = (points[1 + 2 * bin], points[2 + 2 * bin]);
+        assert_eq!(left.1, right.1, "bin {bin} is flat");
+        assert!(
+            right.0 - left.0 <= 1.0 && left.0 <= bin as f64 + 0.5,
+            "bin {bin} at {left:?}"
+        );
+        let expected = if *count == 0 {
+            0.0
+        } else {
+            (*count as f64 / 0.8).ln() / full * plot_height
+        };
+        let drawn = bottom - left.1;
+        assert!(
+            (drawn - expected).abs() <= 1.0,
+            "bin {bin}: {count} drawn {drawn} px, expected {expected:.1}"
+        );
+    }
+    let empty = VariantResult {
+        histogram: vec![0; 256],
+        ..variant.clone()
+    };
+    assert!(variant_histogram(scene, &empty).is_none());
+    let short = VariantResult {
+        histogram: vec![5; 10],
+        ..variant.clone()
+    };
+    assert!(variant_histogram(scene, &short).is_none());
+}
+
+#[test]
+fn speed_up_bars_are_as_tall_as_their_speed_up() {
+    let r = sample_results();
+    let c = hw_speedup_chart(&r).expect("chart");
+    // The speed-up bars are PALETTE[2], green.
+    let bars = rects(&c.svg, "#009E73");
+    let speedups: Vec<f64> = r
+        .scenes
+        .iter()
+        .filter_map(|s| s.hardware.as_ref())
+        .filter(|h| h.seconds > 0.0 && h.software_seconds.median > 0.0 && h.speedup.is_finite())
+        .map(|h| h.speedup)
+        .collect();
+    assert_eq!(bars.len(), speedups.len());
+    // Pixels per unit of speed-up, from the tallest bar; every bar within a pixel of it.
+    let (tallest, largest) = bars
+        .iter()
+        .zip(&speedups)
+        .map(|(b, s)| (b[3], *s))
+        .fold((0.0, 0.0), |m, p| if p.1 > m.1 { p } else { m });
+    let scale = tallest / largest;
+    for (bar, s) in bars.iter().zip(&speedups) {
+        assert!(
+            (bar[3] - s * scale).abs() <= 1.0,
+            "{s}× drawn {} px",
+            bar[3]
+        );
+    }
+    // Left to right in scene order, the same width each (to a pixel of rounding).
+    assert!(
+        bars.windows(2)
+            .all(|w| w[0][0] < w[1][0] && (w[0][2] - w[1][2]).abs() <= 1.0),
+        "{bars:?}"
+    );
+}
+
+#[test]
+fn results_without_data_give_no_charts() {
+    let nothing = Results {
+        scenes: Vec::new(),
+        profile: None,
+        hardware: None,
+        ..sample_results()
+    };
+    assert_eq!(all(&nothing), Vec::new());
+}
+
+#[test]
+fn bad_numbers_draw_charts_without_panicking() {
+    let mut bad = sample_results();
+    for s in &mut bad.scenes {
+        for v in &mut s.variants {
+            v.speedup = None;
+            v.samples = vec![f64::NAN, f64::INFINITY, -1.0];
+            v.time.median = f64::NAN;
+            v.histogram.clear();
+        }
+        if let Some(h) = &mut s.hardware {
+            h.seconds = 0.0;
+            h.speedup = f64::NAN;
+        }
+    }
+    if let Some(p) = &mut bad.profile {
+        for row in &mut p.baseline.flat {
+            row.self_seconds = f64::NAN;
+            row.calls = Some(0);
+        }
+    }
+    if let Some(h) = &mut bad.hardware {
+        for d in &mut h.devices {
+            d.le_capacity = 0;
+            d.mult = u64::MAX;
+        }
+    }
+    for c in all(&bad) {
+        assert!(
+            c.svg.starts_with("<svg") && !c.svg.contains("could not be drawn"),
+            "{}",
+            c.id
+        );
+    }
+}
+
+#[test]
+fn scene_histograms_leave_out_identical_variants() {
+    let r = sample_results();
+    let scene = r
+        .scenes
+        .iter()
+        .find(|s| s.name == "balls4")
+        .expect("balls4");
+    let c = scene_histograms(&r, scene).expect("chart");
+    assert!(c.svg.contains("ortho") && !c.svg.contains(">\nsimd\n<"));
+    assert!(c.caption.contains("not drawn") && c.caption.contains("simd"));
+}
