@@ -505,11 +505,12 @@ fn profile_writes_gprof_text_flamegraphs_and_json() {
         assert!(path.is_file(), "{} missing", path.display());
     }
     let flat = String::from_utf8_lossy(&read(&out_dir.join("flat.txt"))).into_owned();
-    let rows = analysis::profile::gprof::parse_flat_text(&flat).unwrap_or_else(|e| panic!("{e}"));
+    let rows =
+        analysis::profile::gprof_text::parse_flat_text(&flat).unwrap_or_else(|e| panic!("{e}"));
     assert!(!rows.is_empty());
     let graph = String::from_utf8_lossy(&read(&out_dir.join("callgraph.txt"))).into_owned();
-    let entries =
-        analysis::profile::gprof::parse_call_graph_text(&graph).unwrap_or_else(|e| panic!("{e}"));
+    let entries = analysis::profile::gprof_text::parse_call_graph_text(&graph)
+        .unwrap_or_else(|e| panic!("{e}"));
     assert!(!entries.is_empty());
     let svg = String::from_utf8_lossy(&read(&out_dir.join("flame.svg"))).into_owned();
     assert!(svg.contains("<svg") && svg.trim_end().ends_with("</svg>"));
@@ -1033,7 +1034,8 @@ fn profile_calls_match_the_counters(test: &str, scene: &str, size: &str) -> Vec<
     ]));
     let renders = profile["profile"]["renders"].as_u64().unwrap();
     let flat = String::from_utf8_lossy(&read(&out_dir.join("flat.txt"))).into_owned();
-    let rows = analysis::profile::gprof::parse_flat_text(&flat).unwrap_or_else(|e| panic!("{e}"));
+    let rows =
+        analysis::profile::gprof_text::parse_flat_text(&flat).unwrap_or_else(|e| panic!("{e}"));
     let calls_of = |name: &str| rows.iter().find(|r| r.name == name).map(|r| r.calls);
     let counts: std::collections::BTreeMap<String, u64> =
         counter_values(scene, size).into_iter().collect();

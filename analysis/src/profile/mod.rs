@@ -5,6 +5,8 @@
 pub mod amdahl;
 pub mod folded;
 pub mod gprof;
+#[cfg(any(test, feature = "gprof-text"))]
+pub mod gprof_text;
 pub mod names;
 pub mod sampler;
 

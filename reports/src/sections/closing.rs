@@ -27,7 +27,8 @@ pub fn failures(b: &mut Builder) -> Section {
     ));
     let mut t = Table::new(vec![Column::text("where"), Column::text("message").grow()]);
     for f in failures {
-        t.rows.push(vec![Cell::text(f.place()), Cell::text(&f.message)]);
+        t.rows
+            .push(vec![Cell::text(f.place()), Cell::text(&f.message)]);
     }
     s.blocks.push(Block::Table(t));
     s

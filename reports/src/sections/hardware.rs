@@ -14,9 +14,8 @@ use crate::results::{DeviceUse, HwColumn, HwRow, HwRowKind, SceneResult};
 /// model's signed error, its tone the size of that error ([`Tone::of_error`]).
 pub fn hw_table(rows: &[HwRow]) -> Table {
     let mut columns = vec![Column::text("name"), Column::text("kind")];
-    columns.extend(
-        HwColumn::ALL.map(|c| Column::number(c.label()).detail("model / thesis (error)")),
-    );
+    columns
+        .extend(HwColumn::ALL.map(|c| Column::number(c.label()).detail("model / thesis (error)")));
     let mut t = Table::new(columns).sortable();
     for row in rows {
         let mut cells = vec![Cell::text(&row.name).code(), Cell::text(row.kind.name())];
@@ -24,11 +23,9 @@ pub fn hw_table(rows: &[HwRow]) -> Table {
             let thesis = row.thesis.map(|t| t.get(column));
             let error = row.error_pct.as_ref().and_then(|e| e.get(column));
             let detail = match (thesis, error) {
-                (Some(t), Some(e)) => format!(
-                    "/ {} ({})",
-                    format::count(t),
-                    format::signed_percent(e, 1)
-                ),
+                (Some(t), Some(e)) => {
+                    format!("/ {} ({})", format::count(t), format::signed_percent(e, 1))
+                }
                 (Some(t), None) => format!("/ {} (—)", format::count(t)),
                 // The IP-core rows are table 7's own figures: the model's input.
                 (None, _) if row.kind == HwRowKind::IpCore => "(thesis input)".to_string(),
@@ -227,7 +224,8 @@ pub fn sw_hw(b: &mut Builder) -> Section {
         ]);
     }
     s.blocks.push(Block::Table(t));
-    s.blocks.push(Block::heading("Emulator and software images"));
+    s.blocks
+        .push(Block::heading("Emulator and software images"));
     s.blocks.push(Block::text(
         "Each column: the software's diffuse-only gray render above the hardware emulator's image of the same scene.",
     ));
@@ -254,11 +252,7 @@ pub fn sw_hw(b: &mut Builder) -> Section {
                     &format!("{} emulator", scene.name),
                     size,
                 ),
-                caption: format!(
-                    "RMS {} ({})",
-                    format::fixed(h.emulator_rms, 1),
-                    band.name()
-                ),
+                caption: format!("RMS {} ({})", format::fixed(h.emulator_rms, 1), band.name()),
                 tone: Tone::of_band(band),
             });
         }

@@ -37,7 +37,8 @@ pub fn images(b: &mut Builder) -> Section {
         s.blocks.push(Block::heading(&scene.name));
         let columns = scene.variants.len().min(GRID_COLUMNS);
         for chunk in scene.variants.chunks(GRID_COLUMNS) {
-            s.blocks.push(Block::ImageGrid(grid(b, scene, chunk, columns)));
+            s.blocks
+                .push(Block::ImageGrid(grid(b, scene, chunk, columns)));
         }
         match charts::scene_histograms(r, scene) {
             Some(chart) => {
@@ -50,7 +51,8 @@ pub fn images(b: &mut Builder) -> Section {
         }
     }
     if let Some(figure) = b.chart("histogram", 9.0) {
-        s.blocks.push(Block::heading("The largest difference of the run"));
+        s.blocks
+            .push(Block::heading("The largest difference of the run"));
         s.blocks.push(figure);
     }
     s

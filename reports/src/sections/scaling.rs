@@ -35,7 +35,7 @@ pub fn time_vs_primitives(b: &mut Builder) -> Section {
     .sortable()
     .caption("Scenes by family and primitive count");
     let mut scenes: Vec<&SceneResult> = r.scenes.iter().collect();
-    scenes.sort_by(|a, b| (a.family, a.primitives).cmp(&(b.family, b.primitives)));
+    scenes.sort_by_key(|a| (a.family, a.primitives));
     for scene in scenes {
         let fastest = scene
             .variants
@@ -102,8 +102,7 @@ pub fn spd(b: &mut Builder) -> Section {
             anchor: None,
         });
         if scene.variants.is_empty() {
-            s.blocks
-                .push(Block::empty("No variant ran on this scene."));
+            s.blocks.push(Block::empty("No variant ran on this scene."));
             continue;
         }
         let mut columns = vec![Column::text("variant")];
@@ -126,7 +125,8 @@ pub fn spd(b: &mut Builder) -> Section {
 
 fn spd_row(v: &VariantResult, pixels: u64) -> Vec<Cell> {
     let get = |k: &str| v.counts.get(k).copied().unwrap_or(0);
-    let rays = get("rays.primary") + get("rays.shadow") + get("rays.reflection") + get("rays.refraction");
+    let rays =
+        get("rays.primary") + get("rays.shadow") + get("rays.reflection") + get("rays.refraction");
     let tests: u64 = v
         .counts
         .iter()

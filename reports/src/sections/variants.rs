@@ -38,8 +38,9 @@ pub fn variants(b: &mut Builder) -> Section {
     );
     let r = b.results();
     if r.scenes.iter().all(|s| s.variants.is_empty()) {
-        s.blocks
-            .push(Block::empty("No scene has a variant result (see Failures)."));
+        s.blocks.push(Block::empty(
+            "No scene has a variant result (see Failures).",
+        ));
         return s;
     }
     s.blocks.push(Block::text(format!(
