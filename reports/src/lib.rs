@@ -7,10 +7,10 @@
 pub mod benchmarks;
 pub mod charts;
 pub mod findings;
+pub mod fuzz_check;
 pub mod gallery;
 pub mod html;
 pub mod pdf;
-pub mod sample;
 
 pub use results;
 pub use results::gate;

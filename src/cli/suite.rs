@@ -688,7 +688,11 @@ impl Runner<'_> {
             .variants
             .iter()
             .filter(|v| !v.variant.is_reference())
-            .filter(|v| v.quality.as_ref().is_some_and(|q| q.rms < 15.0))
+            .filter(|v| {
+                v.quality
+                    .as_ref()
+                    .is_some_and(|q| q.band == Band::VisuallyIdentical)
+            })
             .max_by(|a, b| {
                 let s = |v: &VariantResult| v.speedup.unwrap_or(f64::NEG_INFINITY);
                 s(a).total_cmp(&s(b))
