@@ -11,7 +11,7 @@ fn main() -> std::io::Result<()> {
     let dir = PathBuf::from(std::env::args().nth(1).unwrap_or_else(|| "charts".into()));
     std::fs::create_dir_all(&dir)?;
     let write = |name: &str, c: &Chart| std::fs::write(dir.join(format!("{name}.svg")), &c.svg);
-    let results = reports::sample::sample_results();
+    let results = testkit::sample_results();
     for c in charts::all(&results) {
         write(c.id, &c)?;
     }

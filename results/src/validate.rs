@@ -570,6 +570,20 @@ impl Results {
         })?;
         c.field("suite", |c| check_suite(c, &self.suite))?;
         c.each("scenes", &self.scenes, MAX_SCENES, check_scene)?;
+        // The gate pairs scenes by name and size: each may appear once.
+        let mut seen = BTreeSet::new();
+        for (i, s) in self.scenes.iter().enumerate() {
+            if !seen.insert((&s.name, s.width, s.height)) {
+                return c.at(format_args!("scenes[{i}]"), |c| {
+                    Err(c.err(format!(
+                        "scene '{}' at {}x{} appears twice",
+                        s.name.escape_debug(),
+                        s.width,
+                        s.height
+                    )))
+                });
+            }
+        }
         if let Some(p) = &self.profile {
             c.field("profile", |c| check_profile_result(c, p))?;
         }

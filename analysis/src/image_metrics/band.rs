@@ -20,7 +20,7 @@ pub enum Band {
 }
 
 impl Band {
-    /// Every band, from the most alike.
+    /// The bands from the most alike to the least.
     pub const ALL: [Band; 4] = [
         Band::VisuallyIdentical,
         Band::Similar,
@@ -28,9 +28,9 @@ impl Band {
         Band::Different,
     ];
 
-    /// The RMS below which the band ends (the next band's lower edge): the thesis's
-    /// table 2 limits, 15, 50 and 85; `None` for `Different`, which has no end.
-    pub fn upper_limit(self) -> Option<f64> {
+    /// The RMS where the next band starts (the thesis's table 2); `None` for
+    /// `Different`, which has no upper edge.
+    pub fn upper_edge(self) -> Option<f64> {
         match self {
             Band::VisuallyIdentical => Some(15.0),
             Band::Similar => Some(50.0),
@@ -42,9 +42,9 @@ impl Band {
     /// Each band includes its lower edge. A NaN RMS cannot be called alike, so it is
     /// `Different`.
     pub fn of(rms: f64) -> Band {
-        Self::ALL
+        Band::ALL
             .into_iter()
-            .find(|b| b.upper_limit().is_some_and(|limit| rms < limit))
+            .find(|b| b.upper_edge().is_none_or(|edge| rms < edge))
             .unwrap_or(Band::Different)
     }
 

@@ -125,7 +125,7 @@ pub(super) fn device_shares(d: &DeviceUse) -> (String, [f64; 4]) {
 /// The thesis's RMS bands (table 2) that end at a limit, with that limit, as the quality
 /// chart marks them (the limits live in `analysis::Band`).
 pub(super) fn rms_bands() -> impl Iterator<Item = (f64, &'static str)> {
-    analysis::Band::ALL
+    crate::results::Band::ALL
         .into_iter()
-        .filter_map(|b| Some((b.upper_limit()?, b.name())))
+        .filter_map(|b| Some((b.upper_edge()?, b.name())))
 }

@@ -3,7 +3,7 @@
 
 use super::*;
 use crate::results::{SceneResult, VariantResult};
-use crate::sample::sample_results;
+use testkit::sample_results;
 
 /// Every chart the sample gives: [`all`], each scene's histograms, each variant's.
 fn every_chart() -> Vec<Chart> {
