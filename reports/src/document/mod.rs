@@ -369,7 +369,7 @@ impl Block {
 
     /// Why a section or part of it is empty.
     pub fn empty(text: impl Into<String>) -> Block {
-        Block::note(Tone::Warning, text)
+        Block::note(Tone::Fair, text)
     }
 
     /// A sub-heading of the section.

@@ -12,7 +12,7 @@ pub fn criterion(b: &mut Builder) -> Section {
     let rows = benchmark_rows(r);
     if rows.is_empty() {
         s.blocks.push(Block::empty(
-            "No benchmark estimates in this run: run `cargo bench -p benches` (and `scripts/instruction-counts.sh` for instruction counts) first; the suite picks up target/criterion and target/gungraun, `rtprof report --criterion DIR` adds them to a saved run.",
+            "No benchmark estimates in this run: run cargo bench -p benches (and scripts/instruction-counts.sh for instruction counts) first; the suite picks up target/criterion and target/gungraun, rtprof report --criterion DIR adds them to a saved run.",
         ));
         return s;
     }

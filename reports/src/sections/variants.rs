@@ -155,7 +155,7 @@ fn counter_cell(v: &VariantResult, base: Option<&VariantResult>, key: &str) -> C
             .hover(format::count(n)),
         (Some(n), Some(b)) if b > 0 => {
             let delta = (n as f64 - b as f64) / b as f64 * 100.0;
-            Cell::number(format::signed_percent(delta, 1), delta)
+            Cell::number(format::signed_change(delta, 1), delta)
                 .tone(Tone::of_count(n, b))
                 .hover(format!(
                     "{} (baseline {})",
@@ -188,10 +188,10 @@ fn other_changes(base: Option<&VariantResult>, v: &VariantResult) -> Cell {
                 return None;
             }
             Some(if old == 0 {
-                (f64::INFINITY, format!("{k} +{}", format::count(new)))
+                (f64::INFINITY, format!("{k} 0 → {}", format::count(new)))
             } else {
                 let pct = (new as f64 / old as f64 - 1.0) * 100.0;
-                (pct.abs(), format!("{k} {}", format::signed_percent(pct, 0)))
+                (pct.abs(), format!("{k} {}", format::signed_change(pct, 0)))
             })
         })
         .collect();
