@@ -179,7 +179,11 @@ impl Page<'_> {
             escape(&doc.metadata.reference),
         );
         for notice in &doc.notices {
-            let _ = writeln!(self.out, "<p class=\"note tone-bad\">{}</p>", escape(notice));
+            let _ = writeln!(
+                self.out,
+                "<p class=\"note tone-bad\">{}</p>",
+                escape(notice)
+            );
         }
         self.push("<nav><ol>");
         for s in &doc.sections {

@@ -38,10 +38,7 @@ const BANDS: [(f64, &str); 4] = [
 fn banded_run(dir: &Path) -> Run {
     let mut run = sample_run(dir, "bands");
     let scene = &mut run.results.scenes[0];
-    let mut qualities = scene
-        .variants
-        .iter_mut()
-        .filter_map(|v| v.quality.as_mut());
+    let mut qualities = scene.variants.iter_mut().filter_map(|v| v.quality.as_mut());
     for (rms, _) in BANDS {
         let q = qualities.next().expect("four variants with image metrics");
         q.rms = rms;
@@ -127,7 +124,12 @@ fn each_band_gets_its_tone_in_the_html_and_in_the_pdf_data() {
         .iter()
         .position(|c| c.title == "band")
         .expect("band column");
-    let tones: Vec<Tone> = t.rows.iter().filter_map(|r| r.get(band)).map(|c| c.tone).collect();
+    let tones: Vec<Tone> = t
+        .rows
+        .iter()
+        .filter_map(|r| r.get(band))
+        .map(|c| c.tone)
+        .collect();
     for expected in [Tone::Good, Tone::Fair, Tone::Warning, Tone::Bad] {
         assert!(tones.contains(&expected), "{tones:?}");
     }
@@ -161,7 +163,11 @@ fn the_template_gives_every_tone_a_distinct_colour() {
     }
     assert_eq!(colours.len(), Tone::ALL.len(), "{colours:?}");
     let distinct: std::collections::BTreeSet<&String> = colours.iter().map(|(_, c)| c).collect();
-    assert_eq!(distinct.len(), colours.len(), "two tones share a colour: {colours:?}");
+    assert_eq!(
+        distinct.len(),
+        colours.len(),
+        "two tones share a colour: {colours:?}"
+    );
 }
 
 #[test]
@@ -185,7 +191,11 @@ fn every_section_is_in_the_html_and_the_typeset_pdf() {
             "section {} not in the HTML",
             s.id
         );
-        assert!(html.contains(&format!("<a href=\"#{}\">", s.id)), "{} not in the nav", s.id);
+        assert!(
+            html.contains(&format!("<a href=\"#{}\">", s.id)),
+            "{} not in the nav",
+            s.id
+        );
     }
 
     let typeset = reports::pdf::typeset(&doc).expect("typeset");

@@ -95,13 +95,25 @@ pub enum Block {
 #[derive(Clone, Debug, Serialize)]
 #[serde(tag = "kind", rename_all = "kebab-case")]
 pub enum Inline {
-    Text { text: String },
-    Strong { text: String },
-    Code { text: String },
+    Text {
+        text: String,
+    },
+    Strong {
+        text: String,
+    },
+    Code {
+        text: String,
+    },
     /// A reference to a section or heading anchor of this document.
-    Link { text: String, target: String },
+    Link {
+        text: String,
+        target: String,
+    },
     /// A small sample of a tone (a legend).
-    Chip { text: String, tone: Tone },
+    Chip {
+        text: String,
+        tone: Tone,
+    },
 }
 
 #[derive(Clone, Debug, Serialize)]
@@ -176,9 +188,13 @@ pub struct Figure {
 pub enum Visual {
     Image(Image),
     /// A file that could not be shown, and why.
-    Missing { text: String },
+    Missing {
+        text: String,
+    },
     /// Nothing to show on purpose ("reference image: no heat map").
-    Placeholder { text: String },
+    Placeholder {
+        text: String,
+    },
     /// An empty grid cell.
     Empty,
 }
@@ -437,6 +453,19 @@ impl Pair {
             key: key.into(),
             value: value.into(),
         }
+    }
+}
+
+impl Section {
+    /// Adds a paragraph of plain text.
+    pub fn text(&mut self, text: impl Into<String>) {
+        self.blocks.push(Block::text(text));
+    }
+
+    /// The section with only a note saying why it is empty.
+    pub fn empty(mut self, why: impl Into<String>) -> Section {
+        self.blocks.push(Block::empty(why));
+        self
     }
 }
 

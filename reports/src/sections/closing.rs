@@ -9,9 +9,7 @@ pub fn failures(b: &mut Builder) -> Section {
     s.short = true;
     let failures = &b.results().failures;
     if failures.is_empty() {
-        s.blocks.push(Block::text(
-            "No failures: every scene and variant of the suite ran.",
-        ));
+        s.text("No failures: every scene and variant of the suite ran.");
         return s;
     }
     s.blocks.push(Block::note(
@@ -27,7 +25,8 @@ pub fn failures(b: &mut Builder) -> Section {
     ));
     let mut t = Table::new(vec![Column::text("where"), Column::text("message").grow()]);
     for f in failures {
-        t.rows.push(vec![Cell::text(f.place()), Cell::text(&f.message)]);
+        t.rows
+            .push(vec![Cell::text(f.place()), Cell::text(&f.message)]);
     }
     s.blocks.push(Block::Table(t));
     s

@@ -30,30 +30,23 @@ pub fn comparison(b: &mut Builder) -> Section {
     s.blocks.push(Block::Table(machines(runs)));
     let keys = comparison_keys(runs);
     if keys.is_empty() {
-        s.blocks
-            .push(Block::empty("No scene results in any run to compare."));
-        return s;
+        return s.empty("No scene results in any run to compare.");
     }
-    s.blocks.push(Block::heading("Tracing time, median per run"));
+    s.blocks
+        .push(Block::heading("Tracing time, median per run"));
     let mut columns = vec![Column::text("scene"), Column::text("variant")];
     columns.extend(
         runs.iter()
             .map(|run| Column::number(format!("{} median", run.label))),
     );
     for run in &runs[1..] {
-        columns.push(Column::number(format!(
-            "{} vs {}",
-            run.label, first.label
-        )));
+        columns.push(Column::number(format!("{} vs {}", run.label, first.label)));
         columns.push(Column::text(format!("counts {}", run.label)));
     }
     let mut t = Table::new(columns).sortable().dense();
     let mut flagged = 0usize;
     for key in &keys {
-        let found: Vec<Option<&VariantResult>> = runs
-            .iter()
-            .map(|run| lookup(run, key))
-            .collect();
+        let found: Vec<Option<&VariantResult>> = runs.iter().map(|run| lookup(run, key)).collect();
         let mut row = vec![
             Cell::text(&key.0).detail(format::size(key.1, key.2)),
             Cell::text(key.3.as_str()),
@@ -154,12 +147,15 @@ fn counts_cell(a: &VariantResult, b: &VariantResult) -> Cell {
         .map(|d| d.split(':').next().unwrap_or(d))
         .collect();
     let more = differing.len().saturating_sub(COUNTERS_NAMED);
-    Cell::number(format!("⚑ {} differ", differing.len()), differing.len() as f64)
-        .tone(Tone::Bad)
-        .detail(if more > 0 {
-            format!("{} and {more} more", named.join(", "))
-        } else {
-            named.join(", ")
-        })
-        .hover(differing.join("\n"))
+    Cell::number(
+        format!("⚑ {} differ", differing.len()),
+        differing.len() as f64,
+    )
+    .tone(Tone::Bad)
+    .detail(if more > 0 {
+        format!("{} and {more} more", named.join(", "))
+    } else {
+        named.join(", ")
+    })
+    .hover(differing.join("\n"))
 }

@@ -14,9 +14,8 @@ use crate::results::{DeviceUse, HwColumn, HwRow, HwRowKind, SceneResult};
 /// model's signed error, its tone the size of that error ([`Tone::of_error`]).
 pub fn hw_table(rows: &[HwRow]) -> Table {
     let mut columns = vec![Column::text("name"), Column::text("kind")];
-    columns.extend(
-        HwColumn::ALL.map(|c| Column::number(c.label()).detail("model / thesis (error)")),
-    );
+    columns
+        .extend(HwColumn::ALL.map(|c| Column::number(c.label()).detail("model / thesis (error)")));
     let mut t = Table::new(columns).sortable();
     for row in rows {
         let mut cells = vec![Cell::text(&row.name).code(), Cell::text(row.kind.name())];
@@ -24,11 +23,9 @@ pub fn hw_table(rows: &[HwRow]) -> Table {
             let thesis = row.thesis.map(|t| t.get(column));
             let error = row.error_pct.as_ref().and_then(|e| e.get(column));
             let detail = match (thesis, error) {
-                (Some(t), Some(e)) => format!(
-                    "/ {} ({})",
-                    format::count(t),
-                    format::signed_percent(e, 1)
-                ),
+                (Some(t), Some(e)) => {
+                    format!("/ {} ({})", format::count(t), format::signed_percent(e, 1))
+                }
                 (Some(t), None) => format!("/ {} (—)", format::count(t)),
                 // The IP-core rows are table 7's own figures: the model's input.
                 (None, _) if row.kind == HwRowKind::IpCore => "(thesis input)".to_string(),
@@ -51,9 +48,7 @@ pub fn hardware_tables(b: &mut Builder) -> Section {
         Some("table 7 (per operation) and table 8 (per block), Quartus figures on the Cyclone IV EP4CE115"),
     );
     let Some(hw) = &b.results().hardware else {
-        s.blocks
-            .push(Block::empty("No hardware model in this run."));
-        return s;
+        return s.empty("No hardware model in this run.");
     };
     let mut legend = vec![Inline::text(format!(
         "The FPGA model of the thesis's ray caster, operator library {}. Each cell: the model's figure / the thesis's (signed error). Cell colour by |error|: ",
@@ -106,14 +101,9 @@ pub fn device_utilization(b: &mut Builder) -> Section {
         .map(|h| h.devices.as_slice())
         .unwrap_or(&[]);
     if devices.is_empty() {
-        s.blocks.push(Block::empty(
-            "No device fit in this run (no hardware model).",
-        ));
-        return s;
+        return s.empty("No device fit in this run (no hardware model).");
     }
-    s.blocks.push(Block::text(
-        "The thesis's design fitted to each device: used and available resources, and the largest number of intersection units that still fits.",
-    ));
+    s.text("The thesis's design fitted to each device: used and available resources, and the largest number of intersection units that still fits.");
     let mut t = Table::new(vec![
         Column::text("device"),
         Column::text("fits"),
@@ -182,14 +172,9 @@ pub fn sw_hw(b: &mut Builder) -> Section {
     let r = b.results();
     let scenes: Vec<&SceneResult> = r.scenes.iter().filter(|s| s.hardware.is_some()).collect();
     if scenes.is_empty() {
-        s.blocks.push(Block::empty(
-            "No scene ran on the hardware model (it takes spheres and cylinders only: the test-bench scenes).",
-        ));
-        return s;
+        return s.empty("No scene ran on the hardware model (it takes spheres and cylinders only: the test-bench scenes).");
     }
-    s.blocks.push(Block::text(
-        "The software's diffuse-only gray render (baseline) against the hardware model's frame time, and the emulator's image against the software's.",
-    ));
+    s.text("The software's diffuse-only gray render (baseline) against the hardware model's frame time, and the emulator's image against the software's.");
     for id in ["sw-hw-times", "hw-speedup"] {
         if let Some(figure) = b.chart(id, 10.0) {
             s.blocks.push(figure);
@@ -227,10 +212,9 @@ pub fn sw_hw(b: &mut Builder) -> Section {
         ]);
     }
     s.blocks.push(Block::Table(t));
-    s.blocks.push(Block::heading("Emulator and software images"));
-    s.blocks.push(Block::text(
-        "Each column: the software's diffuse-only gray render above the hardware emulator's image of the same scene.",
-    ));
+    s.blocks
+        .push(Block::heading("Emulator and software images"));
+    s.text("Each column: the software's diffuse-only gray render above the hardware emulator's image of the same scene.");
     let columns = scenes.len().min(GRID_COLUMNS);
     for chunk in scenes.chunks(GRID_COLUMNS) {
         let mut software = Vec::new();
@@ -254,11 +238,7 @@ pub fn sw_hw(b: &mut Builder) -> Section {
                     &format!("{} emulator", scene.name),
                     size,
                 ),
-                caption: format!(
-                    "RMS {} ({})",
-                    format::fixed(h.emulator_rms, 1),
-                    band.name()
-                ),
+                caption: format!("RMS {} ({})", format::fixed(h.emulator_rms, 1), band.name()),
                 tone: Tone::of_band(band),
             });
         }

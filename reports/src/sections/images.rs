@@ -15,13 +15,9 @@ pub fn images(b: &mut Builder) -> Section {
     );
     let r = b.results();
     if r.scenes.iter().all(|s| s.variants.is_empty()) {
-        s.blocks
-            .push(Block::empty("No images: no scene produced a result."));
-        return s;
+        return s.empty("No images: no scene produced a result.");
     }
-    s.blocks.push(Block::text(
-        "For each scene: one column per variant, its image above its difference heat map against baseline (the brighter, the larger the difference), then the gray-level histograms (log scale; the tall bar is usually the background).",
-    ));
+    s.text("For each scene: one column per variant, its image above its difference heat map against baseline (the brighter, the larger the difference), then the gray-level histograms (log scale; the tall bar is usually the background).");
     let omitted = gallery::omitted_scenes(r);
     if !omitted.is_empty() {
         s.blocks.push(Block::note(
@@ -37,7 +33,8 @@ pub fn images(b: &mut Builder) -> Section {
         s.blocks.push(Block::heading(&scene.name));
         let columns = scene.variants.len().min(GRID_COLUMNS);
         for chunk in scene.variants.chunks(GRID_COLUMNS) {
-            s.blocks.push(Block::ImageGrid(grid(b, scene, chunk, columns)));
+            s.blocks
+                .push(Block::ImageGrid(grid(b, scene, chunk, columns)));
         }
         match charts::scene_histograms(r, scene) {
             Some(chart) => {
@@ -50,7 +47,8 @@ pub fn images(b: &mut Builder) -> Section {
         }
     }
     if let Some(figure) = b.chart("histogram", 9.0) {
-        s.blocks.push(Block::heading("The largest difference of the run"));
+        s.blocks
+            .push(Block::heading("The largest difference of the run"));
         s.blocks.push(figure);
     }
     s

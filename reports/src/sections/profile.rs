@@ -22,15 +22,11 @@ pub fn profile(b: &mut Builder) -> Section {
         Some("table 6 (gprof flat profile of SPD rings, 640x480, Core i5-4570) and fig. 53 (call tree)"),
     );
     let Some(p) = &b.results().profile else {
-        s.blocks.push(Block::empty(
-            "No profile in this run: the suite ran without profiling, or the profile failed (see Failures).",
-        ));
-        return s;
+        return s.empty("No profile in this run: the suite ran without profiling, or the profile failed (see Failures).");
     };
-    let best = p
-        .best
-        .as_ref()
-        .map_or_else(String::new, |x| format!(" and the best variant, {},", x.variant));
+    let best = p.best.as_ref().map_or_else(String::new, |x| {
+        format!(" and the best variant, {},", x.variant)
+    });
     s.blocks.push(Block::Paragraph {
         content: vec![
             Inline::text("Sampled profile of the heaviest scene of the run, "),
@@ -55,12 +51,11 @@ pub fn profile(b: &mut Builder) -> Section {
                 "The flat profile has no rows (no samples landed in the tracer).",
             ));
         } else {
-            s.blocks.push(Block::Table(
-                flat_table(profile).caption(format!(
+            s.blocks
+                .push(Block::Table(flat_table(profile).caption(format!(
                     "Table 6 (thesis): flat profile of {}, {}",
                     p.scene, profile.variant
-                )),
-            ));
+                ))));
         }
         s.blocks.push(match b.text_file(&profile.flat_text) {
             Ok(text) => Block::Preformatted(Preformatted {
@@ -169,11 +164,12 @@ pub fn profile_charts(b: &mut Builder) -> Section {
         }
     }
     if !any {
-        s.blocks.push(Block::empty(if b.results().profile.is_none() {
-            "No profile in this run, so no calls or self-time charts."
-        } else {
-            "The profile has no counted calls or self time to chart."
-        }));
+        s.blocks
+            .push(Block::empty(if b.results().profile.is_none() {
+                "No profile in this run, so no calls or self-time charts."
+            } else {
+                "The profile has no counted calls or self time to chart."
+            }));
     }
     s
 }
@@ -184,13 +180,9 @@ pub fn flamegraphs(b: &mut Builder) -> Section {
         Some("no counterpart (the thesis used gprof's call tree, fig. 53)"),
     );
     let Some(p) = &b.results().profile else {
-        s.blocks
-            .push(Block::empty("No profile in this run, so no flamegraphs."));
-        return s;
+        return s.empty("No profile in this run, so no flamegraphs.");
     };
-    s.blocks.push(Block::text(
-        "Each box is a function; its width is its share of the samples, the boxes above it are its callees. In the HTML report, hover a frame for its name and share, click to zoom.",
-    ));
+    s.text("Each box is a function; its width is its share of the samples, the boxes above it are its callees. In the HTML report, hover a frame for its name and share, click to zoom.");
     for profile in profiles(p) {
         let title = format!("Flamegraph of {}, {}", p.scene, profile.variant);
         let visual = b.flamegraph(&profile.flame_svg, &title);
@@ -202,7 +194,9 @@ pub fn flamegraphs(b: &mut Builder) -> Section {
     }
     match (&p.diff_flame_svg, &p.best) {
         (Some(diff), best) => {
-            let to = best.as_ref().map_or("the best variant", |x| x.variant.as_str());
+            let to = best
+                .as_ref()
+                .map_or("the best variant", |x| x.variant.as_str());
             let title = format!(
                 "Differential flamegraph of {}, {} to {to}",
                 p.scene, p.baseline.variant
@@ -226,21 +220,19 @@ pub fn flamegraphs(b: &mut Builder) -> Section {
 pub fn amdahl(b: &mut Builder) -> Section {
     let mut s = b.section(
         "amdahl",
-        Some("ch. 8.1's conclusion that the intersection test is the bottleneck, made quantitative"),
+        Some(
+            "ch. 8.1's conclusion that the intersection test is the bottleneck, made quantitative",
+        ),
     );
     let Some(p) = &b.results().profile else {
-        s.blocks
-            .push(Block::empty("No profile in this run, so no Amdahl table."));
-        return s;
+        return s.empty("No profile in this run, so no Amdahl table.");
     };
-    s.blocks.push(Block::text(
+    s.text(
         "The whole program's speed-up if one function alone became 2×, 10× or infinitely faster.",
-    ));
+    );
     for profile in profiles(p) {
-        s.blocks.push(Block::heading(format!(
-            "{} · {}",
-            p.scene, profile.variant
-        )));
+        s.blocks
+            .push(Block::heading(format!("{} · {}", p.scene, profile.variant)));
         if profile.amdahl.is_empty() {
             s.blocks
                 .push(Block::empty("The profile has no Amdahl rows."));

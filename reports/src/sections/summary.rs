@@ -40,7 +40,8 @@ pub fn summary(b: &mut Builder) -> Section {
     s.blocks.push(Block::Pairs {
         pairs: run_pairs(&main.label, r),
     });
-    s.blocks.push(Block::heading(format!("Scenes ({})", r.scenes.len())));
+    s.blocks
+        .push(Block::heading(format!("Scenes ({})", r.scenes.len())));
     if r.scenes.is_empty() {
         s.blocks.push(Block::empty("No scene ran (see Failures)."));
     } else {

@@ -38,9 +38,7 @@ pub fn variants(b: &mut Builder) -> Section {
     );
     let r = b.results();
     if r.scenes.iter().all(|s| s.variants.is_empty()) {
-        s.blocks
-            .push(Block::empty("No scene has a variant result (see Failures)."));
-        return s;
+        return s.empty("No scene has a variant result (see Failures).");
     }
     s.blocks.push(Block::text(format!(
         "Time: {}, the median of the timed repeats with its 95 % bootstrap interval. Speed-up: baseline median / variant median. RMS, PSNR, SSIM: the image against baseline (PSNR ∞: identical); the band is the thesis's table 2. Count columns: baseline's exact count, and each variant's change from it; the last column names the other counters that changed.",
