@@ -90,6 +90,9 @@ pub fn seconds(s: f64) -> String {
     if !s.is_finite() || s < 0.0 {
         return DASH.to_string();
     }
+    if s == 0.0 {
+        return "0 s".to_string();
+    }
     let (unit, scale) = time_unit(s);
     format!("{} {unit}", significant(s * scale))
 }
@@ -174,6 +177,22 @@ pub fn signed_percent(v: f64, decimals: usize) -> String {
     format!("{}{magnitude} %", if negative { '−' } else { '+' })
 }
 
+/// A signed percentage change with at least `decimals` decimals and more (up to four)
+/// when a change that is not zero would print as zero: "+0.004 %", never "+0.0 %" for
+/// a count that did change.
+pub fn signed_change(v: f64, decimals: usize) -> String {
+    if v == 0.0 {
+        return signed_percent(v, decimals);
+    }
+    let shows = |d: usize| {
+        format!("{:.d$}", v.abs())
+            .chars()
+            .any(|c| c.is_ascii_digit() && c != '0')
+    };
+    let d = (decimals..=4).find(|d| shows(*d)).unwrap_or(4);
+    signed_percent(v, d)
+}
+
 /// `used` as a percentage of `capacity` (NaN without capacity).
 pub fn percent_of(used: u64, capacity: u64) -> f64 {
     if capacity == 0 {
@@ -256,7 +275,7 @@ mod tests {
         assert_eq!(seconds(2.5e-5), "25.0 µs");
         assert_eq!(seconds(4.2e-8), "42.0 ns");
         assert_eq!(seconds(123.456), "123 s");
-        assert_eq!(seconds(0.0), "0.00 s");
+        assert_eq!(seconds(0.0), "0 s");
         // Rounding carries into the next unit: 999.96 µs is 1.00 ms, not 1000 µs.
         assert_eq!(seconds(0.000_999_96), "1.00 ms");
         assert_eq!(seconds(0.009_996), "10.0 ms");
@@ -311,6 +330,15 @@ mod tests {
         assert_eq!(signed_percent(-0.54, 1), "−0.5 %");
         assert_eq!(signed_percent(-0.04, 1), "+0.0 %");
         assert_eq!(signed_percent(154.2, 1), "+154.2 %");
+        // 491,114 against 491,113 dot products: +0.0002 %, not "+0.0 %".
+        assert_eq!(
+            signed_change((491_114.0 / 491_113.0 - 1.0) * 100.0, 1),
+            "+0.0002 %"
+        );
+        assert_eq!(signed_change(-28.74, 1), "−28.7 %");
+        assert_eq!(signed_change(0.0, 1), "+0.0 %");
+        // Too small for four decimals: it stays at four.
+        assert_eq!(signed_change(1e-9, 1), "+0.0000 %");
         assert_eq!(speedup(2.345_6), "2.35×");
         assert_eq!(speedup(12.34), "12.3×");
         assert_eq!(speedup(123.4), "123×");

@@ -385,7 +385,7 @@ impl Block {
 
     /// Why a section or part of it is empty.
     pub fn empty(text: impl Into<String>) -> Block {
-        Block::note(Tone::Warning, text)
+        Block::note(Tone::Fair, text)
     }
 
     /// A sub-heading of the section.
@@ -453,6 +453,19 @@ impl Pair {
             key: key.into(),
             value: value.into(),
         }
+    }
+}
+
+impl Section {
+    /// Adds a paragraph of plain text.
+    pub fn text(&mut self, text: impl Into<String>) {
+        self.blocks.push(Block::text(text));
+    }
+
+    /// The section with only a note saying why it is empty.
+    pub fn empty(mut self, why: impl Into<String>) -> Section {
+        self.blocks.push(Block::empty(why));
+        self
     }
 }
 

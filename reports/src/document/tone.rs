@@ -14,9 +14,9 @@ pub enum Tone {
     Neutral,
     /// Within the best band, fits, faster.
     Good,
-    /// One step off (visually similar, a model error under 15 %).
+    /// One step off (visually similar, a model error under 15 %, an empty section).
     Fair,
-    /// Two steps off (notable changes, an empty section).
+    /// Two steps off (notable changes, a model error under 50 %).
     Warning,
     /// Different, does not fit, slower, failed.
     Bad,

@@ -11,10 +11,7 @@ pub fn criterion(b: &mut Builder) -> Section {
     let r = b.results();
     let rows = benchmark_rows(r);
     if rows.is_empty() {
-        s.blocks.push(Block::empty(
-            "No benchmark estimates in this run: run `cargo bench -p benches` (and `scripts/instruction-counts.sh` for instruction counts) first; the suite picks up target/criterion and target/gungraun, `rtprof report --criterion DIR` adds them to a saved run.",
-        ));
-        return s;
+        return s.empty("No benchmark estimates in this run: run cargo bench -p benches (and scripts/instruction-counts.sh for instruction counts) first; the suite picks up target/criterion and target/gungraun, rtprof report --criterion DIR adds them to a saved run.");
     }
     s.blocks.push(Block::text(format!(
         "Time: criterion's point estimate and its 95 % confidence interval, per iteration{}. Instructions: valgrind's count for the same work (gungraun), the same on every run; they are not time, and the two can disagree.",

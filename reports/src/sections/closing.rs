@@ -9,9 +9,7 @@ pub fn failures(b: &mut Builder) -> Section {
     s.short = true;
     let failures = &b.results().failures;
     if failures.is_empty() {
-        s.blocks.push(Block::text(
-            "No failures: every scene and variant of the suite ran.",
-        ));
+        s.text("No failures: every scene and variant of the suite ran.");
         return s;
     }
     s.blocks.push(Block::note(

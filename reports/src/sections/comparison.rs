@@ -30,9 +30,7 @@ pub fn comparison(b: &mut Builder) -> Section {
     s.blocks.push(Block::Table(machines(runs)));
     let keys = comparison_keys(runs);
     if keys.is_empty() {
-        s.blocks
-            .push(Block::empty("No scene results in any run to compare."));
-        return s;
+        return s.empty("No scene results in any run to compare.");
     }
     s.blocks
         .push(Block::heading("Tracing time, median per run"));

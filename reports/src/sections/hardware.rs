@@ -48,9 +48,7 @@ pub fn hardware_tables(b: &mut Builder) -> Section {
         Some("table 7 (per operation) and table 8 (per block), Quartus figures on the Cyclone IV EP4CE115"),
     );
     let Some(hw) = &b.results().hardware else {
-        s.blocks
-            .push(Block::empty("No hardware model in this run."));
-        return s;
+        return s.empty("No hardware model in this run.");
     };
     let mut legend = vec![Inline::text(format!(
         "The FPGA model of the thesis's ray caster, operator library {}. Each cell: the model's figure / the thesis's (signed error). Cell colour by |error|: ",
@@ -103,14 +101,9 @@ pub fn device_utilization(b: &mut Builder) -> Section {
         .map(|h| h.devices.as_slice())
         .unwrap_or(&[]);
     if devices.is_empty() {
-        s.blocks.push(Block::empty(
-            "No device fit in this run (no hardware model).",
-        ));
-        return s;
+        return s.empty("No device fit in this run (no hardware model).");
     }
-    s.blocks.push(Block::text(
-        "The thesis's design fitted to each device: used and available resources, and the largest number of intersection units that still fits.",
-    ));
+    s.text("The thesis's design fitted to each device: used and available resources, and the largest number of intersection units that still fits.");
     let mut t = Table::new(vec![
         Column::text("device"),
         Column::text("fits"),
@@ -179,14 +172,9 @@ pub fn sw_hw(b: &mut Builder) -> Section {
     let r = b.results();
     let scenes: Vec<&SceneResult> = r.scenes.iter().filter(|s| s.hardware.is_some()).collect();
     if scenes.is_empty() {
-        s.blocks.push(Block::empty(
-            "No scene ran on the hardware model (it takes spheres and cylinders only: the test-bench scenes).",
-        ));
-        return s;
+        return s.empty("No scene ran on the hardware model (it takes spheres and cylinders only: the test-bench scenes).");
     }
-    s.blocks.push(Block::text(
-        "The software's diffuse-only gray render (baseline) against the hardware model's frame time, and the emulator's image against the software's.",
-    ));
+    s.text("The software's diffuse-only gray render (baseline) against the hardware model's frame time, and the emulator's image against the software's.");
     for id in ["sw-hw-times", "hw-speedup"] {
         if let Some(figure) = b.chart(id, 10.0) {
             s.blocks.push(figure);
@@ -226,9 +214,7 @@ pub fn sw_hw(b: &mut Builder) -> Section {
     s.blocks.push(Block::Table(t));
     s.blocks
         .push(Block::heading("Emulator and software images"));
-    s.blocks.push(Block::text(
-        "Each column: the software's diffuse-only gray render above the hardware emulator's image of the same scene.",
-    ));
+    s.text("Each column: the software's diffuse-only gray render above the hardware emulator's image of the same scene.");
     let columns = scenes.len().min(GRID_COLUMNS);
     for chunk in scenes.chunks(GRID_COLUMNS) {
         let mut software = Vec::new();

@@ -15,13 +15,9 @@ pub fn images(b: &mut Builder) -> Section {
     );
     let r = b.results();
     if r.scenes.iter().all(|s| s.variants.is_empty()) {
-        s.blocks
-            .push(Block::empty("No images: no scene produced a result."));
-        return s;
+        return s.empty("No images: no scene produced a result.");
     }
-    s.blocks.push(Block::text(
-        "For each scene: one column per variant, its image above its difference heat map against baseline (the brighter, the larger the difference), then the gray-level histograms (log scale; the tall bar is usually the background).",
-    ));
+    s.text("For each scene: one column per variant, its image above its difference heat map against baseline (the brighter, the larger the difference), then the gray-level histograms (log scale; the tall bar is usually the background).");
     let omitted = gallery::omitted_scenes(r);
     if !omitted.is_empty() {
         s.blocks.push(Block::note(
@@ -42,7 +38,7 @@ pub fn images(b: &mut Builder) -> Section {
         }
         match charts::scene_histograms(r, scene) {
             Some(chart) => {
-                let figure = b.figure(chart, 7.0);
+                let figure = b.figure(chart, 6.0);
                 s.blocks.push(figure);
             }
             None => s.blocks.push(Block::empty(
@@ -111,9 +107,13 @@ fn grid(
                 },
             }
         };
+        let caption = match visual {
+            Visual::Placeholder { .. } => String::new(),
+            _ => format!("{} − baseline", v.variant),
+        };
         heat_maps.push(Tile {
             visual,
-            caption: format!("{} − baseline", v.variant),
+            caption,
             tone: Tone::Neutral,
         });
     }

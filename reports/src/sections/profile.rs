@@ -22,10 +22,7 @@ pub fn profile(b: &mut Builder) -> Section {
         Some("table 6 (gprof flat profile of SPD rings, 640x480, Core i5-4570) and fig. 53 (call tree)"),
     );
     let Some(p) = &b.results().profile else {
-        s.blocks.push(Block::empty(
-            "No profile in this run: the suite ran without profiling, or the profile failed (see Failures).",
-        ));
-        return s;
+        return s.empty("No profile in this run: the suite ran without profiling, or the profile failed (see Failures).");
     };
     let best = p.best.as_ref().map_or_else(String::new, |x| {
         format!(" and the best variant, {},", x.variant)
@@ -183,13 +180,9 @@ pub fn flamegraphs(b: &mut Builder) -> Section {
         Some("no counterpart (the thesis used gprof's call tree, fig. 53)"),
     );
     let Some(p) = &b.results().profile else {
-        s.blocks
-            .push(Block::empty("No profile in this run, so no flamegraphs."));
-        return s;
+        return s.empty("No profile in this run, so no flamegraphs.");
     };
-    s.blocks.push(Block::text(
-        "Each box is a function; its width is its share of the samples, the boxes above it are its callees. In the HTML report, hover a frame for its name and share, click to zoom.",
-    ));
+    s.text("Each box is a function; its width is its share of the samples, the boxes above it are its callees. In the HTML report, hover a frame for its name and share, click to zoom.");
     for profile in profiles(p) {
         let title = format!("Flamegraph of {}, {}", p.scene, profile.variant);
         let visual = b.flamegraph(&profile.flame_svg, &title);
@@ -232,13 +225,11 @@ pub fn amdahl(b: &mut Builder) -> Section {
         ),
     );
     let Some(p) = &b.results().profile else {
-        s.blocks
-            .push(Block::empty("No profile in this run, so no Amdahl table."));
-        return s;
+        return s.empty("No profile in this run, so no Amdahl table.");
     };
-    s.blocks.push(Block::text(
+    s.text(
         "The whole program's speed-up if one function alone became 2×, 10× or infinitely faster.",
-    ));
+    );
     for profile in profiles(p) {
         s.blocks
             .push(Block::heading(format!("{} · {}", p.scene, profile.variant)));

@@ -12,9 +12,7 @@ pub fn time_vs_primitives(b: &mut Builder) -> Section {
         Some("fig. 47 and 48 (box plots of render time per primitive count)"),
     );
     let r = b.results();
-    s.blocks.push(Block::text(
-        "Tracing time of the test-bench families against their number of primitives.",
-    ));
+    s.text("Tracing time of the test-bench families against their number of primitives.");
     match b.chart("time-vs-primitives", 12.0) {
         Some(figure) => s.blocks.push(figure),
         None => s.blocks.push(Block::empty(
@@ -86,14 +84,9 @@ pub fn spd(b: &mut Builder) -> Section {
         .filter(|s| access::is_spd(s))
         .collect();
     if scenes.is_empty() {
-        s.blocks.push(Block::empty(
-            "No SPD scene ran in this suite (add them with --scenes ../shared/spd).",
-        ));
-        return s;
+        return s.empty("No SPD scene ran in this suite (add them with --scenes ../shared/spd).");
     }
-    s.blocks.push(Block::text(
-        "Exact ray and intersection counts of each SPD scene, per variant.",
-    ));
+    s.text("Exact ray and intersection counts of each SPD scene, per variant.");
     for scene in scenes {
         s.blocks.push(Block::Heading {
             level: 2,

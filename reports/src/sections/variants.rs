@@ -38,10 +38,7 @@ pub fn variants(b: &mut Builder) -> Section {
     );
     let r = b.results();
     if r.scenes.iter().all(|s| s.variants.is_empty()) {
-        s.blocks.push(Block::empty(
-            "No scene has a variant result (see Failures).",
-        ));
-        return s;
+        return s.empty("No scene has a variant result (see Failures).");
     }
     s.blocks.push(Block::text(format!(
         "Time: {}, the median of the timed repeats with its 95 % bootstrap interval. Speed-up: baseline median / variant median. RMS, PSNR, SSIM: the image against baseline (PSNR ∞: identical); the band is the thesis's table 2. Count columns: baseline's exact count, and each variant's change from it; the last column names the other counters that changed.",
@@ -156,7 +153,7 @@ fn counter_cell(v: &VariantResult, base: Option<&VariantResult>, key: &str) -> C
             .hover(format::count(n)),
         (Some(n), Some(b)) if b > 0 => {
             let delta = (n as f64 - b as f64) / b as f64 * 100.0;
-            Cell::number(format::signed_percent(delta, 1), delta)
+            Cell::number(format::signed_change(delta, 1), delta)
                 .tone(Tone::of_count(n, b))
                 .hover(format!(
                     "{} (baseline {})",
@@ -189,10 +186,10 @@ fn other_changes(base: Option<&VariantResult>, v: &VariantResult) -> Cell {
                 return None;
             }
             Some(if old == 0 {
-                (f64::INFINITY, format!("{k} +{}", format::count(new)))
+                (f64::INFINITY, format!("{k} 0 → {}", format::count(new)))
             } else {
                 let pct = (new as f64 / old as f64 - 1.0) * 100.0;
-                (pct.abs(), format!("{k} {}", format::signed_percent(pct, 0)))
+                (pct.abs(), format!("{k} {}", format::signed_change(pct, 0)))
             })
         })
         .collect();
