@@ -969,7 +969,7 @@ fn suite_writes_results_and_reports_and_the_gate_sets_the_exit_code() {
         "the report does not say that instructions and time disagree"
     );
     assert!(
-        html.contains("11\u{2009}451"),
+        html.contains("11,451"),
         "no instruction count in the table"
     );
     // A criterion directory that is not there: exit 2, the flag named.
@@ -1157,11 +1157,11 @@ fn a_results_file_of_the_previous_schema_still_makes_a_report() {
     let html = String::from_utf8(std::fs::read(dir.join("report.html")).unwrap()).unwrap();
     // Its fast-sqrt images are in the "similar" band, coloured as such.
     assert!(
-        html.contains("<td class=\"band-similar\">similar</td>"),
+        html.contains("<td class=\"tone-fair\">similar</td>"),
         "the similar band lost its colour"
     );
     assert!(
-        !html.contains("class=\"band-different\""),
+        !html.contains(">different</td>"),
         "nothing in this run is different"
     );
     assert_eq!(
