@@ -1381,7 +1381,7 @@ impl<'a, 'e> RunWriter<'a, 'e> {
             ("fastest variant", "1fr", "left"),
         ];
         let mut scenes: Vec<&SceneResult> = self.r().scenes.iter().collect();
-        scenes.sort_by(|a, b| (a.family, a.primitives).cmp(&(b.family, b.primitives)));
+        scenes.sort_by_key(|s| (s.family, s.primitives));
         let rows: Vec<Vec<String>> = scenes
             .iter()
             .map(|s| {
