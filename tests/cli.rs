@@ -790,7 +790,7 @@ fn suite_writes_results_and_reports_and_the_gate_sets_the_exit_code() {
     let results_path = first.join("results.json");
     let text = String::from_utf8(read(&results_path)).unwrap();
     let v: serde_json::Value = serde_json::from_str(&text).unwrap();
-    assert_eq!(v["schema"], "rtprof.results/1");
+    assert_eq!(v["schema"], "rtprof.results/2");
     assert_eq!(v["scenes"].as_array().unwrap().len(), 2);
     // The hardware runs on these sphere/cylinder scenes; counts are exact.
     assert!(v["scenes"][0]["hardware"]["emulator_rms"].as_f64().unwrap() <= 15.0);
@@ -980,5 +980,81 @@ fn suite_writes_results_and_reports_and_the_gate_sets_the_exit_code() {
     ]);
     assert_eq!(out.status.code(), Some(2));
     assert!(stderr(&out).contains("--criterion"), "{}", stderr(&out));
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+/// The `/1` results written by rtprof at d19ee0e (results/tests/data).
+fn v1_main_results() -> PathBuf {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+        .join("results/tests/data/v1-main-d19ee0e/results.json")
+}
+
+#[test]
+fn a_results_file_of_the_previous_schema_still_makes_a_report() {
+    let dir = scratch("v1-report");
+    let out = rtprof(&[
+        "report",
+        v1_main_results().to_str().unwrap(),
+        "-o",
+        dir.to_str().unwrap(),
+    ]);
+    assert_eq!(out.status.code(), Some(0), "{}", stderr(&out));
+    let html = String::from_utf8(std::fs::read(dir.join("report.html")).unwrap()).unwrap();
+    // Its fast-sqrt images are in the "similar" band, coloured as such.
+    assert!(
+        html.contains("<td class=\"tone-fair\">similar</td>"),
+        "the similar band lost its colour"
+    );
+    assert!(
+        !html.contains(">different</td>"),
+        "nothing in this run is different"
+    );
+    assert_eq!(
+        &std::fs::read(dir.join("report.pdf")).unwrap()[..4],
+        b"%PDF"
+    );
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+#[test]
+fn implausible_results_are_refused_quickly_with_where() {
+    let dir = scratch("implausible");
+    let text = std::fs::read_to_string(v1_main_results()).unwrap();
+    let mut v: serde_json::Value = serde_json::from_str(&text).unwrap();
+    for scene in v["scenes"].as_array_mut().unwrap() {
+        for variant in scene["variants"].as_array_mut().unwrap() {
+            for sample in variant["samples"].as_array_mut().unwrap() {
+                *sample = serde_json::json!(1e308);
+            }
+        }
+    }
+    let bad = dir.join("results.json");
+    std::fs::write(&bad, serde_json::to_string(&v).unwrap()).unwrap();
+    let started = std::time::Instant::now();
+    let out = rtprof(&["report", bad.to_str().unwrap(), "-o", dir.to_str().unwrap()]);
+    assert_eq!(out.status.code(), Some(2), "{}", stderr(&out));
+    assert!(
+        stderr(&out)
+            .contains("scenes[0].variants[0].samples[0]: 1e308 s is beyond the plausible range"),
+        "{}",
+        stderr(&out)
+    );
+    assert!(stderr(&out).contains("results.json"), "{}", stderr(&out));
+    let out = rtprof(&["gate", bad.to_str().unwrap(), bad.to_str().unwrap()]);
+    assert_eq!(out.status.code(), Some(2), "{}", stderr(&out));
+    assert!(
+        started.elapsed().as_secs() < 30,
+        "took {:?}",
+        started.elapsed()
+    );
+    // A syntax error names the file, line and column.
+    std::fs::write(&bad, "{\n  \"schema\": \"rtprof.results/2\",\n  oops\n}").unwrap();
+    let out = rtprof(&["gate", bad.to_str().unwrap(), bad.to_str().unwrap()]);
+    assert_eq!(out.status.code(), Some(2));
+    assert!(
+        stderr(&out).contains("results.json: line 3, column 3: "),
+        "{}",
+        stderr(&out)
+    );
     std::fs::remove_dir_all(&dir).ok();
 }

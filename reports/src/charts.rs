@@ -24,7 +24,7 @@ use plotters::coord::Shift;
 use plotters::prelude::*;
 use plotters::style::text_anchor::{HPos, Pos, VPos};
 
-use crate::results::{Results, SceneFamily, SceneResult, VariantName, VariantResult};
+use crate::results::{Band, Results, SceneFamily, SceneResult, VariantName, VariantResult};
 
 /// One chart: a stable id (for anchors and file names), a title, a caption saying what
 /// it shows and where the thesis has it, and the SVG document.
@@ -241,6 +241,24 @@ fn tight_log_range(values: impl IntoIterator<Item = f64>) -> Option<(f64, f64)> 
         hi = hi.max(v);
     }
     (lo.is_finite() && hi.is_finite()).then(|| (lo / 1.5, hi * 1.5))
+}
+
+/// The thesis's bands with their RMS ranges: "below 15 visually identical, 15-50
+/// similar, …" (from `analysis::Band`, where the edges live).
+fn band_legend() -> String {
+    let mut parts = Vec::new();
+    let mut low: Option<f64> = None;
+    for band in Band::ALL {
+        let range = match (low, band.upper_edge()) {
+            (None, Some(high)) => format!("below {high}"),
+            (Some(low), Some(high)) => format!("{low}-{high}"),
+            (Some(low), None) => format!("{low} and above"),
+            (None, None) => String::new(),
+        };
+        parts.push(format!("{range} {}", band.name()));
+        low = band.upper_edge();
+    }
+    parts.join(", ")
 }
 
 fn finite_positive(v: f64) -> bool {
@@ -586,7 +604,10 @@ pub fn quality_speed_chart(results: &Results) -> Option<Chart> {
     Some(render(
         "quality-speed",
         title,
-        "One point per scene and variant: speed-up over baseline (log scale) against the RMS error of the image; dashed lines are the thesis's bands (table 2: below 15 visually identical, 15-50 similar, 50-85 notable changes).".to_string(),
+        format!(
+            "One point per scene and variant: speed-up over baseline (log scale) against the RMS error of the image; dashed lines are the thesis's bands (table 2: {}).",
+            band_legend()
+        ),
         (WIDTH, HEIGHT),
         move |root| {
             let mut chart = ChartBuilder::on(root)
@@ -608,7 +629,11 @@ pub fn quality_speed_chart(results: &Results) -> Option<Chart> {
                 .x_desc("speed-up over baseline (×, log scale)")
                 .y_desc("RMS error against baseline (gray levels)")
                 .draw()?;
-            for (limit, name) in [(15.0, "visually identical"), (50.0, "visually similar"), (85.0, "notable changes")] {
+            for band in Band::ALL {
+                let Some(limit) = band.upper_edge() else {
+                    continue;
+                };
+                let name = band.name();
                 if limit < rms_max {
                     chart.draw_series(DashedLineSeries::new(
                         [(lo, limit), (hi, limit)],
@@ -1291,7 +1316,7 @@ fn gray_histograms(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::sample::sample_results;
+    use testkit::sample_results;
 
     fn chart<'a>(charts: &'a [Chart], id: &str) -> &'a Chart {
         charts

@@ -180,8 +180,9 @@ fn quality_finding(results: &Results) -> Option<String> {
         .collect();
     Some(if leaving.is_empty() {
         format!(
-            "Every variant's images stay in the \"{}\" band against baseline (RMS below 15).",
-            Band::VisuallyIdentical
+            "Every variant's images stay in the \"{}\" band against baseline (RMS below {}).",
+            Band::VisuallyIdentical,
+            Band::VisuallyIdentical.upper_edge().unwrap_or(f64::NAN)
         )
     } else {
         format!(
@@ -527,7 +528,7 @@ pub fn repeats_text(s: &crate::results::SuiteInfo) -> String {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::sample::sample_results;
+    use testkit::sample_results;
 
     fn find<'a>(findings: &'a [String], needle: &str) -> &'a String {
         findings

@@ -145,7 +145,7 @@ mod tests {
 
     #[test]
     fn the_showcase_keeps_the_worst_image_and_the_largest_scenes() {
-        let mut r = crate::sample::sample_results();
+        let mut r = testkit::sample_results();
         assert!(r.scenes.len() > SHOWCASE_SCENES);
         // Make a small scene the one with the largest difference.
         let small = r.scenes.iter().position(|s| s.name == "balls2").unwrap();
@@ -174,7 +174,7 @@ mod tests {
 
     #[test]
     fn a_few_scenes_are_all_shown() {
-        let mut r = crate::sample::sample_results();
+        let mut r = testkit::sample_results();
         r.scenes.truncate(SHOWCASE_SCENES);
         assert_eq!(showcase_scenes(&r).len(), SHOWCASE_SCENES);
         assert!(omitted_scenes(&r).is_empty());

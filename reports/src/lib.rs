@@ -14,10 +14,10 @@ pub mod charts;
 pub mod document;
 pub mod findings;
 pub mod format;
+pub mod fuzz_check;
 pub mod gallery;
 pub mod html;
 pub mod pdf;
-pub mod sample;
 pub mod sections;
 pub mod text;
 

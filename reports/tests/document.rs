@@ -4,10 +4,10 @@
 
 use std::path::{Path, PathBuf};
 
-use analysis::Band;
 use reports::Run;
 use reports::document::{self, Block, Document, SECTIONS, Tone};
-use reports::sample::{sample_results, write_sample_files};
+use reports::results::Band;
+use testkit::{sample_results, write_sample_files};
 
 fn temp_dir(name: &str) -> PathBuf {
     let dir = std::env::temp_dir().join(format!("rtprof-doc-{name}-{}", std::process::id()));

@@ -6,7 +6,7 @@ use std::path::{Path, PathBuf};
 use reports::Run;
 use reports::document::SECTIONS;
 use reports::html::render_html;
-use reports::sample::{sample_results, write_sample_files};
+use testkit::{sample_results, write_sample_files};
 
 /// A fresh directory under the system temp dir, removed on drop.
 struct TempDir(PathBuf);

@@ -6,7 +6,7 @@ use std::process::Command;
 
 use reports::Run;
 use reports::pdf::render_pdf;
-use reports::sample::{sample_results, write_sample_files};
+use testkit::{sample_results, write_sample_files};
 
 /// A fresh directory for one test.
 fn temp_dir(name: &str) -> PathBuf {

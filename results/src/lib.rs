@@ -22,7 +22,7 @@ pub use created::rfc3339_utc;
 pub use hardware::{
     DeviceUse, HardwareResult, HwColumn, HwErrors, HwFigures, HwRow, HwRowKind, SceneHardware,
 };
-pub use read::ResultsError;
+pub use read::{FileError, ResultsError};
 pub use schema::*;
 pub use timing_policy::{TimeCovers, TimingPolicy};
 pub use variant_name::VariantName;

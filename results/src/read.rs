@@ -1,6 +1,9 @@
 //! Reading a results file: the schema dispatch (`/2`, or `/1` upgraded) and the
 //! errors that say where a file is wrong.
 
+use std::io::Read;
+use std::path::{Path, PathBuf};
+
 use crate::schema::{Results, SCHEMA};
 use crate::v1;
 use crate::v1::SCHEMA as V1;
@@ -29,8 +32,10 @@ pub enum ResultsError {
         "results schema '{0}' is neither {SCHEMA} nor {V1}: rebuild it with this rtprof version"
     )]
     Schema(String),
-    #[error("{0} bytes: larger than a results file may be ({MAX_FILE_BYTES} bytes)")]
+    #[error("{0} bytes or more: larger than a results file may be ({MAX_FILE_BYTES} bytes)")]
     TooLarge(usize),
+    #[error("cannot read: {0}")]
+    Io(#[from] std::io::Error),
     /// A value the file may not hold, at a JSON path (`scenes[3].variants[1].samples[7]`).
     #[error("{path}: {message}")]
     Invalid { path: String, message: String },
@@ -62,6 +67,14 @@ impl From<serde_json::Error> for ResultsError {
     }
 }
 
+/// A results file that cannot be read, with its name.
+#[derive(Debug, thiserror::Error)]
+#[error("{}: {source}", path.display())]
+pub struct FileError {
+    pub path: PathBuf,
+    pub source: ResultsError,
+}
+
 /// Only the schema field, read first so that a file of another version is named as
 /// such instead of failing on its first different field.
 #[derive(serde::Deserialize)]
@@ -85,5 +98,23 @@ impl Results {
         };
         results.validate()?;
         Ok(results)
+    }
+}
+
+impl Results {
+    /// Reads and validates the results file at `path` ([`Results::from_json`]); at
+    /// most [`MAX_FILE_BYTES`] are read, whatever the file's size.
+    pub fn read_file(path: &Path) -> Result<Self, FileError> {
+        let read = || -> Result<Self, ResultsError> {
+            let mut text = String::new();
+            std::fs::File::open(path)?
+                .take(MAX_FILE_BYTES as u64 + 1)
+                .read_to_string(&mut text)?;
+            Self::from_json(&text)
+        };
+        read().map_err(|source| FileError {
+            path: path.to_path_buf(),
+            source,
+        })
     }
 }

@@ -62,6 +62,15 @@ pub mod limits {
 
 use limits::*;
 
+/// A number as a message shows it: exponent form when very large or small.
+fn shown(x: f64) -> String {
+    if x != 0.0 && !(1e-4..1e6).contains(&x.abs()) {
+        format!("{x:e}")
+    } else {
+        x.to_string()
+    }
+}
+
 /// Walks a results value, keeping the JSON path of where it is.
 struct Check {
     path: String,
@@ -114,11 +123,15 @@ impl Check {
             Err(self.err(format!("{x} is not a finite number")))
         } else if x < low {
             Err(self.err(format!(
-                "{x}{unit} is below the plausible range (at least {low}{unit})"
+                "{}{unit} is below the plausible range (at least {}{unit})",
+                shown(x),
+                shown(low)
             )))
         } else if x > high {
             Err(self.err(format!(
-                "{x}{unit} is beyond the plausible range (at most {high:e}{unit})"
+                "{}{unit} is beyond the plausible range (at most {}{unit})",
+                shown(x),
+                shown(high)
             )))
         } else {
             Ok(())
@@ -557,6 +570,20 @@ impl Results {
         })?;
         c.field("suite", |c| check_suite(c, &self.suite))?;
         c.each("scenes", &self.scenes, MAX_SCENES, check_scene)?;
+        // The gate pairs scenes by name and size: each may appear once.
+        let mut seen = BTreeSet::new();
+        for (i, s) in self.scenes.iter().enumerate() {
+            if !seen.insert((&s.name, s.width, s.height)) {
+                return c.at(format_args!("scenes[{i}]"), |c| {
+                    Err(c.err(format!(
+                        "scene '{}' at {}x{} appears twice",
+                        s.name.escape_debug(),
+                        s.width,
+                        s.height
+                    )))
+                });
+            }
+        }
         if let Some(p) = &self.profile {
             c.field("profile", |c| check_profile_result(c, p))?;
         }

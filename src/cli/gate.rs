@@ -2,7 +2,7 @@
 //! saved results files (for a CI that keeps its runs): exit 1 when a variant is
 //! significantly slower or any count changed, 0 otherwise.
 
-use anyhow::{Context, Result};
+use anyhow::Result;
 use reports::results::Results;
 use std::path::{Path, PathBuf};
 
@@ -24,9 +24,7 @@ pub struct GateArgs {
 }
 
 fn load(path: &Path) -> Result<Results> {
-    let text =
-        std::fs::read_to_string(path).with_context(|| format!("cannot read {}", path.display()))?;
-    Results::from_json(&text).with_context(|| path.display().to_string())
+    Ok(Results::read_file(path)?)
 }
 
 pub fn run(args: &GateArgs) -> Result<()> {

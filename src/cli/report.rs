@@ -122,9 +122,7 @@ pub fn write_reports(runs: &[Run], dir: &Path) -> Result<()> {
 pub fn run(args: &ReportArgs) -> Result<()> {
     let mut runs = Vec::new();
     for path in &args.results {
-        let text = std::fs::read_to_string(path)
-            .with_context(|| format!("cannot read {}", path.display()))?;
-        let results = Results::from_json(&text).with_context(|| path.display().to_string())?;
+        let results = Results::read_file(path)?;
         let base_dir = path.parent().map(Path::to_path_buf).unwrap_or_default();
         // Label by machine, then by file when two runs share a machine.
         let mut label = results.machine.hostname.clone();

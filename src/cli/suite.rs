@@ -688,7 +688,11 @@ impl Runner<'_> {
             .variants
             .iter()
             .filter(|v| !v.variant.is_reference())
-            .filter(|v| v.quality.as_ref().is_some_and(|q| q.rms < 15.0))
+            .filter(|v| {
+                v.quality
+                    .as_ref()
+                    .is_some_and(|q| q.band == Band::VisuallyIdentical)
+            })
             .max_by(|a, b| {
                 let s = |v: &VariantResult| v.speedup.unwrap_or(f64::NEG_INFINITY);
                 s(a).total_cmp(&s(b))
@@ -909,11 +913,7 @@ pub fn run(args: &SuiteArgs) -> Result<()> {
     }
     // Read the old results first: a bad --baseline should fail before the work.
     let old = match &args.baseline {
-        Some(path) => {
-            let text = std::fs::read_to_string(path)
-                .with_context(|| format!("cannot read {}", path.display()))?;
-            Some(Results::from_json(&text).with_context(|| path.display().to_string())?)
-        }
+        Some(path) => Some(Results::read_file(path)?),
         None => None,
     };
     let base_dir = args

@@ -20,18 +20,32 @@ pub enum Band {
 }
 
 impl Band {
+    /// The bands from the most alike to the least.
+    pub const ALL: [Band; 4] = [
+        Band::VisuallyIdentical,
+        Band::Similar,
+        Band::NotableChanges,
+        Band::Different,
+    ];
+
+    /// The RMS where the next band starts (the thesis's table 2); `None` for
+    /// `Different`, which has no upper edge.
+    pub fn upper_edge(self) -> Option<f64> {
+        match self {
+            Band::VisuallyIdentical => Some(15.0),
+            Band::Similar => Some(50.0),
+            Band::NotableChanges => Some(85.0),
+            Band::Different => None,
+        }
+    }
+
     /// Each band includes its lower edge. A NaN RMS cannot be called alike, so it is
     /// `Different`.
     pub fn of(rms: f64) -> Band {
-        if rms < 15.0 {
-            Band::VisuallyIdentical
-        } else if rms < 50.0 {
-            Band::Similar
-        } else if rms < 85.0 {
-            Band::NotableChanges
-        } else {
-            Band::Different
-        }
+        Band::ALL
+            .into_iter()
+            .find(|b| b.upper_edge().is_none_or(|edge| rms < edge))
+            .unwrap_or(Band::Different)
     }
 
     pub fn name(self) -> &'static str {

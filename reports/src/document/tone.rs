@@ -3,7 +3,7 @@
 //! A renderer maps each [`Tone`] to one colour (the HTML in its style sheet, the PDF in
 //! its template); which tone a value gets is decided only here.
 
-use analysis::Band;
+use crate::results::Band;
 use serde::Serialize;
 
 /// How a cell, tile or note reads: four steps from good to bad, plus neutral and muted.

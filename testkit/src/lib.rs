@@ -1,0 +1,10 @@
+//! `testkit`: fixtures for tests of the results and their reports, kept out of
+//! library code. [`sample_results`] is a realistic synthetic suite run;
+//! [`write_sample_files`] writes the images and texts it refers to. Used only as a
+//! dev-dependency.
+
+pub mod files;
+pub mod sample;
+
+pub use files::{TINY_PNG, referenced_files, write_sample_files};
+pub use sample::{SAMPLE_VARIANTS, sample_results};
