@@ -968,10 +968,7 @@ fn suite_writes_results_and_reports_and_the_gate_sets_the_exit_code() {
         html.contains("sqrt/fast-sqrt-newton executes 1.81× the instructions of sqrt/std yet takes 0.69× its time"),
         "the report does not say that instructions and time disagree"
     );
-    assert!(
-        html.contains("11,451"),
-        "no instruction count in the table"
-    );
+    assert!(html.contains("11,451"), "no instruction count in the table");
     // A criterion directory that is not there: exit 2, the flag named.
     let out = rtprof(&[
         "report",

@@ -321,7 +321,8 @@ impl Page<'_> {
             let _ = write!(attributes, " colspan=\"{}\"", cell.span);
         }
         if let Some(v) = cell.sort.filter(|v| !v.is_nan()) {
-            let _ = write!(attributes, " data-v=\"{v}\"");
+            // Exponent form: exact, short, and what parseFloat reads.
+            let _ = write!(attributes, " data-v=\"{v:e}\"");
         }
         if let Some(h) = &cell.hover {
             let _ = write!(attributes, " title=\"{}\"", escape(h));

@@ -6,7 +6,7 @@ use std::path::{Path, PathBuf};
 
 use reports::Run;
 use reports::document::{self, Block, Document, SECTIONS, Tone};
-use results::Band;
+use reports::results::Band;
 use testkit::{sample_results, write_sample_files};
 
 fn temp_dir(name: &str) -> PathBuf {

@@ -146,12 +146,17 @@ impl<'a> Builder<'a> {
         Some(self.figure(chart, max_height_cm))
     }
 
-    /// A figure of any chart.
+    /// A figure of any chart, anchored at the chart's id.
     pub fn figure(&mut self, chart: Chart, max_height_cm: f64) -> Block {
+        self.figure_at(chart.id.to_string(), chart, max_height_cm)
+    }
+
+    /// A figure of a chart with its own anchor (a chart drawn once per scene).
+    pub fn figure_at(&mut self, id: String, chart: Chart, max_height_cm: f64) -> Block {
         let (width, height) = chart_size(&chart);
         let asset = self.assets.add(AssetKind::Svg, chart.svg.into_bytes());
         Block::Figure(Figure {
-            id: chart.id.to_string(),
+            id,
             title: chart.title.clone(),
             caption: chart.caption,
             visual: Visual::Image(Image {

@@ -24,7 +24,7 @@ pub fn hw_table(rows: &[HwRow]) -> Table {
             let error = row.error_pct.as_ref().and_then(|e| e.get(column));
             let detail = match (thesis, error) {
                 (Some(t), Some(e)) => {
-                    format!("/ {} ({})", format::count(t), format::signed_percent(e, 1))
+                    format!("/ {} ({})", format::count(t), format::signed_change(e, 1))
                 }
                 (Some(t), None) => format!("/ {} (—)", format::count(t)),
                 // The IP-core rows are table 7's own figures: the model's input.

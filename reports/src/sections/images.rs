@@ -38,7 +38,8 @@ pub fn images(b: &mut Builder) -> Section {
         }
         match charts::scene_histograms(r, scene) {
             Some(chart) => {
-                let figure = b.figure(chart, 6.0);
+                let id = format!("{}-{}", chart.id, crate::slug(&scene.name));
+                let figure = b.figure_at(id, chart, 6.0);
                 s.blocks.push(figure);
             }
             None => s.blocks.push(Block::empty(

@@ -33,7 +33,7 @@ pub fn time_vs_primitives(b: &mut Builder) -> Section {
     .sortable()
     .caption("Scenes by family and primitive count");
     let mut scenes: Vec<&SceneResult> = r.scenes.iter().collect();
-    scenes.sort_by_key(|a| (a.family, a.primitives));
+    scenes.sort_by_key(|s| (s.family, s.primitives));
     for scene in scenes {
         let fastest = scene
             .variants
