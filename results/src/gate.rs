@@ -12,6 +12,7 @@
 use serde::Serialize;
 
 use crate::schema::{Results, VariantResult};
+use crate::timing_policy::TimeCovers;
 use crate::variant_name::VariantName;
 
 /// What happened to one scene × variant.
@@ -46,6 +47,9 @@ pub struct GateReport {
     pub entries: Vec<Entry>,
     /// `scene/variant` present in only one of the runs.
     pub unmatched: Vec<String>,
+    /// Set when the runs' times cover different things (a `/1` file timed
+    /// preprocessing and tracing together): the time changes then include that.
+    pub covers_differ: Option<(TimeCovers, TimeCovers)>,
 }
 
 impl GateReport {
@@ -95,6 +99,13 @@ impl GateReport {
         }
         for u in &self.unmatched {
             out += &format!("only in one run: {u}\n");
+        }
+        if let Some((old, new)) = self.covers_differ {
+            out += &format!(
+                "note: the old run's times cover {}, the new run's {}: time changes include the difference\n",
+                old.describe(),
+                new.describe()
+            );
         }
         out
     }
@@ -164,9 +175,11 @@ pub fn compare_runs(old: &Results, new: &Results, threshold: f64) -> GateReport 
             }
         }
     }
+    let (old_covers, new_covers) = (old.suite.timing.covers, new.suite.timing.covers);
     GateReport {
         threshold,
         entries,
         unmatched,
+        covers_differ: (old_covers != new_covers).then_some((old_covers, new_covers)),
     }
 }

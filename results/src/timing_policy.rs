@@ -13,6 +13,16 @@ pub enum TimeCovers {
     PreprocessingAndTracing,
 }
 
+impl TimeCovers {
+    /// What it covers, in words.
+    pub fn describe(self) -> &'static str {
+        match self {
+            TimeCovers::Tracing => "tracing only",
+            TimeCovers::PreprocessingAndTracing => "preprocessing and tracing",
+        }
+    }
+}
+
 /// The timing policy of a run: how many renders were timed and how their median and
 /// interval were estimated.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]

@@ -230,3 +230,24 @@ fn the_schema_is_checked_and_syntax_errors_have_a_position() {
         "{e}"
     );
 }
+
+#[test]
+fn the_gate_notes_runs_whose_times_cover_different_things() {
+    let old = v1();
+    let mut new = old.clone();
+    new.suite.timing.covers = TimeCovers::Tracing;
+    let gate = results::gate::compare_runs(&old, &new, 0.05);
+    assert_eq!(
+        gate.covers_differ,
+        Some((TimeCovers::PreprocessingAndTracing, TimeCovers::Tracing))
+    );
+    assert!(
+        gate.to_text()
+            .contains("time changes include the difference")
+    );
+    assert!(!gate.failed());
+    assert_eq!(
+        results::gate::compare_runs(&old, &old, 0.05).covers_differ,
+        None
+    );
+}
