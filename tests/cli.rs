@@ -1192,6 +1192,13 @@ fn implausible_results_are_refused_quickly_with_where() {
         stderr(&out)
     );
     assert!(stderr(&out).contains("results.json"), "{}", stderr(&out));
+    // The cause is said once, not once per layer of the error chain.
+    assert_eq!(
+        stderr(&out).matches("plausible range").count(),
+        1,
+        "{}",
+        stderr(&out)
+    );
     let out = rtprof(&["gate", bad.to_str().unwrap(), bad.to_str().unwrap()]);
     assert_eq!(out.status.code(), Some(2), "{}", stderr(&out));
     assert!(

@@ -67,12 +67,13 @@ impl From<serde_json::Error> for ResultsError {
     }
 }
 
-/// A results file that cannot be read, with its name.
+/// A results file that cannot be read, with its name. The cause is part of the message
+/// (and not a `source`), so that an error chain prints it once.
 #[derive(Debug, thiserror::Error)]
-#[error("{}: {source}", path.display())]
+#[error("{}: {error}", path.display())]
 pub struct FileError {
     pub path: PathBuf,
-    pub source: ResultsError,
+    pub error: ResultsError,
 }
 
 /// Only the schema field, read first so that a file of another version is named as
@@ -112,9 +113,9 @@ impl Results {
                 .read_to_string(&mut text)?;
             Self::from_json(&text)
         };
-        read().map_err(|source| FileError {
+        read().map_err(|error| FileError {
             path: path.to_path_buf(),
-            source,
+            error,
         })
     }
 }
