@@ -13,19 +13,17 @@ fn main() -> ExitCode {
         Ok(args) => args,
         Err(error) => return usage_error(&error),
     };
-    match cli::run(args) {
-        Ok(()) => ExitCode::SUCCESS,
-        Err(error) if error.downcast_ref::<cli::CheckFailed>().is_some() => {
-            eprintln!("rtprof: {}", one_line(&format!("{error:#}")));
-            ExitCode::from(1)
+    let Err(error) = cli::run(args) else {
+        return ExitCode::SUCCESS;
+    };
+    let message = one_line(&format!("{error:#}"));
+    match error.downcast_ref::<cli::Outcome>() {
+        Some(outcome) => {
+            eprintln!("rtprof: {message}");
+            ExitCode::from(outcome.exit_code)
         }
-        Err(error) if error.downcast_ref::<cli::Interrupted>().is_some() => {
-            eprintln!("rtprof: {}", one_line(&format!("{error:#}")));
-            // 128 + SIGINT, as a shell reports a command stopped by Ctrl-C.
-            ExitCode::from(130)
-        }
-        Err(error) => {
-            eprintln!("rtprof: error: {}", one_line(&format!("{error:#}")));
+        None => {
+            eprintln!("rtprof: error: {message}");
             // Bad input or usage: exit code 2 (1 is kept for failed checks).
             ExitCode::from(2)
         }

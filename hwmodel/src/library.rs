@@ -191,6 +191,8 @@ pub enum LibraryError {
     },
     #[error("{file}: no devices listed")]
     NoDevices { file: String },
+    #[error("unknown device '{name}': known devices are {known}")]
+    UnknownDevice { name: String, known: String },
 }
 
 /// The Cyclone IV E library (thesis table 7), embedded.
@@ -270,16 +272,23 @@ impl Library {
     }
 }
 
-/// Finds a device by name (case-insensitive) in any embedded family.
-pub fn find_device(name: &str) -> Option<(Library, DeviceSpec)> {
-    Library::embedded().into_iter().find_map(|lib| {
-        let device = lib
-            .devices
-            .iter()
-            .find(|d| d.name.eq_ignore_ascii_case(name))
-            .cloned();
-        device.map(|d| (lib, d))
-    })
+/// Finds a device by name (case-insensitive) in any embedded family; the error lists
+/// the known devices.
+pub fn find_device(name: &str) -> Result<(Library, DeviceSpec), LibraryError> {
+    Library::embedded()
+        .into_iter()
+        .find_map(|lib| {
+            let device = lib
+                .devices
+                .iter()
+                .find(|d| d.name.eq_ignore_ascii_case(name))
+                .cloned();
+            device.map(|d| (lib, d))
+        })
+        .ok_or_else(|| LibraryError::UnknownDevice {
+            name: name.to_string(),
+            known: device_names().join(", "),
+        })
 }
 
 /// Names of every embedded device, for error messages and `--help`.

@@ -28,6 +28,21 @@ pub enum BenchImportError {
     },
     #[error("{0} is not a directory")]
     NotADirectory(PathBuf),
+    /// An error in a harness directory, naming the flag that sets it.
+    #[error("{error} (the directory is set with {flag})")]
+    FromFlag {
+        flag: &'static str,
+        error: Box<BenchImportError>,
+    },
+}
+
+impl BenchImportError {
+    fn set_with(self, flag: &'static str) -> Self {
+        BenchImportError::FromFlag {
+            flag,
+            error: Box::new(self),
+        }
+    }
 }
 
 /// criterion's `new/benchmark.json` (the fields the reports use).
@@ -247,6 +262,49 @@ fn target_dir() -> Option<PathBuf> {
         .into_iter()
         .chain([PathBuf::from("target")])
         .find(|t| t.join("criterion").is_dir() || t.join("gungraun").is_dir())
+}
+
+/// Refuses a given harness directory that is not a directory (before a long run).
+pub fn check_dirs(
+    criterion: Option<&Path>,
+    instructions: Option<&Path>,
+) -> Result<(), BenchImportError> {
+    for (flag, dir) in [("--criterion", criterion), ("--instructions", instructions)] {
+        if let Some(dir) = dir.filter(|d| !d.is_dir()) {
+            return Err(BenchImportError::NotADirectory(dir.to_path_buf()).set_with(flag));
+        }
+    }
+    Ok(())
+}
+
+/// Reads the benchmark figures of the harness directories (see [`resolve_dirs`]) into
+/// `results`, replacing any it had; returns one line per directory read, saying what
+/// was added.
+pub fn add_to_results(
+    results: &mut results::Results,
+    criterion: Option<&Path>,
+    instructions: Option<&Path>,
+    discover: bool,
+) -> Result<Vec<String>, BenchImportError> {
+    let (criterion, instructions) = resolve_dirs(criterion, instructions, discover);
+    let mut added = Vec::new();
+    if let Some(dir) = criterion {
+        results.criterion = read_criterion_dir(&dir).map_err(|e| e.set_with("--criterion"))?;
+        added.push(format!(
+            "added {} criterion estimates from {}",
+            results.criterion.len(),
+            dir.display()
+        ));
+    }
+    if let Some(dir) = instructions {
+        results.instructions = read_gungraun_dir(&dir).map_err(|e| e.set_with("--instructions"))?;
+        added.push(format!(
+            "added {} instruction counts from {}",
+            results.instructions.len(),
+            dir.display()
+        ));
+    }
+    Ok(added)
 }
 
 #[cfg(test)]

@@ -44,6 +44,30 @@ pub fn compare_variants(
     policy: &TimingPolicy,
     out: Option<&Path>,
     progress: &dyn Progress,
+) -> Result<VariantsReport, RunError> {
+    let reference = sets.first().ok_or_else(|| {
+        RunError::Input("no variants: name at least one (e.g. baseline,bvh)".into())
+    })?;
+    let variants = variant_rows(setup, sets, policy, out, progress)?;
+    Ok(VariantsReport {
+        scene: setup.name.to_string(),
+        width: setup.options.width,
+        height: setup.options.height,
+        spd: setup.options.sampling == tracer::Sampling::SpdCorners,
+        threads: setup.pool.current_num_threads(),
+        repeats: policy.min_repeats,
+        time_covers: "tracing",
+        reference: reference.to_string(),
+        variants,
+    })
+}
+
+fn variant_rows(
+    setup: &RenderSetup<'_>,
+    sets: &[VariantSet],
+    policy: &TimingPolicy,
+    out: Option<&Path>,
+    progress: &dyn Progress,
 ) -> Result<Vec<VariantRow>, RunError> {
     progress.begin("variants", sets.len() as u64);
     let mut measured: Vec<VariantMeasurement> = Vec::with_capacity(sets.len());

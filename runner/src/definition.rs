@@ -59,6 +59,18 @@ pub struct QuickDef {
 }
 
 impl SuiteDef {
+    /// Reads and parses the definition at `path`, or the embedded default suite.
+    pub fn load(path: Option<&std::path::Path>) -> Result<Self, RunError> {
+        match path {
+            Some(path) => {
+                let text = std::fs::read_to_string(path)
+                    .map_err(|e| RunError::io("read suite", path, &e))?;
+                Self::parse(&text, &path.display().to_string())
+            }
+            None => Self::parse(DEFAULT_SUITE, DEFAULT_SUITE_FILE),
+        }
+    }
+
     /// Parses a definition and checks it, with and without its `[quick]` overrides
     /// (`file` names it in errors).
     pub fn parse(text: &str, file: &str) -> Result<Self, RunError> {

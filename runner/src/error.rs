@@ -38,6 +38,9 @@ pub enum RunError {
     /// Benchmark figures that cannot be imported.
     #[error("{0}")]
     Benchmarks(#[from] crate::benchmarks::BenchImportError),
+    /// A report that cannot be built.
+    #[error("{0}")]
+    Report(String),
     /// The caller asked the run to stop (Ctrl-C).
     #[error("stopped on request")]
     Stopped,

@@ -1,7 +1,7 @@
 //! `runner`: the rtprof suite as a library. It measures (renders with `tracer`,
 //! statistics and profiles with `analysis`, the FPGA model with `hwmodel`) and collects
 //! everything into the typed results; it writes nothing but the files a run produces
-//! (images, profiles, flamegraphs) and prints nothing (progress goes to a [`Progress`]).
+//! (images, profiles, flamegraphs, the reports) and prints nothing (progress goes to a [`Progress`]).
 //! The binary and a future `serve` command call it; reports are made from its results.
 //!
 //! Modules:
@@ -16,8 +16,10 @@
 //! - [`profile_job`]: counted + sampled renders into gprof tables, folded stacks, Amdahl;
 //! - [`hardware_job`]: the FPGA model, emulator and software time on the same job;
 //! - [`hardware_prediction`]: `rtprof hw time`: frame time, fit and what-ifs;
+//! - [`hardware_tables`]: `rtprof hw table` as text; [`hardware_files`]: `hw render`, `hw mif`;
 //! - [`collect`]: measurements into results entries;
 //! - [`suite`]: the whole suite into one results value;
+//! - [`report_files`]: results files read back, report.html and report.pdf written;
 //! - [`benchmarks`]: criterion estimates and instruction counts picked up from disk;
 //! - [`machine`]: machine, build and command line of a run;
 //! - [`staging`]: staged, atomic output; [`pool`]: worker threads;
@@ -28,13 +30,16 @@ pub mod collect;
 pub mod compare;
 pub mod definition;
 pub mod error;
+pub mod hardware_files;
 pub mod hardware_job;
 pub mod hardware_prediction;
+pub mod hardware_tables;
 pub mod machine;
 pub mod pool;
 pub mod profile_job;
 pub mod progress;
 pub mod render_job;
+pub mod report_files;
 pub mod scenes;
 pub mod staging;
 pub mod suite;

@@ -139,6 +139,40 @@ impl ProfileJob<'_> {
         ))
     }
 
+    /// `rtprof profile`: `set` profiled (and timed without the profiler first when
+    /// `measure_overhead`), and `diff_with` profiled for the differential flamegraph.
+    pub fn report(
+        &self,
+        set: &VariantSet,
+        diff_with: Option<&VariantSet>,
+        measure_overhead: bool,
+        progress: &dyn Progress,
+    ) -> Result<ProfileReport, RunError> {
+        progress.begin("profile", 0);
+        let unprofiled = if measure_overhead {
+            progress.message(&format!("timing {set} without the profiler"));
+            Some(self.unprofiled_seconds(set)?)
+        } else {
+            None
+        };
+        let profile = self.profile(set, progress)?;
+        let diff = diff_with
+            .map(|other| self.profile(other, progress))
+            .transpose()?;
+        progress.end();
+        Ok(ProfileReport {
+            scene: self.name.to_string(),
+            width: self.options.width,
+            height: self.options.height,
+            threads: self.pool.current_num_threads(),
+            frequency: self.frequency,
+            unprofiled_seconds: unprofiled,
+            overhead: unprofiled.map(|u| profile.wall_seconds / u.max(1e-9)),
+            profile,
+            diff,
+        })
+    }
+
     /// Wall seconds of one render without the profiler.
     pub fn unprofiled_seconds(&self, set: &VariantSet) -> Result<f64, RunError> {
         let start = Instant::now();

@@ -18,6 +18,13 @@ use crate::progress::Progress;
 pub struct RenderRequest<'a> {
     pub path: &'a Path,
     pub variants: VariantSet,
+    pub settings: RenderSettings,
+    pub mode: ShadingMode,
+}
+
+/// How to render a scene: the settings every rendering command takes.
+#[derive(Clone, Debug, Default)]
+pub struct RenderSettings {
     /// Image size (default: the scene's resolution).
     pub size: Option<(u32, u32)>,
     /// SPD corner sampling.
@@ -26,7 +33,24 @@ pub struct RenderRequest<'a> {
     /// Ray-tree depth (default: the SPD's 5).
     pub depth: Option<u32>,
     pub limits: Limits,
-    pub mode: ShadingMode,
+}
+
+impl RenderSettings {
+    /// The render options for `scene` (limits are checked when rendering).
+    pub fn options(&self, scene: &Scene, mode: ShadingMode) -> RenderOptions {
+        let (width, height) = self.size.unwrap_or((scene.view.width, scene.view.height));
+        let sampling = if self.spd {
+            Sampling::SpdCorners
+        } else {
+            Sampling::PixelCenters
+        };
+        let mut options = RenderOptions::new(width, height, sampling, mode);
+        options.limits = self.limits;
+        if let Some(depth) = self.depth {
+            options.max_depth = depth;
+        }
+        options
+    }
 }
 
 /// A finished render with its timings.
@@ -46,20 +70,11 @@ pub fn render_scene<C: Counter>(
     progress: &dyn Progress,
 ) -> Result<SceneRender<C>, RunError> {
     let start = Instant::now();
-    let scene =
-        load_nff_with_limits(req.path, &req.limits).map_err(|e| RunError::Input(e.to_string()))?;
+    let scene = load_nff_with_limits(req.path, &req.settings.limits)
+        .map_err(|e| RunError::Input(e.to_string()))?;
     let parsing = start.elapsed();
-    let (width, height) = req.size.unwrap_or((scene.view.width, scene.view.height));
-    let sampling = if req.spd {
-        Sampling::SpdCorners
-    } else {
-        Sampling::PixelCenters
-    };
-    let mut options = RenderOptions::new(width, height, sampling, req.mode);
-    options.limits = req.limits;
-    if let Some(depth) = req.depth {
-        options.max_depth = depth;
-    }
+    let options = req.settings.options(&scene, req.mode);
+    let (width, height) = (options.width, options.height);
     // Refused before the progress bar and the framebuffer exist.
     let refuse = |message: String| RunError::Render {
         context: req.path.display().to_string(),
@@ -73,7 +88,7 @@ pub fn render_scene<C: Counter>(
         .limits
         .check_size(u64::from(width), u64::from(height))
         .map_err(|e| refuse(e.to_string()))?;
-    let pool = thread_pool(req.threads)?;
+    let pool = thread_pool(req.settings.threads)?;
     progress.begin("tracing", options.sample_rows());
     let out = pool
         .install(|| render_variant::<C>(&scene, &options, &req.variants, &|n| progress.advance(n)));

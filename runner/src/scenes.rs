@@ -114,6 +114,17 @@ pub fn extra_scenes(dir: &Path, size: (u32, u32)) -> Result<Vec<SceneSpec>, RunE
         .collect()
 }
 
+/// Loads an NFF file, or a built-in scene when `path` is a bare built-in name that is
+/// not also a file.
+pub fn load_file_or_builtin(path: &Path) -> Result<tracer::Scene, RunError> {
+    if !path.exists()
+        && let Some(builtin) = path.to_str().and_then(tracer::builtin_scenes::find)
+    {
+        return builtin.parse().map_err(|e| RunError::Input(e.to_string()));
+    }
+    tracer::load_nff(path).map_err(|e| RunError::Input(e.to_string()))
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -55,6 +55,22 @@ impl Staging {
     }
 }
 
+/// What a user is told when a run into `output` was stopped after `done` of `total`
+/// scenes and its staged files discarded.
+pub fn discarded_message(output: &Path, done: usize, total: usize) -> String {
+    let previous = if output.join("report.html").is_file() {
+        format!(
+            "the previous results and reports in {} are intact",
+            output.display()
+        )
+    } else {
+        format!("nothing was written to {}", output.display())
+    };
+    format!(
+        "interrupted after {done} of {total} scenes; this run's outputs were discarded and {previous}"
+    )
+}
+
 impl Drop for Staging {
     fn drop(&mut self) {
         // Best effort: a leftover directory is named as partial and harmless.

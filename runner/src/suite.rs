@@ -47,6 +47,24 @@ pub struct RunContext<'a> {
 }
 
 impl Suite {
+    /// What a finished run says: scenes, variants, time, failures (one line each) and
+    /// where its files are.
+    pub fn summary(&self, results: &Results, seconds: f64, output: &Path) -> String {
+        let failures = results.failures.len();
+        let mut text = format!(
+            "suite '{}': {} scenes × {} variants in {seconds:.1} s; {failures} failure{}; wrote {}/{{results.json, report.html, report.pdf}}\n",
+            self.def.name,
+            results.scenes.len(),
+            self.def.variants.len(),
+            if failures == 1 { "" } else { "s" },
+            output.display()
+        );
+        for f in &results.failures {
+            text += &format!("  failed: {}: {}\n", f.place(), f.message);
+        }
+        text
+    }
+
     /// Resolves the scenes of `def` (relative paths from `base_dir`) and, when given,
     /// every NFF file of `extra_dir`: a missing scene fails here, before any work.
     pub fn prepare(

@@ -3,15 +3,15 @@
 //! against the first image or variant.
 
 use super::progress::Bars;
-use super::scene_args::{LimitArgs, parse_size};
+use super::scene_args::RenderFlags;
 use anyhow::{Context, Result, bail};
-use runner::compare::{VariantsReport, compare_variants};
+use runner::compare::compare_variants;
 use runner::pool::thread_pool;
 use runner::timing::TimingPolicy;
 use runner::variant_job::RenderSetup;
 use std::path::{Path, PathBuf};
 use std::sync::atomic::AtomicBool;
-use tracer::{RenderOptions, Sampling, ShadingMode, VariantSet};
+use tracer::VariantSet;
 
 #[derive(clap::Args, Debug)]
 pub struct CompareArgs {
@@ -22,21 +22,12 @@ pub struct CompareArgs {
     /// e.g. baseline,bvh,bvh+fast-sqrt.
     #[arg(long, value_name = "A,B,…")]
     variants: Option<String>,
-    /// Image size WxH (default: the scene's resolution).
-    #[arg(long, value_name = "WxH", value_parser = parse_size)]
-    size: Option<(u32, u32)>,
     /// Timed renders per variant (median and 95 % bootstrap interval).
     #[arg(long, value_name = "N", default_value_t = 3,
           value_parser = clap::value_parser!(u32).range(1..=1000))]
     repeats: u32,
-    /// SPD procedure: rays through pixel corners, each pixel the mean of four.
-    #[arg(long)]
-    spd: bool,
-    /// Worker threads (default: one per core).
-    #[arg(long, value_name = "N", value_parser = clap::value_parser!(u16).range(1..=1024))]
-    threads: Option<u16>,
     #[command(flatten)]
-    limits: LimitArgs,
+    render: RenderFlags,
     /// Print the result as JSON.
     #[arg(long)]
     json: bool,
@@ -67,29 +58,14 @@ fn compare_images(args: &CompareArgs, a: &Path, b: &Path) -> Result<()> {
 }
 
 fn side_by_side(args: &CompareArgs, scene_path: &Path, list: &str) -> Result<()> {
-    let sets = list
-        .split(',')
-        .map(str::trim)
-        .filter(|s| !s.is_empty())
-        .map(VariantSet::parse)
-        .collect::<Result<Vec<_>, _>>()?;
-    if sets.is_empty() {
-        bail!("--variants is empty: name at least one variant (e.g. baseline,bvh)");
-    }
+    let sets = VariantSet::parse_list(list)?;
     if let Some(dir) = &args.output {
         std::fs::create_dir_all(dir)
             .with_context(|| format!("cannot create directory {}", dir.display()))?;
     }
-    let scene = args.limits.load(scene_path)?;
-    let (width, height) = args.size.unwrap_or((scene.view.width, scene.view.height));
-    let sampling = if args.spd {
-        Sampling::SpdCorners
-    } else {
-        Sampling::PixelCenters
-    };
-    let mut options = RenderOptions::new(width, height, sampling, ShadingMode::Color);
-    options.limits = args.limits.limits();
-    let pool = thread_pool(args.threads)?;
+    let scene = args.render.limits.load(scene_path)?;
+    let options = args.render.options(&scene);
+    let pool = thread_pool(args.render.threads)?;
     let name = scene_path.display().to_string();
     let never = AtomicBool::new(false);
     let setup = RenderSetup {
@@ -101,24 +77,13 @@ fn side_by_side(args: &CompareArgs, scene_path: &Path, list: &str) -> Result<()>
     };
     // --repeats renders at least; no minimum time, so the count is what was asked.
     let policy = TimingPolicy::new(args.repeats, 0.0);
-    let rows = compare_variants(
+    let report = compare_variants(
         &setup,
         &sets,
         &policy,
         args.output.as_deref(),
         &Bars::default(),
     )?;
-    let report = VariantsReport {
-        scene: name,
-        width,
-        height,
-        spd: args.spd,
-        threads: pool.current_num_threads(),
-        repeats: args.repeats,
-        time_covers: "tracing",
-        reference: sets[0].to_string(),
-        variants: rows,
-    };
     if args.json {
         println!("{}", serde_json::to_string_pretty(&report)?);
     } else {

@@ -22,12 +22,7 @@ pub fn run(args: &CountArgs) -> Result<()> {
     if args.json {
         println!("{}", serde_json::to_string_pretty(&counts)?);
     } else {
-        let rows = counts.rows();
-        let width = rows.iter().map(|(name, _)| name.len()).max().unwrap_or(4);
-        println!("{:<width$}  {:>16}", "name", "calls");
-        for (name, value) in rows {
-            println!("{name:<width$}  {value:>16}");
-        }
+        print!("{}", counts.to_text());
     }
     eprintln!("{}", run.timing_report(&args.scene.scene));
     Ok(())

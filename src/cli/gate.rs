@@ -23,8 +23,8 @@ pub struct GateArgs {
 }
 
 pub fn run(args: &GateArgs) -> Result<()> {
-    let old = super::report::load_results(&args.old)?;
-    let new = super::report::load_results(&args.new)?;
+    let old = results::Results::read_file(&args.old)?;
+    let new = results::Results::read_file(&args.new)?;
     let gate = results::gate::compare_runs(&old, &new, args.threshold / 100.0);
     if args.json {
         println!("{}", serde_json::to_string_pretty(&gate)?);
@@ -32,7 +32,7 @@ pub fn run(args: &GateArgs) -> Result<()> {
         print!("{}", gate.to_text());
     }
     if gate.failed() {
-        return Err(super::CheckFailed("the regression gate failed".into()).into());
+        return Err(super::Outcome::check_failed("the regression gate failed").into());
     }
     Ok(())
 }

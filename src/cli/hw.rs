@@ -4,17 +4,14 @@
 //! scene memory as an Altera Memory Initialization File).
 
 use super::scene_args::parse_size;
-use anyhow::{Context, Result};
+use anyhow::Result;
 use hwmodel::blocks::Pipeline;
 use hwmodel::design::Design;
-use hwmodel::hw_scene::HwScene;
-use hwmodel::library::{DeviceSpec, Library, device_names, find_device};
-use hwmodel::table::{Row, Tables, tables};
-use reports::sections::hardware::hw_table;
-use results::HwRow;
+use hwmodel::library::{DeviceSpec, Library, find_device};
+use hwmodel::table::tables;
 use runner::hardware_prediction::{TimeRequest, time_report};
-use std::path::{Path, PathBuf};
-use tracer::{Scene, load_nff};
+use runner::scenes::load_file_or_builtin;
+use std::path::PathBuf;
 
 #[derive(clap::Args, Debug)]
 pub struct HwArgs {
@@ -67,13 +64,7 @@ impl WhatIf {
     }
 
     fn device(&self) -> Result<(Library, DeviceSpec)> {
-        find_device(&self.device).with_context(|| {
-            format!(
-                "unknown device '{}': known devices are {}",
-                self.device,
-                device_names().join(", ")
-            )
-        })
+        Ok(find_device(&self.device)?)
     }
 }
 
@@ -160,21 +151,6 @@ pub fn run(args: &HwArgs) -> Result<()> {
     }
 }
 
-/// Loads an NFF file, or a built-in scene when `path` is a bare built-in name.
-pub fn load_scene(path: &Path) -> Result<Scene> {
-    if !path.exists()
-        && let Some(name) = path.to_str()
-        && let Some(builtin) = tracer::builtin_scenes::find(name)
-    {
-        return Ok(builtin.parse()?);
-    }
-    Ok(load_nff(path)?)
-}
-
-fn hw_scene(path: &Path, scene: &Scene) -> Result<HwScene> {
-    HwScene::from_scene(scene).with_context(|| format!("{}", path.display()))
-}
-
 // ---------------------------------------------------------------------------- table
 
 fn table(args: &TableArgs) -> Result<()> {
@@ -185,47 +161,21 @@ fn table(args: &TableArgs) -> Result<()> {
         println!("{}", serde_json::to_string_pretty(&t)?);
         return Ok(());
     }
-    print!("{}", format_tables(&t, &lib, &device));
+    print!(
+        "{}",
+        runner::hardware_tables::tables_text(&t, &lib, &device)
+    );
     if args.detail {
         print!("{}", Pipeline::build(&lib, &design).detail_text());
     }
     Ok(())
 }
 
-/// One of tables 7 and 8 as the report's table model, printed in columns.
-fn format_rows(rows: &[Row]) -> String {
-    let rows: Vec<HwRow> = rows.iter().map(HwRow::from_model_row).collect();
-    reports::text::table(&hw_table(&rows))
-}
-
-fn format_tables(t: &Tables, lib: &Library, device: &DeviceSpec) -> String {
-    let mut out = format!(
-        "Operator library: {}{}; device {}{}; design: {}\n\
-         cells: model / thesis (error); the thesis's figures are the reference, never inputs\n\n",
-        lib.family,
-        if lib.validated { "" } else { " (unvalidated)" },
-        device.name,
-        if device.validated {
-            ""
-        } else {
-            " (unvalidated)"
-        },
-        t.design,
-    );
-    out += "Table 7: operations (IP cores from the library; composites built from them)\n";
-    out += &format_rows(&t.ops);
-    out += "\nTable 8: blocks (dataflow graphs, ASAP schedule, delay-balancing)\n";
-    out += &format_rows(&t.blocks);
-    out += "\nThe standalone dot-product row of table 7 is a four-lane module (4 multipliers,\n\
-            3 adders: 28 elements); the blocks use three lanes. See docs/hardware-model.md.\n";
-    out
-}
-
 // ----------------------------------------------------------------------------- time
 
 fn time(args: &TimeArgs) -> Result<()> {
     let (lib, device) = args.what_if.device()?;
-    let scene = load_scene(&args.scene)?;
+    let scene = load_file_or_builtin(&args.scene)?;
     let request = TimeRequest {
         name: args.scene.display().to_string(),
         design: args.what_if.design(),
@@ -246,31 +196,16 @@ fn time(args: &TimeArgs) -> Result<()> {
 // --------------------------------------------------------------------- render, mif
 
 fn render(args: &RenderArgs) -> Result<()> {
-    tracer::image_io::ImageFormat::from_path(&args.output)?;
-    let scene = load_scene(&args.scene)?;
-    let hw = hw_scene(&args.scene, &scene)?;
-    let (width, height) = args.size.unwrap_or((scene.view.width, scene.view.height));
-    let image = hwmodel::emulator::render(&hw, width, height);
-    hwmodel::emulator::write_image(&image, &args.output)?;
-    eprintln!(
-        "wrote {} ({width}x{height}, {} primitives, the hardware's diffuse gray)",
-        args.output.display(),
-        hw.primitive_count()
-    );
+    let written =
+        runner::hardware_files::write_emulator_image(&args.scene, args.size, &args.output)?;
+    eprintln!("{written}");
     Ok(())
 }
 
 fn mif(args: &MifArgs) -> Result<()> {
-    let scene = load_scene(&args.scene)?;
-    let hw = hw_scene(&args.scene, &scene)?;
-    let text = hwmodel::mif::to_mif(&hw);
-    tracer::image_io::write_atomically(&args.output, text.as_bytes())
-        .with_context(|| format!("cannot write {}", args.output.display()))?;
     eprintln!(
-        "wrote {} ({} primitives, {} words of 32 bits)",
-        args.output.display(),
-        hw.primitive_count(),
-        hw.primitive_count() * 9
+        "{}",
+        runner::hardware_files::write_mif(&args.scene, &args.output)?
     );
     Ok(())
 }

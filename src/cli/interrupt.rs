@@ -10,18 +10,6 @@ use std::sync::atomic::{AtomicBool, Ordering};
 
 static REQUESTED: AtomicBool = AtomicBool::new(false);
 
-/// The run was stopped by Ctrl-C (the binary exits 130).
-#[derive(Debug)]
-pub struct Interrupted(pub String);
-
-impl std::fmt::Display for Interrupted {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        f.write_str(&self.0)
-    }
-}
-
-impl std::error::Error for Interrupted {}
-
 /// Installs the handler (once per process; later calls do nothing) and returns the
 /// flag it sets, for the runner to check.
 pub fn install() -> &'static AtomicBool {

@@ -51,19 +51,35 @@ enum Command {
     Scene(scene::SceneArgs),
 }
 
-pub use interrupt::Interrupted;
-
-/// A check that ran and failed (exit code 1, not 2: the input was fine).
+/// An end that is neither success nor bad input (exit 2): a check that ran and failed
+/// (exit 1) or a run stopped by Ctrl-C (exit 130, 128 + SIGINT, as a shell reports it).
 #[derive(Debug)]
-pub struct CheckFailed(pub String);
+pub struct Outcome {
+    pub exit_code: u8,
+    pub message: String,
+}
 
-impl std::fmt::Display for CheckFailed {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        f.write_str(&self.0)
+impl Outcome {
+    pub fn check_failed(message: &str) -> Self {
+        let (exit_code, message) = (1, message.to_string());
+        Outcome { exit_code, message }
+    }
+
+    pub fn interrupted(message: String) -> Self {
+        Outcome {
+            exit_code: 130,
+            message,
+        }
     }
 }
 
-impl std::error::Error for CheckFailed {}
+impl std::fmt::Display for Outcome {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(&self.message)
+    }
+}
+
+impl std::error::Error for Outcome {}
 
 /// Runs one command.
 pub fn run(cli: Cli) -> anyhow::Result<()> {

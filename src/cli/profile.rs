@@ -4,12 +4,12 @@
 //! projections. Calls come from a counted render of the same scene and variant.
 
 use super::progress::Bars;
-use super::scene_args::{LimitArgs, parse_size};
-use anyhow::{Context, Result, bail};
+use super::scene_args::{RenderFlags, named_after};
+use anyhow::{Context, Result};
 use runner::pool::thread_pool;
-use runner::profile_job::{MIN_SAMPLED, ProfileJob, ProfileReport};
+use runner::profile_job::{MIN_SAMPLED, ProfileJob};
 use std::path::PathBuf;
-use tracer::{RenderOptions, Sampling, ShadingMode, VariantSet};
+use tracer::VariantSet;
 
 #[derive(clap::Args, Debug)]
 pub struct ProfileArgs {
@@ -21,17 +21,8 @@ pub struct ProfileArgs {
     /// Also profile this variant and draw a differential flamegraph against it.
     #[arg(long, value_name = "V")]
     diff_with: Option<String>,
-    /// Image size WxH (default: the scene's resolution).
-    #[arg(long, value_name = "WxH", value_parser = parse_size)]
-    size: Option<(u32, u32)>,
-    /// SPD procedure: rays through pixel corners.
-    #[arg(long)]
-    spd: bool,
-    /// Worker threads (default: one per core).
-    #[arg(long, value_name = "N", value_parser = clap::value_parser!(u16).range(1..=1024))]
-    threads: Option<u16>,
     #[command(flatten)]
-    limits: LimitArgs,
+    render: RenderFlags,
     /// Sampling rate asked of the kernel, Hz (it may deliver fewer; times use the
     /// measured CPU time per sample).
     #[arg(long, default_value_t = 1000, value_name = "HZ",
@@ -56,67 +47,31 @@ pub fn run(args: &ProfileArgs) -> Result<()> {
         .as_deref()
         .map(VariantSet::parse)
         .transpose()?;
-    let scene = args.limits.load(&args.scene)?;
-    let (width, height) = args.size.unwrap_or((scene.view.width, scene.view.height));
-    let sampling = if args.spd {
-        Sampling::SpdCorners
-    } else {
-        Sampling::PixelCenters
-    };
+    let scene = args.render.limits.load(&args.scene)?;
+    let options = args.render.options(&scene);
     let dir = match &args.output {
         Some(dir) => dir.clone(),
-        None => {
-            let Some(stem) = args.scene.file_stem() else {
-                bail!(
-                    "cannot name the output directory after {}: pass -o DIR",
-                    args.scene.display()
-                );
-            };
-            PathBuf::from(format!("profile-{}", stem.to_string_lossy()))
-        }
+        None => named_after(&args.scene, "profile-", "", "-o DIR")?,
     };
     std::fs::create_dir_all(&dir)
         .with_context(|| format!("cannot create directory {}", dir.display()))?;
-    let pool = thread_pool(args.threads)?;
+    let pool = thread_pool(args.render.threads)?;
     let name = args.scene.display().to_string();
     let job = ProfileJob {
         scene: &scene,
-        options: RenderOptions {
-            limits: args.limits.limits(),
-            ..RenderOptions::new(width, height, sampling, ShadingMode::Color)
-        },
+        options,
         pool: &pool,
         frequency: args.frequency,
         name: &name,
         min_sampled: MIN_SAMPLED,
     };
 
-    let progress = Bars::default();
-    runner::Progress::begin(&progress, "profile", 0);
-    let unprofiled = if args.measure_overhead {
-        runner::Progress::message(&progress, &format!("timing {set} without the profiler"));
-        Some(job.unprofiled_seconds(&set)?)
-    } else {
-        None
-    };
-    let profile = job.profile(&set, &progress)?;
-    let diff = match &other {
-        Some(other) => Some(job.profile(other, &progress)?),
-        None => None,
-    };
-    runner::Progress::end(&progress);
-
-    let report = ProfileReport {
-        scene: args.scene.display().to_string(),
-        width,
-        height,
-        threads: pool.current_num_threads(),
-        frequency: args.frequency,
-        unprofiled_seconds: unprofiled,
-        overhead: unprofiled.map(|u| profile.wall_seconds / u.max(1e-9)),
-        profile,
-        diff,
-    };
+    let report = job.report(
+        &set,
+        other.as_ref(),
+        args.measure_overhead,
+        &Bars::default(),
+    )?;
     report.write_files(&dir)?;
     if args.json {
         println!("{}", serde_json::to_string_pretty(&report)?);

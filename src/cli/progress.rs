@@ -10,68 +10,54 @@ pub struct Bars {
 }
 
 impl Bars {
-    fn with(&self, f: impl FnOnce(&ProgressBar)) {
-        if let Ok(guard) = self.bar.lock()
-            && let Some(bar) = guard.as_ref()
-        {
-            f(bar);
-        }
-    }
-}
-
-impl runner::Progress for Bars {
-    fn begin(&self, stage: &str, total: u64) {
-        let bar = if total == 0 {
-            let bar = ProgressBar::new_spinner();
-            bar.set_style(
-                ProgressStyle::with_template("{prefix:>10} {spinner} {msg} ({elapsed})")
-                    .unwrap_or_else(|_| ProgressStyle::default_spinner()),
-            );
-            bar.enable_steady_tick(std::time::Duration::from_millis(120));
-            bar
-        } else {
-            let bar = ProgressBar::new(total);
-            bar.set_style(
-                ProgressStyle::with_template(
-                    "{prefix:>10} [{bar:30}] {pos}/{len} {msg} ({elapsed})",
-                )
-                .unwrap_or_else(|_| ProgressStyle::default_bar())
-                .progress_chars("=> "),
-            );
-            bar
-        };
-        bar.set_prefix(stage.to_string());
+    /// Replaces the current bar (finishing it) with `bar`, or removes it.
+    fn replace(&self, bar: Option<ProgressBar>) {
         if let Ok(mut guard) = self.bar.lock()
-            && let Some(old) = guard.replace(bar)
+            && let Some(old) = std::mem::replace(&mut *guard, bar)
         {
             old.finish_and_clear();
         }
     }
 
+    fn current(&self) -> Option<ProgressBar> {
+        self.bar.lock().ok().and_then(|guard| guard.clone())
+    }
+}
+
+impl runner::Progress for Bars {
+    fn begin(&self, stage: &str, total: u64) {
+        let (bar, template) = if total == 0 {
+            let bar = ProgressBar::new_spinner();
+            bar.enable_steady_tick(std::time::Duration::from_millis(120));
+            (bar, "{prefix:>10} {spinner} {msg} ({elapsed})")
+        } else {
+            let template = "{prefix:>10} [{bar:30}] {pos}/{len} {msg} ({elapsed})";
+            (ProgressBar::new(total), template)
+        };
+        if let Ok(style) = ProgressStyle::with_template(template) {
+            bar.set_style(style.progress_chars("=> "));
+        }
+        bar.set_prefix(stage.to_string());
+        self.replace(Some(bar));
+    }
+
     fn message(&self, text: &str) {
-        self.with(|bar| bar.set_message(text.to_string()));
+        self.current()
+            .inspect(|bar| bar.set_message(text.to_string()));
     }
 
     fn advance(&self, steps: u64) {
-        self.with(|bar| bar.inc(steps));
+        self.current().inspect(|bar| bar.inc(steps));
     }
 
     fn end(&self) {
-        if let Ok(mut guard) = self.bar.lock()
-            && let Some(bar) = guard.take()
-        {
-            bar.finish_and_clear();
-        }
+        self.replace(None);
     }
 
     fn note(&self, text: &str) {
-        let mut printed = false;
-        self.with(|bar| {
-            bar.suspend(|| eprintln!("{text}"));
-            printed = true;
-        });
-        if !printed {
-            eprintln!("{text}");
+        match self.current() {
+            Some(bar) => bar.suspend(|| eprintln!("{text}")),
+            None => eprintln!("{text}"),
         }
     }
 }

@@ -1,7 +1,7 @@
 //! `rtprof render`: uncounted render to an image file.
 
-use super::scene_args::SceneArgs;
-use anyhow::{Result, bail};
+use super::scene_args::{SceneArgs, named_after};
+use anyhow::Result;
 use std::path::PathBuf;
 use tracer::image_io::{ImageFormat, write_image};
 use tracer::{NoCount, ShadingMode};
@@ -25,15 +25,7 @@ pub struct RenderArgs {
 pub fn run(args: &RenderArgs) -> Result<()> {
     let output = match &args.output {
         Some(path) => path.clone(),
-        None => {
-            let Some(stem) = args.scene.scene.file_stem() else {
-                bail!(
-                    "cannot name the output after {}: pass -o IMG",
-                    args.scene.scene.display()
-                );
-            };
-            PathBuf::from(stem).with_extension("png")
-        }
+        None => named_after(&args.scene.scene, "", ".png", "-o IMG")?,
     };
     // Refuse a bad output name before spending the render time.
     ImageFormat::from_path(&output)?;

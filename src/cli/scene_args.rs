@@ -3,8 +3,8 @@
 
 use super::progress::Bars;
 use anyhow::Result;
-use runner::render_job::{RenderRequest, SceneRender, render_scene};
-use std::path::PathBuf;
+use runner::render_job::{RenderRequest, RenderSettings, SceneRender, render_scene};
+use std::path::{Path, PathBuf};
 use tracer::{Counter, Limits, Scene, ShadingMode, VariantSet, load_nff_with_limits};
 
 #[derive(clap::Args, Debug)]
@@ -14,6 +14,13 @@ pub struct SceneArgs {
     /// Optimization variants, combined: e.g. bvh,fast-sqrt (`rtprof variants` lists them).
     #[arg(long, default_value = "baseline", value_name = "V")]
     pub variant: String,
+    #[command(flatten)]
+    pub render: RenderFlags,
+}
+
+/// How to render: the flags of every command that renders a scene.
+#[derive(clap::Args, Debug)]
+pub struct RenderFlags {
     /// Image size WxH (default: the scene's resolution).
     #[arg(long, value_name = "WxH", value_parser = parse_size)]
     pub size: Option<(u32, u32)>,
@@ -29,6 +36,23 @@ pub struct SceneArgs {
     pub depth: Option<u32>,
     #[command(flatten)]
     pub limits: LimitArgs,
+}
+
+impl RenderFlags {
+    /// The render options for `scene`, full colour.
+    pub fn options(&self, scene: &Scene) -> tracer::RenderOptions {
+        self.settings().options(scene, ShadingMode::Color)
+    }
+
+    pub fn settings(&self) -> RenderSettings {
+        RenderSettings {
+            size: self.size,
+            spd: self.spd,
+            threads: self.threads,
+            depth: self.depth,
+            limits: self.limits.limits(),
+        }
+    }
 }
 
 /// The --help heading of the limit flags.
@@ -104,13 +128,24 @@ impl SceneArgs {
         let request = RenderRequest {
             path: &self.scene,
             variants: VariantSet::parse(&self.variant)?,
-            size: self.size,
-            spd: self.spd,
-            threads: self.threads,
-            depth: self.depth,
-            limits: self.limits.limits(),
+            settings: self.render.settings(),
             mode,
         };
         Ok(render_scene(&request, &Bars::default())?)
+    }
+}
+
+/// The default output name for a command on `input`: `<prefix><file stem><suffix>` in
+/// the current directory; `flag` is the option that names it instead.
+pub fn named_after(input: &Path, prefix: &str, suffix: &str, flag: &str) -> Result<PathBuf> {
+    match input.file_stem() {
+        Some(stem) => Ok(PathBuf::from(format!(
+            "{prefix}{}{suffix}",
+            stem.to_string_lossy()
+        ))),
+        None => anyhow::bail!(
+            "cannot name the output after {}: pass {flag}",
+            input.display()
+        ),
     }
 }

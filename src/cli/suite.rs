@@ -5,8 +5,8 @@
 use super::progress::Bars;
 use anyhow::{Context, Result};
 use runner::RunError;
-use runner::definition::{DEFAULT_SUITE, DEFAULT_SUITE_FILE, SuiteDef};
-use runner::staging::{Staging, save};
+use runner::definition::SuiteDef;
+use runner::staging::{Staging, discarded_message, save};
 use runner::suite::{RunContext, Suite};
 use std::path::{Path, PathBuf};
 use std::time::Instant;
@@ -48,34 +48,16 @@ pub(super) fn parse_threshold(text: &str) -> Result<f64, String> {
 
 /// The error for a suite stopped by Ctrl-C after `done` of `total` scenes.
 fn interrupted(output: &Path, done: usize, total: usize) -> anyhow::Error {
-    let previous = if output.join("report.html").is_file() {
-        format!(
-            "the previous results and reports in {} are intact",
-            output.display()
-        )
-    } else {
-        format!("nothing was written to {}", output.display())
-    };
-    super::Interrupted(format!(
-        "interrupted after {done} of {total} scenes; this run's outputs were discarded and {previous}"
-    ))
-    .into()
+    super::Outcome::interrupted(discarded_message(output, done, total)).into()
 }
 
 pub fn run(args: &SuiteArgs) -> Result<()> {
     let started = Instant::now();
-    let (text, file) = match &args.suite {
-        Some(path) => (
-            std::fs::read_to_string(path)
-                .with_context(|| format!("cannot read suite {}", path.display()))?,
-            path.display().to_string(),
-        ),
-        None => (DEFAULT_SUITE.to_string(), DEFAULT_SUITE_FILE.to_string()),
-    };
-    let def = SuiteDef::parse(&text, &file)?;
-    // Read the old results first: a bad --baseline should fail before the work.
+    let def = SuiteDef::load(args.suite.as_deref())?;
+    // Check the inputs first: a bad --baseline or --criterion should fail before the work.
+    args.benchmarks.check()?;
     let old = match &args.baseline {
-        Some(path) => Some(super::report::load_results(path)?),
+        Some(path) => Some(results::Results::read_file(path)?),
         None => None,
     };
     let base_dir = args
@@ -103,41 +85,21 @@ pub fn run(args: &SuiteArgs) -> Result<()> {
         Err(e) => return Err(e.into()),
     };
     args.benchmarks.add_to(&mut results, true)?;
-    let json = serde_json::to_string_pretty(&results)?;
-    save(staging.dir(), "results.json", json.as_bytes())?;
-    super::report::write_reports(
-        &[reports::Run {
-            label: results.machine.hostname.clone(),
-            results: results.clone(),
-            base_dir: staging.dir().to_path_buf(),
-        }],
-        staging.dir(),
-    )?;
+    runner::report_files::write_run(&results, staging.dir())?;
     let total = suite.scenes.len();
     if super::interrupt::requested() {
         return Err(interrupted(&args.output, total, total));
     }
     staging.publish(&args.output)?;
-    let failures = results.failures.len();
-    eprintln!(
-        "suite '{}': {} scenes × {} variants in {:.1} s; {failures} failure{}; wrote {}/{{results.json, report.html, report.pdf}}",
-        suite.def.name,
-        results.scenes.len(),
-        suite.def.variants.len(),
-        started.elapsed().as_secs_f64(),
-        if failures == 1 { "" } else { "s" },
-        args.output.display()
-    );
-    for f in &results.failures {
-        eprintln!("  failed: {}: {}", f.place(), f.message);
-    }
+    let seconds = started.elapsed().as_secs_f64();
+    eprint!("{}", suite.summary(&results, seconds, &args.output));
     if let Some(old) = old {
         let gate = results::gate::compare_runs(&old, &results, args.threshold / 100.0);
         let text = gate.to_text();
         print!("{text}");
         save(&args.output, "gate.txt", text.as_bytes())?;
         if gate.failed() {
-            return Err(super::CheckFailed("the regression gate failed".into()).into());
+            return Err(super::Outcome::check_failed("the regression gate failed").into());
         }
     }
     Ok(())

@@ -193,6 +193,17 @@ impl Counts {
             .collect()
     }
 
+    /// The counts as a two-column text table (`rtprof count`): name, value.
+    pub fn to_text(&self) -> String {
+        let rows = self.rows();
+        let width = rows.iter().map(|(name, _)| name.len()).max().unwrap_or(4);
+        let mut out = format!("{:<width$}  {:>16}\n", "name", "calls");
+        for (name, value) in rows {
+            out += &format!("{name:<width$}  {value:>16}\n");
+        }
+        out
+    }
+
     /// Exact calls of the profiled functions the counters determine, by the name the
     /// profile prints (table order, then [`DERIVED_CALLS`]). Functions not listed have
     /// no exact count. Every structure's query functions are listed; a profile keeps

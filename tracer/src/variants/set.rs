@@ -183,6 +183,8 @@ pub enum VariantError {
     Conflict(&'static str, &'static str, &'static str),
     #[error("'baseline' means no optimization and cannot be combined with '{0}'")]
     BaselineCombined(&'static str),
+    #[error("the list of variants is empty: name at least one (e.g. baseline,bvh)")]
+    EmptyList,
 }
 
 /// A combination of variants, parsed from a list separated by `,` or `+`.
@@ -196,6 +198,21 @@ impl Default for VariantSet {
 }
 
 impl VariantSet {
+    /// Parses a list of sets separated by `,`, each combining variants with `+` (e.g.
+    /// `baseline,bvh,bvh+fast-sqrt`); the list names at least one set.
+    pub fn parse_list(list: &str) -> Result<Vec<Self>, VariantError> {
+        let sets = list
+            .split(',')
+            .map(str::trim)
+            .filter(|s| !s.is_empty())
+            .map(Self::parse)
+            .collect::<Result<Vec<_>, _>>()?;
+        if sets.is_empty() {
+            return Err(VariantError::EmptyList);
+        }
+        Ok(sets)
+    }
+
     /// Parses `"a,b"` or `"a+b"`; names are case-insensitive, duplicates collapse, an
     /// empty list is `baseline`. Variants that make the same choice are refused.
     pub fn parse(list: &str) -> Result<Self, VariantError> {
@@ -275,6 +292,18 @@ impl fmt::Display for VariantSet {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn a_list_splits_on_commas_and_combines_on_plus() {
+        let sets = VariantSet::parse_list(" baseline, bvh+fast-sqrt ,,bvh").unwrap();
+        let names: Vec<String> = sets.iter().map(ToString::to_string).collect();
+        assert_eq!(names, ["baseline", "bvh+fast-sqrt", "bvh"]);
+        assert!(matches!(
+            VariantSet::parse_list(" , "),
+            Err(VariantError::EmptyList)
+        ));
+        assert!(VariantSet::parse_list("bvh,nonsense").is_err());
+    }
 
     #[test]
     fn parses_lists_and_rejects_unknown_names() {

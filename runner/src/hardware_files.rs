@@ -1,0 +1,50 @@
+//! The files `rtprof hw` writes for a scene: the image the hardware would show (its
+//! emulator) and the scene memory as an Altera Memory Initialization File.
+
+use std::path::Path;
+
+use hwmodel::hw_scene::HwScene;
+
+use crate::error::RunError;
+use crate::scenes::load_file_or_builtin;
+
+/// A scene (file or built-in name) and the same scene as the hardware stores it.
+fn hardware_scene(path: &Path) -> Result<(tracer::Scene, HwScene), RunError> {
+    let scene = load_file_or_builtin(path)?;
+    let hw = HwScene::from_scene(&scene)
+        .map_err(|e| RunError::Input(format!("{}: {e}", path.display())))?;
+    Ok((scene, hw))
+}
+
+/// Renders `scene` with the emulator at `size` (default: the scene's resolution) into
+/// `output` (.png or .ppm); returns what was written, for the user.
+pub fn write_emulator_image(
+    scene: &Path,
+    size: Option<(u32, u32)>,
+    output: &Path,
+) -> Result<String, RunError> {
+    // Refuse a bad output name before the work.
+    tracer::image_io::ImageFormat::from_path(output).map_err(|e| RunError::Input(e.to_string()))?;
+    let (scene, hw) = hardware_scene(scene)?;
+    let (width, height) = size.unwrap_or((scene.view.width, scene.view.height));
+    let image = hwmodel::emulator::render(&hw, width, height);
+    hwmodel::emulator::write_image(&image, output).map_err(|e| RunError::Input(e.to_string()))?;
+    Ok(format!(
+        "wrote {} ({width}x{height}, {} primitives, the hardware's diffuse gray)",
+        output.display(),
+        hw.primitive_count()
+    ))
+}
+
+/// Writes the scene memory of `scene` to `output`; returns what was written.
+pub fn write_mif(scene: &Path, output: &Path) -> Result<String, RunError> {
+    let (_, hw) = hardware_scene(scene)?;
+    tracer::image_io::write_atomically(output, hwmodel::mif::to_mif(&hw).as_bytes())
+        .map_err(|e| RunError::io("write", output, &e))?;
+    Ok(format!(
+        "wrote {} ({} primitives, {} words of 32 bits)",
+        output.display(),
+        hw.primitive_count(),
+        hw.primitive_count() * 9
+    ))
+}

@@ -1,0 +1,33 @@
+//! `rtprof hw table` as text: the model's tables 7 and 8 beside the thesis's, in the
+//! report's table layout (one table model, printed in columns).
+
+use hwmodel::library::{DeviceSpec, Library};
+use hwmodel::table::{Row, Tables};
+use reports::sections::hardware::hw_table;
+use results::HwRow;
+
+/// Tables 7 and 8 with a heading that names the operator library, device and design.
+pub fn tables_text(tables: &Tables, lib: &Library, device: &DeviceSpec) -> String {
+    let unvalidated = |validated: bool| if validated { "" } else { " (unvalidated)" };
+    let mut out = format!(
+        "Operator library: {}{}; device {}{}; design: {}\n\
+         cells: model / thesis (error); the thesis's figures are the reference, never inputs\n\n",
+        lib.family,
+        unvalidated(lib.validated),
+        device.name,
+        unvalidated(device.validated),
+        tables.design,
+    );
+    out += "Table 7: operations (IP cores from the library; composites built from them)\n";
+    out += &rows_text(&tables.ops);
+    out += "\nTable 8: blocks (dataflow graphs, ASAP schedule, delay-balancing)\n";
+    out += &rows_text(&tables.blocks);
+    out += "\nThe standalone dot-product row of table 7 is a four-lane module (4 multipliers,\n\
+            3 adders: 28 elements); the blocks use three lanes. See docs/hardware-model.md.\n";
+    out
+}
+
+fn rows_text(rows: &[Row]) -> String {
+    let rows: Vec<HwRow> = rows.iter().map(HwRow::from_model_row).collect();
+    reports::text::table(&hw_table(&rows))
+}

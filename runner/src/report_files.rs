@@ -1,0 +1,69 @@
+//! The report files of a run: results files read back as labelled [`Run`]s, and
+//! report.html and report.pdf written from them (each atomically), with results.json
+//! for a new run.
+
+use std::path::{Path, PathBuf};
+
+use reports::Run;
+use results::Results;
+use tracer::image_io::write_atomically;
+
+use crate::error::RunError;
+
+/// Reads results files (any supported schema version, validated) as runs labelled by
+/// hostname, and by file as well when two share a hostname. Relative paths in each
+/// start at its file's directory.
+pub fn load_runs(paths: &[PathBuf]) -> Result<Vec<Run>, RunError> {
+    let mut runs: Vec<Run> = Vec::new();
+    for path in paths {
+        let results = Results::read_file(path).map_err(|e| RunError::Input(e.to_string()))?;
+        let mut label = results.machine.hostname.clone();
+        if runs.iter().any(|r| r.label == label) {
+            label = format!("{label} ({})", path.display());
+        }
+        let base_dir = path.parent().map(Path::to_path_buf).unwrap_or_default();
+        runs.push(Run {
+            label,
+            results,
+            base_dir,
+        });
+    }
+    Ok(runs)
+}
+
+/// Writes report.html and report.pdf for `runs` into `dir`.
+pub fn write_reports(runs: &[Run], dir: &Path) -> Result<(), RunError> {
+    let failed = |what: &str, message: String| RunError::Report(format!("{what}: {message}"));
+    // The two documents are independent: typeset the PDF while the HTML is built.
+    let (html, pdf) = std::thread::scope(|scope| {
+        let pdf = scope.spawn(|| reports::pdf::render_pdf(runs));
+        (reports::html::render_html(runs), pdf.join())
+    });
+    let html = html.map_err(|e| failed("cannot build report.html", e.to_string()))?;
+    let html_path = dir.join("report.html");
+    write_atomically(&html_path, html.as_bytes())
+        .map_err(|e| RunError::io("write", &html_path, &e))?;
+    let pdf = pdf
+        .map_err(|_| {
+            failed(
+                "typesetting report.pdf failed",
+                "report.html is written".into(),
+            )
+        })?
+        .map_err(|e| failed("cannot build report.pdf", e.to_string()))?;
+    let pdf_path = dir.join("report.pdf");
+    write_atomically(&pdf_path, &pdf).map_err(|e| RunError::io("write", &pdf_path, &e))
+}
+
+/// Writes one run's results.json, report.html and report.pdf into `dir`.
+pub fn write_run(results: &Results, dir: &Path) -> Result<(), RunError> {
+    let json = serde_json::to_string_pretty(results)
+        .map_err(|e| RunError::Report(format!("cannot serialize results.json: {e}")))?;
+    crate::staging::save(dir, "results.json", json.as_bytes())?;
+    let run = Run {
+        label: results.machine.hostname.clone(),
+        results: results.clone(),
+        base_dir: dir.to_path_buf(),
+    };
+    write_reports(&[run], dir)
+}
