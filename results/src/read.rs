@@ -4,7 +4,7 @@
 use std::io::Read;
 use std::path::{Path, PathBuf};
 
-use crate::schema::{Results, SCHEMA};
+use crate::schema::{Results, SCHEMA, SCHEMA_V2};
 use crate::v1;
 use crate::v1::SCHEMA as V1;
 use crate::validate::limits::MAX_FILE_BYTES;
@@ -29,7 +29,7 @@ pub enum ResultsError {
         message: String,
     },
     #[error(
-        "results schema '{0}' is neither {SCHEMA} nor {V1}: rebuild it with this rtprof version"
+        "results schema '{0}' is none of {SCHEMA}, {SCHEMA_V2} and {V1}: rebuild it with this rtprof version"
     )]
     Schema(String),
     #[error("{0} bytes or more: larger than a results file may be ({MAX_FILE_BYTES} bytes)")]
@@ -93,6 +93,11 @@ impl Results {
         let head: SchemaOnly = serde_json::from_str(text)?;
         let results = match head.schema.as_deref() {
             Some(SCHEMA) => serde_json::from_str(text)?,
+            Some(SCHEMA_V2) => {
+                let mut results: Results = serde_json::from_str(text)?;
+                results.schema = SCHEMA.to_string();
+                results
+            }
             Some(v1::SCHEMA) => serde_json::from_str::<v1::Results>(text)?.upgrade()?,
             Some(other) => return Err(ResultsError::Schema(truncated(other))),
             None => return Err(ResultsError::Schema("(none)".to_string())),

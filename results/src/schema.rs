@@ -1,11 +1,13 @@
-//! The results file, `results.json`, schema `rtprof.results/2`.
+//! The results file, `results.json`, schema `rtprof.results/3`.
 //!
 //! Everything a report shows is here, so a report can be rebuilt from the file alone
 //! (`rtprof report results.json`) and two machines' files can be set side by side.
 //! Images are PNG files next to `results.json`, referenced by relative path.
 //! Counts are flattened to `"ops.dot": n` pairs so the regression gate can compare any
 //! two files without knowing the counter layout. Every enumeration has one spelling
-//! (snake case); `/1` files are read through [`crate::v1`].
+//! (snake case); `/2` files read as they are (the fields `/3` added have defaults: a
+//! `/2` profile's calls are totals over its sampled renders, `renders` is unknown) and
+//! `/1` files are read through [`crate::v1`].
 
 use std::collections::BTreeMap;
 
@@ -18,7 +20,9 @@ use crate::timing_policy::TimingPolicy;
 use crate::variant_name::VariantName;
 
 /// The schema identifier written in every file.
-pub const SCHEMA: &str = "rtprof.results/2";
+pub const SCHEMA: &str = "rtprof.results/3";
+/// The previous schema, read with the same types (its profiles lack what `/3` added).
+pub const SCHEMA_V2: &str = "rtprof.results/2";
 
 /// A whole suite run.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
@@ -197,27 +201,75 @@ pub struct Quality {
     pub max_abs_diff: u32,
 }
 
-/// One function of a flat profile.
+/// One function (or phase) of a flat profile.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct FlatRow {
     pub name: String,
+    /// Share of the samples with this function running (self), percent.
     pub percent: f64,
     pub self_seconds: f64,
+    /// Self plus everything it calls.
     pub total_seconds: f64,
-    /// Exact calls from the counters, when counted.
+    /// Exact calls from the counters per render, when counted (`/2`: over all renders).
     pub calls: Option<u64>,
+    /// Share of the samples with this function anywhere on the stack, percent.
+    #[serde(default)]
+    pub inclusive_percent: Option<f64>,
+    /// 95 % intervals of the self and inclusive shares, percent (binomial, Wilson).
+    #[serde(default)]
+    pub self_interval: Option<[f64; 2]>,
+    #[serde(default)]
+    pub inclusive_interval: Option<[f64; 2]>,
+    /// Too few samples to tell the share from zero.
+    #[serde(default)]
+    pub noise: bool,
 }
 
-/// One row of the Amdahl table.
+/// One row of the Amdahl table: the whole run's speed-up if one function became
+/// faster, alone (self time) and with everything it calls (inclusive time).
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct AmdahlRow {
     pub name: String,
-    /// Fraction of the time in this function.
+    /// Fraction of the time in this function itself.
     pub fraction: f64,
     /// Whole-program speed-up if it became 2x, 10x and infinitely faster.
     pub speedup_2x: f64,
     pub speedup_10x: f64,
     pub speedup_limit: f64,
+    /// The same for the function with everything it calls (`/2` files: none).
+    #[serde(default)]
+    pub inclusive: Option<AmdahlFigures>,
+}
+
+/// A fraction of the time and the speed-ups if it ran 2x, 10x, infinitely faster.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+pub struct AmdahlFigures {
+    pub fraction: f64,
+    pub speedup_2x: f64,
+    pub speedup_10x: f64,
+    pub speedup_limit: f64,
+}
+
+/// What a profile's function identities are.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum ProfileView {
+    /// The tracer's own record of the phase each thread was in (camera ray, traversal,
+    /// sphere test, …), read at each sample: independent of inlining.
+    Phases,
+    /// Native symbols from the binary's debug info: what the compiler made of the code.
+    #[default]
+    Native,
+}
+
+/// One view of a profile: its rows and files.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct ProfileViewFiles {
+    pub view: ProfileView,
+    pub flat: Vec<FlatRow>,
+    pub flat_text: String,
+    pub callgraph_text: String,
+    pub flame_svg: String,
 }
 
 /// A sampled profile of one scene and variant.
@@ -226,6 +278,19 @@ pub struct Profile {
     pub variant: VariantName,
     pub samples: u64,
     pub seconds_per_sample: f64,
+    /// Renders sampled (calls are per render); `None` in `/2` files, whose calls are
+    /// totals over all sampled renders.
+    #[serde(default)]
+    pub renders: Option<u64>,
+    /// Samples the asked rate would have given in the sampled CPU time.
+    #[serde(default)]
+    pub samples_asked: Option<u64>,
+    /// CPU seconds sampled (all threads).
+    #[serde(default)]
+    pub cpu_seconds: Option<f64>,
+    /// The view of `flat`, the texts and the flamegraph (`/2` files: native).
+    #[serde(default)]
+    pub view: ProfileView,
     pub flat: Vec<FlatRow>,
     /// gprof-layout texts, relative to results.json.
     pub flat_text: String,
@@ -233,6 +298,12 @@ pub struct Profile {
     /// Flamegraph SVG, relative to results.json.
     pub flame_svg: String,
     pub amdahl: Vec<AmdahlRow>,
+    /// The other view (native symbols beside the phases).
+    #[serde(default)]
+    pub second_view: Option<ProfileViewFiles>,
+    /// Exports for other tools (pprof protobuf, speedscope JSON), relative paths.
+    #[serde(default)]
+    pub exports: Vec<String>,
 }
 
 /// The profile section.
@@ -243,8 +314,11 @@ pub struct ProfileResult {
     pub height: u32,
     pub baseline: Profile,
     pub best: Option<Profile>,
-    /// Differential flamegraph baseline → best, relative to results.json.
+    /// Differential flamegraph baseline → best (what grew), relative to results.json.
     pub diff_flame_svg: Option<String>,
+    /// The same the other way (what shrank or vanished), on the baseline's frames.
+    #[serde(default)]
+    pub diff_shrunk_flame_svg: Option<String>,
 }
 
 /// The part of a suite run that failed.

@@ -284,6 +284,13 @@ fn profile(p: Profile, path: &str) -> Result<v2::Profile, ResultsError> {
         callgraph_text: p.callgraph_text,
         flame_svg: p.flame_svg,
         amdahl: p.amdahl,
+        // Not recorded before /3: calls are totals over the sampled renders.
+        renders: None,
+        samples_asked: None,
+        cpu_seconds: None,
+        view: v2::ProfileView::Native,
+        second_view: None,
+        exports: Vec::new(),
     })
 }
 
@@ -408,6 +415,7 @@ impl Results {
                 width: p.width,
                 height: p.height,
                 diff_flame_svg: p.diff_flame_svg,
+                diff_shrunk_flame_svg: None,
             }),
             None => None,
         };

@@ -13,8 +13,8 @@ use std::path::{Component, Path};
 use crate::hardware::{HardwareResult, HwErrors, HwFigures, HwRow, SceneHardware};
 use crate::read::ResultsError;
 use crate::schema::{
-    Band, Estimate, Failure, Profile, ProfileResult, Quality, Results, SceneResult, SuiteInfo,
-    VariantResult,
+    AmdahlFigures, Band, Estimate, Failure, FlatRow, Profile, ProfileResult, Quality, Results,
+    SceneResult, SuiteInfo, VariantResult,
 };
 
 /// The ranges and sizes a results file is held to.
@@ -439,25 +439,79 @@ fn check_scene(c: &mut Check, s: &SceneResult) -> Checked {
     Ok(())
 }
 
-fn check_profile(c: &mut Check, p: &Profile) -> Checked {
-    c.count("samples", p.samples)?;
-    c.seconds("seconds_per_sample", p.seconds_per_sample)?;
-    c.each("flat", &p.flat, MAX_ROWS, |c, r| {
+fn check_flat_rows(c: &mut Check, rows: &[FlatRow]) -> Checked {
+    c.each("flat", rows, MAX_ROWS, |c, r| {
         c.text("name", &r.name, MAX_NAME)?;
         c.field("percent", |c| c.number(r.percent, " %", 0.0, 100.0))?;
         c.seconds("self_seconds", r.self_seconds)?;
         c.seconds("total_seconds", r.total_seconds)?;
+        if let Some(p) = r.inclusive_percent {
+            c.field("inclusive_percent", |c| c.number(p, " %", 0.0, 100.0))?;
+        }
+        for (name, interval) in [
+            ("self_interval", r.self_interval),
+            ("inclusive_interval", r.inclusive_interval),
+        ] {
+            if let Some([lo, hi]) = interval {
+                c.field(name, |c| {
+                    c.number(lo, " %", 0.0, 100.0)?;
+                    c.number(hi, " %", lo, 100.0)
+                })?;
+            }
+        }
         r.calls.map_or(Ok(()), |n| c.count("calls", n))
-    })?;
+    })
+}
+
+fn check_amdahl_figures(c: &mut Check, f: &AmdahlFigures) -> Checked {
+    c.field("fraction", |c| c.number(f.fraction, "", 0.0, 1.0))?;
+    c.ratio("speedup_2x", f.speedup_2x)?;
+    c.ratio("speedup_10x", f.speedup_10x)?;
+    c.ratio("speedup_limit", f.speedup_limit)
+}
+
+fn check_profile(c: &mut Check, p: &Profile) -> Checked {
+    c.count("samples", p.samples)?;
+    c.seconds("seconds_per_sample", p.seconds_per_sample)?;
+    if let Some(n) = p.renders {
+        c.count("renders", n)?;
+    }
+    if let Some(n) = p.samples_asked {
+        c.count("samples_asked", n)?;
+    }
+    if let Some(s) = p.cpu_seconds {
+        c.seconds("cpu_seconds", s)?;
+    }
+    check_flat_rows(c, &p.flat)?;
     c.file("flat_text", &p.flat_text)?;
     c.file("callgraph_text", &p.callgraph_text)?;
     c.file("flame_svg", &p.flame_svg)?;
     c.each("amdahl", &p.amdahl, MAX_ROWS, |c, r| {
         c.text("name", &r.name, MAX_NAME)?;
-        c.field("fraction", |c| c.number(r.fraction, "", 0.0, 1.0))?;
-        c.ratio("speedup_2x", r.speedup_2x)?;
-        c.ratio("speedup_10x", r.speedup_10x)?;
-        c.ratio("speedup_limit", r.speedup_limit)
+        check_amdahl_figures(
+            c,
+            &AmdahlFigures {
+                fraction: r.fraction,
+                speedup_2x: r.speedup_2x,
+                speedup_10x: r.speedup_10x,
+                speedup_limit: r.speedup_limit,
+            },
+        )?;
+        match &r.inclusive {
+            Some(f) => c.field("inclusive", |c| check_amdahl_figures(c, f)),
+            None => Ok(()),
+        }
+    })?;
+    if let Some(v) = &p.second_view {
+        c.field("second_view", |c| {
+            check_flat_rows(c, &v.flat)?;
+            c.file("flat_text", &v.flat_text)?;
+            c.file("callgraph_text", &v.callgraph_text)?;
+            c.file("flame_svg", &v.flame_svg)
+        })?;
+    }
+    c.each("exports", &p.exports, MAX_ROWS, |c, path| {
+        c.file("path", path)
     })
 }
 
@@ -468,7 +522,8 @@ fn check_profile_result(c: &mut Check, p: &ProfileResult) -> Checked {
     if let Some(best) = &p.best {
         c.field("best", |c| check_profile(c, best))?;
     }
-    c.optional_file("diff_flame_svg", p.diff_flame_svg.as_deref())
+    c.optional_file("diff_flame_svg", p.diff_flame_svg.as_deref())?;
+    c.optional_file("diff_shrunk_flame_svg", p.diff_shrunk_flame_svg.as_deref())
 }
 
 fn check_figures(c: &mut Check, name: &str, f: &HwFigures) -> Checked {

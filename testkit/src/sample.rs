@@ -14,10 +14,10 @@
 use std::collections::BTreeMap;
 
 use results::{
-    AmdahlRow, Band, Build, CriterionEstimate, DeviceUse, Estimate, FailedPart, Failure, FlatRow,
-    HardwareResult, HwRow, InstructionCount, Machine, Profile, ProfileResult, Quality, Results,
-    SCHEMA, SceneFamily, SceneHardware, SceneResult, SuiteInfo, TimeCovers, TimingPolicy,
-    VariantName, VariantResult,
+    AmdahlFigures, AmdahlRow, Band, Build, CriterionEstimate, DeviceUse, Estimate, FailedPart,
+    Failure, FlatRow, HardwareResult, HwRow, InstructionCount, Machine, Profile, ProfileResult,
+    ProfileView, Quality, Results, SCHEMA, SceneFamily, SceneHardware, SceneResult, SuiteInfo,
+    TimeCovers, TimingPolicy, VariantName, VariantResult,
 };
 
 /// The variants of the sample, baseline first.
@@ -475,10 +475,9 @@ const BVH_FLAT: [(&str, f64, f64, Option<&str>); 9] = [
     ),
 ];
 
-fn amdahl_row(name: &str, fraction: f64) -> AmdahlRow {
+fn amdahl_figures(fraction: f64) -> AmdahlFigures {
     let speedup = |factor: f64| 1.0 / ((1.0 - fraction) + fraction / factor);
-    AmdahlRow {
-        name: name.to_string(),
+    AmdahlFigures {
         fraction,
         speedup_2x: speedup(2.0),
         speedup_10x: speedup(10.0),
@@ -487,6 +486,18 @@ fn amdahl_row(name: &str, fraction: f64) -> AmdahlRow {
         } else {
             f64::INFINITY
         },
+    }
+}
+
+fn amdahl_row(name: &str, fraction: f64, inclusive: f64) -> AmdahlRow {
+    let own = amdahl_figures(fraction);
+    AmdahlRow {
+        name: name.to_string(),
+        fraction,
+        speedup_2x: own.speedup_2x,
+        speedup_10x: own.speedup_10x,
+        speedup_limit: own.speedup_limit,
+        inclusive: Some(amdahl_figures(inclusive)),
     }
 }
 
@@ -515,12 +526,19 @@ fn sample_profile(
             self_seconds: total * percent / 100.0,
             total_seconds: total * inclusive / 100.0,
             calls: key.and_then(|k| counts.get(k).copied()),
+            inclusive_percent: Some(*inclusive),
+            self_interval: None,
+            inclusive_interval: None,
+            noise: false,
         })
         .collect();
     let amdahl = flat
         .iter()
         .take(6)
-        .map(|r| amdahl_row(&r.name, r.percent / 100.0))
+        .map(|r| {
+            let inclusive = r.inclusive_percent.unwrap_or(r.percent);
+            amdahl_row(&r.name, r.percent / 100.0, inclusive / 100.0)
+        })
         .collect();
     let stem = format!("profile/{}-{variant}", scene.name);
     Profile {
@@ -532,6 +550,12 @@ fn sample_profile(
         callgraph_text: format!("{stem}-callgraph.txt"),
         flame_svg: format!("{stem}-flame.svg"),
         amdahl,
+        renders: Some(1),
+        samples_asked: Some((total / seconds_per_sample).round() as u64),
+        cpu_seconds: Some(total),
+        view: ProfileView::Native,
+        second_view: None,
+        exports: Vec::new(),
     }
 }
 
@@ -593,6 +617,7 @@ pub fn sample_results() -> Results {
             baseline: sample_profile(rings, "baseline", &BASELINE_FLAT),
             best: Some(sample_profile(rings, "bvh", &BVH_FLAT)),
             diff_flame_svg: Some(format!("profile/{}-diff-baseline-bvh.svg", rings.name)),
+            diff_shrunk_flame_svg: None,
         });
     let ns = |median: f64| Estimate {
         median,

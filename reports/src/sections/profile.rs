@@ -6,7 +6,7 @@ use crate::document::{
     Block, Builder, Cell, Column, Flamegraph, Inline, Preformatted, Section, Table, Tone,
 };
 use crate::format;
-use crate::results::{Profile, ProfileResult};
+use crate::results::{FlatRow, Profile, ProfileResult, ProfileView};
 
 /// Lines of a call graph a printed page shows before leaving the rest to the file.
 const CALLGRAPH_PRINT_LINES: u32 = 160;
@@ -40,22 +40,18 @@ pub fn profile(b: &mut Builder) -> Section {
     for profile in profiles(p) {
         s.blocks
             .push(Block::heading(format!("Flat profile: {}", profile.variant)));
-        s.blocks.push(Block::text(format!(
-            "{} samples at {} each ({} sampled). Calls are exact, from the counters; blank where the function is not counted.",
-            format::count(profile.samples),
-            format::seconds(profile.seconds_per_sample),
-            format::seconds(profile.samples as f64 * profile.seconds_per_sample),
-        )));
+        s.blocks.push(Block::text(sampling_text(profile)));
         if profile.flat.is_empty() {
             s.blocks.push(Block::empty(
                 "The flat profile has no rows (no samples landed in the tracer).",
             ));
         } else {
-            s.blocks
-                .push(Block::Table(flat_table(profile).caption(format!(
+            s.blocks.push(Block::Table(
+                flat_table(&profile.flat, profile.renders).caption(format!(
                     "Table 6 (thesis): flat profile of {}, {}",
                     p.scene, profile.variant
-                ))));
+                )),
+            ));
         }
         s.blocks.push(match b.text_file(&profile.flat_text) {
             Ok(text) => Block::Preformatted(Preformatted {
@@ -95,6 +91,42 @@ pub fn profile(b: &mut Builder) -> Section {
             ),
         });
     }
+    for profile in profiles(p) {
+        let Some(native) = &profile.second_view else {
+            continue;
+        };
+        s.blocks.push(Block::heading(format!(
+            "Native symbols: {} (what the compiler made of the code)",
+            profile.variant
+        )));
+        s.blocks.push(Block::text(
+            "The same samples attributed to the functions the binary's debug info names at each sample. Inlining decides what shows here: a test inlined into its caller is counted as the caller. The phase view above does not depend on it.",
+        ));
+        s.blocks.push(Block::Table(
+            flat_table(&native.flat, profile.renders).caption(format!(
+                "Native flat profile of {}, {}",
+                p.scene, profile.variant
+            )),
+        ));
+        s.blocks.push(match b.text_file(&native.flat_text) {
+            Ok(text) => Block::Preformatted(Preformatted {
+                text,
+                file: Some(native.flat_text.clone()),
+                folded: Some(format!(
+                    "gprof-layout native flat profile ({})",
+                    native.flat_text
+                )),
+                print_lines: None,
+            }),
+            Err(reason) => Block::note(
+                Tone::Bad,
+                format!(
+                    "native flat profile text missing: {} ({reason})",
+                    native.flat_text
+                ),
+            ),
+        });
+    }
     if p.best.is_none() {
         s.blocks.push(Block::empty(
             "Only the baseline was profiled (no best variant).",
@@ -103,34 +135,108 @@ pub fn profile(b: &mut Builder) -> Section {
     s
 }
 
-/// The flat profile, largest self time first, with the cumulative time gprof prints.
-fn flat_table(profile: &Profile) -> Table {
+/// What a profile's function identities are, in a sentence.
+fn view_text(view: ProfileView) -> &'static str {
+    match view {
+        ProfileView::Phases => {
+            "Rows are the tracer's phases (camera ray, traversal, each primitive's test, shading, …), recorded by the tracer as it runs and read at each sample, so an inlined test is still its test."
+        }
+        ProfileView::Native => {
+            "Rows are native symbols from the binary's debug info (what the compiler made of the code: inlined functions may be credited to their callers)."
+        }
+    }
+}
+
+/// How a profile was sampled: samples taken and asked, renders, rate, per sample.
+fn sampling_text(profile: &Profile) -> String {
+    let sampled = profile.samples as f64 * profile.seconds_per_sample;
+    let mut text = format!(
+        "{} samples at {} of CPU each ({} sampled",
+        format::count(profile.samples),
+        format::seconds(profile.seconds_per_sample),
+        format::seconds(sampled),
+    );
+    if let Some(asked) = profile.samples_asked {
+        text += &format!("; {} asked", format::count(asked));
+    }
+    if let Some(cpu) = profile.cpu_seconds.filter(|c| *c > 0.0) {
+        text += &format!(
+            "; effective rate {} samples per CPU second",
+            format::fixed(profile.samples as f64 / cpu, 0)
+        );
+    }
+    text += "). ";
+    text += &match profile.renders {
+        Some(n) => format!(
+            "{} sampled; calls are per render (exact, from the counters; identical for every render), blank where not counted. Shares carry their 95 % sampling interval; rows whose interval reaches 0 are marked as noise. ",
+            format::plural(n as usize, "render"),
+        ),
+        None => "Calls are exact, from the counters, over all sampled renders (a results file from before rtprof.results/3). ".to_string(),
+    };
+    text += view_text(profile.view);
+    text
+}
+
+/// A share with its 95 % interval, or "noise" when the interval reaches 0.
+fn share_cell(percent: f64, interval: Option<[f64; 2]>, noise: bool) -> Cell {
+    let cell = Cell::number(format::percent(percent, 2), percent);
+    match interval {
+        Some([lo, hi]) if noise => {
+            Cell::number(format!("noise (≤ {})", format::percent(hi, 2)), percent)
+                .tone(Tone::Muted)
+                .hover(format!(
+                    "95 % interval {} to {}",
+                    format::percent(lo, 2),
+                    format::percent(hi, 2)
+                ))
+        }
+        Some([lo, hi]) => cell.detail(format!("{}–{}", format::fixed(lo, 2), format::fixed(hi, 2))),
+        None => cell,
+    }
+}
+
+/// The flat profile, largest self time first, with the cumulative time gprof prints,
+/// the inclusive share and the 95 % intervals. `renders` is how many renders the
+/// samples cover (calls are per render); `None`: calls cover them all.
+fn flat_table(flat: &[FlatRow], renders: Option<u64>) -> Table {
     let mut t = Table::new(vec![
-        Column::number("% time"),
+        Column::number("self %"),
+        Column::number("inclusive %"),
         Column::number("cumulative s"),
         Column::number("self s"),
-        Column::number("calls"),
+        Column::number(if renders.is_some() {
+            "calls per render"
+        } else {
+            "calls"
+        }),
         Column::number("self per call"),
         Column::number("total per call"),
         Column::text("name").grow(),
     ])
     .sortable();
-    let mut rows: Vec<_> = profile.flat.iter().collect();
+    let mut rows: Vec<_> = flat.iter().collect();
     rows.sort_by(|a, b| b.self_seconds.total_cmp(&a.self_seconds));
     let mut cumulative = 0.0;
+    // Per-call times divide the sampled seconds by every sampled call.
+    let sampled_calls = |calls: Option<u64>| calls.map(|c| c.saturating_mul(renders.unwrap_or(1)));
     for row in rows {
         if row.self_seconds.is_finite() {
             cumulative += row.self_seconds;
         }
         let per_call = |s: f64| {
-            let value = format::per_call_value(s, row.calls);
-            match format::per_call(s, row.calls) {
+            let calls = sampled_calls(row.calls);
+            let value = format::per_call_value(s, calls);
+            match format::per_call(s, calls) {
                 Some(text) => Cell::number(text, value),
                 None => Cell::number("", -1.0),
             }
         };
         t.rows.push(vec![
-            Cell::number(format::fixed(row.percent, 2), row.percent),
+            share_cell(row.percent, row.self_interval, row.noise),
+            match row.inclusive_percent {
+                Some(p) => share_cell(p, row.inclusive_interval, false),
+                None => Cell::number("", -1.0),
+            },
             Cell::number(format::fixed(cumulative, 3), cumulative),
             Cell::number(format::fixed(row.self_seconds, 3), row.self_seconds),
             match row.calls {
@@ -184,13 +290,25 @@ pub fn flamegraphs(b: &mut Builder) -> Section {
     };
     s.text("Each box is a function; its width is its share of the samples, the boxes above it are its callees. In the HTML report, hover a frame for its name and share, click to zoom.");
     for profile in profiles(p) {
-        let title = format!("Flamegraph of {}, {}", p.scene, profile.variant);
-        let visual = b.flamegraph(&profile.flame_svg, &title);
-        s.blocks.push(Block::Flamegraph(Flamegraph {
-            title,
-            caption: None,
-            visual,
-        }));
+        let views = std::iter::once((profile.view, &profile.flame_svg))
+            .chain(profile.second_view.iter().map(|v| (v.view, &v.flame_svg)));
+        for (view, svg) in views {
+            let title = format!(
+                "Flamegraph of {}, {} ({})",
+                p.scene,
+                profile.variant,
+                match view {
+                    ProfileView::Phases => "phases",
+                    ProfileView::Native => "native symbols",
+                }
+            );
+            let visual = b.flamegraph(svg, &title);
+            s.blocks.push(Block::Flamegraph(Flamegraph {
+                title,
+                caption: Some(view_text(view).to_string()),
+                visual,
+            }));
+        }
     }
     match (&p.diff_flame_svg, &p.best) {
         (Some(diff), best) => {
@@ -205,10 +323,24 @@ pub fn flamegraphs(b: &mut Builder) -> Section {
             s.blocks.push(Block::Flamegraph(Flamegraph {
                 title,
                 caption: Some(format!(
-                    "Frames of the {to} profile, coloured by the change from baseline: red grew, blue shrank."
+                    "Frames of the {to} profile, coloured by the change from baseline: red grew, blue shrank. Frames that vanished are not drawn here: see the next graph."
                 )),
                 visual,
             }));
+            if let Some(shrunk) = &p.diff_shrunk_flame_svg {
+                let title = format!(
+                    "What shrank or vanished in {}, {} to {to}",
+                    p.scene, p.baseline.variant
+                );
+                let visual = b.flamegraph(shrunk, &title);
+                s.blocks.push(Block::Flamegraph(Flamegraph {
+                    title,
+                    caption: Some(format!(
+                        "Frames of the baseline profile, coloured by the change to {to}: blue shrank or vanished, red grew."
+                    )),
+                    visual,
+                }));
+            }
         }
         (None, _) => s.blocks.push(Block::empty(
             "No differential flamegraph: only one variant was profiled.",
@@ -228,7 +360,7 @@ pub fn amdahl(b: &mut Builder) -> Section {
         return s.empty("No profile in this run, so no Amdahl table.");
     };
     s.text(
-        "The whole program's speed-up if one function alone became 2×, 10× or infinitely faster.",
+        "The whole run's speed-up if one function became 2×, 10× or infinitely faster: alone (its self time) and with everything it calls (its inclusive time). Rows are the functions with the most inclusive time; the bottleneck is the one with the largest inclusive speed-up below the whole render.",
     );
     for profile in profiles(p) {
         s.blocks
@@ -240,27 +372,34 @@ pub fn amdahl(b: &mut Builder) -> Section {
         }
         let mut t = Table::new(vec![
             Column::text("function").grow(),
-            Column::number("share of time"),
-            Column::number("whole program if 2× faster"),
-            Column::number("if 10× faster"),
-            Column::number("if free (limit)"),
+            Column::number("self share"),
+            Column::number("alone 2×"),
+            Column::number("alone free"),
+            Column::number("inclusive share"),
+            Column::number("with callees 2×"),
+            Column::number("with callees 10×"),
+            Column::number("with callees free"),
         ])
         .sortable();
+        let limit =
+            |x: f64| Cell::number(format::speedup(x), if x.is_finite() { x } else { f64::MAX });
         for a in &profile.amdahl {
-            t.rows.push(vec![
+            let mut row = vec![
                 Cell::text(short_name(&a.name)).code().hover(&a.name),
                 Cell::number(format::percent(a.fraction * 100.0, 1), a.fraction),
                 Cell::number(format::speedup(a.speedup_2x), a.speedup_2x),
-                Cell::number(format::speedup(a.speedup_10x), a.speedup_10x),
-                Cell::number(
-                    format::speedup(a.speedup_limit),
-                    if a.speedup_limit.is_finite() {
-                        a.speedup_limit
-                    } else {
-                        f64::MAX
-                    },
-                ),
-            ]);
+                limit(a.speedup_limit),
+            ];
+            match &a.inclusive {
+                Some(i) => row.extend([
+                    Cell::number(format::percent(i.fraction * 100.0, 1), i.fraction),
+                    Cell::number(format::speedup(i.speedup_2x), i.speedup_2x),
+                    Cell::number(format::speedup(i.speedup_10x), i.speedup_10x),
+                    limit(i.speedup_limit),
+                ]),
+                None => row.extend((0..4).map(|_| Cell::dash())),
+            }
+            t.rows.push(row);
         }
         s.blocks.push(Block::Table(t));
     }
