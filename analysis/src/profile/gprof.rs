@@ -9,18 +9,15 @@
 //! - *inclusive* (self + children): samples whose stack holds the function anywhere,
 //!   counted once per sample however often recursion repeats it, so no figure can
 //!   exceed 100%. *children* = inclusive − self.
-//! - Seconds = samples × `seconds_per_sample`. Percentages are of all samples whose
-//!   stack has at least one frame (stacks without frames are ignored).
-//! - Call counts come from [`CallCounts`]. A count of 0 is treated as no count and
-//!   left blank, as gprof does. Functions with a non-zero count but no samples are
-//!   listed with zero time.
+//! - Seconds = samples × `seconds_per_sample`, over all the renders sampled.
+//!   Percentages are of all samples whose stack has at least one frame (stacks without
+//!   frames are ignored).
+//! - Call counts are exact calls per render ([`ProfileInput`]); the text says how many
+//!   renders were sampled. A count of 0 is treated as no count and left blank, as
+//!   gprof does. Functions with a non-zero count but no samples are listed with zero
+//!   time.
 //!
-//! # Flat profile
-//! Rows are sorted by self time (descending), then calls (descending), then name.
-//! The per-call unit follows gprof: take the largest (self + children) / calls over
-//! the functions that have calls, then the first SI prefix, starting at `T`, that puts
-//! it in [1, 1000). If none does, `T` is kept, which is why a profile without call
-//! counts says `Ts/call`.
+//! The flat profile lives in [`super::flat`] (re-exported here).
 //!
 //! # Call graph
 //! - Arcs are caller → callee pairs that are adjacent in some stack.
@@ -56,26 +53,23 @@
 //! - Arc call counts are unknown with sampling, so the `called` column of arcs is
 //!   blank. So is gprof's `+N` self-call column.
 //! - The granularity line keeps gprof's shape but says `one call stack` instead of
-//!   a number of bytes.
+//!   a number of bytes. The line after it says how many renders were sampled
+//!   (free text above the column headings, where gprof prints its own).
 //! - Index by function name: functions by name, then cycles (`<cycle N>`), three per
 //!   row and running down the columns as gprof does, each cell `%6.6s %-19.19s`.
 //!   Longer names are printed in full and push the rest of their row to the right.
 //!   The `[index]` column is never cut to 6 characters either.
 
-use super::{CallCounts, StackSamples};
+pub use super::flat::{FlatProfile, FlatRow, WHOLE_RUN_PERCENT, bottleneck, flat_profile};
+pub use super::tally::ProfileInput;
+use super::tally::{Tally, percent_of};
 use serde::{Deserialize, Serialize};
 use std::cmp::Reverse;
-use std::collections::{BTreeMap, BTreeSet, HashMap};
+use std::collections::{BTreeMap, HashMap};
 use std::fmt::Write as _;
 
 /// The line gprof prints after each call-graph entry.
 const SEPARATOR: &str = "-----------------------------------------------";
-
-/// gprof's SI table: unit prefixes and the factors that turn seconds into them.
-const SI_PREFIXES: [char; 11] = ['T', 'G', 'M', 'K', ' ', 'm', 'u', 'n', 'p', 'f', 'a'];
-const SI_SCALES: [f64; 11] = [
-    1e-12, 1e-9, 1e-6, 1e-3, 1.0, 1e3, 1e6, 1e9, 1e12, 1e15, 1e18,
-];
 
 /// Width of one cell in the index by function name (`%6.6s %-19.19s`).
 const INDEX_CELL_WIDTH: usize = 26;
@@ -87,40 +81,14 @@ sample counts once per function, recursion included. Arc call counts are unknown
 with sampling. A <cycle N> entry sums its members and lists them below it.
 ";
 
-/// gprof's flat profile.
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
-pub struct FlatProfile {
-    pub seconds_per_sample: f64,
-    pub total_seconds: f64,
-    /// Unit of the per-call columns, e.g. `"ms/call"` or `"Ts/call"`.
-    pub unit: String,
-    pub rows: Vec<FlatRow>,
-}
-
-/// One function of the flat profile.
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
-pub struct FlatRow {
-    pub name: String,
-    /// Share of all samples with this function running, in percent.
-    pub percent: f64,
-    /// Self seconds of this row and all rows above it.
-    pub cumulative_seconds: f64,
-    pub self_seconds: f64,
-    /// Exact call count; `None` when unknown or zero.
-    pub calls: Option<u64>,
-    /// Self time per call in [`FlatProfile::unit`].
-    pub self_per_call: Option<f64>,
-    /// Self plus children time per call in [`FlatProfile::unit`].
-    pub total_per_call: Option<f64>,
-    pub children_seconds: f64,
-}
-
 /// gprof's call graph.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct CallGraph {
     pub total_seconds: f64,
     /// Samples behind `total_seconds`, for the granularity line.
     pub total_samples: u64,
+    /// Renders the samples cover (at least 1); `calls` are per render.
+    pub renders: u64,
     /// In index order: `entries[i].index == i + 1`.
     pub entries: Vec<CallGraphEntry>,
 }
@@ -178,206 +146,11 @@ impl Split {
     }
 }
 
-/// Per-function sample counts shared by both reports.
-struct Tally {
-    /// Function names in name order; a function's id is its position here.
-    names: Vec<String>,
-    /// Stacks as function ids (never empty) with their sample counts.
-    stacks: Vec<(Vec<usize>, u64)>,
-    self_samples: Vec<u64>,
-    inclusive_samples: Vec<u64>,
-    /// Smallest stack position at which each function occurs (`usize::MAX`: none).
-    depth: Vec<usize>,
-    total_samples: u64,
-    /// Non-zero call counts by id.
-    calls: Vec<Option<u64>>,
-}
-
-impl Tally {
-    fn new(samples: &StackSamples, calls: &CallCounts) -> Self {
-        let mut all: BTreeSet<&str> = calls
-            .iter()
-            .filter(|&(_, &count)| count != 0)
-            .map(|(name, _)| name.as_str())
-            .collect();
-        for stack in &samples.stacks {
-            all.extend(stack.frames.iter().map(String::as_str));
-        }
-        let ids: HashMap<&str, usize> = all
-            .iter()
-            .enumerate()
-            .map(|(id, &name)| (name, id))
-            .collect();
-        let count = all.len();
-        let mut tally = Tally {
-            names: all.iter().map(|&name| name.to_owned()).collect(),
-            stacks: Vec::with_capacity(samples.stacks.len()),
-            self_samples: vec![0; count],
-            inclusive_samples: vec![0; count],
-            depth: vec![usize::MAX; count],
-            total_samples: 0,
-            calls: all
-                .iter()
-                .map(|&name| calls.get(name).copied().filter(|&c| c != 0))
-                .collect(),
-        };
-        // The stack that last counted each function, so that recursion counts once.
-        let mut counted_in = vec![usize::MAX; count];
-        for (stack_number, stack) in samples.stacks.iter().enumerate() {
-            let frames: Vec<usize> = stack
-                .frames
-                .iter()
-                .filter_map(|frame| ids.get(frame.as_str()).copied())
-                .collect();
-            let Some(&running) = frames.last() else {
-                continue;
-            };
-            let weight = stack.count;
-            tally.total_samples = tally.total_samples.saturating_add(weight);
-            tally.self_samples[running] = tally.self_samples[running].saturating_add(weight);
-            for (position, &function) in frames.iter().enumerate() {
-                tally.depth[function] = tally.depth[function].min(position);
-                if counted_in[function] != stack_number {
-                    counted_in[function] = stack_number;
-                    tally.inclusive_samples[function] =
-                        tally.inclusive_samples[function].saturating_add(weight);
-                }
-            }
-            tally.stacks.push((frames, weight));
-        }
-        tally
-    }
-
-    fn children_samples(&self, function: usize) -> u64 {
-        self.inclusive_samples[function].saturating_sub(self.self_samples[function])
-    }
-}
-
-/// Percentage of `part` in `total` samples; 0 when there are none.
-fn percent_of(part: u64, total: u64) -> f64 {
-    if total == 0 {
-        0.0
-    } else {
-        100.0 * part as f64 / total as f64
-    }
-}
-
-/// Builds gprof's flat profile from sampled stacks and exact call counts.
-pub fn flat_profile(samples: &StackSamples, calls: &CallCounts) -> FlatProfile {
-    let tally = Tally::new(samples, calls);
-    let seconds = |count: u64| count as f64 * samples.seconds_per_sample;
-    let mut order: Vec<usize> = (0..tally.names.len()).collect();
-    // Ids are in name order, so the id breaks the last tie by name.
-    order.sort_by_key(|&f| {
-        (
-            Reverse(tally.self_samples[f]),
-            Reverse(tally.calls[f].unwrap_or(0)),
-            f,
-        )
-    });
-
-    // gprof's unit choice: the largest total time per call decides the SI prefix.
-    let mut top_seconds_per_call = 0.0;
-    for &f in &order {
-        if let Some(calls) = tally.calls[f] {
-            let per_call = seconds(tally.inclusive_samples[f]) / calls as f64;
-            if per_call > top_seconds_per_call {
-                top_seconds_per_call = per_call;
-            }
-        }
-    }
-    let unit = SI_SCALES
-        .iter()
-        .position(|&scale| (1.0..1000.0).contains(&(scale * top_seconds_per_call)))
-        .unwrap_or(0);
-    let (prefix, scale) = (SI_PREFIXES[unit], SI_SCALES[unit]);
-
-    let mut cumulative_seconds = 0.0;
-    let rows = order
-        .into_iter()
-        .map(|f| {
-            let self_seconds = seconds(tally.self_samples[f]);
-            let children_seconds = seconds(tally.children_samples(f));
-            cumulative_seconds += self_seconds;
-            let calls = tally.calls[f];
-            FlatRow {
-                name: tally.names[f].clone(),
-                percent: percent_of(tally.self_samples[f], tally.total_samples),
-                cumulative_seconds,
-                self_seconds,
-                calls,
-                self_per_call: calls.map(|n| scale * self_seconds / n as f64),
-                total_per_call: calls.map(|n| scale * (self_seconds + children_seconds) / n as f64),
-                children_seconds,
-            }
-        })
-        .collect();
-    FlatProfile {
-        seconds_per_sample: samples.seconds_per_sample,
-        total_seconds: seconds(tally.total_samples),
-        unit: format!("{prefix}s/call"),
-        rows,
-    }
-}
-
-impl FlatProfile {
-    /// The flat profile as gprof prints it (without gprof's explanations).
-    pub fn to_text(&self) -> String {
-        let mut out = String::from("Flat profile:\n\n");
-        let _ = writeln!(
-            out,
-            "Each sample counts as {} seconds.",
-            format_g(self.seconds_per_sample)
-        );
-        if self.total_seconds <= 0.0 {
-            out.push_str(" no time accumulated\n\n");
-        }
-        let _ = writeln!(
-            out,
-            "{} {} {} {} {} {}  {}",
-            c_field("%  ", 5, false),
-            c_field("cumulative", 10, false),
-            c_field("self  ", 8, false),
-            c_field("", 8, false),
-            c_field("self  ", 8, false),
-            c_field("total ", 8, false),
-            c_field("", 8, true),
-        );
-        let _ = writeln!(
-            out,
-            "{} {}  {} {} {} {}  {}",
-            c_field("time", 5, false),
-            c_field("seconds", 9, false),
-            c_field("seconds", 8, false),
-            c_field("calls", 8, false),
-            c_field(&self.unit, 8, false),
-            c_field(&self.unit, 8, false),
-            c_field("name", 8, true),
-        );
-        for row in &self.rows {
-            let _ = write!(
-                out,
-                "{:6.2} {:9.2} {:8.2}",
-                row.percent, row.cumulative_seconds, row.self_seconds
-            );
-            let _ = match (row.calls, row.self_per_call, row.total_per_call) {
-                (Some(calls), Some(own), Some(total)) if calls != 0 => {
-                    write!(out, " {calls:8} {own:8.2} {total:8.2}  ")
-                }
-                _ => write!(out, " {:8} {:8} {:8}  ", "", "", ""),
-            };
-            out.push_str(&row.name);
-            out.push('\n');
-        }
-        out
-    }
-}
-
-/// Builds gprof's call graph from sampled stacks and exact call counts.
-pub fn call_graph(samples: &StackSamples, calls: &CallCounts) -> CallGraph {
-    let tally = Tally::new(samples, calls);
+/// Builds gprof's call graph from sampled stacks and exact calls per render.
+pub fn call_graph(input: &ProfileInput<'_>) -> CallGraph {
+    let tally = Tally::new(input);
     let function_count = tally.names.len();
-    let seconds = |count: u64| count as f64 * samples.seconds_per_sample;
+    let seconds = |count: u64| count as f64 * input.samples.seconds_per_sample;
 
     // Arcs: each sample goes, per function, to the arc into its outermost occurrence.
     let mut arcs: BTreeMap<(usize, usize), Split> = BTreeMap::new();
@@ -554,6 +327,7 @@ pub fn call_graph(samples: &StackSamples, calls: &CallCounts) -> CallGraph {
     CallGraph {
         total_seconds: seconds(tally.total_samples),
         total_samples: tally.total_samples,
+        renders: input.renders(),
         entries,
     }
 }
@@ -639,11 +413,20 @@ impl CallGraph {
             let one_sample = 100.0 / self.total_samples as f64;
             let _ = writeln!(
                 out,
-                " for {one_sample:.2}% of {:.2} seconds\n",
+                " for {one_sample:.2}% of {:.2} seconds",
                 self.total_seconds
             );
         } else {
-            out.push_str(" no time propagated\n\n");
+            out.push_str(" no time propagated\n");
+        }
+        let renders = self.renders.max(1);
+        if renders == 1 {
+            out.push_str("1 render sampled; calls are per render, seconds for that render.\n\n");
+        } else {
+            let _ = writeln!(
+                out,
+                "{renders} renders sampled; calls are per render, seconds for all {renders} renders.\n"
+            );
         }
         out.push_str("index % time    self  children    called     name\n");
         for entry in &self.entries {
@@ -743,7 +526,7 @@ fn push_arc_line(out: &mut String, times: Option<(f64, f64)>, calls: Option<u64>
 }
 
 /// C's `%W.Ws` (right-aligned) or `%-W.Ws` (left-aligned): cut and padded to `width`.
-fn c_field(text: &str, width: usize, left: bool) -> String {
+pub(super) fn c_field(text: &str, width: usize, left: bool) -> String {
     let cut: String = text.chars().take(width).collect();
     if left {
         format!("{cut:<width$}")
@@ -794,12 +577,12 @@ fn without_trailing_zeros(number: &str) -> &str {
 }
 
 #[cfg(test)]
-mod tests {
+pub(crate) mod tests {
     use super::*;
-    use crate::profile::Stack;
     use crate::profile::gprof_text::*;
+    use crate::profile::{CallCounts, Stack, StackSamples};
 
-    fn samples(stacks: &[(&[&str], u64)], seconds_per_sample: f64) -> StackSamples {
+    pub(crate) fn samples(stacks: &[(&[&str], u64)], seconds_per_sample: f64) -> StackSamples {
         StackSamples {
             stacks: stacks
                 .iter()
@@ -812,19 +595,19 @@ mod tests {
         }
     }
 
-    fn counts(pairs: &[(&str, u64)]) -> CallCounts {
+    pub(crate) fn counts(pairs: &[(&str, u64)]) -> CallCounts {
         pairs
             .iter()
             .map(|(name, count)| (name.to_string(), *count))
             .collect()
     }
 
-    fn close(actual: f64, expected: f64) -> bool {
+    pub(crate) fn close(actual: f64, expected: f64) -> bool {
         (actual - expected).abs() < 1e-9
     }
 
     /// main->a 30, main->a->b 50, main->c 20 samples of 10 ms: 1.00 s in all.
-    fn three_functions() -> StackSamples {
+    pub(crate) fn three_functions() -> StackSamples {
         samples(
             &[
                 (&["main", "a"], 30),
@@ -836,7 +619,7 @@ mod tests {
     }
 
     /// main->trace->shade->trace->shade->sphere 10 samples, main->trace->shade 5.
-    fn recursive_tracer() -> StackSamples {
+    pub(crate) fn recursive_tracer() -> StackSamples {
         samples(
             &[
                 (&["main", "trace", "shade", "trace", "shade", "sphere"], 10),
@@ -844,6 +627,24 @@ mod tests {
             ],
             0.01,
         )
+    }
+
+    /// The flat profile of one sampled render.
+    pub(crate) fn flat_of(samples: &StackSamples, calls: &CallCounts) -> FlatProfile {
+        flat_profile(&ProfileInput {
+            samples,
+            calls,
+            renders: 1,
+        })
+    }
+
+    /// The call graph of one sampled render.
+    pub(crate) fn graph_of(samples: &StackSamples, calls: &CallCounts) -> CallGraph {
+        call_graph(&ProfileInput {
+            samples,
+            calls,
+            renders: 1,
+        })
     }
 
     fn entry<'a>(graph: &'a CallGraph, name: &str) -> &'a CallGraphEntry {
@@ -867,82 +668,9 @@ mod tests {
     }
 
     #[test]
-    fn flat_header_lines_match_gprof_printf_layout() {
-        let text = flat_profile(&three_functions(), &counts(&[("a", 10), ("b", 1000)])).to_text();
-        let lines: Vec<&str> = text.lines().collect();
-        assert_eq!(lines[0], "Flat profile:");
-        assert_eq!(lines[1], "");
-        assert_eq!(lines[2], "Each sample counts as 0.01 seconds.");
-        // "%5.5s %10.10s %8.8s %8.8s %8.8s %8.8s  %-8.8s": "  %  ", "cumulative",
-        // "  self  ", 8 blanks, "  self  ", "  total ", 8 blanks.
-        assert_eq!(
-            lines[3],
-            "  %   cumulative   self              self     total           "
-        );
-        // "%5.5s %9.9s  %8.8s %8.8s %8.8s %8.8s  %-8.8s": " time", "  seconds",
-        // " seconds", "   calls", " ms/call" twice, "name    ".
-        assert_eq!(
-            lines[4],
-            " time   seconds   seconds    calls  ms/call  ms/call  name    "
-        );
-    }
-
-    #[test]
-    fn flat_profile_of_hand_made_stacks() {
-        let profile = flat_profile(
-            &three_functions(),
-            &counts(&[("a", 10), ("b", 1000), ("idle", 5)]),
-        );
-        // self: b 50, a 30, c 20, main 0, idle 0 samples; idle (5 calls) sorts before
-        // main (no calls) on equal time.
-        let names: Vec<&str> = profile.rows.iter().map(|r| r.name.as_str()).collect();
-        assert_eq!(names, ["b", "a", "c", "idle", "main"]);
-        let a = &profile.rows[1];
-        // a: self 0.30 s, children = 80 samples holding a - 30 = 50 -> 0.50 s.
-        assert!(close(a.self_seconds, 0.30) && close(a.children_seconds, 0.50));
-        assert!(close(a.percent, 30.0) && close(a.cumulative_seconds, 0.80));
-        // Top per call: a (0.80 s / 10) = 0.08 s -> x1e3 = 80 in [1, 1000): ms.
-        assert_eq!(profile.unit, "ms/call");
-        assert!(close(a.self_per_call.unwrap(), 30.0) && close(a.total_per_call.unwrap(), 80.0));
-        let main = &profile.rows[4];
-        assert!(
-            close(main.children_seconds, 1.0)
-                && main.calls.is_none()
-                && main.total_per_call.is_none()
-        );
-        assert!(close(profile.total_seconds, 1.0));
-
-        let text = profile.to_text();
-        let rows: Vec<&str> = text.lines().skip(5).take(5).collect();
-        assert_eq!(
-            rows,
-            [
-                " 50.00      0.50     0.50     1000     0.50     0.50  b",
-                " 30.00      0.80     0.30       10    30.00    80.00  a",
-                " 20.00      1.00     0.20                             c",
-                "  0.00      1.00     0.00        5     0.00     0.00  idle",
-                "  0.00      1.00     0.00                             main",
-            ]
-        );
-    }
-
-    #[test]
-    fn per_call_unit_follows_gprof_si_rule() {
-        let unit = |pairs: &[(&str, u64)]| flat_profile(&three_functions(), &counts(pairs)).unit;
-        // b alone: 0.50 s / 1000 = 0.0005 s; x1e3 = 0.5 is too small, x1e6 = 500 fits.
-        assert_eq!(unit(&[("b", 1000)]), "us/call");
-        // main: 1.00 s / 1 call; x1 = 1 fits, so the prefix is a blank.
-        assert_eq!(unit(&[("main", 1), ("b", 1000)]), " s/call");
-        // No calls: nothing to scale, index 0 stays.
-        assert_eq!(unit(&[]), "Ts/call");
-        let profile = flat_profile(&three_functions(), &counts(&[("b", 1000)]));
-        assert!(close(profile.rows[0].self_per_call.unwrap(), 500.0));
-    }
-
-    #[test]
     fn recursion_counts_each_sample_once_and_forms_a_cycle() {
         let stacks = recursive_tracer();
-        let flat = flat_profile(&stacks, &CallCounts::new());
+        let flat = flat_of(&stacks, &CallCounts::new());
         let row = |name: &str| flat.rows.iter().find(|r| r.name == name).unwrap();
         // trace and shade are on the stack in all 15 samples: 15, not 10 * 2 + 5 = 25.
         assert!(close(
@@ -953,7 +681,7 @@ mod tests {
             close(row("shade").self_seconds, 0.05) && close(row("shade").children_seconds, 0.10)
         );
 
-        let graph = call_graph(&stacks, &CallCounts::new());
+        let graph = graph_of(&stacks, &CallCounts::new());
         assert!(graph.entries.iter().all(|e| e.percent <= 100.0 + 1e-9));
         let cycle = entry(&graph, "<cycle 1 as a whole>");
         assert!(cycle.whole_cycle && cycle.cycle == Some(1) && cycle.index == 1);
@@ -997,7 +725,7 @@ mod tests {
 
     #[test]
     fn self_recursion_is_a_one_member_cycle() {
-        let graph = call_graph(
+        let graph = graph_of(
             &samples(&[(&["main", "walk", "walk", "walk", "leaf"], 4)], 1.0),
             &CallCounts::new(),
         );
@@ -1011,13 +739,14 @@ mod tests {
 
     #[test]
     fn call_graph_text_matches_gprof_layout() {
-        let graph = call_graph(
+        let graph = graph_of(
             &samples(&[(&["main", "foo"], 240)], 0.01),
             &counts(&[("foo", 1)]),
         );
         let text = graph.to_text();
         let expected = "\t\t     Call graph (explanation follows)\n\n\n\
-granularity: each sample hit covers one call stack for 0.42% of 2.40 seconds\n\n\
+granularity: each sample hit covers one call stack for 0.42% of 2.40 seconds\n\
+1 render sampled; calls are per render, seconds for that render.\n\n\
 index % time    self  children    called     name\n\
 \x20                                                <spontaneous>\n\
 [1]    100.0    0.00    2.40                 main [1]\n\
@@ -1035,11 +764,38 @@ index % time    self  children    called     name\n\
     }
 
     #[test]
+    fn call_graph_says_renders_and_shows_calls_per_render() {
+        let stacks = samples(&[(&["main", "foo"], 240)], 0.01);
+        let graph = call_graph(&ProfileInput {
+            samples: &stacks,
+            calls: &counts(&[("foo", 7)]),
+            renders: 5,
+        });
+        assert_eq!(graph.renders, 5);
+        let text = graph.to_text();
+        // Free text above the column headings, as gprof's granularity line.
+        let renders_line = "5 renders sampled; calls are per render, seconds for all 5 renders.\n\n\
+                            index % time";
+        assert!(text.contains(renders_line), "{text}");
+        // The calls column holds the per-render count as given, not 7 x 5.
+        assert!(text.contains("[2]    100.0    2.40    0.00       7         foo [2]\n"));
+        let parsed = parse_call_graph_text(&text).unwrap();
+        assert_eq!(parsed[1].called, Some(7));
+        // renders 0 is read as 1.
+        let zero = call_graph(&ProfileInput {
+            samples: &stacks,
+            calls: &CallCounts::new(),
+            renders: 0,
+        });
+        assert_eq!(zero.renders, 1);
+    }
+
+    #[test]
     fn index_fills_three_columns_downwards_and_keeps_long_names() {
         let names = ["a", "b", "c", "d", "a_rather_long_function_name"];
         let stacks: Vec<(&[&str], u64)> =
             names.iter().map(|n| (std::slice::from_ref(n), 1)).collect();
-        let text = call_graph(&samples(&stacks, 1.0), &CallCounts::new()).to_text();
+        let text = graph_of(&samples(&stacks, 1.0), &CallCounts::new()).to_text();
         let index = text.split("Index by function name\n\n").nth(1).unwrap();
         // Five names, two rows, filled down the columns: a, a_rather... | b, c | d.
         // All have 1 sample at depth 0, so entries are numbered by name too. The long
@@ -1050,38 +806,13 @@ index % time    self  children    called     name\n\
     }
 
     #[test]
-    fn flat_text_round_trips_through_parser() {
-        let profile = flat_profile(
-            &three_functions(),
-            &counts(&[("a", 10), ("b", 123_456_789)]),
-        );
-        let parsed = parse_flat_text(&profile.to_text()).unwrap();
-        assert_eq!(parsed.len(), profile.rows.len());
-        let to_printed = |x: f64| (x * 100.0).round() / 100.0;
-        for (row, back) in profile.rows.iter().zip(&parsed) {
-            assert_eq!(back.name, row.name);
-            assert_eq!(back.calls, row.calls); // includes a 9-digit count wider than %8lu
-            assert!(close(back.percent, to_printed(row.percent)));
-            assert!(close(
-                back.cumulative_seconds,
-                to_printed(row.cumulative_seconds)
-            ));
-            assert!(close(back.self_seconds, to_printed(row.self_seconds)));
-            assert_eq!(back.self_per_call, row.self_per_call.map(to_printed));
-            assert_eq!(back.total_per_call, row.total_per_call.map(to_printed));
-        }
-        let json = serde_json::to_string(&profile).unwrap();
-        assert_eq!(serde_json::from_str::<FlatProfile>(&json).unwrap(), profile);
-    }
-
-    #[test]
     fn call_graph_text_round_trips_through_parser() {
         let mut stacks = recursive_tracer();
         stacks.stacks.push(Stack {
             frames: vec!["main".into(), "a name with spaces".into()],
             count: 7,
         });
-        let graph = call_graph(&stacks, &counts(&[("trace", 300), ("sphere", 12_345_678)]));
+        let graph = graph_of(&stacks, &counts(&[("trace", 300), ("sphere", 12_345_678)]));
         let parsed = parse_call_graph_text(&graph.to_text()).unwrap();
         assert_eq!(parsed.len(), graph.entries.len());
         let to_printed = |x: f64, scale: f64| (x * scale).round() / scale;
@@ -1158,21 +889,21 @@ index % time    self  children    called     name\n\
 
     #[test]
     fn parsers_report_the_failing_line() {
-        let text = flat_profile(&three_functions(), &CallCounts::new()).to_text();
+        let text = flat_of(&three_functions(), &CallCounts::new()).to_text();
         let broken = text.replacen(" 50.00", " 5x.00", 1);
         assert!(matches!(
             parse_flat_text(&broken),
-            Err(GprofParseError::Line { line: 6, .. })
+            Err(GprofParseError::Line { line: 7, .. })
         ));
         assert_eq!(
             parse_flat_text("nothing"),
             Err(GprofParseError::MissingHeader("flat profile"))
         );
-        let graph = call_graph(&three_functions(), &CallCounts::new()).to_text();
+        let graph = graph_of(&three_functions(), &CallCounts::new()).to_text();
         let broken = graph.replacen("[1]    100.0", "[1]    1o0.0", 1);
         assert!(matches!(
             parse_call_graph_text(&broken),
-            Err(GprofParseError::Line { line: 8, .. })
+            Err(GprofParseError::Line { line: 9, .. })
         ));
         assert!(parse_call_graph_text("index % time\n                0.1").is_err());
     }
@@ -1187,16 +918,16 @@ index % time    self  children    called     name\n\
             (odd, counts(&[("x", 0)])),
             (samples(&[], 0.0), counts(&[("lonely", 2)])),
         ] {
-            let flat = flat_profile(&stacks, &calls);
-            let graph = call_graph(&stacks, &calls);
+            let flat = flat_of(&stacks, &calls);
+            let graph = graph_of(&stacks, &calls);
             let _ = parse_flat_text(&flat.to_text());
             let _ = parse_call_graph_text(&graph.to_text());
         }
-        let lonely = call_graph(&samples(&[], 0.0), &counts(&[("lonely", 2)]));
+        let lonely = graph_of(&samples(&[], 0.0), &counts(&[("lonely", 2)]));
         assert_eq!(lonely.entries.len(), 1);
         assert!(lonely.to_text().contains("no time propagated"));
         assert!(
-            flat_profile(&samples(&[], 0.0), &CallCounts::new())
+            flat_of(&samples(&[], 0.0), &CallCounts::new())
                 .to_text()
                 .contains(" no time accumulated")
         );

@@ -2,7 +2,8 @@
 //! call graph parsed back into rows. Only tests use them (to check that the texts say
 //! what the tables hold, and that `rtprof profile`'s files are well-formed), so they
 //! are compiled for tests and, through the `gprof-text` feature, for the workspace's
-//! test targets; the binary never carries them.
+//! test targets; the binary never carries them. Besides gprof's two tables, the flat
+//! profile's noise list and shares table ([`super::flat`]) are read back too.
 
 use serde::{Deserialize, Serialize};
 use std::str::FromStr;
@@ -306,4 +307,99 @@ fn split_label(label: &str) -> (String, Option<usize>, Option<u32>) {
         cycle = Some(number);
     }
     (name.to_owned(), index, cycle)
+}
+
+/// A row of the flat profile's list of rows below the noise floor.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct ParsedNoiseRow {
+    pub name: String,
+    /// Calls per render; `None` when blank.
+    pub calls: Option<u64>,
+}
+
+/// A row of the flat profile's shares table (percent).
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct ParsedShareRow {
+    pub name: String,
+    pub inclusive_percent: f64,
+    pub inclusive_interval: (f64, f64),
+    /// `None` where the text says `noise`.
+    pub self_percent: Option<f64>,
+    pub self_interval: (f64, f64),
+}
+
+/// Width of the shares table's columns before the name:
+/// `%11.2f  (%6.2f, %6.2f)  %8s  (%6.2f, %6.2f)  `.
+const SHARE_COLUMNS: usize = 11 + 2 + 16 + 2 + 8 + 2 + 16 + 2;
+
+/// Reads the flat profile's rows below the noise floor: `%10s  name` lines after the
+/// `calls  name` heading that follows the `Below the noise floor` paragraph, up to the
+/// next blank line. No such paragraph: no rows.
+pub fn parse_flat_noise(text: &str) -> Result<Vec<ParsedNoiseRow>, GprofParseError> {
+    let Ok(mut lines) = lines_after(
+        text,
+        |line| line.starts_with("Below the noise floor"),
+        "noise floor",
+    ) else {
+        return Ok(Vec::new());
+    };
+    if !lines
+        .by_ref()
+        .any(|(_, line)| line.trim_start().starts_with("calls  name"))
+    {
+        return Err(GprofParseError::MissingHeader("noise floor table"));
+    }
+    let mut rows = Vec::new();
+    for (number, line) in lines {
+        if line.trim().is_empty() {
+            break;
+        }
+        let mut columns = Columns::new(line, number);
+        let calls = columns.number(10, "calls")?;
+        let name = columns.label()?;
+        rows.push(ParsedNoiseRow {
+            name: name.to_owned(),
+            calls,
+        });
+    }
+    Ok(rows)
+}
+
+/// Reads the flat profile's shares table: the lines after the `inclusive %` heading up
+/// to the next blank line.
+pub fn parse_flat_shares(text: &str) -> Result<Vec<ParsedShareRow>, GprofParseError> {
+    let mut rows = Vec::new();
+    for (number, line) in lines_after(text, |line| line.starts_with("inclusive %"), "shares")? {
+        if line.trim().is_empty() {
+            break;
+        }
+        let (figures, name) = match (line.get(..SHARE_COLUMNS), line.get(SHARE_COLUMNS..)) {
+            (Some(figures), Some(name)) if !name.trim().is_empty() => (figures, name),
+            _ => return Err(line_error(number, "line too short for the shares columns")),
+        };
+        let cleaned: String = figures
+            .chars()
+            .map(|c| if matches!(c, '(' | ',' | ')') { ' ' } else { c })
+            .collect();
+        let tokens: Vec<&str> = cleaned.split_whitespace().collect();
+        let [inclusive, i_low, i_high, own, s_low, s_high] = tokens.as_slice() else {
+            return Err(line_error(number, "expected six share columns"));
+        };
+        let number_at = |text: &str| {
+            text.parse::<f64>()
+                .map_err(|_| line_error(number, format!("not a number: {text:?}")))
+        };
+        rows.push(ParsedShareRow {
+            name: name.to_owned(),
+            inclusive_percent: number_at(inclusive)?,
+            inclusive_interval: (number_at(i_low)?, number_at(i_high)?),
+            self_percent: if *own == "noise" {
+                None
+            } else {
+                Some(number_at(own)?)
+            },
+            self_interval: (number_at(s_low)?, number_at(s_high)?),
+        });
+    }
+    Ok(rows)
 }

@@ -1,14 +1,18 @@
 //! Profiles: call stacks sampled while a render runs, and what is made of them —
-//! gprof's flat profile and call graph ([`gprof`]), folded stacks and flamegraphs,
-//! Amdahl projections. The sampler produces [`StackSamples`]; everything else reads it.
+//! gprof's flat profile ([`flat`]) and call graph ([`gprof`]) with sampling errors
+//! ([`share_interval`]), folded stacks and flamegraphs, Amdahl projections. The
+//! sampler produces [`StackSamples`]; everything else reads it.
 
 pub mod amdahl;
+pub mod flat;
 pub mod folded;
 pub mod gprof;
 #[cfg(any(test, feature = "gprof-text"))]
 pub mod gprof_text;
 pub mod names;
 pub mod sampler;
+pub mod share_interval;
+pub mod tally;
 
 use serde::{Deserialize, Serialize};
 use std::collections::BTreeMap;
