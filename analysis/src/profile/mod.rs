@@ -1,8 +1,10 @@
 //! Profiles: call stacks sampled while a render runs, and what is made of them —
 //! gprof's flat profile and call graph ([`gprof`]), folded stacks and flamegraphs,
-//! Amdahl projections. The sampler produces [`StackSamples`]; everything else reads it.
+//! Amdahl projections, exports to pprof and speedscope ([`export`]). The sampler
+//! produces [`StackSamples`]; everything else reads it.
 
 pub mod amdahl;
+pub mod export;
 pub mod folded;
 pub mod gprof;
 #[cfg(any(test, feature = "gprof-text"))]
