@@ -1,9 +1,11 @@
 //! Profiles: call stacks sampled while a render runs, and what is made of them —
 //! gprof's flat profile ([`flat`]) and call graph ([`gprof`]) with sampling errors
-//! ([`share_interval`]), folded stacks and flamegraphs, Amdahl projections. The
-//! sampler produces [`StackSamples`]; everything else reads it.
+//! ([`share_interval`]), folded stacks and flamegraphs, Amdahl projections, exports
+//! to pprof and speedscope ([`export`]). The sampler produces [`StackSamples`];
+//! everything else reads it.
 
 pub mod amdahl;
+pub mod export;
 pub mod flat;
 pub mod folded;
 pub mod gprof;
