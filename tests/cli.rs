@@ -475,7 +475,7 @@ fn variants_lists_every_variant_with_measured_sqrt_errors() {
 }
 
 #[test]
-fn profile_writes_gprof_text_flamegraphs_and_json() {
+fn profile_writes_both_views_exports_and_json_with_calls_per_render() {
     let dir = scratch("profile");
     let rings = spd("rings");
     let out_dir = dir.join("prof");
@@ -486,6 +486,8 @@ fn profile_writes_gprof_text_flamegraphs_and_json() {
         "40x30",
         "--threads",
         "1",
+        "--min-samples",
+        "150",
         "--diff-with",
         "bvh",
         "--json",
@@ -493,60 +495,72 @@ fn profile_writes_gprof_text_flamegraphs_and_json() {
         &out_dir.display().to_string(),
     ]);
     assert_eq!(out.status.code(), Some(0), "{}", stderr(&out));
+    // One naming scheme: <kind>-<variant>[-native].<ext>.
     for f in [
-        "flat.txt",
-        "callgraph.txt",
-        "folded.txt",
-        "flame.svg",
-        "flame-diff.svg",
-        "amdahl.txt",
+        "flat-baseline.txt",
+        "callgraph-baseline.txt",
+        "folded-baseline.txt",
+        "flame-baseline.svg",
+        "flat-baseline-native.txt",
+        "callgraph-baseline-native.txt",
+        "folded-baseline-native.txt",
+        "flame-baseline-native.svg",
+        "amdahl-baseline.txt",
+        "profile-baseline.pb.gz",
+        "profile-baseline-native.pb.gz",
+        "speedscope-baseline.json",
+        "flat-bvh.txt",
+        "flame-bvh.svg",
+        "flame-diff-baseline-bvh.svg",
+        "flame-diff-baseline-bvh-shrunk.svg",
     ] {
         let path = out_dir.join(f);
         assert!(path.is_file(), "{} missing", path.display());
     }
-    let flat = String::from_utf8_lossy(&read(&out_dir.join("flat.txt"))).into_owned();
+    let text = |f: &str| String::from_utf8_lossy(&read(&out_dir.join(f))).into_owned();
+    let flat = text("flat-baseline.txt");
     let rows =
         analysis::profile::gprof_text::parse_flat_text(&flat).unwrap_or_else(|e| panic!("{e}"));
     assert!(!rows.is_empty());
-    let graph = String::from_utf8_lossy(&read(&out_dir.join("callgraph.txt"))).into_owned();
-    let entries = analysis::profile::gprof_text::parse_call_graph_text(&graph)
+    let entries = analysis::profile::gprof_text::parse_call_graph_text(&text("callgraph-baseline.txt"))
         .unwrap_or_else(|e| panic!("{e}"));
     assert!(!entries.is_empty());
-    let svg = String::from_utf8_lossy(&read(&out_dir.join("flame.svg"))).into_owned();
+    let svg = text("flame-baseline.svg");
     assert!(svg.contains("<svg") && svg.trim_end().ends_with("</svg>"));
+    // The phase view names the tests by kind, whatever was inlined.
+    assert!(svg.contains("sphere test") && svg.contains("cylinder test"), "phases missing");
 
     let json: serde_json::Value =
         serde_json::from_slice(&out.stdout).unwrap_or_else(|e| panic!("{e}"));
-    // Exact call counts from the counters: brute force tests every sphere per query.
-    let calls_of = |name: &str| {
-        json["profile"]["flat"]["rows"]
+    let count = rtprof(&["count", &rings, "--size", "40x30", "--json"]);
+    let counts: serde_json::Value =
+        serde_json::from_slice(&count.stdout).unwrap_or_else(|e| panic!("{e}"));
+    // The render is repeated to gather samples; calls stay those of one render.
+    let renders = json["profile"]["renders"].as_u64().unwrap();
+    assert!(renders > 1, "a 40x30 render should need repeating: {renders}");
+    assert!(flat.contains(&format!("{renders} renders sampled; calls are per render")));
+    let calls_of = |view: &str, name: &str| {
+        json["profile"][view]["flat"]["rows"]
             .as_array()
             .and_then(|rows| rows.iter().find(|r| r["name"] == name))
             .and_then(|r| r["calls"].as_u64())
     };
-    let count = rtprof(&["count", &rings, "--size", "40x30", "--json"]);
-    let counts: serde_json::Value =
-        serde_json::from_slice(&count.stdout).unwrap_or_else(|e| panic!("{e}"));
-    // Whichever of the hot functions the samples caught carries the exact count.
-    let expected = [
-        ("Cylinder::intersect", &counts["tests"]["cylinder"]["tests"]),
-        ("Sphere::intersect", &counts["tests"]["sphere"]["tests"]),
-        ("dot", &counts["ops"]["dot"]),
-    ];
-    // A render too short to sample is repeated: calls cover every render.
-    let renders = json["profile"]["renders"].as_u64().unwrap();
-    assert!(renders >= 1);
-    let mut seen = 0;
-    for (name, value) in expected {
-        if let Some(calls) = calls_of(name) {
-            assert_eq!(Some(calls), value.as_u64().map(|n| n * renders), "{name}");
-            seen += 1;
-        }
-    }
-    assert!(seen > 0, "no intersection test in the flat profile");
+    let spheres = counts["tests"]["sphere"]["tests"].as_u64();
+    let cylinders = counts["tests"]["cylinder"]["tests"].as_u64();
+    assert_eq!(calls_of("phases", "sphere test"), spheres);
+    assert_eq!(calls_of("phases", "cylinder test"), cylinders);
+    assert_eq!(calls_of("phases", "camera ray"), counts["rays"]["primary"].as_u64());
+    // The files the results point at carry the same calls as the JSON.
+    let saved = &json["files"]["baseline"];
+    assert_eq!(saved["renders"].as_u64(), Some(renders));
+    let row = saved["flat"]
+        .as_array()
+        .and_then(|rows| rows.iter().find(|r| r["name"] == "sphere test"))
+        .unwrap_or_else(|| panic!("no sphere test row in {saved}"));
+    assert_eq!(row["calls"].as_u64(), spheres);
     assert_eq!(json["diff"]["variant"], "bvh");
     assert!(
-        json["profile"]["amdahl"]
+        json["profile"]["phases"]["amdahl"]
             .as_array()
             .is_some_and(|a| !a.is_empty())
     );
@@ -1012,9 +1026,10 @@ fn counter_values(scene: &str, size: &str) -> Vec<(String, u64)> {
 }
 
 /// Profiles `scene` at `size` (baseline, one thread) and checks the `calls` column of
-/// flat.txt against `rtprof count`: every function the tracer's counter table gives
-/// the calls of, if sampled, has exactly the counter's value times the renders. Returns
-/// the functions that were sampled and checked.
+/// the native view's flat profile against `rtprof count`: every function the tracer's
+/// counter table gives the calls of, if sampled, has exactly the counter's value (calls
+/// per render, however many renders were sampled). Returns the functions that were
+/// sampled and checked.
 fn profile_calls_match_the_counters(test: &str, scene: &str, size: &str) -> Vec<String> {
     let dir = scratch(test);
     let out_dir = dir.join("prof");
@@ -1025,15 +1040,26 @@ fn profile_calls_match_the_counters(test: &str, scene: &str, size: &str) -> Vec<
         size,
         "--threads",
         "1",
+        "--min-samples",
+        "200",
         "--json",
         "-o",
         &out_dir.display().to_string(),
     ]));
-    let renders = profile["profile"]["renders"].as_u64().unwrap();
-    let flat = String::from_utf8_lossy(&read(&out_dir.join("flat.txt"))).into_owned();
+    assert!(profile["profile"]["renders"].as_u64().unwrap() >= 1);
+    let flat =
+        String::from_utf8_lossy(&read(&out_dir.join("flat-baseline-native.txt"))).into_owned();
     let rows =
         analysis::profile::gprof_text::parse_flat_text(&flat).unwrap_or_else(|e| panic!("{e}"));
-    let calls_of = |name: &str| rows.iter().find(|r| r.name == name).map(|r| r.calls);
+    // Rows below the noise floor are listed apart, with their calls.
+    let noise = analysis::profile::gprof_text::parse_flat_noise(&flat)
+        .unwrap_or_else(|e| panic!("{e}"));
+    let calls_of = |name: &str| {
+        rows.iter()
+            .find(|r| r.name == name)
+            .map(|r| r.calls)
+            .or_else(|| noise.iter().find(|r| r.name == name).map(|r| r.calls))
+    };
     let counts: std::collections::BTreeMap<String, u64> =
         counter_values(scene, size).into_iter().collect();
     let mut expected: Vec<(&str, u64)> = Vec::new();
@@ -1050,7 +1076,7 @@ fn profile_calls_match_the_counters(test: &str, scene: &str, size: &str) -> Vec<
     for (function, value) in expected {
         match calls_of(function) {
             Some(calls) if value > 0 => {
-                assert_eq!(calls, Some(value * renders), "{function} in {flat}");
+                assert_eq!(calls, Some(value), "{function} in {flat}");
                 checked.push(function.to_string());
             }
             // A function never called is never sampled.
@@ -1105,7 +1131,7 @@ fn every_counter_appears_everywhere() {
         format!(
             "name = \"counters\"\nsize = [16, 12]\nrepeats = 1\nvariants = [\"baseline\"]\n\
              scenes = [{scene:?}]\nextra_size = [16, 12]\nprofile_size = [16, 12]\n\
-             profile_frequency = 500\nprofile_seconds = 0.05\nhardware_repeats = 1\n"
+             profile_frequency = 500\nprofile_samples = 50\nhardware_repeats = 1\n"
         ),
     )
     .unwrap();

@@ -77,6 +77,58 @@ pub fn median_with_bootstrap(
     })
 }
 
+/// The ratio `median(numerator) / median(denominator)` with its percentile bootstrap
+/// interval: each resample draws both sets anew (they are independent measurements,
+/// e.g. profiled and unprofiled render times). Same rules and determinism as
+/// [`median_with_bootstrap`]; a zero median denominator is refused as not finite.
+pub fn ratio_of_medians_with_bootstrap(
+    numerator: &[f64],
+    denominator: &[f64],
+    resamples: usize,
+    confidence: f64,
+    seed: u64,
+) -> Result<Estimate, StatsError> {
+    // Checks both sets (emptiness, finiteness) and the parameters.
+    median_with_bootstrap(numerator, 1, confidence, seed)?;
+    let below = median_with_bootstrap(denominator, 1, confidence, seed)?;
+    if resamples == 0 {
+        return Err(StatsError::NoResamples);
+    }
+    if below.median <= 0.0 {
+        return Err(StatsError::NotFinite {
+            index: 0,
+            value: f64::INFINITY,
+        });
+    }
+    let (top, bottom) = (sorted(numerator), sorted(denominator));
+    let mut rng = SplitMix64::new(seed);
+    let mut draw = |set: &[f64], buffer: &mut Vec<f64>| {
+        buffer.clear();
+        buffer.extend((0..set.len()).map(|_| set[rng.below(set.len())]));
+        buffer.sort_unstable_by(f64::total_cmp);
+        median_of_sorted(buffer)
+    };
+    let (mut a, mut b) = (Vec::new(), Vec::new());
+    let mut ratios = Vec::with_capacity(resamples.min(1 << 20));
+    for _ in 0..resamples {
+        let over = draw(&bottom, &mut b);
+        let ratio = draw(&top, &mut a) / over;
+        if ratio.is_finite() {
+            ratios.push(ratio);
+        }
+    }
+    ratios.sort_unstable_by(f64::total_cmp);
+    let median = median_of_sorted(&top) / median_of_sorted(&bottom);
+    if ratios.is_empty() {
+        return Ok(Estimate { median, low: median, high: median });
+    }
+    Ok(Estimate {
+        median,
+        low: quantile_of_sorted(&ratios, (1.0 - confidence) / 2.0),
+        high: quantile_of_sorted(&ratios, (1.0 + confidence) / 2.0),
+    })
+}
+
 fn sorted(xs: &[f64]) -> Vec<f64> {
     let mut copy = xs.to_vec();
     copy.sort_unstable_by(f64::total_cmp);
@@ -113,6 +165,23 @@ mod tests {
         assert_eq!(median(&[5.0, 1.0, 3.0]), Some(3.0));
         assert_eq!(median(&[]), None);
         assert_eq!(median(&[1.0, f64::NAN]), None);
+    }
+
+    #[test]
+    fn a_ratio_of_medians_holds_its_point_and_brackets_it() {
+        // Constant sets: the ratio is exact and its interval degenerate.
+        let e = ratio_of_medians_with_bootstrap(&[2.0; 5], &[0.5; 7], 500, 0.95, 3).unwrap();
+        assert_eq!((e.median, e.low, e.high), (4.0, 4.0, 4.0));
+        // Hand-computed point: medians 1.04 and 1.0; the interval brackets it and
+        // stays within the extreme ratios the samples allow (1.02/1.02 .. 1.06/0.98).
+        let profiled = [1.03, 1.04, 1.05, 1.02, 1.06];
+        let plain = [1.0, 0.99, 1.01, 0.98, 1.02];
+        let e = ratio_of_medians_with_bootstrap(&profiled, &plain, 2000, 0.95, 7).unwrap();
+        assert!((e.median - 1.04).abs() < 1e-12);
+        assert!(e.low <= e.median && e.median <= e.high, "{e:?}");
+        assert!(e.low >= 1.02 / 1.02 - 1e-12 && e.high <= 1.06 / 0.98 + 1e-12, "{e:?}");
+        assert!(ratio_of_medians_with_bootstrap(&[], &plain, 10, 0.95, 1).is_err());
+        assert!(ratio_of_medians_with_bootstrap(&profiled, &[0.0], 10, 0.95, 1).is_err());
     }
 
     #[test]

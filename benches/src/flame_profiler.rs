@@ -1,7 +1,8 @@
 //! The in-process profiler criterion runs under `--profile-time N`: it samples the
 //! process with pprof (SIGPROF) while one benchmark iterates and, when it stops, writes
-//! the stacks as `folded.txt` (Brendan Gregg's folded format, `a;b;c count`) and as an
-//! interactive `flamegraph.svg`, both into the benchmark's profile directory
+//! the stacks as `folded.txt` (Brendan Gregg's folded format, `a;b;c count`), as an
+//! interactive `flamegraph.svg`, and in the exports `rtprof profile` writes
+//! (`profile.pb.gz` for `go tool pprof`, `speedscope.json`), all into the benchmark's profile directory
 //! (`<target dir>/criterion/<group>/<benchmark>/profile/`, created if missing).
 //!
 //! Plain `cargo bench` runs never call it: criterion only starts a profiler in profile
@@ -15,6 +16,7 @@
 //! [`analysis::profile::folded`]; unlike `rtprof profile`, every frame is kept (criterion's
 //! loop and the thread start included), since a benchmark has no single root to cut at.
 
+use analysis::profile::export::{PprofRun, pprof_profile_gz, speedscope_json};
 use analysis::profile::folded::{flamegraph_svg, folded};
 use analysis::profile::sampler::{process_cpu_time, root_first_names};
 use analysis::profile::{Stack, StackSamples};
@@ -92,7 +94,7 @@ impl Profiler for FlameProfiler {
                 "no samples were taken (give it a longer --profile-time)",
             );
         }
-        if let Err(message) = write_outputs(&samples, benchmark_id, benchmark_dir) {
+        if let Err(message) = write_outputs(&samples, cpu, benchmark_id, benchmark_dir) {
             warn(benchmark_id, &message);
         }
     }
@@ -124,13 +126,27 @@ fn stack_samples(report: &pprof::Report, cpu: Duration) -> StackSamples {
     }
 }
 
-/// Writes `folded.txt` and `flamegraph.svg` into `dir` (created if missing).
-fn write_outputs(samples: &StackSamples, benchmark_id: &str, dir: &Path) -> Result<(), String> {
+/// Writes `folded.txt`, `flamegraph.svg`, `profile.pb.gz` and `speedscope.json` into
+/// `dir` (created if missing).
+fn write_outputs(
+    samples: &StackSamples,
+    cpu: Duration,
+    benchmark_id: &str,
+    dir: &Path,
+) -> Result<(), String> {
     std::fs::create_dir_all(dir).map_err(|e| format!("cannot create {}: {e}", dir.display()))?;
     let folded_text = folded(samples);
     write_atomically(&dir.join("folded.txt"), folded_text.as_bytes())?;
     let svg = flamegraph_svg(&folded_text, benchmark_id).map_err(|e| e.to_string())?;
-    write_atomically(&dir.join("flamegraph.svg"), svg.as_bytes())
+    write_atomically(&dir.join("flamegraph.svg"), svg.as_bytes())?;
+    let run = PprofRun {
+        duration: cpu,
+        comments: vec![format!("criterion benchmark {benchmark_id}, native symbols")],
+    };
+    let pprof = pprof_profile_gz(samples, &run).map_err(|e| e.to_string())?;
+    write_atomically(&dir.join("profile.pb.gz"), &pprof)?;
+    let speedscope = speedscope_json(benchmark_id, &[("native symbols", samples)]);
+    write_atomically(&dir.join("speedscope.json"), speedscope.as_bytes())
 }
 
 /// Writes `bytes` to a temporary file beside `path`, then renames it to `path`.

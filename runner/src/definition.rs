@@ -14,10 +14,10 @@ pub const DEFAULT_SUITE: &str = include_str!("../../scenes/suite.toml");
 /// Its name in messages.
 pub const DEFAULT_SUITE_FILE: &str = "suite.toml (embedded)";
 
-/// Least sampled seconds per profile when the definition does not say: the same as
+/// Least samples per profile when the definition does not say: the same as
 /// `rtprof profile`.
-fn default_profile_seconds() -> f64 {
-    crate::profile_job::MIN_SAMPLED.as_secs_f64()
+fn default_profile_samples() -> u64 {
+    crate::profile_job::DEFAULT_MIN_SAMPLES
 }
 
 /// A suite definition.
@@ -37,8 +37,8 @@ pub struct SuiteDef {
     pub profile_size: [u32; 2],
     pub profile_frequency: i32,
     /// Least sampled seconds per profile (a faster render is repeated).
-    #[serde(default = "default_profile_seconds")]
-    pub profile_seconds: f64,
+    #[serde(default = "default_profile_samples")]
+    pub profile_samples: u64,
     pub hardware_repeats: u32,
     pub quick: Option<QuickDef>,
 }
@@ -54,7 +54,7 @@ pub struct QuickDef {
     pub scenes: Option<Vec<String>>,
     pub extra_size: Option<[u32; 2]>,
     pub profile_size: Option<[u32; 2]>,
-    pub profile_seconds: Option<f64>,
+    pub profile_samples: Option<u64>,
     pub hardware_repeats: Option<u32>,
 }
 
@@ -102,8 +102,8 @@ impl SuiteDef {
         if !(0.0..=60.0).contains(&self.min_seconds) {
             return bad("min_seconds must be 0 to 60".into());
         }
-        if !(0.0..=600.0).contains(&self.profile_seconds) {
-            return bad("profile_seconds must be 0 to 600".into());
+        if !(1..=1_000_000).contains(&self.profile_samples) {
+            return bad("profile_samples must be 1 to 1000000".into());
         }
         if !(10..=10_000).contains(&self.profile_frequency) {
             return bad("profile_frequency must be 10 to 10000 Hz".into());
@@ -137,7 +137,7 @@ impl SuiteDef {
             self.scenes = q.scenes.unwrap_or(self.scenes);
             self.extra_size = q.extra_size.unwrap_or(self.extra_size);
             self.profile_size = q.profile_size.unwrap_or(self.profile_size);
-            self.profile_seconds = q.profile_seconds.unwrap_or(self.profile_seconds);
+            self.profile_samples = q.profile_samples.unwrap_or(self.profile_samples);
             self.hardware_repeats = q.hardware_repeats.unwrap_or(self.hardware_repeats);
         }
         self

@@ -13,7 +13,8 @@
 //! - [`variant_catalogue`]: what each variant does and how accurate it is;
 //! - [`variant_job`]: one variant on one scene: counts, timed renders, picture;
 //! - [`compare`]: variants side by side (`rtprof compare SCENE --variants`);
-//! - [`profile_job`]: counted + sampled renders into gprof tables, folded stacks, Amdahl;
+//! - [`profile_job`]: counted + sampled renders into two views (phases, native symbols):
+//!   gprof tables, folded stacks, Amdahl; [`profile_files`]: their files, one naming scheme;
 //! - [`hardware_job`]: the FPGA model, emulator and software time on the same job;
 //! - [`hardware_prediction`]: `rtprof hw time`: frame time, fit and what-ifs;
 //! - [`hardware_tables`]: `rtprof hw table` as text; [`hardware_files`]: `hw render`, `hw mif`;
@@ -36,6 +37,7 @@ pub mod hardware_prediction;
 pub mod hardware_tables;
 pub mod machine;
 pub mod pool;
+pub mod profile_files;
 pub mod profile_job;
 pub mod progress;
 pub mod render_job;

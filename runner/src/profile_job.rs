@@ -1,47 +1,125 @@
-//! The profile job: a counted render gives the exact calls, a sampled render (repeated
-//! until enough time is sampled) gives the stacks; from both come the gprof flat
-//! profile and call graph, folded stacks and the Amdahl table. `rtprof profile` and
-//! the suite's profile of its heaviest scene both run it.
+//! The profile job: a counted render gives the exact calls per render; sampled renders
+//! (repeated until the sampler has its minimum number of samples) give two views of
+//! the same SIGPROF signals:
+//! - **phases**: the tracer's own record of what each thread was doing (camera ray,
+//!   traversal, each primitive's test, shading, …), kept on a per-thread phase stack
+//!   by the `Phased` counter and read at each signal. It does not depend on what the
+//!   optimizer inlined, so it is the view the profile's tables and headlines use;
+//! - **native**: the symbols of the binary's debug info at each signal, what the
+//!   compiler made of the code.
+//!
+//! From each view come the gprof flat profile and call graph (calls per render, self
+//! and inclusive shares with 95 % intervals), folded stacks under one root and the
+//! Amdahl table. `rtprof profile` and the suite's profile of its heaviest scene both
+//! run it ([`ProfileJob::report`]) and save it with one naming scheme
+//! ([`crate::profile_files`]).
 
+use std::cell::RefCell;
 use std::collections::{BTreeMap, BTreeSet};
-use std::time::{Duration, Instant};
+use std::time::Instant;
 
-use analysis::profile::amdahl::{AmdahlRow, amdahl_table, amdahl_text};
-use analysis::profile::folded::{differential_svg, flamegraph_svg, folded};
-use analysis::profile::gprof::{CallGraph, FlatProfile, call_graph, flat_profile};
+use analysis::Estimate;
+use analysis::profile::amdahl::{AmdahlRow, amdahl_table};
+use analysis::profile::flat::{FlatProfile, flat_profile};
+use analysis::profile::folded::{folded, under_one_root};
+use analysis::profile::gprof::{CallGraph, call_graph};
 use analysis::profile::names::{BareMethods, display_name};
-use analysis::profile::sampler::{process_cpu_time, sample};
+use analysis::profile::sampler::{RepeatedError, SampleOptions, sample_repeated};
+use analysis::profile::tally::ProfileInput;
 use analysis::profile::{CallCounts, Stack, StackSamples};
+use results::ProfileView;
 use serde::Serialize;
-use tracer::{Count, NoCount, RenderOptions, Scene, VariantSet, render_variant};
+use tracer::{Count, Counts, NoCount, Phased, RenderOptions, Scene, VariantSet, render_variant};
 
 use crate::error::RunError;
 use crate::progress::Progress;
-use crate::staging::save;
 
-/// Least sampled time per profile: a faster render is repeated until it is reached.
-pub const MIN_SAMPLED: Duration = Duration::from_millis(300);
+/// Samples a profile gathers at least, by default: enough for a 95 % interval of
+/// about ±3 points on a 50 % share.
+pub const DEFAULT_MIN_SAMPLES: u64 = 1000;
 /// Most renders per profile, however fast.
 pub const MAX_RENDERS: u64 = 10_000;
+/// The phase-view frame of samples taken outside any phase (idle workers, set-up).
+pub const OUTSIDE_PHASES: &str = "[outside the tracer's phases]";
+/// Rows of the Amdahl table.
+const AMDAHL_ROWS: usize = 10;
+/// Unprofiled renders timed for `--measure-overhead`, at least and at most.
+const OVERHEAD_RENDERS: (usize, usize) = (5, 30);
+
+/// One view of a profile: the same samples attributed to phases or to symbols.
+#[derive(Serialize)]
+pub struct ViewProfile {
+    pub view: ProfileView,
+    pub flat: FlatProfile,
+    pub call_graph: CallGraph,
+    pub amdahl: Vec<AmdahlRow>,
+    /// Folded stacks, every stack under one root (the scene's name).
+    pub folded: String,
+    #[serde(skip)]
+    pub stacks: StackSamples,
+    #[serde(skip)]
+    pub flat_text: String,
+    #[serde(skip)]
+    pub call_graph_text: String,
+}
 
 /// One variant's profile, as data.
 #[derive(Serialize)]
 pub struct VariantProfile {
     pub variant: String,
-    /// Renders sampled (a fast render is repeated to gather samples); calls cover all.
+    /// Renders sampled (a fast render is repeated to gather samples); calls are per
+    /// render, seconds cover them all.
     pub renders: u64,
+    /// SIGPROF signals taken, and the number the asked rate would have given in the
+    /// sampled CPU time (the kernel delivers fewer at high rates).
     pub samples: u64,
-    pub seconds_per_sample: f64,
+    pub samples_asked: u64,
     pub cpu_seconds: f64,
     pub wall_seconds: f64,
-    pub flat: FlatProfile,
-    pub call_graph: CallGraph,
-    pub amdahl: Vec<AmdahlRow>,
-    pub folded: String,
-    #[serde(skip)]
-    pub flat_text: String,
-    #[serde(skip)]
-    pub call_graph_text: String,
+    /// Wall seconds of each sampled render (phases recorded, sampler running).
+    pub render_seconds: Vec<f64>,
+    pub phases: ViewProfile,
+    pub native: ViewProfile,
+}
+
+impl VariantProfile {
+    /// CPU seconds one sample stands for.
+    pub fn seconds_per_sample(&self) -> f64 {
+        self.cpu_seconds / self.samples.max(1) as f64
+    }
+
+    /// Samples per CPU second actually taken.
+    pub fn effective_rate(&self) -> f64 {
+        self.samples as f64 / self.cpu_seconds.max(1e-9)
+    }
+}
+
+/// The profiler's cost: profiled against unprofiled render time, both repeated.
+#[derive(Serialize)]
+pub struct Overhead {
+    /// Median wall seconds of one profiled render, with its 95 % interval.
+    pub profiled: Estimate,
+    pub unprofiled: Estimate,
+    /// profiled / unprofiled (ratio of medians), with its bootstrap 95 % interval.
+    pub ratio: Estimate,
+    pub profiled_renders: usize,
+    pub unprofiled_renders: usize,
+}
+
+impl Overhead {
+    /// "profiled render took 1.04x the unprofiled one (95 % interval 1.01x-1.07x; …)".
+    pub fn to_text(&self) -> String {
+        format!(
+            "profiled render took {:.2}x the unprofiled one (95 % interval {:.2}x-{:.2}x; medians {:.4} s and {:.4} s over {} and {} renders)\n",
+            self.ratio.median,
+            self.ratio.low,
+            self.ratio.high,
+            self.profiled.median,
+            self.unprofiled.median,
+            self.profiled_renders,
+            self.unprofiled_renders
+        )
+    }
 }
 
 /// `rtprof profile`: the setting, the profile and the optional second variant's.
@@ -52,10 +130,9 @@ pub struct ProfileReport {
     pub height: u32,
     pub threads: usize,
     pub frequency: i32,
-    /// Wall time of the same render without the profiler (with --measure-overhead).
-    pub unprofiled_seconds: Option<f64>,
-    /// Profiled / unprofiled wall time.
-    pub overhead: Option<f64>,
+    pub min_samples: u64,
+    /// With --measure-overhead.
+    pub overhead: Option<Overhead>,
     pub profile: VariantProfile,
     pub diff: Option<VariantProfile>,
 }
@@ -67,10 +144,10 @@ pub struct ProfileJob<'a> {
     pub pool: &'a rayon::ThreadPool,
     /// Sampling rate asked of the kernel, Hz.
     pub frequency: i32,
-    /// The scene's name in messages.
+    /// The scene's name in messages and the root of the folded stacks.
     pub name: &'a str,
-    /// Least sampled time.
-    pub min_sampled: Duration,
+    /// Samples to gather at least (renders are repeated until there are).
+    pub min_samples: u64,
 }
 
 impl ProfileJob<'_> {
@@ -78,7 +155,41 @@ impl ProfileJob<'_> {
         RunError::render(self.name, e)
     }
 
-    /// Counted render (calls), then the sampled render.
+    /// `set` profiled (with its overhead measured when `measure_overhead`), and
+    /// `diff_with` profiled for the differential flamegraphs.
+    pub fn report(
+        &self,
+        set: &VariantSet,
+        diff_with: Option<&VariantSet>,
+        measure_overhead: bool,
+        progress: &dyn Progress,
+    ) -> Result<ProfileReport, RunError> {
+        progress.begin("profile", 0);
+        let profile = self.profile(set, progress)?;
+        let overhead = if measure_overhead {
+            progress.message(&format!("timing {set} without the profiler"));
+            Some(self.overhead(set, &profile.render_seconds)?)
+        } else {
+            None
+        };
+        let diff = diff_with
+            .map(|other| self.profile(other, progress))
+            .transpose()?;
+        progress.end();
+        Ok(ProfileReport {
+            scene: self.name.to_string(),
+            width: self.options.width,
+            height: self.options.height,
+            threads: self.pool.current_num_threads(),
+            frequency: self.frequency,
+            min_samples: self.min_samples,
+            overhead,
+            profile,
+            diff,
+        })
+    }
+
+    /// Counted render (calls per render), then sampled renders with phases recorded.
     pub fn profile(
         &self,
         set: &VariantSet,
@@ -94,93 +205,165 @@ impl ProfileJob<'_> {
             .counts()
             .ok_or_else(|| RunError::Profile("the counted render returned no counts".into()))?;
         progress.message(&format!("sampling {set}"));
-        // A fast render (a BVH on a small image) can finish between two samples: render
-        // again until the sampler has had `min_sampled` of CPU time, and scale the calls
-        // to match. CPU, not wall, time: SIGPROF samples CPU time, and on a loaded
-        // machine a wall-clock budget can pass with almost no CPU and no samples.
-        let run = sample(
-            self.frequency,
+        let options = SampleOptions {
+            min_samples: self.min_samples,
+            max_runs: MAX_RENDERS,
+            probe: Some(tracer::phase_stack_key),
+            ..SampleOptions::new(self.frequency)
+        };
+        let render_seconds = RefCell::new(Vec::new());
+        let run = sample_repeated(
+            &options,
             |name| name.starts_with("tracer::"),
             || {
-                let start = process_cpu_time();
-                let mut renders = 0u64;
-                loop {
-                    renders += 1;
-                    let out = self.pool.install(|| {
-                        render_variant::<NoCount>(self.scene, &self.options, set, &|_| {})
-                    });
-                    let sampled = process_cpu_time().saturating_sub(start);
-                    if out.is_err() || sampled >= self.min_sampled || renders >= MAX_RENDERS {
-                        return out.map(|_| renders);
-                    }
-                }
+                let start = Instant::now();
+                let out = self.pool.install(|| {
+                    render_variant::<Phased>(self.scene, &self.options, set, &|_| {})
+                });
+                render_seconds.borrow_mut().push(start.elapsed().as_secs_f64());
+                out.map(|_| ())
             },
         )
-        .map_err(|e| RunError::Profile(e.to_string()))?;
-        let renders = run.output.map_err(|e| self.fail(&e))?;
+        .map_err(|e| match e {
+            RepeatedError::Profile(e) => RunError::Profile(e.to_string()),
+            RepeatedError::Work { error, .. } => self.fail(&error),
+        })?;
+        let renders = run.output.runs;
         if renders > 1 {
             progress.note(&format!(
-                "{set}: rendered {renders} times to gather samples (calls are for all {renders})"
+                "{set}: rendered {renders} times to gather {} samples (calls are per render)",
+                run.signals
             ));
         }
-        let samples = shorten(&run.samples);
-        let calls: CallCounts = counts
-            .function_calls()
-            .into_iter()
-            .map(|(name, n)| (name.to_string(), n * renders))
-            .collect();
-        Ok(build_profile(
-            set.to_string(),
+        let cpu = run.cpu.as_secs_f64();
+        let phase_stacks = phase_samples(&run.phase_keys, cpu);
+        let native_stacks = shorten(&run.samples);
+        let phases = self.view(
+            ProfileView::Phases,
+            phase_stacks,
+            &phase_calls(&counts),
             renders,
-            &samples,
-            &calls,
-            run.cpu.as_secs_f64(),
-            run.wall.as_secs_f64(),
-        ))
-    }
-
-    /// `rtprof profile`: `set` profiled (and timed without the profiler first when
-    /// `measure_overhead`), and `diff_with` profiled for the differential flamegraph.
-    pub fn report(
-        &self,
-        set: &VariantSet,
-        diff_with: Option<&VariantSet>,
-        measure_overhead: bool,
-        progress: &dyn Progress,
-    ) -> Result<ProfileReport, RunError> {
-        progress.begin("profile", 0);
-        let unprofiled = if measure_overhead {
-            progress.message(&format!("timing {set} without the profiler"));
-            Some(self.unprofiled_seconds(set)?)
-        } else {
-            None
-        };
-        let profile = self.profile(set, progress)?;
-        let diff = diff_with
-            .map(|other| self.profile(other, progress))
-            .transpose()?;
-        progress.end();
-        Ok(ProfileReport {
-            scene: self.name.to_string(),
-            width: self.options.width,
-            height: self.options.height,
-            threads: self.pool.current_num_threads(),
-            frequency: self.frequency,
-            unprofiled_seconds: unprofiled,
-            overhead: unprofiled.map(|u| profile.wall_seconds / u.max(1e-9)),
-            profile,
-            diff,
+        );
+        let native = self.view(
+            ProfileView::Native,
+            native_stacks,
+            &native_calls(&counts),
+            renders,
+        );
+        Ok(VariantProfile {
+            variant: set.to_string(),
+            renders,
+            samples: run.signals,
+            samples_asked: run.samples_asked,
+            cpu_seconds: cpu,
+            wall_seconds: run.wall.as_secs_f64(),
+            render_seconds: render_seconds.into_inner(),
+            phases,
+            native,
         })
     }
 
-    /// Wall seconds of one render without the profiler.
-    pub fn unprofiled_seconds(&self, set: &VariantSet) -> Result<f64, RunError> {
-        let start = Instant::now();
-        self.pool
-            .install(|| render_variant::<NoCount>(self.scene, &self.options, set, &|_| {}))
-            .map_err(|e| self.fail(&e))?;
-        Ok(start.elapsed().as_secs_f64())
+    /// One view's tables from its stacks and the calls per render of its functions.
+    fn view(
+        &self,
+        view: ProfileView,
+        stacks: StackSamples,
+        calls: &CallCounts,
+        renders: u64,
+    ) -> ViewProfile {
+        // Counts for functions this run never entered (another accelerator's queries)
+        // would list them with zero time; keep the counts of those the samples saw.
+        let seen: BTreeSet<&String> = stacks.stacks.iter().flat_map(|s| &s.frames).collect();
+        let calls: CallCounts = calls
+            .iter()
+            .filter(|(name, _)| seen.contains(name))
+            .map(|(name, n)| (name.clone(), *n))
+            .collect();
+        let input = ProfileInput {
+            samples: &stacks,
+            calls: &calls,
+            renders,
+        };
+        let flat = flat_profile(&input);
+        let graph = call_graph(&input);
+        ViewProfile {
+            view,
+            amdahl: amdahl_table(&flat, AMDAHL_ROWS),
+            folded: folded(&under_one_root(&stacks, self.name)),
+            flat_text: flat.to_text(),
+            call_graph_text: graph.to_text(),
+            flat,
+            call_graph: graph,
+            stacks,
+        }
     }
+
+    /// Times unprofiled renders and sets them against the profiled ones.
+    fn overhead(&self, set: &VariantSet, profiled: &[f64]) -> Result<Overhead, RunError> {
+        let n = profiled.len().clamp(OVERHEAD_RENDERS.0, OVERHEAD_RENDERS.1);
+        let mut unprofiled = Vec::with_capacity(n);
+        for _ in 0..n {
+            let start = Instant::now();
+            self.pool
+                .install(|| render_variant::<NoCount>(self.scene, &self.options, set, &|_| {}))
+                .map_err(|e| self.fail(&e))?;
+            unprofiled.push(start.elapsed().as_secs_f64());
+        }
+        let policy = crate::timing::TimingPolicy::new(1, 0.0);
+        let ratio = analysis::timing::ratio_of_medians_with_bootstrap(
+            profiled,
+            &unprofiled,
+            policy.resamples,
+            policy.confidence,
+            policy.seed,
+        )?;
+        Ok(Overhead {
+            profiled: policy.estimate(profiled)?,
+            unprofiled: policy.estimate(&unprofiled)?,
+            ratio,
+            profiled_renders: profiled.len(),
+            unprofiled_renders: n,
+        })
+    }
+}
+
+/// The phase view's stacks: each recorded phase-stack key as its phase names.
+fn phase_samples(keys: &BTreeMap<u64, u64>, cpu_seconds: f64) -> StackSamples {
+    let total: u64 = keys.values().sum();
+    let stacks = keys
+        .iter()
+        .filter(|&(_, &count)| count > 0)
+        .map(|(&key, &count)| {
+            let names = tracer::phase_names(key);
+            let frames = if names.is_empty() {
+                vec![OUTSIDE_PHASES.to_string()]
+            } else {
+                names.into_iter().map(str::to_string).collect()
+            };
+            Stack { frames, count }
+        })
+        .collect();
+    StackSamples {
+        stacks,
+        seconds_per_sample: cpu_seconds / total.max(1) as f64,
+    }
+}
+
+/// Calls per render of each phase, from the counters.
+fn phase_calls(counts: &Counts) -> CallCounts {
+    tracer::phase_calls(counts)
+        .into_iter()
+        .map(|(phase, n)| (phase.name().to_string(), n))
+        .collect()
+}
+
+/// Calls per render of the profiled native functions, from the counters.
+fn native_calls(counts: &Counts) -> CallCounts {
+    counts
+        .function_calls()
+        .into_iter()
+        .map(|(name, n)| (name.to_string(), n))
+        .collect()
 }
 
 /// Stacks with the reports' short names; stacks that become equal merge.
@@ -206,127 +389,5 @@ fn shorten(samples: &StackSamples) -> StackSamples {
             .map(|(frames, count)| Stack { frames, count })
             .collect(),
         seconds_per_sample: samples.seconds_per_sample,
-    }
-}
-
-fn build_profile(
-    variant: String,
-    renders: u64,
-    samples: &StackSamples,
-    calls: &CallCounts,
-    cpu_seconds: f64,
-    wall_seconds: f64,
-) -> VariantProfile {
-    // Counts for functions this run never entered (another accelerator's queries) would
-    // list them with zero time; keep the counts of the functions the samples saw.
-    let seen: BTreeSet<&String> = samples
-        .stacks
-        .iter()
-        .flat_map(|s| s.frames.iter())
-        .collect();
-    let calls: CallCounts = calls
-        .iter()
-        .filter(|(name, _)| seen.contains(name))
-        .map(|(name, n)| (name.clone(), *n))
-        .collect();
-    let flat = flat_profile(samples, &calls);
-    let graph = call_graph(samples, &calls);
-    let self_times: Vec<(String, f64)> = flat
-        .rows
-        .iter()
-        .map(|r| (r.name.clone(), r.self_seconds))
-        .collect();
-    VariantProfile {
-        variant,
-        renders,
-        samples: samples.total(),
-        seconds_per_sample: samples.seconds_per_sample,
-        cpu_seconds,
-        wall_seconds,
-        flat_text: flat.to_text(),
-        call_graph_text: graph.to_text(),
-        amdahl: amdahl_table(&self_times, 10),
-        folded: folded(samples),
-        flat,
-        call_graph: graph,
-    }
-}
-
-impl ProfileReport {
-    /// Writes flat.txt, callgraph.txt, folded.txt, flame.svg and amdahl.txt into `dir`,
-    /// and with a second variant its folded and flat texts and flame-diff.svg.
-    pub fn write_files(&self, dir: &std::path::Path) -> Result<(), RunError> {
-        let p = &self.profile;
-        let svg_error =
-            |e: analysis::profile::folded::FlamegraphError| RunError::Profile(e.to_string());
-        let title = format!(
-            "{} ({}x{}, {})",
-            self.scene, self.width, self.height, p.variant
-        );
-        save(dir, "flat.txt", p.flat_text.as_bytes())?;
-        save(dir, "callgraph.txt", p.call_graph_text.as_bytes())?;
-        save(dir, "folded.txt", p.folded.as_bytes())?;
-        let svg = flamegraph_svg(&p.folded, &title).map_err(svg_error)?;
-        save(dir, "flame.svg", svg.as_bytes())?;
-        save(dir, "amdahl.txt", amdahl_text(&p.amdahl).as_bytes())?;
-        if let Some(d) = &self.diff {
-            save(
-                dir,
-                &format!("folded-{}.txt", d.variant),
-                d.folded.as_bytes(),
-            )?;
-            save(
-                dir,
-                &format!("flat-{}.txt", d.variant),
-                d.flat_text.as_bytes(),
-            )?;
-            let diff_title = format!(
-                "{}: {} → {} (red grew, blue shrank)",
-                self.scene, p.variant, d.variant
-            );
-            let svg = differential_svg(&p.folded, &d.folded, &diff_title).map_err(svg_error)?;
-            save(dir, "flame-diff.svg", svg.as_bytes())?;
-        }
-        Ok(())
-    }
-
-    /// The summary the command prints; `dir` is where the files were written.
-    pub fn to_text(&self, dir: &std::path::Path) -> String {
-        let r = self;
-        let mut out = String::new();
-        let p = &r.profile;
-        out += &format!(
-            "{} {}x{}, variant {}, {} thread{}: {} samples, {:.3} s CPU, {:.3} s wall ({:.2} ms of CPU per sample)\n",
-            r.scene,
-            r.width,
-            r.height,
-            p.variant,
-            r.threads,
-            if r.threads == 1 { "" } else { "s" },
-            p.samples,
-            p.cpu_seconds,
-            p.wall_seconds,
-            p.seconds_per_sample * 1e3
-        );
-        if let (Some(u), Some(o)) = (r.unprofiled_seconds, r.overhead) {
-            out += &format!("without the profiler: {u:.3} s wall; overhead {o:.3}x\n");
-        }
-        out.push('\n');
-        for line in p.flat_text.lines().take(18) {
-            out += line;
-            out.push('\n');
-        }
-        out.push('\n');
-        out += &amdahl_text(&p.amdahl);
-        out += &format!(
-            "\nwrote {}/{{flat.txt, callgraph.txt, folded.txt, flame.svg, amdahl.txt{}}}\n",
-            dir.display(),
-            if r.diff.is_some() {
-                ", flame-diff.svg"
-            } else {
-                ""
-            }
-        );
-        out
     }
 }

@@ -16,7 +16,7 @@ use results::{
 };
 use tracer::{RenderOptions, Sampling, Scene, ShadingMode, VariantSet, parse_nff};
 
-use crate::collect::{count_map, quality, save_profile};
+use crate::collect::{count_map, quality};
 use crate::definition::SuiteDef;
 use crate::error::RunError;
 use crate::hardware_job::{hardware_tables, run_hardware};
@@ -407,40 +407,11 @@ impl SceneRunner<'_> {
             pool: &pool,
             frequency: self.def.profile_frequency,
             name: &spec.name,
-            min_sampled: std::time::Duration::from_secs_f64(self.def.profile_seconds),
+            min_samples: self.def.profile_samples,
         };
-        let out = self.ctx.out;
-        let dir = "profile";
         let base_set = VariantSet::default();
-        let base = job.profile(&base_set, self.ctx.progress)?;
-        let title = format!("{} ({w}x{h}, {base_set})", spec.name);
-        let baseline = save_profile(out, dir, &base, &title)?;
-        let (best_profile, diff) = match &best {
-            Some(name) => {
-                let set = VariantSet::parse(name)?;
-                let p = job.profile(&set, self.ctx.progress)?;
-                let title = format!("{} ({w}x{h}, {name})", spec.name);
-                let saved = save_profile(out, dir, &p, &title)?;
-                let diff_title =
-                    format!("{}: {base_set} → {name} (red grew, blue shrank)", spec.name);
-                let svg = analysis::profile::folded::differential_svg(
-                    &base.folded,
-                    &p.folded,
-                    &diff_title,
-                )
-                .map_err(|e| RunError::Profile(e.to_string()))?;
-                let rel = save(out, &format!("{dir}/flame-diff.svg"), svg.as_bytes())?;
-                (Some(saved), Some(rel))
-            }
-            None => (None, None),
-        };
-        Ok(Some(ProfileResult {
-            scene: spec.name.clone(),
-            width: w,
-            height: h,
-            baseline,
-            best: best_profile,
-            diff_flame_svg: diff,
-        }))
+        let best = best.map(|name| VariantSet::parse(&name)).transpose()?;
+        let report = job.report(&base_set, best.as_ref(), false, self.ctx.progress)?;
+        report.save(self.ctx.out, "profile/").map(Some)
     }
 }

@@ -7,7 +7,7 @@ use super::progress::Bars;
 use super::scene_args::{RenderFlags, named_after};
 use anyhow::{Context, Result};
 use runner::pool::thread_pool;
-use runner::profile_job::{MIN_SAMPLED, ProfileJob};
+use runner::profile_job::{DEFAULT_MIN_SAMPLES, ProfileJob};
 use std::path::PathBuf;
 use tracer::VariantSet;
 
@@ -28,10 +28,17 @@ pub struct ProfileArgs {
     #[arg(long, default_value_t = 1000, value_name = "HZ",
           value_parser = clap::value_parser!(i32).range(10..=10_000))]
     frequency: i32,
-    /// Also time the same render without the profiler and report the overhead.
+    /// Samples to gather at least: a fast render is repeated until there are (calls
+    /// stay per render).
+    #[arg(long, default_value_t = DEFAULT_MIN_SAMPLES, value_name = "N",
+          value_parser = clap::value_parser!(u64).range(1..=10_000_000))]
+    min_samples: u64,
+    /// Also time the render without the profiler (repeated) and report the overhead.
     #[arg(long)]
     measure_overhead: bool,
-    /// Output directory for flat.txt, callgraph.txt, folded.txt, flame.svg, amdahl.txt.
+    /// Output directory [default: profile-<scene>]: flat-<variant>.txt,
+    /// callgraph-<variant>.txt, flame-<variant>.svg (phase view; -native for native
+    /// symbols), amdahl-<variant>.txt, profile-<variant>.pb.gz, speedscope-<variant>.json.
     #[arg(short, long, value_name = "DIR")]
     output: Option<PathBuf>,
     /// Print everything as JSON on stdout.
@@ -63,7 +70,7 @@ pub fn run(args: &ProfileArgs) -> Result<()> {
         pool: &pool,
         frequency: args.frequency,
         name: &name,
-        min_sampled: MIN_SAMPLED,
+        min_samples: args.min_samples,
     };
 
     let report = job.report(
@@ -72,11 +79,14 @@ pub fn run(args: &ProfileArgs) -> Result<()> {
         args.measure_overhead,
         &Bars::default(),
     )?;
-    report.write_files(&dir)?;
+    let saved = report.save(&dir, "")?;
     if args.json {
-        println!("{}", serde_json::to_string_pretty(&report)?);
+        let files = serde_json::to_value(&saved)?;
+        let mut json = serde_json::to_value(&report)?;
+        json["files"] = files;
+        println!("{}", serde_json::to_string_pretty(&json)?);
     } else {
-        print!("{}", report.to_text(&dir));
+        print!("{}", report.to_text(&dir, &saved));
     }
     Ok(())
 }

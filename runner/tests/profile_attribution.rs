@@ -1,0 +1,116 @@
+//! Attribution a user can trust, checked against independent expectations:
+//! - known split: the sphere and cylinder tests' costs measured on a scene of only
+//!   spheres and a scene of only cylinders predict the sphere : cylinder time ratio of
+//!   the mixed scene (the phase view, whatever the optimizer inlined);
+//! - the differential flamegraph of baseline against bvh on SPD rings shows the
+//!   intersection tests shrinking and the traversal growing.
+//!
+//! One test function: the sampler is one per process (SIGPROF), so the profiles run in
+//! turn.
+
+use std::path::Path;
+
+use analysis::profile::flat::FlatProfile;
+use runner::profile_job::{ProfileJob, VariantProfile};
+use tracer::{RenderOptions, Sampling, Scene, ShadingMode, VariantSet, parse_nff};
+
+/// Samples per profile: a 95 % interval of about ±4 points on a 50 % share.
+const MIN_SAMPLES: u64 = 500;
+
+fn profile(scene: &Scene, name: &str, size: (u32, u32), variant: &str) -> VariantProfile {
+    let pool = runner::pool::thread_pool(Some(2)).unwrap();
+    let job = ProfileJob {
+        scene,
+        options: RenderOptions::new(size.0, size.1, Sampling::PixelCenters, ShadingMode::Color),
+        pool: &pool,
+        frequency: 1000,
+        name,
+        min_samples: MIN_SAMPLES,
+    };
+    let set = VariantSet::parse(variant).unwrap();
+    job.profile(&set, &runner::progress::Silent)
+        .unwrap_or_else(|e| panic!("{name}: {e}"))
+}
+
+/// Self seconds and calls per render of a phase in a flat profile.
+fn phase(flat: &FlatProfile, name: &str) -> (f64, u64) {
+    let row = flat
+        .rows
+        .iter()
+        .find(|r| r.name == name)
+        .unwrap_or_else(|| panic!("no '{name}' row in\n{}", flat.to_text()));
+    (row.self_seconds, row.calls.unwrap_or(0))
+}
+
+/// CPU seconds of one test of a kind: its self time over every test of every render.
+fn cost_per_test(p: &VariantProfile, name: &str) -> f64 {
+    let (seconds, calls) = phase(&p.phases.flat, name);
+    assert!(calls > 0, "{name} has no calls");
+    seconds / (calls as f64 * p.renders as f64)
+}
+
+#[test]
+fn phase_attribution_follows_the_known_costs_and_the_bvh_diff() {
+    // A 3x3x3 lattice: 27 spheres and 54 cylinders, brute force.
+    let mixed_text = tracer::generators::lattice(3).unwrap();
+    let keep = |drop: &str| -> String {
+        mixed_text
+            .lines()
+            .filter(|l| !l.starts_with(drop))
+            .map(|l| format!("{l}\n"))
+            .collect()
+    };
+    let scene = |text: &str, name: &str| parse_nff(text, name).unwrap();
+    let spheres = scene(&keep("c "), "spheres");
+    let cylinders = scene(&keep("s "), "cylinders");
+    let mixed = scene(&mixed_text, "lattice3");
+    assert!(spheres.primitive_count() > 0 && cylinders.primitive_count() > 0);
+    let size = (64, 48);
+
+    let sphere_cost = cost_per_test(&profile(&spheres, "spheres", size, "baseline"), "sphere test");
+    let cylinder_cost =
+        cost_per_test(&profile(&cylinders, "cylinders", size, "baseline"), "cylinder test");
+    let both = profile(&mixed, "lattice3", size, "baseline");
+    let (sphere_s, sphere_tests) = phase(&both.phases.flat, "sphere test");
+    let (cylinder_s, cylinder_tests) = phase(&both.phases.flat, "cylinder test");
+    let measured = sphere_s / cylinder_s;
+    let predicted =
+        (sphere_tests as f64 * sphere_cost) / (cylinder_tests as f64 * cylinder_cost);
+    eprintln!(
+        "sphere test {:.1} ns, cylinder test {:.1} ns; mixed: {sphere_tests} and {cylinder_tests} tests per render; sphere : cylinder time measured {measured:.3}, predicted {predicted:.3}",
+        sphere_cost * 1e9,
+        cylinder_cost * 1e9
+    );
+    assert!(
+        (measured / predicted - 1.0).abs() <= 0.25,
+        "measured {measured:.3} vs predicted {predicted:.3}"
+    );
+
+    // Baseline against bvh on SPD rings: the tests shrink, the traversal grows.
+    let rings_path = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../shared/spd/rings.nff");
+    let rings = tracer::load_nff(&rings_path).unwrap();
+    let base = profile(&rings, "rings", (48, 36), "baseline");
+    let bvh = profile(&rings, "rings", (48, 36), "bvh");
+    let dir = std::env::temp_dir().join(format!("rtprof-attribution-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let (grown, shrunk) =
+        runner::profile_files::save_differential(&dir, "", "rings", &base, &bvh).unwrap();
+    let svg = |rel: &str| std::fs::read_to_string(dir.join(rel)).unwrap();
+    let (grown, shrunk) = (svg(&grown), svg(&shrunk));
+    std::fs::remove_dir_all(&dir).ok();
+    // Frame titles end in the change of share: "(N samples, P%; +D%)".
+    let change = |svg: &str, frame: &str| -> Option<f64> {
+        svg.split("<title>").skip(1).find_map(|part| {
+            let title = part.split_once("</title>")?.0;
+            let rest = title.strip_prefix(&format!("{frame} ("))?;
+            let delta = rest.rsplit_once("; ")?.1.trim_end_matches(')');
+            delta.trim_end_matches('%').parse::<f64>().ok()
+        })
+    };
+    for test in ["sphere test", "cylinder test"] {
+        let d = change(&shrunk, test).unwrap_or_else(|| panic!("no {test} frame in the shrunk graph"));
+        assert!(d < 0.0, "{test} should shrink: {d:+}%");
+    }
+    let d = change(&grown, "traversal").expect("no traversal frame in the grown graph");
+    assert!(d > 0.0, "traversal should grow: {d:+}%");
+}
