@@ -52,7 +52,10 @@ pub mod vec3;
 pub use accel::{BruteForce, Bvh, Intersector, Simd};
 pub use camera::{Camera, Projection, Sampling};
 pub use color::Rgb;
-pub use counter::{COUNTERS, Count, Counter, CounterDef, Counts, NoCount, RayCounts, Stat};
+pub use counter::{
+    COUNTERS, Count, Counter, CounterDef, Counts, NoCount, Phase, Phased, RayCounts, Stat,
+    phase_names, phase_stack_key,
+};
 pub use nff::{Limits, LoadError, NffError, load_nff, load_nff_with_limits, parse_nff};
 pub use nff_writer::{scene_to_nff, write_scene};
 pub use ray::{Hit, PrimKind, PrimRef, Ray};

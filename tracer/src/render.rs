@@ -1,5 +1,8 @@
 //! The renderer: eye rays in parallel over sample rows (rayon), per-row counters summed
 //! in row order after the loop, so counts and images are identical for any thread count.
+//! Phases: each row is a `sample row` (a worker's root), eye-ray generation (and the
+//! camera's set-up) `camera ray`, the framebuffer work after the loop `pixel fill`;
+//! the shader and the intersectors mark the rest.
 //!
 //! With `checkerboard` (variant `pixel-avg`, thesis 8.3.5) only the samples with an even
 //! `column + row` are traced; each other sample is the mean of its traced 4-neighbours
@@ -11,7 +14,7 @@
 use crate::accel::Intersector;
 use crate::camera::{Camera, Projection, Sampling};
 use crate::color::Rgb;
-use crate::counter::{Counter, Counts, RayCounts};
+use crate::counter::{Counter, Counts, Phase, RayCounts};
 use crate::nff::Limits;
 use crate::scene::Scene;
 use crate::shading::{MAX_DEPTH, Shader, ShadingMode};
@@ -147,6 +150,7 @@ pub fn render<C: Counter, I: Intersector>(
         .check_ray_depth(options.max_depth)
         .map_err(RenderError::Depth)?;
     let mut counter = C::default();
+    let camera_phase = C::enter_phase(Phase::CameraRay);
     let camera = Camera::new(
         &scene.view,
         options.width,
@@ -157,6 +161,7 @@ pub fn render<C: Counter, I: Intersector>(
         &mut counter,
     )
     .map_err(RenderError::Camera)?;
+    drop(camera_phase);
     let shader = Shader::with_diffuse(scene, accel, options.mode, method.diffuse)
         .with_max_depth(options.max_depth);
     let (columns, rows) = camera.grid();
@@ -165,20 +170,30 @@ pub fn render<C: Counter, I: Intersector>(
     let traced: Vec<(Vec<Rgb>, C, RayCounts)> = (0..rows)
         .into_par_iter()
         .map(|row| {
+            let _phase = C::enter_phase(Phase::SampleRow);
             let mut c = C::default();
             let mut rays = RayCounts::default();
             // The bounded walk: the row's base direction once, then one step per pixel.
-            let row_base = from_eye.then(|| camera.row_base(row, &mut c));
+            let row_base = from_eye.then(|| {
+                let _phase = C::enter_phase(Phase::CameraRay);
+                camera.row_base(row, &mut c)
+            });
             let samples = (0..columns)
                 .map(|column| {
                     if method.checkerboard && (column + row) % 2 == 1 {
                         // Filled from the neighbours after the loop.
                         Rgb::BLACK
                     } else if let Some(base) = row_base {
-                        let ray = camera.ray_from_eye(column, base, &mut c);
+                        let ray = {
+                            let _phase = C::enter_phase(Phase::CameraRay);
+                            camera.ray_from_eye(column, base, &mut c)
+                        };
                         shader.primary_from_eye(&ray, &mut c, &mut rays)
                     } else {
-                        let ray = camera.ray(column, row, &mut c);
+                        let ray = {
+                            let _phase = C::enter_phase(Phase::CameraRay);
+                            camera.ray(column, row, &mut c)
+                        };
                         shader.primary(&ray, &mut c, &mut rays)
                     }
                 })
@@ -188,6 +203,7 @@ pub fn render<C: Counter, I: Intersector>(
         })
         .collect();
 
+    let pixel_fill = C::enter_phase(Phase::PixelFill);
     let mut ray_counts = RayCounts::default();
     let mut samples = Vec::with_capacity(columns as usize * rows as usize);
     for (row, c, rays) in traced {
@@ -202,6 +218,7 @@ pub fn render<C: Counter, I: Intersector>(
         Sampling::PixelCenters => samples,
         Sampling::SpdCorners => average_corners(&samples, options.width, options.height),
     };
+    drop(pixel_fill);
     Ok(Rendered {
         frame: Frame {
             width: options.width,

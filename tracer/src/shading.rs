@@ -15,6 +15,11 @@
 //!   refraction ray (Snell) unless at maximum depth or on total internal reflection,
 //!   where the reflection ray carries the transmitted weight too (Ks + T).
 //!
+//! Phases: a hit's shading is `shading`; inside it the shadow rays' queries are
+//! `shadow query` and the reflection and refraction rays' set-up is
+//! `reflection/refraction set-up`, with the rays it traces (`closest hit`, their own
+//! `shading`) nested inside, so the phase stack follows the ray tree.
+//!
 //! `ShadingMode::DiffuseOnly` is the thesis hardware's shading: the Lambert term of the
 //! first light with both vectors normalized, ×255, background where N·L < 0, nothing else.
 //!
@@ -23,7 +28,7 @@
 
 use crate::accel::Intersector;
 use crate::color::Rgb;
-use crate::counter::{Counter, RayCounts, Stat};
+use crate::counter::{Counter, Phase, RayCounts, Stat};
 use crate::ray::{Hit, PrimKind, Ray};
 use crate::scene::{Light, Material, Scene};
 use crate::variants::diffuse::{DiffuseForm, SpherePeaks};
@@ -109,7 +114,10 @@ impl<'s, I: Intersector> Shader<'s, I> {
     pub fn primary<C: Counter>(&self, ray: &Ray, c: &mut C, rays: &mut RayCounts) -> Rgb {
         rays.primary += 1;
         c.tally(Stat::Trace);
-        let hit = self.accel.closest_hit(ray, 0.0, c);
+        let hit = {
+            let _phase = C::enter_phase(Phase::ClosestHit);
+            self.accel.closest_hit(ray, 0.0, c)
+        };
         self.primary_after(ray, hit, c, rays)
     }
 
@@ -122,7 +130,10 @@ impl<'s, I: Intersector> Shader<'s, I> {
     ) -> Rgb {
         rays.primary += 1;
         c.tally(Stat::Trace);
-        let hit = self.accel.closest_hit_from_eye(ray, c);
+        let hit = {
+            let _phase = C::enter_phase(Phase::ClosestHit);
+            self.accel.closest_hit_from_eye(ray, c)
+        };
         self.primary_after(&ray.plain(), hit, c, rays)
     }
 
@@ -153,7 +164,11 @@ impl<'s, I: Intersector> Shader<'s, I> {
     /// Colour seen along a secondary `ray` at tree depth `depth` (> 1).
     pub fn trace<C: Counter>(&self, ray: &Ray, depth: u32, c: &mut C, rays: &mut RayCounts) -> Rgb {
         c.tally(Stat::Trace);
-        let Some(hit) = self.accel.closest_hit(ray, 0.0, c) else {
+        let hit = {
+            let _phase = C::enter_phase(Phase::ClosestHit);
+            self.accel.closest_hit(ray, 0.0, c)
+        };
+        let Some(hit) = hit else {
             return self.scene.background;
         };
         self.shade(ray, &hit, depth, c, rays)
@@ -182,6 +197,7 @@ impl<'s, I: Intersector> Shader<'s, I> {
         c: &mut C,
         rays: &mut RayCounts,
     ) -> Rgb {
+        let _phase = C::enter_phase(Phase::Shading);
         c.tally(Stat::Shade);
         let s = self.surface(ray, hit, c);
         let m = s.material;
@@ -192,7 +208,10 @@ impl<'s, I: Intersector> Shader<'s, I> {
 
         let reflective = m.ks > 0.0 || m.t > 0.0;
         // The mirror direction serves both the highlight and the reflection ray.
-        let mirror = reflective.then(|| reflect(ray.dir, s.normal, c));
+        let mirror = reflective.then(|| {
+            let _phase = C::enter_phase(Phase::SecondaryRays);
+            reflect(ray.dir, s.normal, c)
+        });
 
         for (light_index, light) in self.scene.lights.iter().enumerate() {
             let to_light = c.sub(light.position, s.point);
@@ -208,7 +227,11 @@ impl<'s, I: Intersector> Shader<'s, I> {
                 origin: above,
                 dir: l,
             };
-            if self.accel.occluded(&shadow, 0.0, distance, c) {
+            let blocked = {
+                let _phase = C::enter_phase(Phase::ShadowQuery);
+                self.accel.occluded(&shadow, 0.0, distance, c)
+            };
+            if blocked {
                 rays.shadow_blocked += 1;
                 continue;
             }
@@ -220,6 +243,8 @@ impl<'s, I: Intersector> Shader<'s, I> {
         }
 
         if depth < self.max_depth && reflective {
+            // The secondary rays' set-up; the rays they trace nest inside.
+            let _phase = C::enter_phase(Phase::SecondaryRays);
             let mut reflect_weight = m.ks;
             if m.t > 0.0 {
                 let eta = if s.front { 1.0 / m.ior } else { m.ior };
@@ -245,6 +270,7 @@ impl<'s, I: Intersector> Shader<'s, I> {
 
     /// The thesis hardware's shading of one eye ray's hit; `None` shows background.
     fn diffuse_only<C: Counter>(&self, ray: &Ray, hit: &Hit, c: &mut C) -> Option<Rgb> {
+        let _phase = C::enter_phase(Phase::Shading);
         c.tally(Stat::Shade);
         let light = self.scene.lights.first()?;
         let along = c.scale(ray.dir, hit.t);

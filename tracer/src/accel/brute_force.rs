@@ -1,10 +1,12 @@
 //! Brute force: every query tests every primitive (the thesis's software reference and
 //! the `baseline` variant). Closest-hit queries always test all primitives; occlusion
 //! queries stop at the first blocker, in the fixed order spheres, cylinders, cones,
-//! polygons, patches (so counts stay deterministic).
+//! polygons, patches (so counts stay deterministic). Each kind's loop is that kind's
+//! test phase (one phase per kind and query, not per primitive: the loop is the test
+//! work, and marking it once keeps the phase recording cheap).
 
 use super::Intersector;
-use crate::counter::{Counter, Stat};
+use crate::counter::{Counter, Phase, Stat};
 use crate::ray::{Hit, PrimKind, PrimRef, Ray};
 use crate::scene::Scene;
 
@@ -40,13 +42,17 @@ impl Intersector for BruteForce<'_> {
     fn occluded<C: Counter>(&self, ray: &Ray, t_min: f32, t_max: f32, c: &mut C) -> bool {
         c.tally(Stat::Intersect);
         let s = self.scene;
-        s.spheres
-            .iter()
-            .any(|p| p.intersect(ray, t_min, t_max, c).is_some())
-            || s.cylinders
+        ({
+            let _phase = kind_phase::<C, _>(Phase::SphereTest, &s.spheres);
+            s.spheres
                 .iter()
                 .any(|p| p.intersect(ray, t_min, t_max, c).is_some())
-            || occluded_by_cones_and_planars(s, ray, t_min, t_max, c)
+        } || {
+            let _phase = kind_phase::<C, _>(Phase::CylinderTest, &s.cylinders);
+            s.cylinders
+                .iter()
+                .any(|p| p.intersect(ray, t_min, t_max, c).is_some())
+        }) || occluded_by_cones_and_planars(s, ray, t_min, t_max, c)
     }
 }
 
@@ -59,15 +65,34 @@ pub(super) fn occluded_by_cones_and_planars<C: Counter>(
     t_max: f32,
     c: &mut C,
 ) -> bool {
-    s.cones
-        .iter()
-        .any(|p| p.intersect(ray, t_min, t_max, c).is_some())
-        || s.polygons
+    ({
+        let _phase = kind_phase::<C, _>(Phase::ConeTest, &s.cones);
+        s.cones
             .iter()
             .any(|p| p.intersect(ray, t_min, t_max, c).is_some())
-        || s.patches
+    } || {
+        let _phase = kind_phase::<C, _>(Phase::PolygonTest, &s.polygons);
+        s.polygons
             .iter()
             .any(|p| p.intersect(ray, t_min, t_max, c).is_some())
+    } || {
+        let _phase = kind_phase::<C, _>(Phase::PatchTest, &s.patches);
+        s.patches
+            .iter()
+            .any(|p| p.intersect(ray, t_min, t_max, c).is_some())
+    })
+}
+
+/// Starts the test phase of one kind's loop over `prims`. Without a primitive of the
+/// kind the (empty) loop runs outside any test phase, which spares a phased render
+/// up to five phases per query; the plain render does not look at `prims`.
+#[inline(always)]
+fn kind_phase<C: Counter, T>(phase: Phase, prims: &[T]) -> Option<C::PhaseGuard> {
+    if C::PHASES && prims.is_empty() {
+        None
+    } else {
+        Some(C::enter_phase(phase))
+    }
 }
 
 impl BruteForce<'_> {
@@ -83,54 +108,69 @@ impl BruteForce<'_> {
         let s = self.scene;
         let mut best: Option<Hit> = None;
         let mut t_max = f32::INFINITY;
-        for (i, sphere) in s.spheres.iter().enumerate() {
-            if let Some(t) = sphere.intersect(ray, t_min, t_max, c) {
-                t_max = t;
-                best = Some(Hit {
-                    t,
-                    prim: prim(PrimKind::Sphere, i),
-                    aux: 0.0,
-                });
+        {
+            let _phase = kind_phase::<C, _>(Phase::SphereTest, &s.spheres);
+            for (i, sphere) in s.spheres.iter().enumerate() {
+                if let Some(t) = sphere.intersect(ray, t_min, t_max, c) {
+                    t_max = t;
+                    best = Some(Hit {
+                        t,
+                        prim: prim(PrimKind::Sphere, i),
+                        aux: 0.0,
+                    });
+                }
             }
         }
-        for (i, cylinder) in s.cylinders.iter().enumerate() {
-            if let Some((t, m)) = cylinder.intersect(ray, t_min, t_max, c) {
-                t_max = t;
-                best = Some(Hit {
-                    t,
-                    prim: prim(PrimKind::Cylinder, i),
-                    aux: m,
-                });
+        {
+            let _phase = kind_phase::<C, _>(Phase::CylinderTest, &s.cylinders);
+            for (i, cylinder) in s.cylinders.iter().enumerate() {
+                if let Some((t, m)) = cylinder.intersect(ray, t_min, t_max, c) {
+                    t_max = t;
+                    best = Some(Hit {
+                        t,
+                        prim: prim(PrimKind::Cylinder, i),
+                        aux: m,
+                    });
+                }
             }
         }
-        for (i, cone) in s.cones.iter().enumerate() {
-            if let Some((t, m)) = cone.intersect(ray, t_min, t_max, c) {
-                t_max = t;
-                best = Some(Hit {
-                    t,
-                    prim: prim(PrimKind::Cone, i),
-                    aux: m,
-                });
+        {
+            let _phase = kind_phase::<C, _>(Phase::ConeTest, &s.cones);
+            for (i, cone) in s.cones.iter().enumerate() {
+                if let Some((t, m)) = cone.intersect(ray, t_min, t_max, c) {
+                    t_max = t;
+                    best = Some(Hit {
+                        t,
+                        prim: prim(PrimKind::Cone, i),
+                        aux: m,
+                    });
+                }
             }
         }
-        for (i, polygon) in s.polygons.iter().enumerate() {
-            if let Some(t) = polygon.intersect(ray, t_min, t_max, c) {
-                t_max = t;
-                best = Some(Hit {
-                    t,
-                    prim: prim(PrimKind::Polygon, i),
-                    aux: 0.0,
-                });
+        {
+            let _phase = kind_phase::<C, _>(Phase::PolygonTest, &s.polygons);
+            for (i, polygon) in s.polygons.iter().enumerate() {
+                if let Some(t) = polygon.intersect(ray, t_min, t_max, c) {
+                    t_max = t;
+                    best = Some(Hit {
+                        t,
+                        prim: prim(PrimKind::Polygon, i),
+                        aux: 0.0,
+                    });
+                }
             }
         }
-        for (i, patch) in s.patches.iter().enumerate() {
-            if let Some(t) = patch.intersect(ray, t_min, t_max, c) {
-                t_max = t;
-                best = Some(Hit {
-                    t,
-                    prim: prim(PrimKind::Patch, i),
-                    aux: 0.0,
-                });
+        {
+            let _phase = kind_phase::<C, _>(Phase::PatchTest, &s.patches);
+            for (i, patch) in s.patches.iter().enumerate() {
+                if let Some(t) = patch.intersect(ray, t_min, t_max, c) {
+                    t_max = t;
+                    best = Some(Hit {
+                        t,
+                        prim: prim(PrimKind::Patch, i),
+                        aux: 0.0,
+                    });
+                }
             }
         }
         best

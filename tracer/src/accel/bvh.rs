@@ -10,7 +10,7 @@
 //! `tests.*` and `accel.*` between `baseline` and `bvh`.
 
 use super::{Intersector, intersect_primitive};
-use crate::counter::{Counter, Stat};
+use crate::counter::{Counter, Phase, Stat};
 use crate::ray::{Hit, PrimKind, PrimRef, Ray};
 use crate::scene::Scene;
 use crate::vec3::Vec3;
@@ -308,8 +308,9 @@ impl<'s> Bvh<'s> {
         self.build_node(right, depth + 1);
     }
 
-    /// Front-to-back traversal; `visit` tests a leaf's primitives and returns whether
-    /// the search is over (a shadow ray found a blocker). `t_max` shrinks as hits are
+    /// Front-to-back traversal (phase `traversal`, the leaves' tests inside it);
+    /// `visit` tests a leaf's primitives and returns whether the search is over (a
+    /// shadow ray found a blocker). `t_max` shrinks as hits are
     /// found so farther boxes are skipped.
     #[inline(always)]
     fn traverse<C: Counter, const FROM_EYE: bool>(
@@ -320,6 +321,7 @@ impl<'s> Bvh<'s> {
         c: &mut C,
         mut visit: impl FnMut(&[PrimRef], &mut f32, &mut C) -> bool,
     ) {
+        let _phase = C::enter_phase(Phase::Traversal);
         if self.nodes.is_empty() {
             return;
         }

@@ -1,6 +1,10 @@
 //! Closest-hit and occlusion queries over a scene. Brute force is the thesis's software
 //! reference; the SIMD batches ([`Simd`]) and the BVH ([`Bvh`]) answer the same
 //! queries faster.
+//!
+//! Phases: the intersectors mark the node work of the BVH as `traversal` and each
+//! primitive test (or SIMD chunk of tests) as its kind's test phase; the queries
+//! themselves (`closest hit`, `shadow query`) are marked by the shader that asks them.
 
 mod brute_force;
 mod bvh;
@@ -11,7 +15,7 @@ use brute_force::occluded_by_cones_and_planars;
 pub use bvh::{Bvh, BvhStats};
 pub use simd::Simd;
 
-use crate::counter::Counter;
+use crate::counter::{Counter, Phase};
 use crate::ray::{Hit, PrimKind, PrimRef, Ray};
 use crate::scene::Scene;
 
@@ -32,7 +36,8 @@ pub trait Intersector: Sync {
 }
 
 /// Tests one primitive of `scene` against `ray` in `(t_min, t_max)`: the distance and
-/// the hit's `aux` value. The one dispatch on primitive kind that the BVH leaves use.
+/// the hit's `aux` value, in the kind's test phase. The one dispatch on primitive kind
+/// that the BVH leaves use.
 #[inline(always)]
 pub(crate) fn intersect_primitive<C: Counter, const FROM_EYE: bool>(
     scene: &Scene,
@@ -44,16 +49,31 @@ pub(crate) fn intersect_primitive<C: Counter, const FROM_EYE: bool>(
 ) -> Option<(f32, f32)> {
     let i = prim.index as usize;
     match prim.kind {
-        PrimKind::Sphere => scene.spheres[i]
-            .intersect(ray, t_min, t_max, c)
-            .map(|t| (t, 0.0)),
-        PrimKind::Cylinder => scene.cylinders[i].intersect(ray, t_min, t_max, c),
-        PrimKind::Cone => scene.cones[i].intersect(ray, t_min, t_max, c),
-        PrimKind::Polygon => scene.polygons[i]
-            .intersect(ray, t_min, t_max, c)
-            .map(|t| (t, 0.0)),
-        PrimKind::Patch => scene.patches[i]
-            .intersect(ray, t_min, t_max, c)
-            .map(|t| (t, 0.0)),
+        PrimKind::Sphere => {
+            let _phase = C::enter_phase(Phase::SphereTest);
+            scene.spheres[i]
+                .intersect(ray, t_min, t_max, c)
+                .map(|t| (t, 0.0))
+        }
+        PrimKind::Cylinder => {
+            let _phase = C::enter_phase(Phase::CylinderTest);
+            scene.cylinders[i].intersect(ray, t_min, t_max, c)
+        }
+        PrimKind::Cone => {
+            let _phase = C::enter_phase(Phase::ConeTest);
+            scene.cones[i].intersect(ray, t_min, t_max, c)
+        }
+        PrimKind::Polygon => {
+            let _phase = C::enter_phase(Phase::PolygonTest);
+            scene.polygons[i]
+                .intersect(ray, t_min, t_max, c)
+                .map(|t| (t, 0.0))
+        }
+        PrimKind::Patch => {
+            let _phase = C::enter_phase(Phase::PatchTest);
+            scene.patches[i]
+                .intersect(ray, t_min, t_max, c)
+                .map(|t| (t, 0.0))
+        }
     }
 }

@@ -15,7 +15,7 @@
 //! `rays.*` and the picture do not).
 
 use super::{Intersector, intersect_primitive, occluded_by_cones_and_planars};
-use crate::counter::{Counter, Stat};
+use crate::counter::{Counter, Phase, Stat};
 use crate::ray::{Hit, PrimKind, PrimRef, Ray};
 use crate::scene::Scene;
 
@@ -239,7 +239,12 @@ fn quadric_pass_body<C: Counter>(
     c: &mut C,
 ) -> Option<Hit> {
     let (sphere_count, cylinder_count) = (simd.scene.spheres.len(), simd.scene.cylinders.len());
-    let sphere = sphere_pass(&simd.spheres, sphere_count, ray, t_min, t_max, any, c);
+    // A chunk tests several primitives of one kind at once: the whole pass is the
+    // kind's test phase.
+    let sphere = {
+        let _phase = C::enter_phase(Phase::SphereTest);
+        sphere_pass(&simd.spheres, sphere_count, ray, t_min, t_max, any, c)
+    };
     let hit = |kind, (t, index, aux): (f32, usize, f32)| Hit {
         t,
         prim: PrimRef {
@@ -252,7 +257,11 @@ fn quadric_pass_body<C: Counter>(
         return sphere.map(|s| hit(PrimKind::Sphere, s));
     }
     let limit = sphere.map_or(t_max, |(t, _, _)| t);
-    match cylinder_pass(&simd.cylinders, cylinder_count, ray, t_min, limit, any, c) {
+    let cylinder = {
+        let _phase = C::enter_phase(Phase::CylinderTest);
+        cylinder_pass(&simd.cylinders, cylinder_count, ray, t_min, limit, any, c)
+    };
+    match cylinder {
         Some(cy) => Some(hit(PrimKind::Cylinder, cy)),
         None => sphere.map(|s| hit(PrimKind::Sphere, s)),
     }

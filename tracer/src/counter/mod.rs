@@ -4,7 +4,11 @@
 //! [`Counter`]. The renderer is generic over the counter type: [`NoCount`] makes every
 //! tally an empty inline function (the optimizer removes it), [`Count`] adds one to a
 //! plain `u64`. One binary therefore runs counted (`rtprof count`) and uncounted
-//! (`rtprof render`) without a runtime branch in the hot loops.
+//! (`rtprof render`) without a runtime branch in the hot loops. A third counter,
+//! [`Phased`], counts nothing either but records which [`Phase`] of the work each
+//! thread is in ([`phase`]), for a sampling profiler's phase view: the renderer marks
+//! its work with [`Counter::enter_phase`] (or [`Counter::in_phase`]), which the other
+//! two compile to nothing.
 //!
 //! Every counter is declared once, in the counter table ([`table`]: its [`Stat`], its
 //! key, what it counts, the profiled functions it gives the calls of); the report of a
@@ -22,20 +26,25 @@
 //! rays per second. They are rows of the counter table all the same.
 
 pub mod counts;
+pub mod phase;
 pub mod table;
 
 pub use counts::{AccelCounts, CallCounts, Counts, OpCounts, RayCounts, TestCounts, TestHits};
+pub use phase::{
+    Phase, PhaseGuard, enter_phase, phase_depth, phase_names, phase_stack_key, phases_of,
+    with_phase,
+};
 pub use table::{
     COUNTERS, CounterDef, DERIVED_CALLS, DerivedCalls, STAT_COUNT, Stat, by_key, counted_operations,
 };
 
 use crate::vec3::Vec3;
 
-/// The types whose methods are the counted operations (the trait, its two counters and
+/// The types whose methods are the counted operations (the trait, its three counters and
 /// the square-root adaptor of the `fast-sqrt*` variants): a profile prints their
 /// methods by the bare operation name, as the thesis's table 6 does (`dot`, not
 /// `Counter::dot`). A test checks each against the source.
-pub const COUNTING_LAYER: [&str; 4] = ["Counter", "NoCount", "Count", "WithSqrt"];
+pub const COUNTING_LAYER: [&str; 5] = ["Counter", "NoCount", "Count", "Phased", "WithSqrt"];
 
 /// A sink for operation counts, and the home of every counted operation.
 ///
@@ -44,6 +53,27 @@ pub const COUNTING_LAYER: [&str; 4] = ["Counter", "NoCount", "Count", "WithSqrt"
 pub trait Counter: Default + Clone + Send + Sync {
     /// Whether this counter records anything.
     const ENABLED: bool;
+
+    /// Whether [`Counter::enter_phase`] records phases on the thread's phase stack.
+    const PHASES: bool = false;
+
+    /// What [`Counter::enter_phase`] returns: the phase ends when it is dropped. `()`
+    /// for the counters that do not record phases.
+    type PhaseGuard;
+
+    /// Starts `phase` on the calling thread until the guard is dropped (also when the
+    /// work unwinds). Only [`Phased`] records it (see [`phase`]); for the others the
+    /// guard is `()` and the plain and counted renders compile as if it were not
+    /// there. The renderer uses this form in its hot loops: a guard in a block keeps
+    /// the code as it was, where a closure might not be inlined.
+    fn enter_phase(phase: Phase) -> Self::PhaseGuard;
+
+    /// Runs `f` as the work of `phase` ([`Counter::enter_phase`] around `f`).
+    #[inline(always)]
+    fn in_phase<R>(phase: Phase, f: impl FnOnce() -> R) -> R {
+        let _phase = Self::enter_phase(phase);
+        f()
+    }
 
     /// Records one occurrence of `stat`.
     fn tally(&mut self, stat: Stat);
@@ -138,6 +168,39 @@ pub struct NoCount;
 
 impl Counter for NoCount {
     const ENABLED: bool = false;
+    type PhaseGuard = ();
+
+    #[inline(always)]
+    fn enter_phase(_phase: Phase) {}
+
+    #[inline(always)]
+    fn tally(&mut self, _stat: Stat) {}
+
+    #[inline(always)]
+    fn tally_n(&mut self, _stat: Stat, _n: u64) {}
+
+    #[inline(always)]
+    fn merge(&mut self, _other: &Self) {}
+
+    fn totals(&self) -> Option<[u64; STAT_COUNT]> {
+        None
+    }
+}
+
+/// A counter that counts nothing (the maths of [`NoCount`]) but records the phase of
+/// the work on the calling thread's phase stack, for the phase view of a profile.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct Phased;
+
+impl Counter for Phased {
+    const ENABLED: bool = false;
+    const PHASES: bool = true;
+    type PhaseGuard = PhaseGuard;
+
+    #[inline(always)]
+    fn enter_phase(phase: Phase) -> PhaseGuard {
+        phase::enter_phase(phase)
+    }
 
     #[inline(always)]
     fn tally(&mut self, _stat: Stat) {}
@@ -176,6 +239,10 @@ impl Count {
 
 impl Counter for Count {
     const ENABLED: bool = true;
+    type PhaseGuard = ();
+
+    #[inline(always)]
+    fn enter_phase(_phase: Phase) {}
 
     #[inline(always)]
     fn tally(&mut self, stat: Stat) {

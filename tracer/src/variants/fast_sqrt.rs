@@ -13,7 +13,7 @@
 //! zero fall outside the argument; the tracer never takes their root: discriminants and
 //! squared lengths are tested `> 0` first, and vectors are never zero.)
 
-use crate::counter::{Counter, STAT_COUNT, Stat};
+use crate::counter::{Counter, Phase, STAT_COUNT, Stat};
 use std::marker::PhantomData;
 
 /// One way of computing a square root.
@@ -138,6 +138,14 @@ impl<C, S> WithSqrt<C, S> {
 
 impl<C: Counter, S: SquareRoot> Counter for WithSqrt<C, S> {
     const ENABLED: bool = C::ENABLED;
+    const PHASES: bool = C::PHASES;
+
+    type PhaseGuard = C::PhaseGuard;
+
+    #[inline(always)]
+    fn enter_phase(phase: Phase) -> C::PhaseGuard {
+        C::enter_phase(phase)
+    }
 
     #[inline(always)]
     fn tally(&mut self, stat: Stat) {
