@@ -522,13 +522,17 @@ fn profile_writes_both_views_exports_and_json_with_calls_per_render() {
     let rows =
         analysis::profile::gprof_text::parse_flat_text(&flat).unwrap_or_else(|e| panic!("{e}"));
     assert!(!rows.is_empty());
-    let entries = analysis::profile::gprof_text::parse_call_graph_text(&text("callgraph-baseline.txt"))
-        .unwrap_or_else(|e| panic!("{e}"));
+    let entries =
+        analysis::profile::gprof_text::parse_call_graph_text(&text("callgraph-baseline.txt"))
+            .unwrap_or_else(|e| panic!("{e}"));
     assert!(!entries.is_empty());
     let svg = text("flame-baseline.svg");
     assert!(svg.contains("<svg") && svg.trim_end().ends_with("</svg>"));
     // The phase view names the tests by kind, whatever was inlined.
-    assert!(svg.contains("sphere test") && svg.contains("cylinder test"), "phases missing");
+    assert!(
+        svg.contains("sphere test") && svg.contains("cylinder test"),
+        "phases missing"
+    );
 
     let json: serde_json::Value =
         serde_json::from_slice(&out.stdout).unwrap_or_else(|e| panic!("{e}"));
@@ -537,7 +541,10 @@ fn profile_writes_both_views_exports_and_json_with_calls_per_render() {
         serde_json::from_slice(&count.stdout).unwrap_or_else(|e| panic!("{e}"));
     // The render is repeated to gather samples; calls stay those of one render.
     let renders = json["profile"]["renders"].as_u64().unwrap();
-    assert!(renders > 1, "a 40x30 render should need repeating: {renders}");
+    assert!(
+        renders > 1,
+        "a 40x30 render should need repeating: {renders}"
+    );
     assert!(flat.contains(&format!("{renders} renders sampled; calls are per render")));
     let calls_of = |view: &str, name: &str| {
         json["profile"][view]["flat"]["rows"]
@@ -549,7 +556,9 @@ fn profile_writes_both_views_exports_and_json_with_calls_per_render() {
     let cylinders = counts["tests"]["cylinder"]["tests"].as_u64();
     assert_eq!(calls_of("phases", "sphere test"), spheres);
     assert_eq!(calls_of("phases", "cylinder test"), cylinders);
-    assert_eq!(calls_of("phases", "camera ray"), counts["rays"]["primary"].as_u64());
+    // Phases on most stacks: every traced ray's query, every shaded hit.
+    assert_eq!(calls_of("phases", "closest hit"), counts["calls"]["trace"].as_u64());
+    assert_eq!(calls_of("phases", "shading"), counts["calls"]["shade"].as_u64());
     // The files the results point at carry the same calls as the JSON.
     let saved = &json["files"]["baseline"];
     assert_eq!(saved["renders"].as_u64(), Some(renders));
@@ -805,7 +814,7 @@ fn suite_writes_results_and_reports_and_the_gate_sets_the_exit_code() {
     let results_path = first.join("results.json");
     let text = String::from_utf8(read(&results_path)).unwrap();
     let v: serde_json::Value = serde_json::from_str(&text).unwrap();
-    assert_eq!(v["schema"], "rtprof.results/2");
+    assert_eq!(v["schema"], "rtprof.results/3");
     assert_eq!(v["scenes"].as_array().unwrap().len(), 2);
     // The hardware runs on these sphere/cylinder scenes; counts are exact.
     assert!(v["scenes"][0]["hardware"]["emulator_rms"].as_f64().unwrap() <= 15.0);
@@ -1052,8 +1061,8 @@ fn profile_calls_match_the_counters(test: &str, scene: &str, size: &str) -> Vec<
     let rows =
         analysis::profile::gprof_text::parse_flat_text(&flat).unwrap_or_else(|e| panic!("{e}"));
     // Rows below the noise floor are listed apart, with their calls.
-    let noise = analysis::profile::gprof_text::parse_flat_noise(&flat)
-        .unwrap_or_else(|e| panic!("{e}"));
+    let noise =
+        analysis::profile::gprof_text::parse_flat_noise(&flat).unwrap_or_else(|e| panic!("{e}"));
     let calls_of = |name: &str| {
         rows.iter()
             .find(|r| r.name == name)

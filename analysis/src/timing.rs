@@ -120,7 +120,11 @@ pub fn ratio_of_medians_with_bootstrap(
     ratios.sort_unstable_by(f64::total_cmp);
     let median = median_of_sorted(&top) / median_of_sorted(&bottom);
     if ratios.is_empty() {
-        return Ok(Estimate { median, low: median, high: median });
+        return Ok(Estimate {
+            median,
+            low: median,
+            high: median,
+        });
     }
     Ok(Estimate {
         median,
@@ -179,7 +183,10 @@ mod tests {
         let e = ratio_of_medians_with_bootstrap(&profiled, &plain, 2000, 0.95, 7).unwrap();
         assert!((e.median - 1.04).abs() < 1e-12);
         assert!(e.low <= e.median && e.median <= e.high, "{e:?}");
-        assert!(e.low >= 1.02 / 1.02 - 1e-12 && e.high <= 1.06 / 0.98 + 1e-12, "{e:?}");
+        assert!(
+            e.low >= 1.02 / 1.02 - 1e-12 && e.high <= 1.06 / 0.98 + 1e-12,
+            "{e:?}"
+        );
         assert!(ratio_of_medians_with_bootstrap(&[], &plain, 10, 0.95, 1).is_err());
         assert!(ratio_of_medians_with_bootstrap(&profiled, &[0.0], 10, 0.95, 1).is_err());
     }

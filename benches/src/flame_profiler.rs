@@ -141,7 +141,9 @@ fn write_outputs(
     write_atomically(&dir.join("flamegraph.svg"), svg.as_bytes())?;
     let run = PprofRun {
         duration: cpu,
-        comments: vec![format!("criterion benchmark {benchmark_id}, native symbols")],
+        comments: vec![format!(
+            "criterion benchmark {benchmark_id}, native symbols"
+        )],
     };
     let pprof = pprof_profile_gz(samples, &run).map_err(|e| e.to_string())?;
     write_atomically(&dir.join("profile.pb.gz"), &pprof)?;
@@ -189,8 +191,10 @@ mod tests {
             ],
             seconds_per_sample: 0.001,
         };
-        let written = write_outputs(&samples, "sqrt/std", &dir);
+        let written = write_outputs(&samples, Duration::from_millis(10), "sqrt/std", &dir);
         let folded_text = std::fs::read_to_string(dir.join("folded.txt")).unwrap_or_default();
+        let pprof = std::fs::read(dir.join("profile.pb.gz")).unwrap_or_default();
+        let speedscope = std::fs::read_to_string(dir.join("speedscope.json")).unwrap_or_default();
         let svg = std::fs::read_to_string(dir.join("flamegraph.svg")).unwrap_or_default();
         let leftovers = std::fs::read_dir(&dir)
             .map(|entries| entries.count())
@@ -199,7 +203,10 @@ mod tests {
         assert_eq!(written, Ok(()));
         assert_eq!(folded_text, "main;bench 3\nmain;bench;sqrt 7\n");
         assert!(svg.contains("<svg") && svg.contains("sqrt"));
-        assert_eq!(leftovers, 2, "no temporary file is left behind");
+        // The exports `rtprof profile` writes: a gzip stream, a speedscope file.
+        assert_eq!(pprof.get(..2), Some(&[0x1f, 0x8b][..]), "profile.pb.gz is not gzip");
+        assert!(speedscope.contains("speedscope.app/file-format-schema.json"));
+        assert_eq!(leftovers, 4, "no temporary file is left behind");
     }
 
     #[test]

@@ -259,18 +259,27 @@ fn a_v2_file_of_main_reads_with_its_profile_marked_as_totals_over_renders() {
     let r = Results::from_json(V2_MAIN).unwrap_or_else(|e| panic!("the /2 file of main: {e}"));
     assert_eq!(r.schema, SCHEMA);
     assert_eq!(r.build.git_commit, "972ba806ca12");
-    let p = r.profile.as_ref().expect("the quick suite profiles its heaviest scene");
+    let p = r
+        .profile
+        .as_ref()
+        .expect("the quick suite profiles its heaviest scene");
     // /2 did not record how many renders were sampled: calls are totals over them,
     // the view is the native one, and there is no second view or export.
     for profile in std::iter::once(&p.baseline).chain(p.best.iter()) {
         assert_eq!(profile.renders, None);
         assert_eq!(profile.view, results::ProfileView::Native);
         assert!(profile.second_view.is_none() && profile.exports.is_empty());
-        assert!(profile.flat.iter().all(|row| row.inclusive_percent.is_none() && !row.noise));
+        assert!(
+            profile
+                .flat
+                .iter()
+                .all(|row| row.inclusive_percent.is_none() && !row.noise)
+        );
         assert!(profile.amdahl.iter().all(|row| row.inclusive.is_none()));
     }
     assert_eq!(p.diff_shrunk_flame_svg, None);
     // Written again it is a /3 file, and reads back the same.
-    let again = Results::from_json(&serde_json::to_string(&r).expect("serialize")).expect("re-read");
+    let again =
+        Results::from_json(&serde_json::to_string(&r).expect("serialize")).expect("re-read");
     assert_eq!(again, r);
 }

@@ -3,12 +3,10 @@
 //! [`crate::profile_files`].
 
 use std::collections::BTreeMap;
-use std::path::Path;
 
 use analysis::Comparison;
 use results::Quality;
 
-use crate::error::RunError;
 
 /// Every count under its counter key (`ops.dot`, `tests.sphere.tests`, …).
 pub fn count_map(counts: &tracer::Counts) -> BTreeMap<String, u64> {

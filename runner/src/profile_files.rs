@@ -17,7 +17,10 @@ use std::time::Duration;
 use analysis::profile::amdahl::amdahl_text;
 use analysis::profile::export::{PprofRun, pprof_profile_gz, speedscope_json};
 use analysis::profile::folded::{DiffSide, differential_svgs, flamegraph_svg};
-use results::{AmdahlFigures, AmdahlRow, FlatRow, Profile, ProfileResult, ProfileView, ProfileViewFiles, VariantName, slug};
+use results::{
+    AmdahlFigures, AmdahlRow, FlatRow, Profile, ProfileResult, ProfileView, ProfileViewFiles,
+    VariantName, slug,
+};
 
 use crate::error::RunError;
 use crate::profile_job::{ProfileReport, VariantProfile, ViewProfile};
@@ -52,9 +55,8 @@ fn save_view(
     v: &ViewProfile,
     title: &str,
 ) -> Result<(ProfileViewFiles, String), RunError> {
-    let name = |kind: &str, ext: &str| {
-        format!("{dir}{kind}-{}{}.{ext}", slug(variant), suffix(v.view))
-    };
+    let name =
+        |kind: &str, ext: &str| format!("{dir}{kind}-{}{}.{ext}", slug(variant), suffix(v.view));
     let flat_text = save(out, &name("flat", "txt"), v.flat_text.as_bytes())?;
     let callgraph_text = save(out, &name("callgraph", "txt"), v.call_graph_text.as_bytes())?;
     save(out, &name("folded", "txt"), v.folded.as_bytes())?;
@@ -70,7 +72,11 @@ fn save_view(
         ],
     };
     let pprof = pprof_profile_gz(&v.stacks, &run).map_err(profile_error)?;
-    let pprof_path = save(out, &format!("{dir}profile-{}{}.pb.gz", slug(variant), suffix(v.view)), &pprof)?;
+    let pprof_path = save(
+        out,
+        &format!("{dir}profile-{}{}.pb.gz", slug(variant), suffix(v.view)),
+        &pprof,
+    )?;
     let flat = v
         .flat
         .rows
@@ -173,8 +179,16 @@ pub fn save_differential(
     let (bf, bl, bs) = side(before);
     let (af, al, as_) = side(after);
     let svgs = differential_svgs(
-        &DiffSide { folded: &bf, label: &bl, seconds_per_render: bs },
-        &DiffSide { folded: &af, label: &al, seconds_per_render: as_ },
+        &DiffSide {
+            folded: &bf,
+            label: &bl,
+            seconds_per_render: bs,
+        },
+        &DiffSide {
+            folded: &af,
+            label: &al,
+            seconds_per_render: as_,
+        },
         &format!("{scene}: {bl} → {al}"),
     )
     .map_err(profile_error)?;
@@ -247,7 +261,11 @@ impl ProfileReport {
         ];
         files.extend(saved.baseline.exports.iter().map(String::as_str));
         if let Some(v) = &saved.baseline.second_view {
-            files.extend([v.flat_text.as_str(), v.callgraph_text.as_str(), v.flame_svg.as_str()]);
+            files.extend([
+                v.flat_text.as_str(),
+                v.callgraph_text.as_str(),
+                v.flame_svg.as_str(),
+            ]);
         }
         if let Some(best) = &saved.best {
             files.extend([best.flat_text.as_str(), best.flame_svg.as_str()]);

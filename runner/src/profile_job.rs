@@ -217,10 +217,12 @@ impl ProfileJob<'_> {
             |name| name.starts_with("tracer::"),
             || {
                 let start = Instant::now();
-                let out = self.pool.install(|| {
-                    render_variant::<Phased>(self.scene, &self.options, set, &|_| {})
-                });
-                render_seconds.borrow_mut().push(start.elapsed().as_secs_f64());
+                let out = self
+                    .pool
+                    .install(|| render_variant::<Phased>(self.scene, &self.options, set, &|_| {}));
+                render_seconds
+                    .borrow_mut()
+                    .push(start.elapsed().as_secs_f64());
                 out.map(|_| ())
             },
         )

@@ -25,7 +25,7 @@ use crate::pool::thread_pool;
 use crate::profile_job::ProfileJob;
 use crate::progress::Progress;
 use crate::scenes::{SceneSpec, extra_scenes, resolve_scene};
-use crate::staging::{save, save_png};
+use crate::staging::save_png;
 use crate::variant_job::RenderSetup;
 
 /// A suite ready to run: its definition and its resolved scenes.

@@ -67,15 +67,19 @@ fn phase_attribution_follows_the_known_costs_and_the_bvh_diff() {
     assert!(spheres.primitive_count() > 0 && cylinders.primitive_count() > 0);
     let size = (64, 48);
 
-    let sphere_cost = cost_per_test(&profile(&spheres, "spheres", size, "baseline"), "sphere test");
-    let cylinder_cost =
-        cost_per_test(&profile(&cylinders, "cylinders", size, "baseline"), "cylinder test");
+    let sphere_cost = cost_per_test(
+        &profile(&spheres, "spheres", size, "baseline"),
+        "sphere test",
+    );
+    let cylinder_cost = cost_per_test(
+        &profile(&cylinders, "cylinders", size, "baseline"),
+        "cylinder test",
+    );
     let both = profile(&mixed, "lattice3", size, "baseline");
     let (sphere_s, sphere_tests) = phase(&both.phases.flat, "sphere test");
     let (cylinder_s, cylinder_tests) = phase(&both.phases.flat, "cylinder test");
     let measured = sphere_s / cylinder_s;
-    let predicted =
-        (sphere_tests as f64 * sphere_cost) / (cylinder_tests as f64 * cylinder_cost);
+    let predicted = (sphere_tests as f64 * sphere_cost) / (cylinder_tests as f64 * cylinder_cost);
     eprintln!(
         "sphere test {:.1} ns, cylinder test {:.1} ns; mixed: {sphere_tests} and {cylinder_tests} tests per render; sphere : cylinder time measured {measured:.3}, predicted {predicted:.3}",
         sphere_cost * 1e9,
@@ -108,7 +112,8 @@ fn phase_attribution_follows_the_known_costs_and_the_bvh_diff() {
         })
     };
     for test in ["sphere test", "cylinder test"] {
-        let d = change(&shrunk, test).unwrap_or_else(|| panic!("no {test} frame in the shrunk graph"));
+        let d =
+            change(&shrunk, test).unwrap_or_else(|| panic!("no {test} frame in the shrunk graph"));
         assert!(d < 0.0, "{test} should shrink: {d:+}%");
     }
     let d = change(&grown, "traversal").expect("no traversal frame in the grown graph");

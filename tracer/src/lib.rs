@@ -54,7 +54,7 @@ pub use camera::{Camera, Projection, Sampling};
 pub use color::Rgb;
 pub use counter::{
     COUNTERS, Count, Counter, CounterDef, Counts, NoCount, Phase, Phased, RayCounts, Stat,
-    phase_names, phase_stack_key,
+    phase_calls, phase_names, phase_stack_key,
 };
 pub use nff::{Limits, LoadError, NffError, load_nff, load_nff_with_limits, parse_nff};
 pub use nff_writer::{scene_to_nff, write_scene};

@@ -31,8 +31,8 @@ pub mod table;
 
 pub use counts::{AccelCounts, CallCounts, Counts, OpCounts, RayCounts, TestCounts, TestHits};
 pub use phase::{
-    Phase, PhaseGuard, enter_phase, phase_depth, phase_names, phase_stack_key, phases_of,
-    with_phase,
+    Phase, PhaseGuard, enter_phase, phase_calls, phase_depth, phase_names, phase_stack_key,
+    phases_of, with_phase,
 };
 pub use table::{
     COUNTERS, CounterDef, DERIVED_CALLS, DerivedCalls, STAT_COUNT, Stat, by_key, counted_operations,

@@ -311,6 +311,27 @@ pub fn phase_depth() -> usize {
     })
 }
 
+/// Exact calls per render of the phases the counters determine, by phase: camera ray
+/// (eye rays), closest hit (`calls.trace`: one query per traced ray), shadow query
+/// (shadow rays), shading (`calls.shade`) and each kind's test (its tests; a SIMD chunk
+/// or a brute-force loop enters its phase once for many tests, so the calls are the
+/// tests, and a phase's time per call is its time per test). Traversal, the set-up of
+/// secondary rays, pixel fill and sample rows have no exact count.
+pub fn phase_calls(counts: &super::Counts) -> Vec<(Phase, u64)> {
+    let t = &counts.tests;
+    vec![
+        (Phase::CameraRay, counts.rays.primary),
+        (Phase::ClosestHit, counts.calls.trace),
+        (Phase::ShadowQuery, counts.rays.shadow),
+        (Phase::SphereTest, t.sphere.tests),
+        (Phase::CylinderTest, t.cylinder.tests),
+        (Phase::ConeTest, t.cone.tests),
+        (Phase::PolygonTest, t.polygon.tests),
+        (Phase::PatchTest, t.patch.tests),
+        (Phase::Shading, counts.calls.shade),
+    ]
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
