@@ -557,8 +557,14 @@ fn profile_writes_both_views_exports_and_json_with_calls_per_render() {
     assert_eq!(calls_of("phases", "sphere test"), spheres);
     assert_eq!(calls_of("phases", "cylinder test"), cylinders);
     // Phases on most stacks: every traced ray's query, every shaded hit.
-    assert_eq!(calls_of("phases", "closest hit"), counts["calls"]["trace"].as_u64());
-    assert_eq!(calls_of("phases", "shading"), counts["calls"]["shade"].as_u64());
+    assert_eq!(
+        calls_of("phases", "closest hit"),
+        counts["calls"]["trace"].as_u64()
+    );
+    assert_eq!(
+        calls_of("phases", "shading"),
+        counts["calls"]["shade"].as_u64()
+    );
     // The files the results point at carry the same calls as the JSON.
     let saved = &json["files"]["baseline"];
     assert_eq!(saved["renders"].as_u64(), Some(renders));

@@ -204,7 +204,11 @@ mod tests {
         assert_eq!(folded_text, "main;bench 3\nmain;bench;sqrt 7\n");
         assert!(svg.contains("<svg") && svg.contains("sqrt"));
         // The exports `rtprof profile` writes: a gzip stream, a speedscope file.
-        assert_eq!(pprof.get(..2), Some(&[0x1f, 0x8b][..]), "profile.pb.gz is not gzip");
+        assert_eq!(
+            pprof.get(..2),
+            Some(&[0x1f, 0x8b][..]),
+            "profile.pb.gz is not gzip"
+        );
         assert!(speedscope.contains("speedscope.app/file-format-schema.json"));
         assert_eq!(leftovers, 4, "no temporary file is left behind");
     }

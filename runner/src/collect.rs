@@ -7,7 +7,6 @@ use std::collections::BTreeMap;
 use analysis::Comparison;
 use results::Quality;
 
-
 /// Every count under its counter key (`ops.dot`, `tests.sphere.tests`, …).
 pub fn count_map(counts: &tracer::Counts) -> BTreeMap<String, u64> {
     counts
