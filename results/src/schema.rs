@@ -306,6 +306,31 @@ pub struct Profile {
     pub exports: Vec<String>,
 }
 
+impl Profile {
+    /// The bottleneck a headline names: the row with the largest inclusive share,
+    /// leaving out the whole-run frames (at least
+    /// [`analysis::profile::flat::WHOLE_RUN_PERCENT`] of the samples, the render's
+    /// outermost frames) and noise; the rule of [`analysis::profile::flat::bottleneck`].
+    /// `None` for profiles without inclusive shares (`/2` files).
+    pub fn bottleneck(&self) -> Option<&FlatRow> {
+        self.flat
+            .iter()
+            .filter_map(|r| Some((r, r.inclusive_percent?)))
+            .filter(|&(r, p)| p < analysis::profile::flat::WHOLE_RUN_PERCENT && !r.noise)
+            .max_by(|a, b| a.1.total_cmp(&b.1).then_with(|| b.0.name.cmp(&a.0.name)))
+            .map(|(r, _)| r)
+    }
+
+    /// The row with the most self time: where the samples land.
+    pub fn hottest(&self) -> Option<&FlatRow> {
+        self.flat.iter().max_by(|a, b| {
+            a.percent
+                .total_cmp(&b.percent)
+                .then_with(|| b.name.cmp(&a.name))
+        })
+    }
+}
+
 /// The profile section.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct ProfileResult {

@@ -247,6 +247,16 @@ impl ProfileReport {
         if let Some(o) = &r.overhead {
             out += &o.to_text();
         }
+        if let Some(top) = analysis::profile::flat::bottleneck(&p.phases.flat) {
+            let limit = 1.0 / (1.0 - top.inclusive_percent / 100.0).max(1e-9);
+            out += &format!(
+                "bottleneck: {} holds {:.1} % (95 % interval {:.1}-{:.1} %) of the time with everything it calls; free, the render would run {limit:.2}x faster\n",
+                top.name,
+                top.inclusive_percent,
+                top.inclusive_interval.low,
+                top.inclusive_interval.high
+            );
+        }
         out += "\nPhase view (the tracer's record of what each thread was doing; the native-symbol view is in the *-native files)\n";
         for line in p.phases.flat_text.lines().take(24) {
             out += line;

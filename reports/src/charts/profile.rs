@@ -27,10 +27,21 @@ pub fn calls_chart(results: &Results) -> Option<Chart> {
             profile.scene, profile.baseline.variant
         ),
         caption: format!(
-            "Thesis fig. 51. Exact calls of the profiled functions of {} at {}x{} ({}), counted by the instrumented tracer; log scale.",
-            profile.scene, profile.width, profile.height, profile.baseline.variant
+            "Thesis fig. 51. Exact calls {} of the profiled functions of {} at {}x{} ({}), counted by the instrumented tracer; log scale.",
+            match profile.baseline.renders {
+                Some(_) => "per render",
+                None => "over all sampled renders",
+            },
+            profile.scene,
+            profile.width,
+            profile.height,
+            profile.baseline.variant
         ),
-        axis_title: "calls per render (log scale)",
+        axis_title: if profile.baseline.renders.is_some() {
+            "calls per render (log scale)"
+        } else {
+            "calls over the sampled renders (log scale)"
+        },
         rows,
         log: true,
         colour: PALETTE[0],
@@ -60,9 +71,13 @@ pub fn self_seconds_chart(results: &Results) -> Option<Chart> {
             profile.scene, profile.baseline.variant
         ),
         caption: format!(
-            "Thesis fig. 52. Seconds spent in each function itself (not its callees), from {} samples at {} s each; the 15 largest.",
+            "Thesis fig. 52. CPU seconds spent in each function itself (not its callees), from {} samples at {} s each{}; the 15 largest.",
             profile.baseline.samples,
-            format_number(profile.baseline.seconds_per_sample)
+            format_number(profile.baseline.seconds_per_sample),
+            profile
+                .baseline
+                .renders
+                .map_or_else(String::new, |n| format!(", over {n} renders")),
         ),
         axis_title: "self time (s)",
         rows,

@@ -37,6 +37,9 @@ pub fn profile(b: &mut Builder) -> Section {
             )),
         ],
     });
+    if let Some(text) = headline(&p.baseline) {
+        s.blocks.push(Block::text(text));
+    }
     for profile in profiles(p) {
         s.blocks
             .push(Block::heading(format!("Flat profile: {}", profile.variant)));
@@ -53,24 +56,8 @@ pub fn profile(b: &mut Builder) -> Section {
                 )),
             ));
         }
-        s.blocks.push(match b.text_file(&profile.flat_text) {
-            Ok(text) => Block::Preformatted(Preformatted {
-                text,
-                file: Some(profile.flat_text.clone()),
-                folded: Some(format!(
-                    "gprof-layout flat profile text ({})",
-                    profile.flat_text
-                )),
-                print_lines: None,
-            }),
-            Err(reason) => Block::note(
-                Tone::Bad,
-                format!(
-                    "flat profile text missing: {} ({reason})",
-                    profile.flat_text
-                ),
-            ),
-        });
+        s.blocks
+            .push(flat_text_block(b, &profile.flat_text, "flat profile"));
         s.blocks.push(Block::subheading(format!(
             "Call graph: {} (fig. 53)",
             profile.variant
@@ -108,24 +95,8 @@ pub fn profile(b: &mut Builder) -> Section {
                 p.scene, profile.variant
             )),
         ));
-        s.blocks.push(match b.text_file(&native.flat_text) {
-            Ok(text) => Block::Preformatted(Preformatted {
-                text,
-                file: Some(native.flat_text.clone()),
-                folded: Some(format!(
-                    "gprof-layout native flat profile ({})",
-                    native.flat_text
-                )),
-                print_lines: None,
-            }),
-            Err(reason) => Block::note(
-                Tone::Bad,
-                format!(
-                    "native flat profile text missing: {} ({reason})",
-                    native.flat_text
-                ),
-            ),
-        });
+        s.blocks
+            .push(flat_text_block(b, &native.flat_text, "native flat profile"));
     }
     if p.best.is_none() {
         s.blocks.push(Block::empty(
@@ -133,6 +104,52 @@ pub fn profile(b: &mut Builder) -> Section {
         ));
     }
     s
+}
+
+/// A flat profile's gprof-layout text, folded away, or a note that it is missing.
+fn flat_text_block(b: &Builder, path: &str, what: &str) -> Block {
+    match b.text_file(path) {
+        Ok(text) => Block::Preformatted(Preformatted {
+            text,
+            file: Some(path.to_string()),
+            folded: Some(format!("gprof-layout {what} text ({path})")),
+            print_lines: None,
+        }),
+        Err(reason) => Block::note(Tone::Bad, format!("{what} text missing: {path} ({reason})")),
+    }
+}
+
+/// The bottleneck by inclusive time (what making it and its callees free would buy)
+/// and, when another, the hottest function by self time.
+fn headline(profile: &Profile) -> Option<String> {
+    let top = profile.bottleneck()?;
+    let share = top.inclusive_percent?;
+    let interval = top
+        .inclusive_interval
+        .map(|[lo, hi]| {
+            format!(
+                " (95 % interval {}–{})",
+                format::fixed(lo, 1),
+                format::percent(hi, 1)
+            )
+        })
+        .unwrap_or_default();
+    let limit = 1.0 / (1.0 - share / 100.0).max(1e-9);
+    let mut text = format!(
+        "Bottleneck of the {}: {} holds {}{interval} of the time with everything it calls; if that became free, the whole render would run {} faster.",
+        profile.variant,
+        top.name,
+        format::percent(share, 1),
+        format::speedup(limit),
+    );
+    if let Some(hot) = profile.hottest().filter(|h| h.name != top.name) {
+        text += &format!(
+            " The most time in one function itself: {}, {} self.",
+            hot.name,
+            format::percent(hot.percent, 1)
+        );
+    }
+    Some(text)
 }
 
 /// What a profile's function identities are, in a sentence.

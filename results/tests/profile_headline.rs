@@ -1,0 +1,59 @@
+//! The profile's headline rows: the bottleneck by inclusive share (whole-run frames and
+//! noise left out) and the hottest by self share, on hand-made rows.
+
+use results::{FlatRow, Profile, ProfileView, VariantName};
+
+fn row(name: &str, percent: f64, inclusive: Option<f64>, noise: bool) -> FlatRow {
+    FlatRow {
+        name: name.to_string(),
+        percent,
+        self_seconds: percent / 100.0,
+        total_seconds: inclusive.unwrap_or(percent) / 100.0,
+        calls: None,
+        inclusive_percent: inclusive,
+        self_interval: None,
+        inclusive_interval: None,
+        noise,
+    }
+}
+
+fn profile(flat: Vec<FlatRow>) -> Profile {
+    Profile {
+        variant: VariantName::parse("baseline").unwrap(),
+        samples: 1000,
+        seconds_per_sample: 0.001,
+        renders: Some(3),
+        samples_asked: Some(4000),
+        cpu_seconds: Some(1.0),
+        view: ProfileView::Phases,
+        flat,
+        flat_text: "flat-baseline.txt".into(),
+        callgraph_text: "callgraph-baseline.txt".into(),
+        flame_svg: "flame-baseline.svg".into(),
+        amdahl: Vec::new(),
+        second_view: None,
+        exports: Vec::new(),
+    }
+}
+
+#[test]
+fn the_bottleneck_is_the_largest_inclusive_share_below_the_whole_run() {
+    let p = profile(vec![
+        row("sample row", 0.0, Some(100.0), true),
+        row("root", 0.2, Some(99.6), true),
+        row("shading", 1.0, Some(74.0), false),
+        row("cylinder test", 64.5, Some(64.5), false),
+        row("sphere test", 34.3, Some(34.3), false),
+        // Noise never headlines, whatever its share says.
+        row("camera ray", 0.1, Some(80.0), true),
+    ]);
+    assert_eq!(p.bottleneck().map(|r| r.name.as_str()), Some("shading"));
+    assert_eq!(p.hottest().map(|r| r.name.as_str()), Some("cylinder test"));
+    // A /2 profile has no inclusive shares: no bottleneck claim.
+    let old = profile(vec![row("Cylinder::intersect", 90.8, None, false)]);
+    assert!(old.bottleneck().is_none());
+    assert_eq!(
+        old.hottest().map(|r| r.name.as_str()),
+        Some("Cylinder::intersect")
+    );
+}
