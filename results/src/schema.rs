@@ -223,6 +223,9 @@ pub struct FlatRow {
     /// Too few samples to tell the share from zero.
     #[serde(default)]
     pub noise: bool,
+    /// Only ever the outermost frame of its stacks (a thread's root: its whole work).
+    #[serde(default)]
+    pub root: bool,
 }
 
 /// One row of the Amdahl table: the whole run's speed-up if one function became
@@ -309,14 +312,14 @@ pub struct Profile {
 impl Profile {
     /// The bottleneck a headline names: the row with the largest inclusive share,
     /// leaving out the whole-run frames (at least
-    /// [`analysis::profile::flat::WHOLE_RUN_PERCENT`] of the samples, the render's
-    /// outermost frames) and noise; the rule of [`analysis::profile::flat::bottleneck`].
+    /// [`analysis::profile::flat::WHOLE_RUN_PERCENT`] of the samples, and threads'
+    /// roots: the render's outermost frames) and noise; the rule of [`analysis::profile::flat::bottleneck`].
     /// `None` for profiles without inclusive shares (`/2` files).
     pub fn bottleneck(&self) -> Option<&FlatRow> {
         self.flat
             .iter()
             .filter_map(|r| Some((r, r.inclusive_percent?)))
-            .filter(|&(r, p)| p < analysis::profile::flat::WHOLE_RUN_PERCENT && !r.noise)
+            .filter(|&(r, p)| p < analysis::profile::flat::WHOLE_RUN_PERCENT && !r.noise && !r.root)
             .max_by(|a, b| a.1.total_cmp(&b.1).then_with(|| b.0.name.cmp(&a.0.name)))
             .map(|(r, _)| r)
     }

@@ -14,6 +14,7 @@ fn row(name: &str, percent: f64, inclusive: Option<f64>, noise: bool) -> FlatRow
         self_interval: None,
         inclusive_interval: None,
         noise,
+        root: false,
     }
 }
 
@@ -46,6 +47,11 @@ fn the_bottleneck_is_the_largest_inclusive_share_below_the_whole_run() {
         row("sphere test", 34.3, Some(34.3), false),
         // Noise never headlines, whatever its share says.
         row("camera ray", 0.1, Some(80.0), true),
+        // Nor does a thread's root, which holds that thread's whole work.
+        FlatRow {
+            root: true,
+            ..row("worker", 0.0, Some(95.7), false)
+        },
     ]);
     assert_eq!(p.bottleneck().map(|r| r.name.as_str()), Some("shading"));
     assert_eq!(p.hottest().map(|r| r.name.as_str()), Some("cylinder test"));

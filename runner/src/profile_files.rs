@@ -91,6 +91,7 @@ fn save_view(
             self_interval: Some([r.self_interval.low, r.self_interval.high]),
             inclusive_interval: Some([r.inclusive_interval.low, r.inclusive_interval.high]),
             noise: r.noise,
+            root: r.root,
         })
         .collect();
     Ok((

@@ -530,6 +530,7 @@ fn sample_profile(
             self_interval: None,
             inclusive_interval: None,
             noise: false,
+            root: false,
         })
         .collect();
     let amdahl = flat

@@ -100,8 +100,8 @@ pub fn amdahl_text(rows: &[AmdahlRow]) -> String {
     let width = rows.iter().map(|r| r.name.len()).max().unwrap_or(8).max(8);
     let mut out = String::from(
         "Whole-run speed-up (Amdahl's law) if a function became 2x, 10x or infinitely\n\
-         faster, for the functions with the most inclusive time (frames on at least\n\
-         99.5 % of the samples left out: they are the whole run).\n\
+         faster, for the functions with the most inclusive time (threads' roots and\n\
+         frames on at least 99.5 % of the samples left out: they are the whole run).\n\
          \"alone\": if this function alone (its self time) became faster.\n\
          \"with callees\": if this function with everything it calls (its inclusive\n\
          time) became faster.\n\n",

@@ -94,13 +94,19 @@ pub struct FlatRow {
     pub inclusive_interval: ShareInterval,
     /// The self share is below the noise floor (see the module documentation).
     pub noise: bool,
+    /// The function is only ever the outermost frame of its stacks and calls others:
+    /// a thread's root (the phase view's `sample row`, a worker's entry), which holds
+    /// that thread's whole work. A lone frame (`[outside the tracer's phases]`) is not.
+    #[serde(default)]
+    pub root: bool,
 }
 
 impl FlatRow {
-    /// Whether the function is on (nearly) every sample's stack: inclusive share at
-    /// least [`WHOLE_RUN_PERCENT`].
+    /// Whether the function stands for the whole run: a thread's root ([`FlatRow::root`])
+    /// or on (nearly) every sample's stack (inclusive share at least
+    /// [`WHOLE_RUN_PERCENT`]). Making it free would make the run free: no headline.
     pub fn whole_run(&self) -> bool {
-        self.inclusive_percent >= WHOLE_RUN_PERCENT
+        self.root || self.inclusive_percent >= WHOLE_RUN_PERCENT
     }
 }
 
@@ -120,6 +126,13 @@ fn per_call_unit(largest: Option<f64>) -> (&'static str, f64) {
 /// Builds the flat profile from sampled stacks and exact calls per render.
 pub fn flat_profile(input: &ProfileInput<'_>) -> FlatProfile {
     let tally = Tally::new(input);
+    // Functions seen below the outermost frame of some stack are not roots.
+    let nested: std::collections::BTreeSet<&str> = input
+        .samples
+        .stacks
+        .iter()
+        .flat_map(|s| s.frames.iter().skip(1).map(String::as_str))
+        .collect();
     let renders = input.renders();
     let total = tally.total_samples;
     let seconds = |count: u64| count as f64 * input.samples.seconds_per_sample;
@@ -170,6 +183,7 @@ pub fn flat_profile(input: &ProfileInput<'_>) -> FlatProfile {
                 self_interval: interval(own),
                 inclusive_interval: interval(inclusive),
                 noise: noise(f),
+                root: !nested.contains(tally.names[f].as_str()) && inclusive > own,
             }
         })
         .collect();
@@ -496,6 +510,12 @@ mod tests {
                 .name,
             "x"
         );
+        // A thread's root (outermost, with callees) is the whole run of its thread,
+        // whatever its share: left out; a lone outermost frame is not a root.
+        let stacks = samples(&[(&["worker", "y"], 900), (&["idle"], 100)], 0.001);
+        let profile = flat(&stacks, &CallCounts::new(), 1);
+        assert!(row(&profile, "worker").root && !row(&profile, "idle").root);
+        assert_eq!(bottleneck(&profile).unwrap().name, "y");
         // Only whole-run frames and noise: no bottleneck.
         let stacks = samples(&[(&["root", "x"], 999), (&["other"], 1)], 0.001);
         assert!(bottleneck(&flat(&stacks, &CallCounts::new(), 1)).is_none());

@@ -377,7 +377,7 @@ pub fn amdahl(b: &mut Builder) -> Section {
         return s.empty("No profile in this run, so no Amdahl table.");
     };
     s.text(
-        "The whole run's speed-up if one function became 2×, 10× or infinitely faster: alone (its self time) and with everything it calls (its inclusive time). Rows are the functions with the most inclusive time; the bottleneck is the one with the largest inclusive speed-up below the whole render.",
+        "The whole run's speed-up if one function became 2×, 10× or infinitely faster: alone (its self time) and with everything it calls (its inclusive time). Rows are the functions with the most inclusive time, leaving out what stands for the whole render (threads' roots such as `sample row`, frames on at least 99.5 % of the samples); the bottleneck is the first row.",
     );
     for profile in profiles(p) {
         s.blocks
