@@ -190,7 +190,7 @@ pub fn save_differential(
             label: &al,
             seconds_per_render: as_,
         },
-        &format!("{scene}: {bl} → {al}"),
+        scene,
     )
     .map_err(profile_error)?;
     let stem = format!("{dir}flame-diff-{}-{}", slug(&bl), slug(&al));
@@ -259,10 +259,7 @@ impl ProfileReport {
             );
         }
         out += "\nPhase view (the tracer's record of what each thread was doing; the native-symbol view is in the *-native files)\n";
-        for line in p.phases.flat_text.lines().take(24) {
-            out += line;
-            out.push('\n');
-        }
+        out += &p.phases.flat_text;
         out.push('\n');
         out += &amdahl_text(&p.phases.amdahl);
         let mut files: Vec<&str> = vec![

@@ -41,6 +41,8 @@ pub const DEFAULT_MIN_SAMPLES: u64 = 1000;
 pub const MAX_RENDERS: u64 = 10_000;
 /// The phase-view frame of samples taken outside any phase (idle workers, set-up).
 pub const OUTSIDE_PHASES: &str = "[outside the tracer's phases]";
+/// The Amdahl row of all primitive tests together.
+pub const ALL_TESTS: &str = "all primitive tests";
 /// Rows of the Amdahl table.
 const AMDAHL_ROWS: usize = 10;
 /// Unprofiled renders timed for `--measure-overhead`, at least and at most.
@@ -288,9 +290,13 @@ impl ProfileJob<'_> {
         };
         let flat = flat_profile(&input);
         let graph = call_graph(&input);
+        let mut amdahl = amdahl_table(&flat, AMDAHL_ROWS);
+        if view == ProfileView::Phases {
+            add_all_tests_row(&flat, &mut amdahl);
+        }
         ViewProfile {
             view,
-            amdahl: amdahl_table(&flat, AMDAHL_ROWS),
+            amdahl,
             folded: folded(&under_one_root(&stacks, self.name)),
             flat_text: flat.to_text(),
             call_graph_text: graph.to_text(),
@@ -327,6 +333,31 @@ impl ProfileJob<'_> {
             unprofiled_renders: n,
         })
     }
+}
+
+/// The Amdahl row of every primitive test together ("the intersection tests"), when
+/// more than one kind was sampled and they are not the whole run: tests are leaves, one per sample at most, so their
+/// self shares add up and the group's inclusive share is the same sum.
+fn add_all_tests_row(flat: &FlatProfile, amdahl: &mut Vec<AmdahlRow>) {
+    let tests: Vec<_> = flat
+        .rows
+        .iter()
+        .filter(|r| tracer::Phase::from_name(&r.name).is_some_and(|p| p.is_primitive_test()))
+        .collect();
+    if tests.len() < 2 || flat.samples == 0 {
+        return;
+    }
+    let share = tests.iter().map(|r| r.self_samples).sum::<u64>() as f64 / flat.samples as f64;
+    // Like a whole-run frame, a group on (nearly) every sample tells nothing.
+    if share * 100.0 >= analysis::profile::flat::WHOLE_RUN_PERCENT {
+        return;
+    }
+    let row = AmdahlRow::new(ALL_TESTS, share, share);
+    let at = amdahl
+        .iter()
+        .position(|r| r.inclusive_fraction < share)
+        .unwrap_or(amdahl.len());
+    amdahl.insert(at, row);
 }
 
 /// The phase view's stacks: each recorded phase-stack key as its phase names.

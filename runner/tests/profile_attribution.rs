@@ -90,6 +90,28 @@ fn phase_attribution_follows_the_known_costs_and_the_bvh_diff() {
         "measured {measured:.3} vs predicted {predicted:.3}"
     );
 
+    // Amdahl: all the tests together is one row, their self shares summed (tests are
+    // leaves), and its limit is 1 / (1 - share).
+    let all = both
+        .phases
+        .amdahl
+        .iter()
+        .find(|r| r.name == runner::profile_job::ALL_TESTS)
+        .expect("no all-tests row");
+    let tests: f64 = both
+        .phases
+        .flat
+        .rows
+        .iter()
+        .filter(|r| r.name.ends_with(" test"))
+        .map(|r| r.percent / 100.0)
+        .sum();
+    assert!((all.fraction - tests).abs() < 1e-9 && (all.inclusive_fraction - tests).abs() < 1e-9);
+    assert!(
+        (all.inclusive_speedup_limit - 1.0 / (1.0 - tests)).abs()
+            < 1e-6 * all.inclusive_speedup_limit
+    );
+
     // Baseline against bvh on SPD rings: the tests shrink, the traversal grows.
     let rings_path = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../shared/spd/rings.nff");
     let rings = tracer::load_nff(&rings_path).unwrap();

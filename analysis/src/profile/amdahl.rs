@@ -55,6 +55,24 @@ fn fraction(part: u64, total: u64) -> f64 {
     }
 }
 
+impl AmdahlRow {
+    /// The row of a function (or a group of functions) holding `own` of the time
+    /// itself and `inclusive` with everything it calls (fractions, 0-1).
+    pub fn new(name: &str, own: f64, inclusive: f64) -> Self {
+        AmdahlRow {
+            name: name.to_string(),
+            fraction: own,
+            speedup_2x: speedup(own, 2.0),
+            speedup_10x: speedup(own, 10.0),
+            speedup_limit: speedup(own, f64::INFINITY),
+            inclusive_fraction: inclusive,
+            inclusive_speedup_2x: speedup(inclusive, 2.0),
+            inclusive_speedup_10x: speedup(inclusive, 10.0),
+            inclusive_speedup_limit: speedup(inclusive, f64::INFINITY),
+        }
+    }
+}
+
 /// Rows for the `top` functions by inclusive samples (ties: more self samples, then
 /// name), whole-run frames left out.
 pub fn amdahl_table(flat: &FlatProfile, top: usize) -> Vec<AmdahlRow> {
@@ -67,19 +85,11 @@ pub fn amdahl_table(flat: &FlatProfile, top: usize) -> Vec<AmdahlRow> {
     rows.into_iter()
         .take(top)
         .map(|r| {
-            let own = fraction(r.self_samples, flat.samples);
-            let inclusive = fraction(r.inclusive_samples, flat.samples);
-            AmdahlRow {
-                name: r.name.clone(),
-                fraction: own,
-                speedup_2x: speedup(own, 2.0),
-                speedup_10x: speedup(own, 10.0),
-                speedup_limit: speedup(own, f64::INFINITY),
-                inclusive_fraction: inclusive,
-                inclusive_speedup_2x: speedup(inclusive, 2.0),
-                inclusive_speedup_10x: speedup(inclusive, 10.0),
-                inclusive_speedup_limit: speedup(inclusive, f64::INFINITY),
-            }
+            AmdahlRow::new(
+                &r.name,
+                fraction(r.self_samples, flat.samples),
+                fraction(r.inclusive_samples, flat.samples),
+            )
         })
         .collect()
 }

@@ -114,6 +114,17 @@ impl Phase {
         }
     }
 
+    /// Whether this is one primitive kind's intersection test (a leaf of the stack:
+    /// tests contain no other phase, so the tests' self times add up).
+    pub const fn is_primitive_test(self) -> bool {
+        matches!(self.cell(), Some(2))
+    }
+
+    /// The phase named `name` ([`Phase::name`]).
+    pub fn from_name(name: &str) -> Option<Phase> {
+        Phase::ALL.into_iter().find(|p| p.name() == name)
+    }
+
     /// Whether this is a scope, pushed on the stack and free to contain any phase;
     /// the others are work phases, each in its fixed cell (see the module doc).
     #[inline(always)]
