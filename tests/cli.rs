@@ -1258,3 +1258,45 @@ fn implausible_results_are_refused_quickly_with_where() {
     );
     std::fs::remove_dir_all(&dir).ok();
 }
+
+#[test]
+fn a_suite_with_a_failed_scene_writes_the_rest_and_exits_3() {
+    let dir = scratch("suite-failure");
+    let bad = dir.join("bad.nff");
+    std::fs::write(
+        &bad,
+        "v\nfrom 0 0 5\nat 0 0 0\nup 0 1 0\nangle 40\nhither 1\nresolution 8 8\ns 0 0 oops 1\n",
+    )
+    .unwrap();
+    let suite = dir.join("one-bad.toml");
+    std::fs::write(
+        &suite,
+        format!(
+            "name = \"one-bad\"\nsize = [16, 12]\nrepeats = 1\nvariants = [\"baseline\"]\n\
+             scenes = [\"balls1\", {:?}]\nextra_size = [16, 12]\nprofile_size = [16, 12]\n\
+             profile_frequency = 500\nprofile_samples = 20\nhardware_repeats = 1\n",
+            bad.display().to_string()
+        ),
+    )
+    .unwrap();
+    let out_dir = dir.join("suite");
+    let out = rtprof(&[
+        "suite",
+        suite.to_str().unwrap(),
+        "-o",
+        out_dir.to_str().unwrap(),
+    ]);
+    // 3: some parts failed, the rest was measured and written (not 0, not 2).
+    assert_eq!(out.status.code(), Some(3), "{}", stderr(&out));
+    assert!(
+        stderr(&out).contains("1 part of the suite failed"),
+        "{}",
+        stderr(&out)
+    );
+    let results: serde_json::Value =
+        serde_json::from_slice(&read(&out_dir.join("results.json"))).unwrap();
+    assert_eq!(results["failures"].as_array().map(Vec::len), Some(1));
+    assert_eq!(results["scenes"][0]["name"], "balls1");
+    assert!(out_dir.join("report.html").is_file());
+    std::fs::remove_dir_all(&dir).ok();
+}

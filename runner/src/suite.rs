@@ -65,6 +65,20 @@ impl Suite {
         text
     }
 
+    /// What the run's failures mean for its exit, when it had any: "N parts failed".
+    pub fn failures_message(results: &Results) -> Option<String> {
+        match results.failures.len() {
+            0 => None,
+            1 => Some(
+                "1 part of the suite failed (listed above); the rest is in the results and reports"
+                    .into(),
+            ),
+            n => Some(format!(
+                "{n} parts of the suite failed (listed above); the rest is in the results and reports"
+            )),
+        }
+    }
+
     /// Resolves the scenes of `def` (relative paths from `base_dir`) and, when given,
     /// every NFF file of `extra_dir`: a missing scene fails here, before any work.
     pub fn prepare(

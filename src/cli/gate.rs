@@ -32,7 +32,11 @@ pub fn run(args: &GateArgs) -> Result<()> {
         print!("{}", gate.to_text());
     }
     if gate.failed() {
-        return Err(super::Outcome::check_failed("the regression gate failed").into());
+        return Err(super::Outcome::new(
+            super::Outcome::CHECK_FAILED,
+            "the regression gate failed",
+        )
+        .into());
     }
     Ok(())
 }

@@ -3,8 +3,8 @@
 //! ones intact; a second Ctrl-C exits at once (outputs are written to a temporary file
 //! and renamed, so even then nothing is left half-written).
 //!
-//! Only commands that check [`requested`] install the handler; the others keep the
-//! default Ctrl-C behaviour.
+//! Only commands that check the flag [`install`] returns install the handler; the
+//! others keep the default Ctrl-C behaviour.
 
 use std::sync::atomic::{AtomicBool, Ordering};
 
@@ -24,9 +24,4 @@ pub fn install() -> &'static AtomicBool {
         );
     });
     &REQUESTED
-}
-
-/// Whether Ctrl-C was pressed.
-pub fn requested() -> bool {
-    REQUESTED.load(Ordering::SeqCst)
 }

@@ -51,8 +51,7 @@ enum Command {
     Scene(scene::SceneArgs),
 }
 
-/// An end that is neither success nor bad input (exit 2): a check that ran and failed
-/// (exit 1) or a run stopped by Ctrl-C (exit 130, 128 + SIGINT, as a shell reports it).
+/// An end that is neither success nor bad input (exit 2), with its exit code.
 #[derive(Debug)]
 pub struct Outcome {
     pub exit_code: u8,
@@ -60,16 +59,16 @@ pub struct Outcome {
 }
 
 impl Outcome {
-    pub fn check_failed(message: &str) -> Self {
-        let (exit_code, message) = (1, message.to_string());
-        Outcome { exit_code, message }
-    }
+    /// A check that ran and failed (the regression gate).
+    pub const CHECK_FAILED: u8 = 1;
+    /// Some parts of a suite failed; the rest was measured and written.
+    pub const PARTS_FAILED: u8 = 3;
+    /// Stopped by Ctrl-C: 128 + SIGINT, as a shell reports it.
+    pub const INTERRUPTED: u8 = 130;
 
-    pub fn interrupted(message: String) -> Self {
-        Outcome {
-            exit_code: 130,
-            message,
-        }
+    pub fn new(exit_code: u8, message: impl Into<String>) -> Self {
+        let message = message.into();
+        Outcome { exit_code, message }
     }
 }
 

@@ -73,17 +73,12 @@ pub fn run(args: &ProfileArgs) -> Result<()> {
         min_samples: args.min_samples,
     };
 
-    let report = job.report(
-        &set,
-        other.as_ref(),
-        args.measure_overhead,
-        &Bars::default(),
-    )?;
+    let progress = Bars::default();
+    let report = job.report(&set, other.as_ref(), args.measure_overhead, &progress)?;
     let saved = report.save(&dir, "")?;
     if args.json {
-        let files = serde_json::to_value(&saved)?;
         let mut json = serde_json::to_value(&report)?;
-        json["files"] = files;
+        json["files"] = serde_json::to_value(&saved)?;
         println!("{}", serde_json::to_string_pretty(&json)?);
     } else {
         print!("{}", report.to_text(&dir, &saved));

@@ -42,10 +42,8 @@ impl BenchmarkDirs {
     /// it added; `discover` looks in the cargo target directory when none is given.
     pub fn add_to(&self, results: &mut Results, discover: bool) -> Result<()> {
         let (criterion, instructions) = (self.criterion.as_deref(), self.instructions.as_deref());
-        for line in runner::benchmarks::add_to_results(results, criterion, instructions, discover)?
-        {
-            eprintln!("{line}");
-        }
+        let added = runner::benchmarks::add_to_results(results, criterion, instructions, discover)?;
+        added.iter().for_each(|line| eprintln!("{line}"));
         Ok(())
     }
 }

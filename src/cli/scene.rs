@@ -47,12 +47,7 @@ enum GenKind {
 pub fn run(args: &SceneArgs) -> Result<()> {
     match &args.command {
         SceneCommand::List => {
-            for s in tracer::builtin_scenes::all() {
-                println!(
-                    "{:<12} {:<9} {:>3} primitives",
-                    s.name, s.family, s.primitives
-                );
-            }
+            print!("{}", tracer::builtin_scenes::list_text());
             Ok(())
         }
         SceneCommand::Gen(g) => {

@@ -2,6 +2,7 @@
 //! `report.html` and `report.pdf` through a staging directory; with `--baseline` it
 //! then gates the run against an earlier one.
 
+use super::Outcome;
 use super::progress::Bars;
 use anyhow::{Context, Result};
 use runner::RunError;
@@ -48,7 +49,7 @@ pub(super) fn parse_threshold(text: &str) -> Result<f64, String> {
 
 /// The error for a suite stopped by Ctrl-C after `done` of `total` scenes.
 fn interrupted(output: &Path, done: usize, total: usize) -> anyhow::Error {
-    super::Outcome::interrupted(discarded_message(output, done, total)).into()
+    Outcome::new(Outcome::INTERRUPTED, discarded_message(output, done, total)).into()
 }
 
 pub fn run(args: &SuiteArgs) -> Result<()> {
@@ -87,7 +88,7 @@ pub fn run(args: &SuiteArgs) -> Result<()> {
     args.benchmarks.add_to(&mut results, true)?;
     runner::report_files::write_run(&results, staging.dir())?;
     let total = suite.scenes.len();
-    if super::interrupt::requested() {
+    if stop.load(std::sync::atomic::Ordering::SeqCst) {
         return Err(interrupted(&args.output, total, total));
     }
     staging.publish(&args.output)?;
@@ -99,8 +100,11 @@ pub fn run(args: &SuiteArgs) -> Result<()> {
         print!("{text}");
         save(&args.output, "gate.txt", text.as_bytes())?;
         if gate.failed() {
-            return Err(super::Outcome::check_failed("the regression gate failed").into());
+            return Err(Outcome::new(Outcome::CHECK_FAILED, "the regression gate failed").into());
         }
     }
-    Ok(())
+    match Suite::failures_message(&results) {
+        Some(message) => Err(Outcome::new(Outcome::PARTS_FAILED, message).into()),
+        None => Ok(()),
+    }
 }

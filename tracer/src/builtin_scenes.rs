@@ -78,6 +78,18 @@ pub fn all() -> impl Iterator<Item = &'static BuiltinScene> {
     TEST_BENCH.iter().chain(MISC)
 }
 
+/// One line per built-in scene: name, family, primitives (`rtprof scene list`).
+pub fn list_text() -> String {
+    all()
+        .map(|s| {
+            format!(
+                "{:<12} {:<9} {:>3} primitives\n",
+                s.name, s.family, s.primitives
+            )
+        })
+        .collect()
+}
+
 /// The embedded scene called `name` (`balls3`; a trailing `.nff` is accepted too).
 pub fn find(name: &str) -> Option<&'static BuiltinScene> {
     let stem = name.strip_suffix(".nff").unwrap_or(name);
