@@ -106,6 +106,16 @@ pub fn profile(b: &mut Builder) -> Section {
     s
 }
 
+/// A flamegraph file as a block with its title and caption.
+fn flame_block(b: &mut Builder, svg: &str, title: String, caption: String) -> Block {
+    let visual = b.flamegraph(svg, &title);
+    Block::Flamegraph(Flamegraph {
+        title,
+        caption: Some(caption),
+        visual,
+    })
+}
+
 /// A flat profile's gprof-layout text, folded away, or a note that it is missing.
 fn flat_text_block(b: &Builder, path: &str, what: &str) -> Block {
     match b.text_file(path) {
@@ -319,12 +329,8 @@ pub fn flamegraphs(b: &mut Builder) -> Section {
                     ProfileView::Native => "native symbols",
                 }
             );
-            let visual = b.flamegraph(svg, &title);
-            s.blocks.push(Block::Flamegraph(Flamegraph {
-                title,
-                caption: Some(view_text(view).to_string()),
-                visual,
-            }));
+            s.blocks
+                .push(flame_block(b, svg, title, view_text(view).to_string()));
         }
     }
     match (&p.diff_flame_svg, &p.best) {
@@ -336,27 +342,17 @@ pub fn flamegraphs(b: &mut Builder) -> Section {
                 "Differential flamegraph of {}, {} to {to}",
                 p.scene, p.baseline.variant
             );
-            let visual = b.flamegraph(diff, &title);
-            s.blocks.push(Block::Flamegraph(Flamegraph {
-                title,
-                caption: Some(format!(
-                    "Frames of the {to} profile, coloured by the change from baseline: red grew, blue shrank. Frames that vanished are not drawn here: see the next graph."
-                )),
-                visual,
-            }));
+            s.blocks.push(flame_block(b, diff, title, format!(
+                "Frames of the {to} profile, coloured by the change from baseline: red grew, blue shrank. Frames that vanished are not drawn here: see the next graph."
+            )));
             if let Some(shrunk) = &p.diff_shrunk_flame_svg {
                 let title = format!(
                     "What shrank or vanished in {}, {} to {to}",
                     p.scene, p.baseline.variant
                 );
-                let visual = b.flamegraph(shrunk, &title);
-                s.blocks.push(Block::Flamegraph(Flamegraph {
-                    title,
-                    caption: Some(format!(
-                        "Frames of the baseline profile, coloured by the change to {to}: blue shrank or vanished, red grew."
-                    )),
-                    visual,
-                }));
+                s.blocks.push(flame_block(b, shrunk, title, format!(
+                    "Frames of the baseline profile, coloured by the change to {to}: blue shrank or vanished, red grew."
+                )));
             }
         }
         (None, _) => s.blocks.push(Block::empty(
