@@ -10,6 +10,7 @@
 //! - [`ppm_text`]: method 2 of the thesis, histograms from the plain-text PPM (P3) form,
 //!   with a P3 writer and parser;
 //! - [`timing`]: median run time with a seeded percentile-bootstrap interval;
+//! - [`verdict`]: the one rule that labels a time change faster, slower or within noise;
 //! - [`profile`]: the sampling profiler (pprof) and what is made of its stacks: gprof
 //!   flat profile and call graph, folded stacks, flamegraphs, Amdahl projections;
 //! - [`error`]: the error types of the above.
@@ -20,8 +21,10 @@ pub mod ppm_text;
 mod prng;
 pub mod profile;
 pub mod timing;
+pub mod verdict;
 
 pub use error::{MetricsError, StatsError};
 pub use image_metrics::{Band, Comparison, RgbImage, compare, difference_heat_map, gray_histogram};
 pub use ppm_text::{MAX_P3_PIXELS, P3Histograms, p3_histograms, parse_p3, to_p3};
 pub use timing::{Estimate, median, median_with_bootstrap};
+pub use verdict::{NOISE_THRESHOLD, Verdict};

@@ -23,6 +23,7 @@ pub use hardware::{
     DeviceUse, HardwareResult, HwColumn, HwErrors, HwFigures, HwRow, HwRowKind, SceneHardware,
 };
 pub use read::{FileError, ResultsError};
+pub use analysis::verdict::NOISE_THRESHOLD;
 pub use schema::*;
 pub use timing_policy::{TimeCovers, TimingPolicy};
 pub use variant_name::VariantName;

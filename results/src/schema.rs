@@ -13,7 +13,7 @@ use std::collections::BTreeMap;
 
 use serde::{Deserialize, Serialize};
 
-pub use analysis::{Band, Estimate};
+pub use analysis::{Band, Estimate, Verdict};
 
 use crate::hardware::{HardwareResult, SceneHardware};
 use crate::timing_policy::TimingPolicy;
@@ -84,6 +84,10 @@ pub struct SuiteInfo {
     pub timing: TimingPolicy,
     /// Wall time of the whole suite, seconds.
     pub wall_seconds: f64,
+    /// The noise threshold (a fraction) of the file's verdicts ([`analysis::verdict`]);
+    /// `None` in files written before verdicts were recorded.
+    #[serde(default)]
+    pub noise_threshold: Option<f64>,
 }
 
 /// Which test bench a scene belongs to.
@@ -160,6 +164,21 @@ pub struct SceneResult {
     pub variants: Vec<VariantResult>,
     /// The hardware model and emulator on this scene (spheres and cylinders only).
     pub hardware: Option<SceneHardware>,
+    /// The calibration kernel, timed once per round between this scene's renders: the
+    /// gate divides the reference variant's time by it, so that a machine busier or
+    /// slower on one run does not read as a change of the tracer. `None` in older files.
+    #[serde(default)]
+    pub calibration: Option<Calibration>,
+}
+
+/// A fixed amount of arithmetic (independent of the tracer's code), timed on the same
+/// threads as the renders it was interleaved with.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct Calibration {
+    /// Median and interval, seconds.
+    pub time: Estimate,
+    /// Every timed run, seconds.
+    pub samples: Vec<f64>,
 }
 
 /// One variant on one scene.
@@ -177,6 +196,13 @@ pub struct VariantResult {
     pub preprocessing_seconds: Option<f64>,
     /// Baseline median / this median; None when baseline did not run on the scene.
     pub speedup: Option<f64>,
+    /// 95 % bootstrap interval of `speedup` (ratio of medians); `None` in older files.
+    #[serde(default)]
+    pub speedup_interval: Option<[f64; 2]>,
+    /// The speed-up's verdict against baseline (faster, slower, within noise) at the
+    /// suite's `noise_threshold`; `None` for baseline itself and in older files.
+    #[serde(default)]
+    pub verdict: Option<Verdict>,
     /// Exact counts, flattened (`ops.dot`, `rays.primary`, …).
     pub counts: BTreeMap<String, u64>,
     /// The image, relative to results.json.

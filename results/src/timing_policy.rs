@@ -40,4 +40,8 @@ pub struct TimingPolicy {
     /// The bootstrap's seed (the same samples always give the same interval).
     pub seed: u64,
     pub covers: TimeCovers,
+    /// The variants of a scene were timed in rounds (one render of each per round,
+    /// and the calibration kernel), so that a change of load hits them alike.
+    #[serde(default)]
+    pub interleaved: bool,
 }

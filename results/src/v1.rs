@@ -312,6 +312,8 @@ fn variant_result(v: VariantResult, path: &str) -> Result<v2::VariantResult, Res
         // `/1` times include it; it was not measured apart.
         preprocessing_seconds: None,
         speedup: Some(v.speedup),
+        speedup_interval: None,
+        verdict: None,
         counts: v.counts,
         image: v.image,
         heat_map: v.heat_map,
@@ -352,6 +354,7 @@ fn scene(s: SceneResult, path: &str) -> Result<v2::SceneResult, ResultsError> {
         height: s.height,
         spd: s.spd,
         hardware,
+        calibration: None,
     })
 }
 
@@ -435,7 +438,9 @@ impl Results {
                 confidence: CONFIDENCE,
                 seed: SEED,
                 covers: TimeCovers::PreprocessingAndTracing,
+                interleaved: false,
             },
+            noise_threshold: None,
             name: self.suite.name,
             quick: self.suite.quick,
             threads: self.suite.threads,

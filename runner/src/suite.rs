@@ -188,6 +188,7 @@ impl Suite {
                     .collect::<Result<_, _>>()?,
                 timing: policy.record(),
                 wall_seconds: started.elapsed().as_secs_f64(),
+                noise_threshold: Some(results::NOISE_THRESHOLD),
             },
             scenes,
             profile,
@@ -292,6 +293,7 @@ impl SceneRunner<'_> {
             spd: false,
             variants,
             hardware,
+            calibration: None,
         })
     }
 
@@ -326,6 +328,8 @@ impl SceneRunner<'_> {
                 samples: m.samples,
                 preprocessing_seconds: Some(m.preprocessing),
                 speedup: None,
+                speedup_interval: None,
+                verdict: None,
                 counts: count_map(&m.counts),
                 image: Some(image_rel),
                 heat_map,

@@ -66,6 +66,7 @@ impl TimingPolicy {
             confidence: self.confidence,
             seed: self.seed,
             covers: results::TimeCovers::Tracing,
+            interleaved: false,
         }
     }
 

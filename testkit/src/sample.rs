@@ -316,6 +316,8 @@ fn sample_variant(s: &SceneSpec, variant: &str, base_median: f64) -> VariantResu
         // Camera space and structure build: a few microseconds per primitive.
         preprocessing_seconds: Some(4e-6 * s.primitives() as f64),
         speedup: Some(speedup),
+        speedup_interval: None,
+        verdict: None,
         counts,
         image,
         heat_map,
@@ -377,6 +379,7 @@ fn sample_scene(s: &SceneSpec, failed: &[(&str, &str)]) -> SceneResult {
         spd: s.is_spd(),
         variants,
         hardware: (!s.is_spd()).then(|| sample_scene_hardware(s, base_median)),
+        calibration: None,
     }
 }
 
@@ -654,8 +657,10 @@ pub fn sample_results() -> Results {
                 confidence: 0.95,
                 seed: 0x5eed,
                 covers: TimeCovers::Tracing,
+                interleaved: true,
             },
             wall_seconds: 96.4,
+            noise_threshold: Some(results::NOISE_THRESHOLD),
         },
         scenes,
         profile,
