@@ -426,12 +426,16 @@ fn compare_reports_metrics_of_two_images_and_of_variants() {
     let rows = json["variants"].as_array().cloned().unwrap_or_default();
     assert_eq!(rows.len(), 3);
     assert_eq!(rows[0]["name"], "baseline");
-    assert_eq!(rows[0]["speedup"], 1.0);
+    // The reference against itself: every per-round ratio is exactly 1.
+    assert_eq!(rows[0]["speedup"]["median"], 1.0);
+    assert!(rows[0]["verdict"].is_null());
+    assert!(rows[1]["verdict"].is_string());
     for row in &rows {
         for key in [
             "seconds", "speedup", "rms", "band", "psnr", "ssim", "counts",
         ] {
             assert!(row.get(key).is_some(), "{key} missing in {row}");
+            assert!(row["speedup"]["low"].as_f64() <= row["speedup"]["median"].as_f64());
         }
         let s = &row["seconds"];
         assert!(s["low"].as_f64() <= s["median"].as_f64());
@@ -830,26 +834,23 @@ fn suite_writes_results_and_reports_and_the_gate_sets_the_exit_code() {
     );
 
     // Same program, same counts: the gate passes. Time is taken out of the question by a
-    // baseline whose every render took 1000 s (these renders take microseconds, and
-    // scheduler noise alone can make one 10x slower than in the first run).
+    // wide threshold (these renders take microseconds, where scheduler noise alone can
+    // move a relative time several-fold); the files it writes are there.
     let second = dir.join("second");
-    let mut slow = v.clone();
-    for scene in slow["scenes"].as_array_mut().unwrap() {
-        for variant in scene["variants"].as_array_mut().unwrap() {
-            variant["time"] = serde_json::json!({"median": 1000.0, "low": 1000.0, "high": 1000.0});
-        }
-    }
-    let slow_baseline = dir.join("slow-baseline.json");
-    std::fs::write(&slow_baseline, serde_json::to_string(&slow).unwrap()).unwrap();
     let out = rtprof(&[
         "suite",
         suite.to_str().unwrap(),
         "-o",
         second.to_str().unwrap(),
         "--baseline",
-        slow_baseline.to_str().unwrap(),
+        results_path.to_str().unwrap(),
+        "--threshold",
+        "1000",
     ]);
     assert_eq!(out.status.code(), Some(0), "{}", stderr(&out));
+    for f in ["gate.txt", "gate.md", "variants.csv", "summary.md"] {
+        assert!(second.join(f).is_file(), "{f} missing");
+    }
     // A baseline whose counts differ: exit 1, the changed counter named.
     let doctored = dir.join("doctored.json");
     std::fs::write(
@@ -872,15 +873,27 @@ fn suite_writes_results_and_reports_and_the_gate_sets_the_exit_code() {
     let gate = String::from_utf8(read(&second.join("gate.txt"))).unwrap();
     assert!(gate.contains("rays.primary"), "{gate}");
 
-    // `rtprof gate` on synthetic files made from this run: every time set to `median`
-    // with a tight ±1 % interval.
-    let with_times = |median: f64| {
+    // `rtprof gate` on files made from this run: every variant's samples set to
+    // `seconds` ±1 % per round, the calibration kernel's to a tenth of that; `slow`
+    // scales bvh's.
+    let with_times = |seconds: f64, slow: f64| {
         let mut v = v.clone();
+        let round = |m: f64| serde_json::json!([m * 0.99, m, m * 1.01, m]);
         for scene in v["scenes"].as_array_mut().unwrap() {
+            let kernel = seconds / 10.0;
+            scene["calibration"] = serde_json::json!({
+                "time": {"median": kernel, "low": kernel, "high": kernel},
+                "samples": round(kernel)
+            });
             for variant in scene["variants"].as_array_mut().unwrap() {
-                variant["time"] = serde_json::json!({
-                    "median": median, "low": median * 0.99, "high": median * 1.01
-                });
+                let m = if variant["variant"] == "bvh" {
+                    seconds * slow
+                } else {
+                    seconds
+                };
+                variant["samples"] = round(m);
+                variant["time"] =
+                    serde_json::json!({"median": m, "low": m * 0.99, "high": m * 1.01});
             }
         }
         v
@@ -890,24 +903,42 @@ fn suite_writes_results_and_reports_and_the_gate_sets_the_exit_code() {
         std::fs::write(&path, serde_json::to_string(v).unwrap()).unwrap();
         path
     };
-    let old = gate_file("old.json", &with_times(0.010));
-    let same = gate_file("same.json", &with_times(0.010));
-    let slower = gate_file("slower.json", &with_times(0.012));
-    let mut recounted = with_times(0.010);
+    let old = gate_file("old.json", &with_times(0.010, 1.0));
+    // A machine 1.5x slower on every render and on the kernel: not a regression.
+    let busier = gate_file("busier.json", &with_times(0.015, 1.0));
+    let slower = gate_file("slower.json", &with_times(0.010, 1.2));
+    let mut recounted = with_times(0.010, 1.0);
     recounted["scenes"][1]["variants"][1]["counts"]["ops.dot"] = serde_json::json!(1);
     let recounted = gate_file("recounted.json", &recounted);
+    let mut other_threads = with_times(0.010, 1.0);
+    other_threads["suite"]["threads"] = serde_json::json!(7);
+    let other_threads = gate_file("threads.json", &other_threads);
     let gate = |new: &Path| {
         rtprof(&["gate", old.to_str().unwrap(), new.to_str().unwrap()])
             .status
             .code()
     };
-    assert_eq!(gate(&same), Some(0), "identical runs pass");
+    assert_eq!(gate(&old), Some(0), "identical runs pass");
+    assert_eq!(gate(&busier), Some(0), "a uniformly slower machine passes");
     assert_eq!(
         gate(&slower),
         Some(1),
-        "20 % slower with tight intervals fails"
+        "bvh 20 % slower relative to baseline fails"
     );
     assert_eq!(gate(&recounted), Some(1), "a changed count fails");
+    let out = rtprof(&[
+        "gate",
+        old.to_str().unwrap(),
+        other_threads.to_str().unwrap(),
+    ]);
+    assert_eq!(
+        out.status.code(),
+        Some(2),
+        "not comparable: {}",
+        stderr(&out)
+    );
+    assert!(stderr(&out).contains("not comparable"), "{}", stderr(&out));
+    assert!(stderr(&out).contains("threads"), "{}", stderr(&out));
     let out = rtprof(&[
         "gate",
         old.to_str().unwrap(),
@@ -920,6 +951,24 @@ fn suite_writes_results_and_reports_and_the_gate_sets_the_exit_code() {
         Some(0),
         "20 % is inside a 25 % threshold"
     );
+    // Every format carries the verdict.
+    for (format, slower_label) in [
+        ("text", "slower"),
+        ("markdown", "**slower**"),
+        ("csv", ",slower,"),
+        ("json", "\"verdict\": \"slower\""),
+    ] {
+        let out = rtprof(&[
+            "gate",
+            old.to_str().unwrap(),
+            slower.to_str().unwrap(),
+            "--format",
+            format,
+        ]);
+        assert_eq!(out.status.code(), Some(1), "{format}");
+        let printed = String::from_utf8_lossy(&out.stdout);
+        assert!(printed.contains(slower_label), "{format}: {printed}");
+    }
     assert_eq!(gate(&suite), Some(2), "not a results file");
 
     // Two results files: the report has the side-by-side comparison.

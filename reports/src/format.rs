@@ -226,6 +226,52 @@ pub fn speedup(x: f64) -> String {
     }
 }
 
+/// A speed-up or time ratio with its interval, the decimals following the interval's
+/// width as [`estimate`] does for times: "2.01× [1.98 – 2.05]"; without a usable
+/// interval, [`speedup`] alone.
+pub fn ratio_estimate(median: f64, low: f64, high: f64) -> EstimateText {
+    if !(median.is_finite() && low.is_finite() && high.is_finite()) {
+        return EstimateText {
+            median: speedup(median),
+            interval: String::new(),
+        };
+    }
+    let decimals = width_decimals(high - low).unwrap_or_else(|| three_digit_decimals(median));
+    EstimateText {
+        median: format!("{}×", fixed(median, decimals)),
+        interval: format!("[{} – {}]", fixed(low, decimals), fixed(high, decimals)),
+    }
+}
+
+/// A change given as a ratio new / old with its interval, written as a signed
+/// percentage whose decimals follow the interval's width: "+25 % [+20 – +31]",
+/// "−8.3 % [−9.1 – −7.6]"; without an interval, one decimal.
+pub fn change_estimate(ratio: f64, low: f64, high: f64) -> EstimateText {
+    let pct = |r: f64| (r - 1.0) * 100.0;
+    if !ratio.is_finite() {
+        return EstimateText {
+            median: DASH.to_string(),
+            interval: String::new(),
+        };
+    }
+    if !(low.is_finite() && high.is_finite()) {
+        return EstimateText {
+            median: signed_percent(pct(ratio), 1),
+            interval: String::new(),
+        };
+    }
+    let decimals = width_decimals(pct(high) - pct(low)).unwrap_or(1).min(3);
+    let bound = |r: f64| {
+        signed_percent(pct(r), decimals)
+            .trim_end_matches(" %")
+            .to_string()
+    };
+    EstimateText {
+        median: signed_percent(pct(ratio), decimals),
+        interval: format!("[{} – {}]", bound(low), bound(high)),
+    }
+}
+
 /// "1 sphere", "2,400 spheres" from a plural kind name.
 pub fn kind_count(n: u64, kind: &str) -> String {
     if n == 1 {
@@ -348,6 +394,38 @@ mod tests {
         assert_eq!(usage(100_000, 114_480), "100,000 / 114,480 (87.4 %)");
         assert_eq!(usage(5, 0), "5");
         assert!(percent_of(1, 0).is_nan());
+    }
+
+    #[test]
+    fn ratios_show_the_digits_their_interval_needs() {
+        // Width 0.070: its two significant digits need three decimals.
+        assert_eq!(
+            ratio_estimate(2.013, 1.98, 2.05).line(),
+            "2.013× [1.980 – 2.050]"
+        );
+        // Width 1.2: one decimal, not "1.013×" next to "[0.512 – 1.712]".
+        assert_eq!(
+            ratio_estimate(1.013, 0.512, 1.712).line(),
+            "1.0× [0.5 – 1.7]"
+        );
+        assert_eq!(ratio_estimate(f64::NAN, 1.0, 2.0).line(), DASH);
+        assert_eq!(ratio_estimate(1.5, f64::NAN, 2.0).line(), "1.50×");
+    }
+
+    #[test]
+    fn changes_are_signed_percentages_as_precise_as_their_interval() {
+        // [1.20, 1.31]: width 11 points, no decimals.
+        assert_eq!(
+            change_estimate(1.25, 1.20, 1.31).line(),
+            "+25 % [+20 – +31]"
+        );
+        // [0.909, 0.924]: width 1.5 points, one decimal.
+        assert_eq!(
+            change_estimate(0.917, 0.909, 0.924).line(),
+            "−8.3 % [−9.1 – −7.6]"
+        );
+        assert_eq!(change_estimate(1.05, f64::NAN, 1.1).line(), "+5.0 %");
+        assert_eq!(change_estimate(f64::NAN, 1.0, 1.1).line(), DASH);
     }
 
     #[test]

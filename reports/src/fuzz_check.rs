@@ -13,7 +13,8 @@ use std::path::Path;
 
 use crate::Run;
 use crate::html::render_html;
-use crate::results::{Results, gate::compare_runs};
+use crate::results::Results;
+use crate::results::gate::{GateOptions, gate};
 
 /// What happened to one input.
 #[derive(Clone, Debug, PartialEq, Eq)]
@@ -64,13 +65,22 @@ pub fn read_gate_and_render(bytes: &[u8], empty_dir: &Path) -> Result<Outcome, D
         Ok(r) => r,
         Err(e) => return Ok(Outcome::Refused(e.to_string())),
     };
-    if compare_runs(&results, &results, 0.05).failed() {
+    let force = GateOptions {
+        force: true,
+        ..GateOptions::default()
+    };
+    let self_gate = gate(&results, &results, force).map_err(|_| Defect::SelfGateFailed)?;
+    if self_gate.failed() {
         return Err(Defect::SelfGateFailed);
     }
     let (copy, counted) = mutated(&results);
     // The copy was changed after validation: its counts may leave the exact range, but
     // the gate compares integers and must still see the change.
-    if counted && !compare_runs(&results, &copy, 0.05).failed() {
+    if counted
+        && !gate(&results, &copy, force)
+            .map_err(|_| Defect::CountChangeMissed)?
+            .failed()
+    {
         return Err(Defect::CountChangeMissed);
     }
     let written =

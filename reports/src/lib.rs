@@ -11,10 +11,12 @@
 
 pub mod charts;
 pub mod document;
+pub mod exports;
 pub mod findings;
 pub mod format;
 pub mod fuzz_check;
 pub mod gallery;
+pub mod gate_text;
 pub mod html;
 pub mod pdf;
 pub mod sections;

@@ -1,163 +1,260 @@
-//! The regression gate: a run against an earlier one (`rtprof suite --baseline
-//! OLD/results.json`).
+//! The regression gate: a run against an earlier one (`rtprof gate OLD NEW`, `rtprof
+//! suite --baseline OLD`).
 //!
-//! For every scene × variant in both runs: the time change of the medians, and a
-//! verdict. **Slower** means significantly slower: the new interval's lower end is
-//! above the old interval's upper end by more than the threshold, so noise inside
-//! either interval can never trip it. **Faster** is the mirror image. Any difference in
-//! any exact count is a **count change** (counts do not depend on the machine or the
-//! load, so a changed count is a changed program). The gate fails on a slower entry or
-//! a count change; scenes or variants present in only one run are listed, not failed.
+//! It gates what is stable between two runs on a shared machine:
+//! - **exact counts**: counts do not depend on the machine or its load, so any change of
+//!   any counter is a changed program and fails the gate;
+//! - **instruction counts** (gungraun, when both files have them): deterministic up to
+//!   the build; an increase beyond [`INSTRUCTION_THRESHOLD`] fails;
+//! - **time relative to a reference measured in the same run**, not absolute time: each
+//!   variant's time divided by the reference variant's on the same scene (both timed in
+//!   interleaved rounds), and the reference's own time divided by the calibration
+//!   kernel's (timed in the same rounds); each a median of per-round ratios
+//!   ([`crate::change::paired_ratios`]). A machine that is busier or slower on the
+//!   second run moves both alike. The change of a relative time between the runs, with
+//!   its bootstrap interval, is labelled by the one verdict rule
+//!   ([`analysis::verdict::judge`]) at a noise threshold calibrated from run-to-run
+//!   noise ([`analysis::verdict::NOISE_THRESHOLD`], docs/gate.md). Slower fails.
+//!
+//! Runs that cannot be compared (another suite, frame sizes, thread count or machine)
+//! are refused with every reason ([`GateError`]); runs that are too short to gate well
+//! (`--quick`) and files without the calibration kernel are gated with a warning.
 
 use serde::Serialize;
 
-use crate::schema::{Results, VariantResult};
+use analysis::verdict::judge;
+
+use crate::change::{of_medians, paired_ratios};
+use crate::schema::{Estimate, InstructionCount, Results, SceneResult, VariantResult, Verdict};
 use crate::timing_policy::TimeCovers;
 use crate::variant_name::VariantName;
 
-/// What happened to one scene × variant.
+/// An instruction count that grows by more than this fraction fails the gate: valgrind's
+/// counts repeat exactly for one build; 1 % leaves room for a rebuilt toolchain's noise.
+pub const INSTRUCTION_THRESHOLD: f64 = 0.01;
+
+/// What an entry's times are measured against.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
 #[serde(rename_all = "snake_case")]
-pub enum Verdict {
-    Slower,
-    Faster,
-    Unchanged,
+pub enum Measure {
+    /// The variant's time divided by the reference variant's, same scene, same run.
+    RelativeToReference,
+    /// The reference variant's time divided by the calibration kernel's, same rounds.
+    RelativeToCalibration,
+    /// Seconds (a file without the reference or the calibration kernel): a busier
+    /// machine reads as slower.
+    Seconds,
+}
+
+impl Measure {
+    /// How the measure is written in a table header or cell.
+    pub fn describe(self) -> &'static str {
+        match self {
+            Measure::RelativeToReference => "÷ baseline",
+            Measure::RelativeToCalibration => "÷ calibration",
+            Measure::Seconds => "seconds",
+        }
+    }
+}
+
+/// A counter whose value differs between the runs; a missing counter reads 0.
+#[derive(Clone, Debug, PartialEq, Eq, Serialize)]
+pub struct CountChange {
+    pub counter: String,
+    pub old: u64,
+    pub new: u64,
 }
 
 /// One compared scene × variant.
 #[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct Entry {
     pub scene: String,
+    pub width: u32,
+    pub height: u32,
     pub variant: VariantName,
-    pub old_median: f64,
-    pub old_interval: (f64, f64),
-    pub new_median: f64,
-    pub new_interval: (f64, f64),
+    pub measure: Measure,
+    /// The measured quantity (a relative time, or seconds) in each run: median and
+    /// 95 % interval.
+    pub old: Estimate,
+    pub new: Estimate,
+    /// Median seconds of the variant in each run, for the reader.
+    pub old_seconds: f64,
+    pub new_seconds: f64,
+    /// new / old of the measure, with its 95 % bootstrap interval (1.25: 25 % slower).
+    pub change: Estimate,
+    pub verdict: Verdict,
+    pub count_changes: Vec<CountChange>,
+}
+
+impl Entry {
+    /// Slower, or a count changed.
+    pub fn failed(&self) -> bool {
+        self.verdict == Verdict::Slower || !self.count_changes.is_empty()
+    }
+}
+
+/// One benchmark's instruction count in both runs.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct InstructionEntry {
+    pub id: String,
+    pub old: u64,
+    pub new: u64,
     /// new / old − 1.
     pub change: f64,
-    pub verdict: Verdict,
-    /// Counters whose values differ: (name, old, new); a missing counter reads 0.
-    pub count_changes: Vec<(String, u64, u64)>,
+    /// Grew beyond [`INSTRUCTION_THRESHOLD`].
+    pub regressed: bool,
 }
 
 /// The whole comparison.
 #[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct GateReport {
+    /// The noise threshold of the time verdicts (a fraction).
     pub threshold: f64,
+    pub instruction_threshold: f64,
     pub entries: Vec<Entry>,
+    pub instructions: Vec<InstructionEntry>,
     /// `scene/variant` present in only one of the runs.
     pub unmatched: Vec<String>,
+    /// What the reader should know about the verdicts (short runs, old files).
+    pub warnings: Vec<String>,
     /// Set when the runs' times cover different things (a `/1` file timed
-    /// preprocessing and tracing together): the time changes then include that.
+    /// preprocessing and tracing together).
     pub covers_differ: Option<(TimeCovers, TimeCovers)>,
+    /// Reasons the runs are not comparable, when gated anyway (`--force`).
+    pub forced_over: Vec<String>,
 }
 
 impl GateReport {
-    /// True when some entry is significantly slower or changed a count.
+    /// True when some entry is slower, changed a count, or an instruction count grew.
     pub fn failed(&self) -> bool {
+        self.entries.iter().any(Entry::failed) || self.instructions.iter().any(|i| i.regressed)
+    }
+
+    /// How many entries got each verdict, and how many changed counts.
+    pub fn tally(&self) -> Tally {
+        let mut t = Tally::default();
+        for e in &self.entries {
+            match e.verdict {
+                Verdict::Faster => t.faster += 1,
+                Verdict::Slower => t.slower += 1,
+                Verdict::WithinNoise => t.within_noise += 1,
+            }
+            t.count_changes += usize::from(!e.count_changes.is_empty());
+        }
+        t.instructions_regressed = self.instructions.iter().filter(|i| i.regressed).count();
+        t
+    }
+
+    /// The largest change of any entry's median in either direction, as a fraction
+    /// (0.08: some entry moved 8 %), and the entry: the run-to-run noise seen.
+    pub fn largest_change(&self) -> Option<(&Entry, f64)> {
         self.entries
             .iter()
-            .any(|e| e.verdict == Verdict::Slower || !e.count_changes.is_empty())
-    }
-
-    /// A plain-text table.
-    pub fn to_text(&self) -> String {
-        let mut out = format!(
-            "regression gate (threshold {:.1} %): {} compared, {}\n",
-            self.threshold * 100.0,
-            self.entries.len(),
-            if self.failed() { "FAILED" } else { "passed" }
-        );
-        out += &format!(
-            "{:<16} {:<18} {:>28} {:>28} {:>8}  verdict\n",
-            "scene", "variant", "old s [95 % interval]", "new s [95 % interval]", "change"
-        );
-        for e in &self.entries {
-            let verdict = match (e.verdict, e.count_changes.is_empty()) {
-                (Verdict::Slower, _) => "SLOWER".to_string(),
-                (_, false) => format!("COUNTS CHANGED ({})", e.count_changes.len()),
-                (Verdict::Faster, true) => "faster".to_string(),
-                (Verdict::Unchanged, true) => "unchanged".to_string(),
-            };
-            out += &format!(
-                "{:<16} {:<18} {:>28} {:>28} {:>+7.1}%  {verdict}\n",
-                e.scene,
-                e.variant,
-                format!(
-                    "{:.5} [{:.5}, {:.5}]",
-                    e.old_median, e.old_interval.0, e.old_interval.1
-                ),
-                format!(
-                    "{:.5} [{:.5}, {:.5}]",
-                    e.new_median, e.new_interval.0, e.new_interval.1
-                ),
-                e.change * 100.0
-            );
-            for (name, old, new) in e.count_changes.iter().take(5) {
-                out += &format!("    {name}: {old} → {new}\n");
-            }
-        }
-        for u in &self.unmatched {
-            out += &format!("only in one run: {u}\n");
-        }
-        if let Some((old, new)) = self.covers_differ {
-            out += &format!(
-                "note: the old run's times cover {}, the new run's {}: time changes include the difference\n",
-                old.describe(),
-                new.describe()
-            );
-        }
-        out
+            .map(|e| (e, (e.change.median.ln()).abs().exp() - 1.0))
+            .filter(|(_, c)| c.is_finite())
+            .max_by(|a, b| a.1.total_cmp(&b.1))
     }
 }
 
-fn verdict(old: &VariantResult, new: &VariantResult, threshold: f64) -> Verdict {
-    if new.time.low > old.time.high * (1.0 + threshold) {
-        Verdict::Slower
-    } else if new.time.high * (1.0 + threshold) < old.time.low {
-        Verdict::Faster
-    } else {
-        Verdict::Unchanged
+/// Verdict counts of a gate.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize)]
+pub struct Tally {
+    pub faster: usize,
+    pub slower: usize,
+    pub within_noise: usize,
+    pub count_changes: usize,
+    pub instructions_regressed: usize,
+}
+
+/// How to gate.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct GateOptions {
+    /// Noise threshold, a fraction.
+    pub threshold: f64,
+    /// Gate runs that are not comparable anyway (the reasons are kept in the report).
+    pub force: bool,
+}
+
+impl Default for GateOptions {
+    fn default() -> Self {
+        GateOptions {
+            threshold: analysis::verdict::NOISE_THRESHOLD,
+            force: false,
+        }
     }
 }
 
-fn count_changes(old: &VariantResult, new: &VariantResult) -> Vec<(String, u64, u64)> {
-    let mut names: Vec<&String> = old.counts.keys().chain(new.counts.keys()).collect();
-    names.sort();
-    names.dedup();
-    names
-        .into_iter()
-        .filter_map(|name| {
-            let a = old.counts.get(name).copied().unwrap_or(0);
-            let b = new.counts.get(name).copied().unwrap_or(0);
-            (a != b).then(|| (name.clone(), a, b))
-        })
-        .collect()
+/// Runs that cannot be gated.
+#[derive(Debug, thiserror::Error)]
+pub enum GateError {
+    #[error("the runs are not comparable: {}; gate runs of the same suite on the same machine (--force gates them anyway)", .0.join("; "))]
+    NotComparable(Vec<String>),
 }
 
-/// Compares `new` against `old`; `threshold` is a fraction (0.05 for 5 %).
-pub fn compare_runs(old: &Results, new: &Results, threshold: f64) -> GateReport {
+/// Why two runs cannot be compared: every difference that makes their relative times
+/// or counts mean different things.
+pub fn incomparable(old: &Results, new: &Results) -> Vec<String> {
+    let mut reasons = Vec::new();
+    let (a, b) = (&old.suite, &new.suite);
+    if a.name != b.name {
+        reasons.push(format!("suite '{}' against '{}'", a.name, b.name));
+    }
+    if a.quick != b.quick {
+        reasons.push("a --quick run against a full one".to_string());
+    }
+    if a.threads != b.threads {
+        reasons.push(format!("{} threads against {}", a.threads, b.threads));
+    }
+    let (m, n) = (&old.machine, &new.machine);
+    if m.cpu_model != n.cpu_model || m.cores != n.cores {
+        reasons.push(format!(
+            "machine '{}' ({} CPUs) against '{}' ({} CPUs)",
+            m.cpu_model, m.cores, n.cpu_model, n.cores
+        ));
+    }
+    let mut sizes = Vec::new();
+    for s in &new.scenes {
+        if let Some(o) = old.scenes.iter().find(|o| o.name == s.name)
+            && !old
+                .scenes
+                .iter()
+                .any(|o| o.name == s.name && o.width == s.width && o.height == s.height)
+        {
+            sizes.push(format!(
+                "{} at {}x{} against {}x{}",
+                s.name, o.width, o.height, s.width, s.height
+            ));
+        }
+    }
+    if !sizes.is_empty() {
+        reasons.push(format!("frame sizes differ ({})", sizes.join(", ")));
+    }
+    reasons
+}
+
+/// Compares `new` against `old`.
+pub fn gate(old: &Results, new: &Results, options: GateOptions) -> Result<GateReport, GateError> {
+    let reasons = incomparable(old, new);
+    if !reasons.is_empty() && !options.force {
+        return Err(GateError::NotComparable(reasons));
+    }
+    let threshold = options.threshold.max(0.0);
     let mut entries = Vec::new();
     let mut unmatched = Vec::new();
+    let mut uncalibrated = 0usize;
     for scene in &new.scenes {
         let old_scene = old
             .scenes
             .iter()
             .find(|s| s.name == scene.name && s.width == scene.width && s.height == scene.height);
         for v in &scene.variants {
-            let old_v = old_scene.and_then(|s| s.variants.iter().find(|o| o.variant == v.variant));
+            let old_v = old_scene.and_then(|s| Some((s, find(s, &v.variant)?)));
             match old_v {
-                Some(o) => entries.push(Entry {
-                    scene: scene.name.clone(),
-                    variant: v.variant.clone(),
-                    old_median: o.time.median,
-                    old_interval: (o.time.low, o.time.high),
-                    new_median: v.time.median,
-                    new_interval: (v.time.low, v.time.high),
-                    change: v.time.median / o.time.median - 1.0,
-                    verdict: verdict(o, v, threshold),
-                    count_changes: count_changes(o, v),
-                }),
+                Some((old_scene, o)) => {
+                    let entry = compare_entry((old_scene, o), (scene, v), threshold);
+                    uncalibrated += usize::from(entry.measure == Measure::Seconds);
+                    entries.push(entry);
+                }
                 None => unmatched.push(format!("{}/{} (new)", scene.name, v.variant)),
             }
         }
@@ -168,18 +265,137 @@ pub fn compare_runs(old: &Results, new: &Results, threshold: f64) -> GateReport 
                 s.name == scene.name
                     && s.width == scene.width
                     && s.height == scene.height
-                    && s.variants.iter().any(|n| n.variant == v.variant)
+                    && find(s, &v.variant).is_some()
             });
             if !present {
                 unmatched.push(format!("{}/{} (old)", scene.name, v.variant));
             }
         }
     }
-    let (old_covers, new_covers) = (old.suite.timing.covers, new.suite.timing.covers);
-    GateReport {
-        threshold,
-        entries,
-        unmatched,
-        covers_differ: (old_covers != new_covers).then_some((old_covers, new_covers)),
+    let mut warnings = Vec::new();
+    if old.suite.quick || new.suite.quick {
+        warnings.push(
+            "--quick runs time renders of a few milliseconds with few repeats: their relative times move more between runs than a full suite's; gate full runs where it matters"
+                .to_string(),
+        );
     }
+    if uncalibrated > 0 {
+        warnings.push(format!(
+            "{uncalibrated} entr{} gated on seconds (a file without the calibration kernel or the baseline variant): a busier machine reads as slower",
+            if uncalibrated == 1 { "y" } else { "ies" }
+        ));
+    }
+    let (old_covers, new_covers) = (old.suite.timing.covers, new.suite.timing.covers);
+    Ok(GateReport {
+        threshold,
+        instruction_threshold: INSTRUCTION_THRESHOLD,
+        entries,
+        instructions: instruction_entries(&old.instructions, &new.instructions),
+        unmatched,
+        warnings,
+        covers_differ: (old_covers != new_covers).then_some((old_covers, new_covers)),
+        forced_over: reasons,
+    })
+}
+
+fn find<'a>(scene: &'a SceneResult, variant: &VariantName) -> Option<&'a VariantResult> {
+    scene.variants.iter().find(|v| &v.variant == variant)
+}
+
+/// The samples of what a variant's time is measured against in its run, and how.
+fn yardstick<'a>(scene: &'a SceneResult, v: &VariantResult) -> Option<(&'a [f64], Measure)> {
+    if v.variant.is_reference() {
+        let c = scene.calibration.as_ref()?;
+        Some((&c.samples, Measure::RelativeToCalibration))
+    } else {
+        let r = scene.variants.iter().find(|r| r.variant.is_reference())?;
+        Some((&r.samples, Measure::RelativeToReference))
+    }
+}
+
+fn compare_entry(
+    (old_scene, o): (&SceneResult, &VariantResult),
+    (new_scene, v): (&SceneResult, &VariantResult),
+    threshold: f64,
+) -> Entry {
+    let sticks = yardstick(old_scene, o).zip(yardstick(new_scene, v));
+    let (measure, old, new, change) = match sticks {
+        Some(((old_stick, measure), (new_stick, same))) if measure == same => {
+            let old_ratios = paired_ratios(&o.samples, old_stick);
+            let new_ratios = paired_ratios(&v.samples, new_stick);
+            let old = of_medians(&[&old_ratios], |m| m[0]);
+            let new = of_medians(&[&new_ratios], |m| m[0]);
+            let change = of_medians(&[&new_ratios, &old_ratios], |m| m[0] / m[1]);
+            (measure, old, new, change)
+        }
+        _ => {
+            let change = of_medians(&[&v.samples, &o.samples], |m| m[0] / m[1]);
+            (Measure::Seconds, Some(o.time), Some(v.time), change)
+        }
+    };
+    let unknown = Estimate {
+        median: f64::NAN,
+        low: f64::NAN,
+        high: f64::NAN,
+    };
+    let change = change.unwrap_or(unknown);
+    Entry {
+        scene: new_scene.name.clone(),
+        width: new_scene.width,
+        height: new_scene.height,
+        variant: v.variant.clone(),
+        measure,
+        old: old.unwrap_or(unknown),
+        new: new.unwrap_or(unknown),
+        old_seconds: o.time.median,
+        new_seconds: v.time.median,
+        change,
+        verdict: judge(&change, threshold),
+        count_changes: count_changes(o, v),
+    }
+}
+
+fn count_changes(old: &VariantResult, new: &VariantResult) -> Vec<CountChange> {
+    let mut names: Vec<&String> = old.counts.keys().chain(new.counts.keys()).collect();
+    names.sort();
+    names.dedup();
+    names
+        .into_iter()
+        .filter_map(|name| {
+            let a = old.counts.get(name).copied().unwrap_or(0);
+            let b = new.counts.get(name).copied().unwrap_or(0);
+            (a != b).then(|| CountChange {
+                counter: name.clone(),
+                old: a,
+                new: b,
+            })
+        })
+        .collect()
+}
+
+fn instruction_entries(
+    old: &[InstructionCount],
+    new: &[InstructionCount],
+) -> Vec<InstructionEntry> {
+    new.iter()
+        .filter_map(|n| {
+            let o = old.iter().find(|o| o.id == n.id)?;
+            let change = if o.instructions == 0 {
+                if n.instructions == 0 {
+                    0.0
+                } else {
+                    f64::INFINITY
+                }
+            } else {
+                n.instructions as f64 / o.instructions as f64 - 1.0
+            };
+            Some(InstructionEntry {
+                id: n.id.clone(),
+                old: o.instructions,
+                new: n.instructions,
+                change,
+                regressed: change > INSTRUCTION_THRESHOLD,
+            })
+        })
+        .collect()
 }

@@ -8,6 +8,7 @@
 //! are checked with `tracer`'s variant set, the RMS band and the estimate are
 //! `analysis`'s, the hardware tables' figures are `hwmodel`'s.
 
+pub mod change;
 pub mod created;
 pub mod gate;
 pub mod hardware;
@@ -18,12 +19,12 @@ pub mod v1;
 pub mod validate;
 pub mod variant_name;
 
+pub use analysis::verdict::NOISE_THRESHOLD;
 pub use created::rfc3339_utc;
 pub use hardware::{
     DeviceUse, HardwareResult, HwColumn, HwErrors, HwFigures, HwRow, HwRowKind, SceneHardware,
 };
 pub use read::{FileError, ResultsError};
-pub use analysis::verdict::NOISE_THRESHOLD;
 pub use schema::*;
 pub use timing_policy::{TimeCovers, TimingPolicy};
 pub use variant_name::VariantName;

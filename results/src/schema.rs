@@ -188,15 +188,17 @@ pub struct VariantResult {
     /// Tracing time (median and interval over the repeats), seconds; what it covers
     /// is [`SuiteInfo::timing`]'s `covers`.
     pub time: Estimate,
-    /// Every timed repeat, seconds.
+    /// Every timed repeat, seconds, in round order: sample j of every variant of the
+    /// scene (and of its calibration kernel) was timed in round j.
     pub samples: Vec<f64>,
     /// Scene preparation and structure build (camera space, SIMD lanes, BVH) before
     /// tracing, seconds: the median over the repeats. `None` in files whose times
     /// include it (`/1`).
     pub preprocessing_seconds: Option<f64>,
-    /// Baseline median / this median; None when baseline did not run on the scene.
+    /// Baseline time / this time: the median of the per-round ratios (older files: the
+    /// ratio of the medians); None when baseline did not run on the scene.
     pub speedup: Option<f64>,
-    /// 95 % bootstrap interval of `speedup` (ratio of medians); `None` in older files.
+    /// 95 % bootstrap interval of `speedup`; `None` in older files.
     #[serde(default)]
     pub speedup_interval: Option<[f64; 2]>,
     /// The speed-up's verdict against baseline (faster, slower, within noise) at the

@@ -1,30 +1,47 @@
-//! The regression gate on synthetic results: a 20 % slow-down with tight intervals
-//! fails, identical runs pass, a changed count fails; results round-trip through serde.
+//! The regression gate on synthetic results: relative times (variant ÷ baseline,
+//! baseline ÷ calibration kernel) survive a uniformly slower machine, a 25 % slow-down
+//! of one variant fails, a changed count fails, runs that cannot be compared are
+//! refused; results round-trip through serde.
 
 use std::collections::BTreeMap;
 
-use results::gate::{Verdict, compare_runs};
+use results::gate::{GateOptions, Measure, gate};
 use results::{
-    Build, Estimate, Machine, Results, SCHEMA, SceneFamily, SceneResult, SuiteInfo, TimeCovers,
-    TimingPolicy, VariantName, VariantResult,
+    Build, Calibration, Estimate, Machine, Results, SCHEMA, SceneFamily, SceneResult, SuiteInfo,
+    TimeCovers, TimingPolicy, VariantName, VariantResult, Verdict,
 };
 
 fn name(v: &str) -> VariantName {
     VariantName::parse(v).expect("a tracer variant")
 }
 
-fn variant(name: &str, median: f64, spread: f64, dots: u64) -> VariantResult {
+/// Twelve samples around `median`, about ±1 % in a fixed pattern of 256ths (exact in
+/// binary, so that a file round-trips exactly; their median is `median`).
+fn samples(median: f64) -> Vec<f64> {
+    [
+        -2.5, -2.0, -1.25, -0.75, -0.25, 0.0, 0.0, 0.25, 0.75, 1.25, 2.0, 2.5,
+    ]
+    .iter()
+    .map(|k| median * (1.0 + k / 256.0))
+    .collect()
+}
+
+fn estimate(median: f64) -> Estimate {
+    Estimate {
+        median,
+        low: median * 0.995,
+        high: median * 1.005,
+    }
+}
+
+fn variant(name: &str, median: f64, dots: u64) -> VariantResult {
     let mut counts = BTreeMap::new();
     counts.insert("ops.dot".to_string(), dots);
     counts.insert("rays.primary".to_string(), 307_200);
     VariantResult {
         variant: self::name(name),
-        time: Estimate {
-            median,
-            low: median - spread,
-            high: median + spread,
-        },
-        samples: vec![median - spread, median, median + spread],
+        time: estimate(median),
+        samples: samples(median),
         preprocessing_seconds: Some(0.001),
         speedup: Some(1.0),
         speedup_interval: None,
@@ -37,7 +54,8 @@ fn variant(name: &str, median: f64, spread: f64, dots: u64) -> VariantResult {
     }
 }
 
-fn results(baseline_s: f64, bvh_s: f64, dots: u64) -> Results {
+/// A run of balls3 with baseline and bvh, and the calibration kernel at `kernel_s`.
+fn run(baseline_s: f64, bvh_s: f64, kernel_s: f64, dots: u64) -> Results {
     Results {
         schema: SCHEMA.to_string(),
         created: "2026-11-21T00:00:00Z".into(),
@@ -56,7 +74,7 @@ fn results(baseline_s: f64, bvh_s: f64, dots: u64) -> Results {
         },
         suite: SuiteInfo {
             name: "test".into(),
-            quick: true,
+            quick: false,
             threads: 2,
             variants: vec![name("baseline"), name("bvh")],
             timing: TimingPolicy {
@@ -67,7 +85,7 @@ fn results(baseline_s: f64, bvh_s: f64, dots: u64) -> Results {
                 confidence: 0.95,
                 seed: 1,
                 covers: TimeCovers::Tracing,
-                interleaved: false,
+                interleaved: true,
             },
             wall_seconds: 1.0,
             noise_threshold: None,
@@ -82,11 +100,14 @@ fn results(baseline_s: f64, bvh_s: f64, dots: u64) -> Results {
             height: 48,
             spd: false,
             variants: vec![
-                variant("baseline", baseline_s, 0.01 * baseline_s, dots),
-                variant("bvh", bvh_s, 0.01 * bvh_s, dots / 2),
+                variant("baseline", baseline_s, dots),
+                variant("bvh", bvh_s, dots / 2),
             ],
             hardware: None,
-            calibration: None,
+            calibration: Some(Calibration {
+                time: estimate(kernel_s),
+                samples: samples(kernel_s),
+            }),
         }],
         profile: None,
         hardware: None,
@@ -96,51 +117,153 @@ fn results(baseline_s: f64, bvh_s: f64, dots: u64) -> Results {
     }
 }
 
-#[test]
-fn twenty_percent_slower_with_tight_intervals_fails() {
-    let old = results(1.0, 0.2, 1000);
-    let new = results(1.2, 0.2, 1000);
-    let gate = compare_runs(&old, &new, 0.05);
-    assert!(gate.failed());
-    let base = &gate.entries[0];
-    assert_eq!(base.verdict, Verdict::Slower);
-    assert!((base.change - 0.2).abs() < 1e-12);
-    assert_eq!(gate.entries[1].verdict, Verdict::Unchanged);
-    assert!(gate.to_text().contains("SLOWER"));
+fn default_gate(old: &Results, new: &Results) -> results::gate::GateReport {
+    gate(old, new, GateOptions::default()).expect("comparable runs")
 }
 
 #[test]
-fn identical_runs_pass_and_a_slow_down_inside_the_threshold_passes() {
-    let old = results(1.0, 0.2, 1000);
-    assert!(!compare_runs(&old, &old, 0.05).failed());
-    // 3 % slower: the intervals (±1 %) do not clear 5 %.
-    let new = results(1.03, 0.2, 1000);
-    let gate = compare_runs(&old, &new, 0.05);
-    assert!(!gate.failed());
-    assert_eq!(gate.entries[0].verdict, Verdict::Unchanged);
-    // 20 % faster is reported, and passes.
-    let faster = results(0.8, 0.2, 1000);
-    let gate = compare_runs(&old, &faster, 0.05);
-    assert_eq!(gate.entries[0].verdict, Verdict::Faster);
-    assert!(!gate.failed());
+fn identical_runs_pass_with_every_entry_within_noise() {
+    let old = run(1.0, 0.2, 0.01, 1000);
+    let g = default_gate(&old, &old);
+    assert!(!g.failed());
+    assert_eq!(g.entries.len(), 2);
+    assert!(g.entries.iter().all(|e| e.verdict == Verdict::WithinNoise));
+    assert_eq!(g.entries[0].measure, Measure::RelativeToCalibration);
+    assert_eq!(g.entries[1].measure, Measure::RelativeToReference);
+    // The relative times: 1.0 / 0.01 = 100 and 0.2 / 1.0 = 0.2, changed by exactly 1.
+    assert_eq!(g.entries[0].old.median, 100.0);
+    assert_eq!(g.entries[1].new.median, 0.2);
+    assert_eq!(g.entries[1].change.median, 1.0);
 }
 
 #[test]
-fn a_changed_count_fails_even_when_the_time_is_equal() {
-    let old = results(1.0, 0.2, 1000);
-    let new = results(1.0, 0.2, 1001);
-    let gate = compare_runs(&old, &new, 0.05);
-    assert!(gate.failed());
+fn a_machine_half_as_fast_on_the_second_run_is_not_a_regression() {
+    // Every time (renders and kernel) 1.5× longer: the relative times do not move.
+    let old = run(1.0, 0.2, 0.01, 1000);
+    let new = run(1.5, 0.3, 0.015, 1000);
+    let g = default_gate(&old, &new);
+    assert!(!g.failed(), "{g:?}");
+    for e in &g.entries {
+        assert!((e.change.median - 1.0).abs() < 1e-9, "{e:?}");
+        assert_eq!(e.verdict, Verdict::WithinNoise);
+    }
+}
+
+#[test]
+fn one_variant_25_percent_slower_fails_and_faster_passes() {
+    let old = run(1.0, 0.2, 0.01, 1000);
+    let new = run(1.0, 0.25, 0.01, 1000);
+    let g = default_gate(&old, &new);
+    assert!(g.failed());
+    let bvh = &g.entries[1];
+    assert_eq!(bvh.verdict, Verdict::Slower);
+    assert!((bvh.change.median - 1.25).abs() < 1e-9);
+    assert!(bvh.change.low > 1.0);
+    assert_eq!(g.entries[0].verdict, Verdict::WithinNoise);
+    // The same variant 25 % faster is reported and passes.
+    let faster = run(1.0, 0.16, 0.01, 1000);
+    let g = default_gate(&old, &faster);
+    assert_eq!(g.entries[1].verdict, Verdict::Faster);
+    assert!(!g.failed());
+    // 5 % slower with ±1 % samples: inside the noise threshold.
+    let g = default_gate(&old, &run(1.0, 0.21, 0.01, 1000));
+    assert_eq!(g.entries[1].verdict, Verdict::WithinNoise);
+    assert!(!g.failed());
+}
+
+#[test]
+fn the_baseline_is_gated_against_the_calibration_kernel() {
+    // Baseline 25 % slower while the kernel (the machine) is unchanged: slower; bvh
+    // moved with baseline, so its relative time is unchanged… and is 20 % faster relative.
+    let old = run(1.0, 0.2, 0.01, 1000);
+    let new = run(1.25, 0.25, 0.01, 1000);
+    let g = default_gate(&old, &new);
+    assert_eq!(g.entries[0].verdict, Verdict::Slower);
+    assert_eq!(g.entries[1].verdict, Verdict::WithinNoise);
+    assert!(g.failed());
+}
+
+#[test]
+fn a_count_changed_by_one_fails_even_when_the_time_is_equal() {
+    let old = run(1.0, 0.2, 0.01, 1000);
+    let new = run(1.0, 0.2, 0.01, 1001);
+    let g = default_gate(&old, &new);
+    assert!(g.failed());
+    let change = &g.entries[0].count_changes;
+    assert_eq!(change.len(), 1);
     assert_eq!(
-        gate.entries[0].count_changes,
-        vec![("ops.dot".to_string(), 1000, 1001)]
+        (change[0].counter.as_str(), change[0].old, change[0].new),
+        ("ops.dot", 1000, 1001)
     );
-    assert!(gate.to_text().contains("COUNTS CHANGED"));
+}
+
+#[test]
+fn runs_that_cannot_be_compared_are_refused_unless_forced() {
+    let old = run(1.0, 0.2, 0.01, 1000);
+    let mut new = old.clone();
+    new.suite.threads = 1;
+    new.machine.cpu_model = "other cpu".into();
+    new.scenes[0].width = 32;
+    let err = gate(&old, &new, GateOptions::default())
+        .unwrap_err()
+        .to_string();
+    assert!(err.contains("2 threads against 1"), "{err}");
+    assert!(
+        err.contains("machine 'test cpu' (2 CPUs) against 'other cpu' (2 CPUs)"),
+        "{err}"
+    );
+    assert!(err.contains("balls3 at 64x48 against 32x48"), "{err}");
+    assert!(err.contains("--force"), "{err}");
+    let forced = GateOptions {
+        force: true,
+        ..GateOptions::default()
+    };
+    let g = gate(&old, &new, forced).unwrap();
+    assert_eq!(g.forced_over.len(), 3);
+    let mut other = old.clone();
+    other.suite.name = "mine".into();
+    assert!(gate(&old, &other, GateOptions::default()).is_err());
+}
+
+#[test]
+fn quick_runs_and_files_without_calibration_are_gated_with_a_warning() {
+    let mut old = run(1.0, 0.2, 0.01, 1000);
+    old.suite.quick = true;
+    old.scenes[0].calibration = None;
+    let mut new = old.clone();
+    new.scenes[0].calibration = None;
+    let g = default_gate(&old, &new);
+    assert!(g.warnings.iter().any(|w| w.contains("--quick")));
+    assert!(
+        g.warnings
+            .iter()
+            .any(|w| w.contains("1 entry gated on seconds"))
+    );
+    assert_eq!(g.entries[0].measure, Measure::Seconds);
+}
+
+#[test]
+fn an_instruction_count_that_grows_beyond_one_percent_fails() {
+    let count = |n: u64| results::InstructionCount {
+        id: "sqrt/fast-sqrt".into(),
+        instructions: n,
+        estimated_cycles: None,
+        measured: None,
+    };
+    let mut old = run(1.0, 0.2, 0.01, 1000);
+    old.instructions = vec![count(10_000)];
+    let mut new = old.clone();
+    new.instructions = vec![count(10_050)];
+    assert!(!default_gate(&old, &new).failed());
+    new.instructions = vec![count(10_200)];
+    let g = default_gate(&old, &new);
+    assert!(g.failed());
+    assert!((g.instructions[0].change - 0.02).abs() < 1e-12);
 }
 
 #[test]
 fn results_round_trip_through_serde_and_the_schema_is_checked() {
-    let r = results(1.0, 0.2, 1000);
+    let r = run(1.0, 0.25, 0.015625, 1000);
     let text = serde_json::to_string_pretty(&r).unwrap();
     assert_eq!(Results::from_json(&text).unwrap(), r);
     let other = text.replace(SCHEMA, "rtprof.results/0");
@@ -151,10 +274,10 @@ fn results_round_trip_through_serde_and_the_schema_is_checked() {
 
 #[test]
 fn scenes_in_one_run_only_are_listed_not_failed() {
-    let old = results(1.0, 0.2, 1000);
-    let mut new = results(1.0, 0.2, 1000);
+    let old = run(1.0, 0.2, 0.01, 1000);
+    let mut new = old.clone();
     new.scenes[0].variants.pop();
-    let gate = compare_runs(&old, &new, 0.05);
-    assert!(!gate.failed());
-    assert_eq!(gate.unmatched, vec!["balls3/bvh (old)".to_string()]);
+    let g = default_gate(&old, &new);
+    assert!(!g.failed());
+    assert_eq!(g.unmatched, vec!["balls3/bvh (old)".to_string()]);
 }

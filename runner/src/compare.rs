@@ -4,10 +4,13 @@
 
 use std::path::Path;
 
+use analysis::verdict::{NOISE_THRESHOLD, Verdict, judge_speedup};
 use analysis::{
     Band, Comparison, Estimate, P3Histograms, RgbImage, compare, difference_heat_map,
     p3_histograms, to_p3,
 };
+use reports::document::{Cell, Column, Table, Tone};
+use reports::format;
 use serde::Serialize;
 use tracer::{Counts, VariantSet};
 
@@ -25,8 +28,10 @@ pub struct VariantRow {
     pub seconds: Estimate,
     /// Median preprocessing seconds (scene preparation, structure build), apart.
     pub preprocessing_seconds: f64,
-    /// Reference median / this median.
-    pub speedup: f64,
+    /// Reference median / this median, with its 95 % bootstrap interval.
+    pub speedup: Estimate,
+    /// Faster, slower or within noise against the reference (`None` for the reference).
+    pub verdict: Option<Verdict>,
     pub rms: f64,
     pub band: Band,
     /// `null` when the images are identical (infinite PSNR).
@@ -69,33 +74,36 @@ fn variant_rows(
     out: Option<&Path>,
     progress: &dyn Progress,
 ) -> Result<Vec<VariantRow>, RunError> {
-    progress.begin("variants", sets.len() as u64);
-    let mut measured: Vec<VariantMeasurement> = Vec::with_capacity(sets.len());
-    for set in sets {
-        progress.message(&set.to_string());
-        let m = setup.measure(set, policy)?;
-        if let Some(dir) = out {
-            save_png(dir, &format!("{set}.png"), &m.image)?;
-        }
-        measured.push(m);
-        progress.advance(1);
-    }
+    progress.begin("variants", 0);
+    let all = setup.measure_all(sets, policy, false, &|what| progress.message(what))?;
     progress.end();
+    let measured: Vec<VariantMeasurement> = all.variants.into_iter().collect::<Result<_, _>>()?;
     let Some(reference) = measured.first() else {
         return Ok(Vec::new());
     };
     let mut rows = Vec::with_capacity(measured.len());
     for (index, m) in measured.iter().enumerate() {
+        if let Some(dir) = out {
+            save_png(dir, &format!("{}.png", m.variants), &m.image)?;
+        }
         let metrics = compare(&reference.image, &m.image)?;
         if let (Some(dir), true) = (out, index > 0) {
             let heat = difference_heat_map(&reference.image, &m.image)?;
             save_png(dir, &format!("{}-diff.png", m.variants), &heat)?;
         }
+        let speedup = results::change::speedup(&reference.samples, &m.samples);
         rows.push(VariantRow {
             name: m.variants.to_string(),
             seconds: m.time,
             preprocessing_seconds: m.preprocessing,
-            speedup: reference.time.median / m.time.median.max(1e-12),
+            speedup: speedup.unwrap_or(Estimate {
+                median: f64::NAN,
+                low: f64::NAN,
+                high: f64::NAN,
+            }),
+            verdict: speedup
+                .filter(|_| index > 0)
+                .map(|s| judge_speedup(&s, NOISE_THRESHOLD)),
             rms: metrics.rms,
             band: metrics.band,
             psnr: metrics.psnr.is_finite().then_some(metrics.psnr),
@@ -123,69 +131,136 @@ pub struct VariantsReport {
 }
 
 impl VariantsReport {
+    /// The setting in one line: scene, size, threads, repeats, reference, threshold.
+    pub fn heading(&self) -> String {
+        let r = self;
+        format!(
+            "{}: {}{}, {}, at least {}, timed interleaved, against {}; verdicts at a {} % noise threshold\n",
+            r.scene,
+            format::size(r.width, r.height),
+            if r.spd { " (SPD)" } else { "" },
+            format::plural(r.threads, "thread"),
+            format::plural(r.repeats as usize, "repeat"),
+            r.reference,
+            NOISE_THRESHOLD * 100.0
+        )
+    }
+
+    /// Primitive tests of all kinds in a row's counts.
+    fn tests(v: &VariantRow) -> u64 {
+        let t = &v.counts.tests;
+        t.sphere.tests + t.cylinder.tests + t.cone.tests + t.polygon.tests + t.patch.tests
+    }
+
+    /// The rows as a document table (the terminal and Markdown forms).
+    pub fn table(&self) -> Table {
+        let mut t = Table::new(vec![
+            Column::text("variant"),
+            Column::number("time").detail("[95 % interval]"),
+            Column::number("speed-up").detail("[95 % interval]"),
+            Column::text("verdict"),
+            Column::number("RMS"),
+            Column::text("band"),
+            Column::number("PSNR"),
+            Column::number("SSIM"),
+            Column::number("tests"),
+            Column::text("rays"),
+        ]);
+        let reference_rays = self.variants.first().map(|v| v.counts.rays);
+        for v in &self.variants {
+            let s = &v.seconds;
+            t.rows.push(vec![
+                Cell::text(&v.name),
+                Cell::estimate(s.median, s.low, s.high),
+                Cell::ratio(v.speedup.median, Some([v.speedup.low, v.speedup.high])),
+                v.verdict
+                    .map_or_else(|| Cell::text("reference").tone(Tone::Muted), Cell::verdict),
+                Cell::number(format::fixed(v.rms, 2), v.rms),
+                Cell::text(v.band.name()).tone(Tone::of_band(v.band)),
+                match v.psnr {
+                    Some(p) => Cell::number(format!("{} dB", format::fixed(p, 1)), p),
+                    None => Cell::text("∞"),
+                },
+                Cell::number(format::fixed(v.ssim, 4), v.ssim),
+                Cell::count(Self::tests(v)),
+                if Some(v.counts.rays) == reference_rays {
+                    Cell::text("same")
+                } else {
+                    Cell::text("differ").tone(Tone::Warning)
+                },
+            ]);
+        }
+        t
+    }
+
     /// The table the command prints.
     pub fn to_text(&self) -> String {
-        let r = self;
-        let mut out = String::new();
-        out += &format!(
-            "{}: {}x{}{}, {} thread{}, {} repeat{}, against {}\n",
-            r.scene,
-            r.width,
-            r.height,
-            if r.spd { " (SPD)" } else { "" },
-            r.threads,
-            if r.threads == 1 { "" } else { "s" },
-            r.repeats,
-            if r.repeats == 1 { "" } else { "s" },
-            r.reference
-        );
-        let width = r
+        self.heading() + &reports::text::table(&self.table())
+    }
+
+    /// A GitHub-flavoured Markdown table under a one-line heading.
+    pub fn to_markdown(&self) -> String {
+        format!(
+            "**{}**\n\n{}",
+            self.heading().trim_end(),
+            reports::text::markdown(&self.table())
+        )
+    }
+
+    /// One CSV row per variant, seconds in full.
+    pub fn to_csv(&self) -> String {
+        let header = [
+            "scene",
+            "width",
+            "height",
+            "threads",
+            "variant",
+            "median_s",
+            "low_s",
+            "high_s",
+            "preprocessing_s",
+            "speedup",
+            "speedup_low",
+            "speedup_high",
+            "verdict",
+            "rms",
+            "band",
+            "psnr_db",
+            "ssim",
+            "max_abs_diff",
+            "primitive_tests",
+            "primary_rays",
+        ];
+        let n = |x: f64| reports::text::csv_number(Some(x));
+        let rows: Vec<Vec<String>> = self
             .variants
             .iter()
-            .map(|v| v.name.len())
-            .max()
-            .unwrap_or(8)
-            .max(7);
-        out += &format!(
-            "{:<width$}  {:>9}  {:>21}  {:>8}  {:>7}  {:<17}  {:>7}  {:>7}  {:>12}  {:>8}\n",
-            "variant",
-            "median s",
-            "95 % interval",
-            "speedup",
-            "RMS",
-            "band",
-            "PSNR",
-            "SSIM",
-            "tests",
-            "rays"
-        );
-        let reference_rays = r.variants.first().map(|v| v.counts.rays);
-        for v in &r.variants {
-            let t = &v.counts.tests;
-            let tests =
-                t.sphere.tests + t.cylinder.tests + t.cone.tests + t.polygon.tests + t.patch.tests;
-            let psnr = v.psnr.map_or("inf".to_string(), |p| format!("{p:.1}"));
-            let rays = if Some(v.counts.rays) == reference_rays {
-                "same"
-            } else {
-                "differ"
-            };
-            out += &format!(
-                "{:<width$}  {:>9.4}  [{:>9.4}, {:>9.4}]  {:>7.2}x  {:>7.3}  {:<17}  {:>7}  {:>7.4}  {:>12}  {:>8}\n",
-                v.name,
-                v.seconds.median,
-                v.seconds.low,
-                v.seconds.high,
-                v.speedup,
-                v.rms,
-                v.band.name(),
-                psnr,
-                v.ssim,
-                tests,
-                rays
-            );
-        }
-        out
+            .map(|v| {
+                vec![
+                    self.scene.clone(),
+                    self.width.to_string(),
+                    self.height.to_string(),
+                    self.threads.to_string(),
+                    v.name.clone(),
+                    n(v.seconds.median),
+                    n(v.seconds.low),
+                    n(v.seconds.high),
+                    n(v.preprocessing_seconds),
+                    n(v.speedup.median),
+                    n(v.speedup.low),
+                    n(v.speedup.high),
+                    v.verdict.map_or("reference", |x| x.label()).to_string(),
+                    n(v.rms),
+                    v.band.name().to_string(),
+                    reports::text::csv_number(v.psnr),
+                    n(v.ssim),
+                    v.max_abs_diff.to_string(),
+                    Self::tests(v).to_string(),
+                    v.counts.rays.primary.to_string(),
+                ]
+            })
+            .collect();
+        reports::text::csv(&header, &rows)
     }
 }
 

@@ -9,6 +9,7 @@
 //! - [`scenes`]: suite entries and directories resolved to scene texts;
 //! - [`timing`]: the one timing policy (repeats, minimum measured time, bootstrap) and
 //!   what a time covers (tracing; preprocessing apart);
+//! - [`calibration`]: the fixed kernel timed between renders (the gate's yardstick);
 //! - [`render_job`]: one render with its phase times (`rtprof render`, `count`);
 //! - [`variant_catalogue`]: what each variant does and how accurate it is;
 //! - [`variant_job`]: one variant on one scene: counts, timed renders, picture;
@@ -27,6 +28,7 @@
 //! - [`progress`], [`error`].
 
 pub mod benchmarks;
+pub mod calibration;
 pub mod collect;
 pub mod compare;
 pub mod definition;

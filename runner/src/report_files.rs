@@ -1,6 +1,6 @@
 //! The report files of a run: results files read back as labelled [`Run`]s, and
-//! report.html and report.pdf written from them (each atomically), with results.json
-//! for a new run.
+//! report.html, report.pdf, variants.csv and summary.md written from them (each
+//! atomically), with results.json for a new run.
 
 use std::path::{Path, PathBuf};
 
@@ -31,8 +31,15 @@ pub fn load_runs(paths: &[PathBuf]) -> Result<Vec<Run>, RunError> {
     Ok(runs)
 }
 
-/// Writes report.html and report.pdf for `runs` into `dir`.
+/// Writes report.html, report.pdf, variants.csv (the first run's) and summary.md for
+/// `runs` into `dir`.
 pub fn write_reports(runs: &[Run], dir: &Path) -> Result<(), RunError> {
+    if let Some(main) = runs.first() {
+        let csv = reports::exports::variants_csv(&main.results);
+        crate::staging::save(dir, "variants.csv", csv.as_bytes())?;
+        let summary = reports::exports::summary_markdown(runs);
+        crate::staging::save(dir, "summary.md", summary.as_bytes())?;
+    }
     let failed = |what: &str, message: String| RunError::Report(format!("{what}: {message}"));
     // The two documents are independent: typeset the PDF while the HTML is built.
     let (html, pdf) = std::thread::scope(|scope| {

@@ -11,8 +11,8 @@ use std::time::Instant;
 use analysis::{Band, compare, difference_heat_map, gray_histogram};
 use hwmodel::hw_scene::HwScene;
 use results::{
-    FailedPart, Failure, ProfileResult, Results, SCHEMA, SceneHardware, SceneResult, SuiteInfo,
-    VariantName, VariantResult, slug,
+    Calibration, FailedPart, Failure, ProfileResult, Results, SCHEMA, SceneHardware, SceneResult,
+    SuiteInfo, VariantName, VariantResult, slug,
 };
 use tracer::{RenderOptions, Sampling, Scene, ShadingMode, VariantSet, parse_nff};
 
@@ -26,7 +26,7 @@ use crate::profile_job::ProfileJob;
 use crate::progress::Progress;
 use crate::scenes::{SceneSpec, extra_scenes, resolve_scene};
 use crate::staging::save_png;
-use crate::variant_job::RenderSetup;
+use crate::variant_job::{RenderSetup, VariantMeasurement};
 
 /// A suite ready to run: its definition and its resolved scenes.
 pub struct Suite {
@@ -52,7 +52,7 @@ impl Suite {
     pub fn summary(&self, results: &Results, seconds: f64, output: &Path) -> String {
         let failures = results.failures.len();
         let mut text = format!(
-            "suite '{}': {} scenes × {} variants in {seconds:.1} s; {failures} failure{}; wrote {}/{{results.json, report.html, report.pdf}}\n",
+            "suite '{}': {} scenes × {} variants in {seconds:.1} s; {failures} failure{}; wrote {}/{{results.json, report.html, report.pdf, variants.csv, summary.md}}\n",
             self.def.name,
             results.scenes.len(),
             self.def.variants.len(),
@@ -128,7 +128,7 @@ impl Suite {
             }
             let outcome = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
                 let mut local = Vec::new();
-                let r = runner.run_scene(spec, &mut local);
+                let r = runner.run_scene(spec, (done, total), &mut local);
                 (r, local)
             }));
             match outcome {
@@ -220,6 +220,7 @@ impl SceneRunner<'_> {
     fn run_scene(
         &self,
         spec: &SceneSpec,
+        position: (usize, usize),
         failures: &mut Vec<Failure>,
     ) -> Result<SceneResult, RunError> {
         let scene = parse_nff(&spec.text, &spec.source).map_err(|e| RunError::Scene {
@@ -235,20 +236,29 @@ impl SceneRunner<'_> {
             pool: self.pool,
             stop: self.ctx.stop,
         };
+        let doing = |what: &str| {
+            self.ctx.progress.message(&format!(
+                "scene {}/{} {}: {what}",
+                position.0 + 1,
+                position.1,
+                spec.name
+            ));
+        };
+        let sets: Vec<VariantSet> = self
+            .def
+            .variants
+            .iter()
+            .map(|name| VariantSet::parse(name))
+            .collect::<Result<_, _>>()?;
+        let measured = setup.measure_all(&sets, &self.def.timing(), true, &doing)?;
         let mut variants: Vec<VariantResult> = Vec::new();
         let mut reference: Option<analysis::RgbImage> = None;
-        let mut reference_median: Option<f64> = None;
-        for name in &self.def.variants {
-            self.ctx.progress.message(&format!("{} {name}", spec.name));
-            match self.run_variant(spec, &setup, name, reference.as_ref()) {
-                Ok((mut v, image)) => {
+        for (name, outcome) in self.def.variants.iter().zip(measured.variants) {
+            match outcome.and_then(|m| self.variant_result(spec, m, reference.as_ref())) {
+                Ok((v, image)) => {
                     if v.variant.is_reference() {
-                        reference_median = Some(v.time.median);
                         reference = Some(image);
                     }
-                    v.speedup = reference_median
-                        .map(|r| r / v.time.median)
-                        .filter(|s| s.is_finite());
                     variants.push(v);
                 }
                 Err(RunError::Stopped) => return Err(RunError::Stopped),
@@ -261,6 +271,9 @@ impl SceneRunner<'_> {
             }
             self.ctx.progress.advance(1);
         }
+        let calibration = measured
+            .calibration
+            .map(|(samples, time)| Calibration { time, samples });
         let hardware = match HwScene::from_scene(&scene) {
             Ok(hw) => match self.run_hardware(spec, &scene, &hw) {
                 Ok(h) => Some(h),
@@ -282,7 +295,7 @@ impl SceneRunner<'_> {
         .into_iter()
         .map(|(kind, n)| (kind.to_string(), n as u64))
         .collect();
-        Ok(SceneResult {
+        let mut result = SceneResult {
             name: spec.name.clone(),
             source: spec.source.clone(),
             family: spec.family,
@@ -293,23 +306,26 @@ impl SceneRunner<'_> {
             spd: false,
             variants,
             hardware,
-            calibration: None,
-        })
+            calibration,
+        };
+        results::change::fill_scene_speedups(&mut result, results::NOISE_THRESHOLD);
+        Ok(result)
     }
 
-    /// One variant: measured, its image saved, compared with the reference's.
-    fn run_variant(
+    /// One measured variant: its image saved, compared with the reference's.
+    fn variant_result(
         &self,
         spec: &SceneSpec,
-        setup: &RenderSetup<'_>,
-        name: &str,
+        m: VariantMeasurement,
         reference: Option<&analysis::RgbImage>,
     ) -> Result<(VariantResult, analysis::RgbImage), RunError> {
-        let set = VariantSet::parse(name)?;
-        let variant = VariantName::of(&set);
-        let m = setup.measure(&set, &self.def.timing())?;
+        let variant = VariantName::of(&m.variants);
         let out = self.ctx.out;
-        let stem = format!("images/{}-{}", slug(&spec.name), slug(name));
+        let stem = format!(
+            "images/{}-{}",
+            slug(&spec.name),
+            slug(&m.variants.to_string())
+        );
         let image_rel = save_png(out, &format!("{stem}.png"), &m.image)?;
         let (quality, heat_map) = match reference {
             Some(base) if !variant.is_reference() => {
@@ -327,6 +343,7 @@ impl SceneRunner<'_> {
                 time: m.time,
                 samples: m.samples,
                 preprocessing_seconds: Some(m.preprocessing),
+                // Filled for the whole run by results::change::fill_speedups.
                 speedup: None,
                 speedup_interval: None,
                 verdict: None,

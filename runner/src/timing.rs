@@ -66,7 +66,7 @@ impl TimingPolicy {
             confidence: self.confidence,
             seed: self.seed,
             covers: results::TimeCovers::Tracing,
-            interleaved: false,
+            interleaved: true,
         }
     }
 
@@ -140,6 +140,103 @@ pub fn measure<R: PhaseTimes>(
     })
 }
 
+/// What [`measure_interleaved`] measured: each render's outcome, in the order given, and
+/// the calibration kernel's samples (one per round) when it ran.
+pub struct Interleaved<R> {
+    pub renders: Vec<Result<Measured<R>, RunError>>,
+    pub calibration: Option<(Vec<f64>, Estimate)>,
+}
+
+/// A render job of [`measure_interleaved`].
+pub type RenderJob<'a, R> = Box<dyn FnMut() -> Result<R, RunError> + 'a>;
+
+/// Times several renders in rounds: each round runs `calibrate` (when given) and then
+/// every render that still needs samples under `policy`, once. A change of load during
+/// the measurement then hits every render (and the calibration kernel) alike, so their
+/// ratios stay true. A render that fails drops out with its error; the others go on.
+/// `stop` is checked before each round.
+pub fn measure_interleaved<'a, R: PhaseTimes>(
+    policy: &TimingPolicy,
+    stop: &AtomicBool,
+    renders: Vec<RenderJob<'a, R>>,
+    mut calibrate: Option<&mut dyn FnMut() -> f64>,
+) -> Result<Interleaved<R>, RunError> {
+    struct Slot<'a, R> {
+        render: RenderJob<'a, R>,
+        samples: Vec<f64>,
+        preprocessing: Vec<f64>,
+        last: Option<R>,
+        error: Option<RunError>,
+    }
+    let needs_more = |samples: &[f64]| {
+        samples.len() < policy.min_repeats as usize
+            || (samples.iter().sum::<f64>() < policy.min_seconds
+                && samples.len() < policy.max_repeats as usize)
+    };
+    let mut slots: Vec<Slot<'a, R>> = renders
+        .into_iter()
+        .map(|render| Slot {
+            render,
+            samples: Vec::new(),
+            preprocessing: Vec::new(),
+            last: None,
+            error: None,
+        })
+        .collect();
+    let mut calibration = Vec::new();
+    loop {
+        let active: Vec<usize> = (0..slots.len())
+            .filter(|&i| slots[i].error.is_none() && needs_more(&slots[i].samples))
+            .collect();
+        if active.is_empty() {
+            break;
+        }
+        if stop.load(Ordering::SeqCst) {
+            return Err(RunError::Stopped);
+        }
+        if let Some(kernel) = calibrate.as_mut() {
+            calibration.push(kernel());
+        }
+        for i in active {
+            let slot = &mut slots[i];
+            match (slot.render)() {
+                Ok(out) => {
+                    slot.samples.push(out.tracing().as_secs_f64());
+                    slot.preprocessing.push(out.preprocessing().as_secs_f64());
+                    slot.last = Some(out);
+                }
+                Err(RunError::Stopped) => return Err(RunError::Stopped),
+                Err(e) => slot.error = Some(e),
+            }
+        }
+    }
+    let renders = slots
+        .into_iter()
+        .map(|slot| {
+            if let Some(e) = slot.error {
+                return Err(e);
+            }
+            let last = slot.last.ok_or(RunError::Stopped)?;
+            Ok(Measured {
+                time: policy.estimate(&slot.samples)?,
+                preprocessing: median(&slot.preprocessing).unwrap_or(0.0),
+                samples: slot.samples,
+                last,
+            })
+        })
+        .collect();
+    let calibration = if calibration.is_empty() {
+        None
+    } else {
+        let estimate = policy.estimate(&calibration)?;
+        Some((calibration, estimate))
+    };
+    Ok(Interleaved {
+        renders,
+        calibration,
+    })
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -198,5 +295,51 @@ mod tests {
         assert_eq!(a.median, 1.0);
         assert!(a.low <= a.median && a.median <= a.high);
         assert!(a.low >= 0.85 && a.high <= 1.2);
+    }
+
+    #[test]
+    fn interleaved_rounds_give_each_render_its_own_quota() {
+        // A 1/64 s render needs 8 samples for 1/8 s; a 1/16 s one needs 3 (the minimum,
+        // 3/16 s >= 1/8 s). Rounds: 8; the calibration kernel runs once per round.
+        use std::cell::RefCell;
+        let policy = TimingPolicy::new(3, 0.125);
+        let stop = AtomicBool::new(false);
+        let order = RefCell::new(Vec::new());
+        let fast: RenderJob<'_, Fake> = Box::new(|| {
+            order.borrow_mut().push('f');
+            Ok(Fake(Duration::from_micros(15_625), ms(0)))
+        });
+        let slow: RenderJob<'_, Fake> = Box::new(|| {
+            order.borrow_mut().push('s');
+            Ok(Fake(Duration::from_micros(62_500), ms(2)))
+        });
+        let failing: RenderJob<'_, Fake> = Box::new(|| Err(RunError::Input("broken".into())));
+        let mut kernel_runs = 0;
+        let mut kernel = || {
+            kernel_runs += 1;
+            0.002
+        };
+        let m = measure_interleaved(&policy, &stop, vec![fast, slow, failing], Some(&mut kernel))
+            .unwrap();
+        assert_eq!(m.renders[0].as_ref().unwrap().samples.len(), 8);
+        assert_eq!(m.renders[1].as_ref().unwrap().samples.len(), 3);
+        assert!((m.renders[1].as_ref().unwrap().preprocessing - 0.002).abs() < 1e-12);
+        assert!(matches!(m.renders[2], Err(RunError::Input(_))));
+        let (samples, estimate) = m.calibration.unwrap();
+        assert_eq!(samples.len(), 8);
+        assert_eq!(estimate.median, 0.002);
+        assert_eq!(kernel_runs, 8);
+        // Interleaved: the slow render's three samples come in the first three rounds.
+        let order: String = order.into_inner().into_iter().collect();
+        assert_eq!(order, "fsfsfsfffff");
+    }
+
+    #[test]
+    fn interleaved_measurement_stops_on_request() {
+        let policy = TimingPolicy::new(2, 0.0);
+        let stop = AtomicBool::new(true);
+        let job: RenderJob<'_, Fake> = Box::new(|| Ok(Fake(ms(1), ms(0))));
+        let r = measure_interleaved(&policy, &stop, vec![job], None);
+        assert!(matches!(r, Err(RunError::Stopped)));
     }
 }

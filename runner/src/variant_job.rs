@@ -1,15 +1,18 @@
-//! The variant job: one variant set on one scene, measured the one way rtprof
-//! measures: a counted render first (exact counts; it also warms caches and the
-//! thread pool up), then the timed uncounted renders under the timing policy. The
-//! last timed frame is the variant's image.
+//! The variant job: variant sets on one scene, measured the one way rtprof measures:
+//! a counted render of each first (exact counts; it also warms caches and the thread
+//! pool up), then the timed uncounted renders under the timing policy, interleaved in
+//! rounds with the calibration kernel. The last timed frame is each variant's image.
 
 use std::sync::atomic::AtomicBool;
 
 use analysis::RgbImage;
-use tracer::{Count, Counts, NoCount, RenderOptions, Scene, VariantSet, render_variant};
+use tracer::{
+    Count, Counts, NoCount, RenderOptions, Scene, VariantRender, VariantSet, render_variant,
+};
 
+use crate::calibration::time_kernel;
 use crate::error::RunError;
-use crate::timing::{TimingPolicy, measure};
+use crate::timing::{RenderJob, TimingPolicy, measure_interleaved};
 
 /// A measured variant.
 pub struct VariantMeasurement {
@@ -36,36 +39,96 @@ pub struct RenderSetup<'a> {
     pub stop: &'a AtomicBool,
 }
 
+/// Every variant of [`RenderSetup::measure_all`], in the order asked, and the
+/// calibration kernel timed between them.
+pub struct VariantsMeasured {
+    pub variants: Vec<Result<VariantMeasurement, RunError>>,
+    /// The kernel's samples (one per round) and their median and interval.
+    pub calibration: Option<(Vec<f64>, analysis::Estimate)>,
+}
+
 impl RenderSetup<'_> {
-    /// Counts, times and pictures `set`.
-    pub fn measure(
+    /// Counts and pictures every set of `sets`, timing them interleaved: one counted
+    /// render each first (exact counts; it also warms caches and the pool up), then
+    /// rounds of one uncounted render of each set still short of `policy`'s samples,
+    /// with the calibration kernel at the start of each round (when `calibrate`). A set
+    /// that fails is reported in its place; the others are measured. `doing` hears what
+    /// is being done (for a progress display).
+    pub fn measure_all(
         &self,
-        set: &VariantSet,
+        sets: &[VariantSet],
         policy: &TimingPolicy,
-    ) -> Result<VariantMeasurement, RunError> {
+        calibrate: bool,
+        doing: &dyn Fn(&str),
+    ) -> Result<VariantsMeasured, RunError> {
         let fail = |e: tracer::RenderError| RunError::render(self.name, &e);
-        let counted = self
-            .pool
-            .install(|| render_variant::<Count>(self.scene, self.options, set, &|_| {}))
-            .map_err(fail)?;
-        let counts = counted.rendered.counts().ok_or_else(|| RunError::Render {
-            context: self.name.to_string(),
-            message: "the counted render returned no counts".into(),
-        })?;
-        let measured = measure(policy, self.stop, || {
-            self.pool
-                .install(|| render_variant::<NoCount>(self.scene, self.options, set, &|_| {}))
-                .map_err(fail)
-        })?;
-        let frame = &measured.last.rendered.frame;
-        let image = RgbImage::new(frame.width, frame.height, frame.to_rgb8())?;
-        Ok(VariantMeasurement {
-            variants: set.clone(),
-            samples: measured.samples,
-            time: measured.time,
-            preprocessing: measured.preprocessing,
-            counts,
-            image,
+        let counts: Vec<Result<Counts, RunError>> = sets
+            .iter()
+            .map(|set| {
+                doing(&format!("counting {set}"));
+                let counted = self
+                    .pool
+                    .install(|| render_variant::<Count>(self.scene, self.options, set, &|_| {}))
+                    .map_err(fail)?;
+                counted.rendered.counts().ok_or_else(|| RunError::Render {
+                    context: self.name.to_string(),
+                    message: "the counted render returned no counts".into(),
+                })
+            })
+            .collect();
+        // Only the sets whose counted render worked are timed.
+        let timed: Vec<usize> = (0..sets.len()).filter(|&i| counts[i].is_ok()).collect();
+        let jobs: Vec<RenderJob<'_, VariantRender<NoCount>>> = timed
+            .iter()
+            .map(|&i| {
+                let set = &sets[i];
+                Box::new(move || {
+                    self.pool
+                        .install(|| {
+                            render_variant::<NoCount>(self.scene, self.options, set, &|_| {})
+                        })
+                        .map_err(fail)
+                }) as RenderJob<'_, _>
+            })
+            .collect();
+        doing(&format!("timing {} variants interleaved", jobs.len()));
+        let mut kernel = || time_kernel(self.pool);
+        let measured = measure_interleaved(
+            policy,
+            self.stop,
+            jobs,
+            calibrate.then_some(&mut kernel as &mut dyn FnMut() -> f64),
+        )?;
+        let mut timings = timed.into_iter().zip(measured.renders);
+        let mut variants = Vec::with_capacity(sets.len());
+        for (i, (set, counted)) in sets.iter().zip(counts).enumerate() {
+            let counts = match counted {
+                Ok(c) => c,
+                Err(e) => {
+                    variants.push(Err(e));
+                    continue;
+                }
+            };
+            let timing = match timings.next() {
+                Some((index, timing)) if index == i => timing,
+                _ => Err(RunError::Stopped),
+            };
+            variants.push(timing.and_then(|m| {
+                let frame = &m.last.rendered.frame;
+                let image = RgbImage::new(frame.width, frame.height, frame.to_rgb8())?;
+                Ok(VariantMeasurement {
+                    variants: set.clone(),
+                    samples: m.samples,
+                    time: m.time,
+                    preprocessing: m.preprocessing,
+                    counts,
+                    image,
+                })
+            }));
+        }
+        Ok(VariantsMeasured {
+            variants,
+            calibration: measured.calibration,
         })
     }
 }

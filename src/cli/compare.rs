@@ -2,6 +2,7 @@
 //! one scene (time with a bootstrap interval, speed-up, image error, counts), all
 //! against the first image or variant.
 
+use super::Format;
 use super::progress::Bars;
 use super::scene_args::RenderFlags;
 use anyhow::{Context, Result, bail};
@@ -28,9 +29,12 @@ pub struct CompareArgs {
     repeats: u32,
     #[command(flatten)]
     render: RenderFlags,
-    /// Print the result as JSON.
+    /// Print the result as JSON (the same as --format json).
     #[arg(long)]
     json: bool,
+    /// Output of a side-by-side run: a table, GitHub Markdown, CSV or JSON.
+    #[arg(long, value_enum, default_value_t = Format::Text)]
+    format: Format,
     /// Images: the difference heat map (two images), or a directory for every variant's
     /// image and heat map (scene).
     #[arg(short, long, value_name = "DIFF.png | DIR")]
@@ -48,8 +52,14 @@ pub fn run(args: &CompareArgs) -> Result<()> {
 }
 
 fn compare_images(args: &CompareArgs, a: &Path, b: &Path) -> Result<()> {
-    let report = runner::compare::compare_images(a, b, args.output.as_deref(), args.json)?;
-    if args.json {
+    let json = args.json || args.format == Format::Json;
+    if matches!(args.format, Format::Markdown | Format::Csv) {
+        bail!(
+            "two images compare as text or --format json; markdown and csv are for a side-by-side run of --variants"
+        );
+    }
+    let report = runner::compare::compare_images(a, b, args.output.as_deref(), json)?;
+    if json {
         println!("{}", serde_json::to_string_pretty(&report)?);
     } else {
         print!("{}", report.to_text());
@@ -84,10 +94,15 @@ fn side_by_side(args: &CompareArgs, scene_path: &Path, list: &str) -> Result<()>
         args.output.as_deref(),
         &Bars::default(),
     )?;
-    if args.json {
-        println!("{}", serde_json::to_string_pretty(&report)?);
-    } else {
-        print!("{}", report.to_text());
-    }
+    let format = if args.json { Format::Json } else { args.format };
+    print!(
+        "{}",
+        match format {
+            Format::Text => report.to_text(),
+            Format::Markdown => report.to_markdown(),
+            Format::Csv => report.to_csv(),
+            Format::Json => serde_json::to_string_pretty(&report)? + "\n",
+        }
+    );
     Ok(())
 }

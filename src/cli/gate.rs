@@ -1,8 +1,11 @@
 //! `rtprof gate OLD.json NEW.json`: the regression gate of `suite --baseline` on two
 //! saved results files (for a CI that keeps its runs): exit 1 when a variant is
-//! significantly slower or any count changed, 0 otherwise.
+//! significantly slower or any count changed, 0 otherwise, 2 when the runs cannot be
+//! compared.
 
+use super::{Format, Outcome};
 use anyhow::Result;
+use results::gate::{GateOptions, GateReport};
 use std::path::PathBuf;
 
 #[derive(clap::Args, Debug)]
@@ -13,30 +16,61 @@ pub struct GateArgs {
     /// The new run's results.json.
     #[arg(value_name = "NEW.json")]
     new: PathBuf,
-    /// Slow-down tolerated beyond the intervals, in percent.
-    #[arg(long, value_name = "PCT", default_value_t = 5.0,
+    #[command(flatten)]
+    options: GateFlags,
+    /// Output: a table, GitHub Markdown (a pull-request comment or job summary), CSV or JSON.
+    #[arg(long, value_enum, default_value_t = Format::Text)]
+    format: Format,
+}
+
+/// The gate's flags, shared with `suite --baseline`.
+#[derive(clap::Args, Debug)]
+pub struct GateFlags {
+    /// Noise threshold in percent: a relative time must change by more than this (and
+    /// its 95 % interval exclude no change) to be slower or faster. The default is the
+    /// measured run-to-run noise (docs/gate.md).
+    #[arg(long, value_name = "PCT", default_value_t = results::NOISE_THRESHOLD * 100.0,
           value_parser = super::suite::parse_threshold)]
     threshold: f64,
-    /// Print the comparison as JSON instead of a table.
+    /// Gate runs that are not comparable (another suite, frame size, thread count or
+    /// machine) anyway; the output says what differs.
     #[arg(long)]
-    json: bool,
+    force: bool,
+}
+
+impl GateFlags {
+    /// Gates `new` against `old`; runs that cannot be compared are an error (exit 2).
+    pub fn gate(&self, old: &results::Results, new: &results::Results) -> Result<GateReport> {
+        let options = GateOptions {
+            threshold: self.threshold / 100.0,
+            force: self.force,
+        };
+        Ok(results::gate::gate(old, new, options)?)
+    }
+}
+
+/// The gate in `format`.
+pub fn render(gate: &GateReport, format: Format) -> Result<String> {
+    Ok(match format {
+        Format::Text => reports::gate_text::to_text(gate),
+        Format::Markdown => reports::gate_text::to_markdown(gate),
+        Format::Csv => reports::gate_text::to_csv(gate),
+        Format::Json => serde_json::to_string_pretty(gate)? + "\n",
+    })
+}
+
+/// Exit 1 when the gate failed.
+pub fn outcome(gate: &GateReport) -> Result<()> {
+    if gate.failed() {
+        return Err(Outcome::new(Outcome::CHECK_FAILED, "the regression gate failed").into());
+    }
+    Ok(())
 }
 
 pub fn run(args: &GateArgs) -> Result<()> {
     let old = results::Results::read_file(&args.old)?;
     let new = results::Results::read_file(&args.new)?;
-    let gate = results::gate::compare_runs(&old, &new, args.threshold / 100.0);
-    if args.json {
-        println!("{}", serde_json::to_string_pretty(&gate)?);
-    } else {
-        print!("{}", gate.to_text());
-    }
-    if gate.failed() {
-        return Err(super::Outcome::new(
-            super::Outcome::CHECK_FAILED,
-            "the regression gate failed",
-        )
-        .into());
-    }
-    Ok(())
+    let gate = args.options.gate(&old, &new)?;
+    print!("{}", render(&gate, args.format)?);
+    outcome(&gate)
 }

@@ -51,6 +51,17 @@ enum Command {
     Scene(scene::SceneArgs),
 }
 
+/// How a table is printed: aligned text for a terminal, GitHub-flavoured Markdown (a
+/// pull-request comment, a CI job summary), CSV or JSON.
+#[derive(clap::ValueEnum, Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum Format {
+    #[default]
+    Text,
+    Markdown,
+    Csv,
+    Json,
+}
+
 /// An end that is neither success nor bad input (exit 2), with its exit code.
 #[derive(Debug)]
 pub struct Outcome {

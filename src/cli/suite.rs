@@ -26,10 +26,8 @@ pub struct SuiteArgs {
     /// changed count.
     #[arg(long, value_name = "RESULTS.json")]
     baseline: Option<PathBuf>,
-    /// Slow-down the gate tolerates beyond the intervals, in percent.
-    #[arg(long, value_name = "PCT", default_value_t = 5.0,
-          value_parser = parse_threshold)]
-    threshold: f64,
+    #[command(flatten)]
+    gate: super::gate::GateFlags,
     /// Add every .nff file of this directory (e.g. ../shared/spd).
     #[arg(long, value_name = "DIR")]
     scenes: Option<PathBuf>,
@@ -95,13 +93,13 @@ pub fn run(args: &SuiteArgs) -> Result<()> {
     let seconds = started.elapsed().as_secs_f64();
     eprint!("{}", suite.summary(&results, seconds, &args.output));
     if let Some(old) = old {
-        let gate = results::gate::compare_runs(&old, &results, args.threshold / 100.0);
-        let text = gate.to_text();
+        let gate = args.gate.gate(&old, &results)?;
+        let text = super::gate::render(&gate, super::Format::Text)?;
         print!("{text}");
         save(&args.output, "gate.txt", text.as_bytes())?;
-        if gate.failed() {
-            return Err(Outcome::new(Outcome::CHECK_FAILED, "the regression gate failed").into());
-        }
+        let markdown = super::gate::render(&gate, super::Format::Markdown)?;
+        save(&args.output, "gate.md", markdown.as_bytes())?;
+        super::gate::outcome(&gate)?;
     }
     match Suite::failures_message(&results) {
         Some(message) => Err(Outcome::new(Outcome::PARTS_FAILED, message).into()),

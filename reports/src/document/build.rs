@@ -10,9 +10,10 @@ use crate::charts::{self, Chart};
 use crate::gallery::{self, Picture};
 use crate::sections;
 
-/// The report's sections: id and heading, in order (the comparison only with several
-/// runs).
+/// The report's sections: id and heading, in order. The comparison comes only with
+/// several runs, and first: a report of several runs opens with what changed.
 pub const SECTIONS: [(&str, &str); 16] = [
+    ("comparison", "What changed between the runs"),
     ("summary", "Summary"),
     ("profile", "Flat profile and call graph"),
     ("profile-charts", "Calls and self time per function"),
@@ -31,7 +32,6 @@ pub const SECTIONS: [(&str, &str); 16] = [
     ("criterion", "Micro-benchmarks: time and instructions"),
     ("failures", "Failures"),
     ("reproduce", "How to reproduce"),
-    ("comparison", "Side-by-side comparison of runs"),
 ];
 
 /// The heading of section `id` (the id itself when it is not one of [`SECTIONS`]).
@@ -54,7 +54,11 @@ pub fn build(runs: &[Run]) -> Option<Document> {
         charts: charts::all(&main.results),
         assets: Assets::default(),
     };
-    let mut sections_out = vec![
+    let mut sections_out = Vec::new();
+    if runs.len() > 1 {
+        sections_out.push(sections::comparison::comparison(&mut b));
+    }
+    sections_out.extend([
         sections::summary::summary(&mut b),
         sections::profile::profile(&mut b),
         sections::profile::profile_charts(&mut b),
@@ -70,10 +74,7 @@ pub fn build(runs: &[Run]) -> Option<Document> {
         sections::benchmarks::criterion(&mut b),
         sections::closing::failures(&mut b),
         sections::closing::reproduce(&mut b),
-    ];
-    if runs.len() > 1 {
-        sections_out.push(sections::comparison::comparison(&mut b));
-    }
+    ]);
     // A chart no section placed (a new kind) is not lost.
     if !b.charts.is_empty() {
         let mut more = b.section("more-charts", None);

@@ -284,6 +284,21 @@ impl Cell {
         }
     }
 
+    /// A speed-up with its interval (detail), digits following the interval.
+    pub fn ratio(median: f64, interval: Option<[f64; 2]>) -> Cell {
+        let [low, high] = interval.unwrap_or([f64::NAN, f64::NAN]);
+        let text = crate::format::ratio_estimate(median, low, high);
+        Cell {
+            detail: (!text.interval.is_empty()).then_some(text.interval),
+            ..Cell::number(text.median, median)
+        }
+    }
+
+    /// A verdict's label in its tone.
+    pub fn verdict(verdict: crate::results::Verdict) -> Cell {
+        Cell::text(verdict.label()).tone(Tone::of_verdict(verdict))
+    }
+
     /// A dash for a value that is not there.
     pub fn dash() -> Cell {
         Cell::text(crate::format::DASH).tone(Tone::Muted)

@@ -3,7 +3,7 @@
 //! A renderer maps each [`Tone`] to one colour (the HTML in its style sheet, the PDF in
 //! its template); which tone a value gets is decided only here.
 
-use crate::results::Band;
+use crate::results::{Band, Verdict};
 use serde::Serialize;
 
 /// How a cell, tile or note reads: four steps from good to bad, plus neutral and muted.
@@ -67,26 +67,13 @@ impl Tone {
         (Tone::Muted, "no error (thesis 0)"),
     ];
 
-    /// A speed-up over the reference: good from 1.05×, bad up to 0.95×.
-    pub fn of_speedup(speedup: f64) -> Tone {
-        if speedup >= 1.05 {
-            Tone::Good
-        } else if speedup > 0.0 && speedup <= 0.95 {
-            Tone::Bad
-        } else {
-            Tone::Neutral
-        }
-    }
-
-    /// A new time against an old one, each a (low, high) interval: bad when the new is
-    /// slower beyond both intervals, good when faster, neutral when they overlap.
-    pub fn of_change(old: (f64, f64), new: (f64, f64)) -> Tone {
-        if new.0 > old.1 {
-            Tone::Bad
-        } else if new.1 < old.0 {
-            Tone::Good
-        } else {
-            Tone::Neutral
+    /// A verdict of the one rule (`analysis::verdict`): faster good, slower bad, within
+    /// noise neutral — never coloured as a change.
+    pub fn of_verdict(verdict: Verdict) -> Tone {
+        match verdict {
+            Verdict::Faster => Tone::Good,
+            Verdict::Slower => Tone::Bad,
+            Verdict::WithinNoise => Tone::Neutral,
         }
     }
 
@@ -131,7 +118,7 @@ mod tests {
     }
 
     #[test]
-    fn errors_speedups_and_changes() {
+    fn errors_verdicts_and_counts() {
         assert_eq!(Tone::of_error(Some(-4.9)), Tone::Good);
         assert_eq!(Tone::of_error(Some(5.0)), Tone::Fair);
         assert_eq!(Tone::of_error(Some(-14.9)), Tone::Fair);
@@ -139,13 +126,9 @@ mod tests {
         assert_eq!(Tone::of_error(Some(154.2)), Tone::Bad);
         assert_eq!(Tone::of_error(Some(f64::NAN)), Tone::Muted);
         assert_eq!(Tone::of_error(None), Tone::Muted);
-        assert_eq!(Tone::of_speedup(1.05), Tone::Good);
-        assert_eq!(Tone::of_speedup(1.0), Tone::Neutral);
-        assert_eq!(Tone::of_speedup(0.95), Tone::Bad);
-        assert_eq!(Tone::of_speedup(f64::NAN), Tone::Neutral);
-        assert_eq!(Tone::of_change((1.0, 2.0), (2.1, 3.0)), Tone::Bad);
-        assert_eq!(Tone::of_change((1.0, 2.0), (0.1, 0.9)), Tone::Good);
-        assert_eq!(Tone::of_change((1.0, 2.0), (1.5, 2.5)), Tone::Neutral);
+        assert_eq!(Tone::of_verdict(Verdict::Faster), Tone::Good);
+        assert_eq!(Tone::of_verdict(Verdict::Slower), Tone::Bad);
+        assert_eq!(Tone::of_verdict(Verdict::WithinNoise), Tone::Neutral);
         assert_eq!(Tone::of_count(3, 4), Tone::Good);
         assert_eq!(Tone::of_count(4, 4), Tone::Muted);
         assert_eq!(Tone::of_count(5, 4), Tone::Bad);

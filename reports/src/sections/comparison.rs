@@ -1,31 +1,54 @@
-//! The comparison of several runs: machines side by side, and every scene × variant's
-//! time in each run with its change against the first and whether the counts agree.
-
-use std::collections::BTreeSet;
+//! The comparison of several runs, first in a report of several runs: what changed
+//! against the first run (the regression gate's verdicts, the same rule and threshold
+//! as `rtprof gate`), then the machines side by side and every scene × variant's time
+//! in each run with its change and whether the counts agree.
 
 use super::summary::run_pairs;
 use crate::Run;
 use crate::document::{Block, Builder, Cell, Column, Inline, Section, Table, Tone};
 use crate::findings::comparison_keys;
 use crate::format;
+use crate::gate_text;
+use crate::results::gate::{Entry, GateOptions, GateReport, gate};
 use crate::results::{VariantName, VariantResult};
 
-/// Differing counters a counts cell names before leaving the rest to the hover text.
-const COUNTERS_NAMED: usize = 2;
+/// Entries the "what changed" list names before leaving the rest to the table.
+const CHANGES_LISTED: usize = 12;
+
+/// The gate of `run` against `first`; runs of other machines or suites are compared
+/// anyway (that is what a comparison report is for) and say so.
+pub fn gate_against(first: &Run, run: &Run) -> GateReport {
+    let options = GateOptions {
+        force: true,
+        ..GateOptions::default()
+    };
+    match gate(&first.results, &run.results, options) {
+        Ok(report) => report,
+        // With `force` the gate always answers; an empty report keeps the section up.
+        Err(_) => GateReport {
+            threshold: options.threshold,
+            instruction_threshold: crate::results::gate::INSTRUCTION_THRESHOLD,
+            entries: Vec::new(),
+            instructions: Vec::new(),
+            unmatched: Vec::new(),
+            warnings: Vec::new(),
+            covers_differ: None,
+            forced_over: Vec::new(),
+        },
+    }
+}
 
 pub fn comparison(b: &mut Builder) -> Section {
     let mut s = b.section("comparison", None);
     let runs = b.runs;
     let first = b.run;
-    s.blocks.push(Block::Paragraph {
-        content: vec![
-            Inline::text("Median time of each scene × variant in every run, and its change against "),
-            Inline::strong(&first.label),
-            Inline::text(
-                " (coloured when the 95 % intervals do not overlap: red slower, green faster). Counts are exact, so any difference means a different program or scene: such cells are flagged.",
-            ),
-        ],
-    });
+    let gates: Vec<GateReport> = runs[1..]
+        .iter()
+        .map(|run| gate_against(first, run))
+        .collect();
+    for (run, g) in runs[1..].iter().zip(&gates) {
+        what_changed(&mut s, first, run, g);
+    }
     s.blocks.push(Block::heading("Machines and builds"));
     s.blocks.push(Block::Table(machines(runs)));
     let keys = comparison_keys(runs);
@@ -34,6 +57,15 @@ pub fn comparison(b: &mut Builder) -> Section {
     }
     s.blocks
         .push(Block::heading("Tracing time, median per run"));
+    s.blocks.push(Block::Paragraph {
+        content: vec![
+            Inline::text("Median tracing time of each scene × variant in every run; the change against "),
+            Inline::strong(&first.label),
+            Inline::text(
+                " is the gate's: the variant's time relative to its run's baseline (baseline: relative to the calibration kernel), coloured only when the verdict is faster or slower. Counts are exact: any difference is flagged.",
+            ),
+        ],
+    });
     let mut columns = vec![Column::text("scene"), Column::text("variant")];
     columns.extend(
         runs.iter()
@@ -41,42 +73,93 @@ pub fn comparison(b: &mut Builder) -> Section {
     );
     for run in &runs[1..] {
         columns.push(Column::number(format!("{} vs {}", run.label, first.label)));
+        columns.push(Column::text(format!("verdict {}", run.label)));
         columns.push(Column::text(format!("counts {}", run.label)));
     }
     let mut t = Table::new(columns).sortable().dense();
-    let mut flagged = 0usize;
     for key in &keys {
-        let found: Vec<Option<&VariantResult>> = runs.iter().map(|run| lookup(run, key)).collect();
         let mut row = vec![
             Cell::text(&key.0).detail(format::size(key.1, key.2)),
             Cell::text(key.3.as_str()),
         ];
-        for v in &found {
-            row.push(match v {
+        for run in runs {
+            row.push(match lookup(run, key) {
                 Some(v) => Cell::estimate(v.time.median, v.time.low, v.time.high),
                 None => Cell::text("not run").tone(Tone::Muted),
             });
         }
-        for v in &found[1..] {
-            match (found[0], v) {
-                (Some(a), Some(b)) => {
-                    row.push(change_cell(a, b));
-                    let cell = counts_cell(a, b);
-                    if cell.tone == Tone::Bad {
-                        flagged += 1;
-                    }
-                    row.push(cell);
-                }
-                _ => row.extend([Cell::dash(), Cell::dash()]),
+        for g in &gates {
+            match entry(g, key) {
+                Some(e) => row.extend([
+                    gate_text::change_cell(e),
+                    Cell::verdict(e.verdict),
+                    gate_text::counts_cell(e),
+                ]),
+                None => row.extend([Cell::dash(), Cell::dash(), Cell::dash()]),
             }
         }
         t.rows.push(row);
     }
     s.blocks.push(Block::Table(t));
-    s.blocks.push(Block::text(format!(
-        "{flagged} scene × variant pair(s) with differing counts (the HTML report lists the counters on hover)."
-    )));
     s
+}
+
+/// The verdicts of one run against the first: the gate's headline, its rule, and the
+/// entries that changed (slower, faster or counts), largest change first.
+fn what_changed(s: &mut Section, first: &Run, run: &Run, g: &GateReport) {
+    s.blocks.push(Block::heading(format!(
+        "{} against {}",
+        run.label, first.label
+    )));
+    let tone = if g.failed() { Tone::Bad } else { Tone::Good };
+    s.blocks.push(Block::note(tone, gate_text::headline(g)));
+    s.blocks.push(Block::text(gate_text::rule(g)));
+    for w in &g.warnings {
+        s.blocks.push(Block::note(Tone::Fair, w.clone()));
+    }
+    for reason in &g.forced_over {
+        s.blocks.push(Block::note(
+            Tone::Fair,
+            format!("Compared although {reason}: read the verdicts with care."),
+        ));
+    }
+    let mut changed: Vec<&Entry> = g
+        .entries
+        .iter()
+        .filter(|e| e.failed() || e.verdict != crate::results::Verdict::WithinNoise)
+        .collect();
+    if changed.is_empty() {
+        return;
+    }
+    changed.sort_by(|a, b| {
+        let size = |e: &Entry| e.change.median.ln().abs();
+        b.failed()
+            .cmp(&a.failed())
+            .then_with(|| size(b).total_cmp(&size(a)))
+    });
+    let mut t = Table::new(vec![
+        Column::text("scene"),
+        Column::text("variant"),
+        Column::number("change").detail("[95 % interval]"),
+        Column::text("verdict"),
+        Column::text("counts").grow(),
+    ]);
+    for e in changed.iter().take(CHANGES_LISTED) {
+        t.rows.push(vec![
+            Cell::text(&e.scene).detail(format::size(e.width, e.height)),
+            Cell::text(e.variant.as_str()),
+            gate_text::change_cell(e),
+            Cell::verdict(e.verdict),
+            gate_text::counts_cell(e),
+        ]);
+    }
+    s.blocks.push(Block::Table(t));
+    if changed.len() > CHANGES_LISTED {
+        s.blocks.push(Block::text(format!(
+            "and {} more in the table below.",
+            changed.len() - CHANGES_LISTED
+        )));
+    }
 }
 
 /// Machine, build and suite of each run in its own column.
@@ -107,55 +190,9 @@ fn lookup<'a>(run: &'a Run, key: &(String, u32, u32, VariantName)) -> Option<&'a
         .and_then(|s| s.variants.iter().find(|v| v.variant == key.3))
 }
 
-/// The relative change of `new`'s median against `old`'s, toned when the intervals do
-/// not overlap.
-fn change_cell(old: &VariantResult, new: &VariantResult) -> Cell {
-    if old.time.median.is_nan() || old.time.median <= 0.0 {
-        return Cell::dash();
-    }
-    let pct = (new.time.median / old.time.median - 1.0) * 100.0;
-    Cell::number(format::signed_percent(pct, 1), pct)
-        .tone(Tone::of_change(
-            (old.time.low, old.time.high),
-            (new.time.low, new.time.high),
-        ))
-        .hover(format!(
-            "{} of the first run's time",
-            format::speedup(new.time.median / old.time.median)
-        ))
-}
-
-/// Whether two runs counted the same; the differing counters when not.
-fn counts_cell(a: &VariantResult, b: &VariantResult) -> Cell {
-    let names: BTreeSet<&String> = a.counts.keys().chain(b.counts.keys()).collect();
-    let differing: Vec<String> = names
-        .into_iter()
-        .filter_map(|k| {
-            let (x, y) = (
-                a.counts.get(k).copied().unwrap_or(0),
-                b.counts.get(k).copied().unwrap_or(0),
-            );
-            (x != y).then(|| format!("{k}: {} → {}", format::count(x), format::count(y)))
-        })
-        .collect();
-    if differing.is_empty() {
-        return Cell::number("identical", 0.0).tone(Tone::Muted);
-    }
-    let named: Vec<&str> = differing
+/// The gate's entry of one scene × variant.
+fn entry<'a>(g: &'a GateReport, key: &(String, u32, u32, VariantName)) -> Option<&'a Entry> {
+    g.entries
         .iter()
-        .take(COUNTERS_NAMED)
-        .map(|d| d.split(':').next().unwrap_or(d))
-        .collect();
-    let more = differing.len().saturating_sub(COUNTERS_NAMED);
-    Cell::number(
-        format!("⚑ {} differ", differing.len()),
-        differing.len() as f64,
-    )
-    .tone(Tone::Bad)
-    .detail(if more > 0 {
-        format!("{} and {more} more", named.join(", "))
-    } else {
-        named.join(", ")
-    })
-    .hover(differing.join("\n"))
+        .find(|e| e.scene == key.0 && e.width == key.1 && e.height == key.2 && e.variant == key.3)
 }

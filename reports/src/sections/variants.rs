@@ -41,8 +41,12 @@ pub fn variants(b: &mut Builder) -> Section {
         return s.empty("No scene has a variant result (see Failures).");
     }
     s.blocks.push(Block::text(format!(
-        "Time: {}, the median of the timed repeats with its 95 % bootstrap interval. Speed-up: baseline median / variant median. RMS, PSNR, SSIM: the image against baseline (PSNR ∞: identical); the band is the thesis's table 2. Count columns: baseline's exact count, and each variant's change from it; the last column names the other counters that changed.",
-        time_covers(r.suite.timing.covers)
+        "Time: {}, the median of the timed repeats with its 95 % bootstrap interval. Speed-up: baseline median / variant median, with its 95 % bootstrap interval; the variants were timed interleaved with baseline. Verdict: faster or slower only when the speed-up exceeds the noise threshold of {} and its interval excludes 1×, else within noise (the same rule as the regression gate). RMS, PSNR, SSIM: the image against baseline (PSNR ∞: identical); the band is the thesis's table 2. Count columns: baseline's exact count, and each variant's change from it; the last column names the other counters that changed.",
+        time_covers(r.suite.timing.covers),
+        format::percent(
+            r.suite.noise_threshold.unwrap_or(crate::results::NOISE_THRESHOLD) * 100.0,
+            0
+        )
     )));
     if let Some(figure) = b.chart("quality-speed", 11.0) {
         s.blocks.push(figure);
@@ -84,7 +88,8 @@ fn variant_table(scene: &SceneResult, base: Option<&VariantResult>) -> Table {
         columns.push(Column::number("preprocessing"));
     }
     columns.extend([
-        Column::number("speed-up"),
+        Column::number("speed-up").detail("[95 % interval]"),
+        Column::text("verdict"),
         Column::number("RMS"),
         Column::text("band"),
         Column::number("PSNR"),
@@ -106,7 +111,17 @@ fn variant_table(scene: &SceneResult, base: Option<&VariantResult>) -> Table {
             });
         }
         let speedup = access::speedup(v);
-        row.push(Cell::number(format::speedup(speedup), speedup).tone(Tone::of_speedup(speedup)));
+        row.push(match v.verdict {
+            Some(verdict) => {
+                Cell::ratio(speedup, v.speedup_interval).tone(Tone::of_verdict(verdict))
+            }
+            None => Cell::ratio(speedup, v.speedup_interval),
+        });
+        row.push(match v.verdict {
+            Some(verdict) => Cell::verdict(verdict),
+            None if v.variant.is_reference() => Cell::text("reference").tone(Tone::Muted),
+            None => Cell::dash(),
+        });
         row.extend(quality_cells(v));
         for (key, _) in MAIN_COUNTERS {
             row.push(counter_cell(v, base, key));
