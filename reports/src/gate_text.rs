@@ -5,7 +5,7 @@
 
 use crate::document::{Cell, Column, Table, Tone};
 use crate::format;
-use crate::results::gate::{Entry, GateReport, Measure};
+use crate::results::gate::{Clock, Entry, GateReport, Measure};
 use crate::text;
 
 /// Count changes an entry's cell names before "and n more".
@@ -16,6 +16,14 @@ fn measure_cell(measure: Measure, e: &results::Estimate) -> Cell {
     match measure {
         Measure::Seconds => Cell::estimate(e.median, e.low, e.high),
         _ => Cell::ratio(e.median, Some([e.low, e.high])),
+    }
+}
+
+/// The clock of an entry's samples, as a header detail.
+fn clock(c: Clock) -> &'static str {
+    match c {
+        Clock::Cpu => "(CPU)",
+        Clock::Wall => "(wall)",
     }
 }
 
@@ -79,7 +87,7 @@ pub fn table(gate: &GateReport) -> Table {
         t.rows.push(vec![
             Cell::text(&e.scene).detail(format::size(e.width, e.height)),
             Cell::text(e.variant.as_str()),
-            Cell::text(e.measure.describe()),
+            Cell::text(e.measure.describe()).detail(clock(e.clock)),
             measure_cell(e.measure, &e.old),
             measure_cell(e.measure, &e.new),
             change_cell(e),
@@ -146,7 +154,7 @@ pub fn headline(gate: &GateReport) -> String {
 /// What the verdicts mean, in one paragraph.
 pub fn rule(gate: &GateReport) -> String {
     format!(
-        "Times are gated relative to a reference timed in the same run (each variant ÷ baseline on its scene; baseline ÷ the calibration kernel), so a busier or slower machine moves both alike. A change is slower or faster only when it exceeds the noise threshold of {} (the run-to-run noise of relative times measured on a shared machine, docs/gate.md) and its 95 % interval excludes no change. Any changed count fails.",
+        "Times are the process CPU time of each render (wall time for older files), gated relative to a reference timed in the same rounds (each variant ÷ baseline on its scene; baseline ÷ the calibration kernel), so a busier or slower machine moves both alike. A change is slower or faster only when it exceeds the noise threshold of {} (the run-to-run noise of relative times measured on a shared machine, docs/gate.md) and its 95 % interval excludes no change. Any changed count fails.",
         format::percent(gate.threshold * 100.0, 1)
     )
 }
@@ -251,6 +259,7 @@ pub fn to_csv(gate: &GateReport) -> String {
         "height",
         "variant",
         "measure",
+        "clock",
         "old",
         "old_low",
         "old_high",
@@ -276,6 +285,7 @@ pub fn to_csv(gate: &GateReport) -> String {
                 e.height.to_string(),
                 e.variant.to_string(),
                 e.measure.describe().to_string(),
+                clock(e.clock).trim_matches(['(', ')']).to_string(),
                 n(e.old.median),
                 n(e.old.low),
                 n(e.old.high),

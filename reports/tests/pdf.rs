@@ -205,7 +205,7 @@ fn several_runs_get_a_comparison() {
         std::fs::write(out, &pdf).expect("write RTPROF_PDF_COMPARE_OUT");
     }
     if let Some(text) = pdf_text(&path) {
-        assert!(text.contains("Side-by-side comparison of runs"));
+        assert!(text.contains("What changed between the runs"));
         assert!(text.contains("bench-2 vs bench-1"));
         assert!(text.contains("+20.0 %"));
     }

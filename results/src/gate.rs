@@ -16,6 +16,9 @@
 //!   ([`analysis::verdict::judge`]) at a noise threshold calibrated from run-to-run
 //!   noise ([`analysis::verdict::NOISE_THRESHOLD`], docs/gate.md). Slower fails.
 //!
+//! Times are process CPU times of each render when both runs recorded them (they do
+//! not grow while the machine runs other work), wall times otherwise.
+//!
 //! Runs that cannot be compared (another suite, frame sizes, thread count or machine)
 //! are refused with every reason ([`GateError`]); runs that are too short to gate well
 //! (`--quick`) and files without the calibration kernel are gated with a warning.
@@ -57,6 +60,17 @@ impl Measure {
     }
 }
 
+/// Which clock an entry's samples come from.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Clock {
+    /// Process CPU time of each render: it does not grow while the machine runs other
+    /// work (what the gate uses when both runs recorded it).
+    Cpu,
+    /// Wall time (files from before CPU times were recorded).
+    Wall,
+}
+
 /// A counter whose value differs between the runs; a missing counter reads 0.
 #[derive(Clone, Debug, PartialEq, Eq, Serialize)]
 pub struct CountChange {
@@ -73,6 +87,7 @@ pub struct Entry {
     pub height: u32,
     pub variant: VariantName,
     pub measure: Measure,
+    pub clock: Clock,
     /// The measured quantity (a relative time, or seconds) in each run: median and
     /// 95 % interval.
     pub old: Estimate,
@@ -302,14 +317,18 @@ fn find<'a>(scene: &'a SceneResult, variant: &VariantName) -> Option<&'a Variant
     scene.variants.iter().find(|v| &v.variant == variant)
 }
 
-/// The samples of what a variant's time is measured against in its run, and how.
-fn yardstick<'a>(scene: &'a SceneResult, v: &VariantResult) -> Option<(&'a [f64], Measure)> {
+/// What a variant's time is measured against in its run: the yardstick's wall and CPU
+/// samples, and the measure.
+fn yardstick<'a>(
+    scene: &'a SceneResult,
+    v: &VariantResult,
+) -> Option<(&'a [f64], &'a [f64], Measure)> {
     if v.variant.is_reference() {
         let c = scene.calibration.as_ref()?;
-        Some((&c.samples, Measure::RelativeToCalibration))
+        Some((&c.samples, &c.cpu_samples, Measure::RelativeToCalibration))
     } else {
         let r = scene.variants.iter().find(|r| r.variant.is_reference())?;
-        Some((&r.samples, Measure::RelativeToReference))
+        Some((&r.samples, &r.cpu_samples, Measure::RelativeToReference))
     }
 }
 
@@ -319,18 +338,39 @@ fn compare_entry(
     threshold: f64,
 ) -> Entry {
     let sticks = yardstick(old_scene, o).zip(yardstick(new_scene, v));
+    // CPU time when every set has it (it does not grow while the machine is busy).
+    let cpu = match sticks {
+        Some(((_, a, _), (_, b, _))) => [a, b, &o.cpu_samples, &v.cpu_samples]
+            .iter()
+            .all(|s| !s.is_empty()),
+        None => !o.cpu_samples.is_empty() && !v.cpu_samples.is_empty(),
+    };
+    let clock = if cpu { Clock::Cpu } else { Clock::Wall };
+    let pick = |wall: &'_ [f64], cpu_samples: &'_ [f64]| -> Vec<f64> {
+        if cpu {
+            cpu_samples.to_vec()
+        } else {
+            wall.to_vec()
+        }
+    };
+    let (o_samples, v_samples) = (
+        pick(&o.samples, &o.cpu_samples),
+        pick(&v.samples, &v.cpu_samples),
+    );
     let (measure, old, new, change) = match sticks {
-        Some(((old_stick, measure), (new_stick, same))) if measure == same => {
-            let old_ratios = paired_ratios(&o.samples, old_stick);
-            let new_ratios = paired_ratios(&v.samples, new_stick);
+        Some(((old_wall, old_cpu, measure), (new_wall, new_cpu, same))) if measure == same => {
+            let old_ratios = paired_ratios(&o_samples, &pick(old_wall, old_cpu));
+            let new_ratios = paired_ratios(&v_samples, &pick(new_wall, new_cpu));
             let old = of_medians(&[&old_ratios], |m| m[0]);
             let new = of_medians(&[&new_ratios], |m| m[0]);
             let change = of_medians(&[&new_ratios, &old_ratios], |m| m[0] / m[1]);
             (measure, old, new, change)
         }
         _ => {
-            let change = of_medians(&[&v.samples, &o.samples], |m| m[0] / m[1]);
-            (Measure::Seconds, Some(o.time), Some(v.time), change)
+            let old = of_medians(&[&o_samples], |m| m[0]);
+            let new = of_medians(&[&v_samples], |m| m[0]);
+            let change = of_medians(&[&v_samples, &o_samples], |m| m[0] / m[1]);
+            (Measure::Seconds, old, new, change)
         }
     };
     let unknown = Estimate {
@@ -345,6 +385,7 @@ fn compare_entry(
         height: new_scene.height,
         variant: v.variant.clone(),
         measure,
+        clock,
         old: old.unwrap_or(unknown),
         new: new.unwrap_or(unknown),
         old_seconds: o.time.median,

@@ -179,6 +179,9 @@ pub struct Calibration {
     pub time: Estimate,
     /// Every timed run, seconds.
     pub samples: Vec<f64>,
+    /// Process CPU seconds of every timed run (empty in older files).
+    #[serde(default)]
+    pub cpu_samples: Vec<f64>,
 }
 
 /// One variant on one scene.
@@ -191,6 +194,11 @@ pub struct VariantResult {
     /// Every timed repeat, seconds, in round order: sample j of every variant of the
     /// scene (and of its calibration kernel) was timed in round j.
     pub samples: Vec<f64>,
+    /// Process CPU seconds (all threads) of each timed render, preprocessing included,
+    /// in the same order: what the gate compares, as it does not grow while the machine
+    /// runs other work (empty in older files).
+    #[serde(default)]
+    pub cpu_samples: Vec<f64>,
     /// Scene preparation and structure build (camera space, SIMD lanes, BVH) before
     /// tracing, seconds: the median over the repeats. `None` in files whose times
     /// include it (`/1`).

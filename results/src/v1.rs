@@ -309,6 +309,7 @@ fn variant_result(v: VariantResult, path: &str) -> Result<v2::VariantResult, Res
         variant: variant(&v.variant, &format!("{path}.variant"))?,
         time: v.time,
         samples: v.samples,
+        cpu_samples: Vec::new(),
         // `/1` times include it; it was not measured apart.
         preprocessing_seconds: None,
         speedup: Some(v.speedup),

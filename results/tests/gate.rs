@@ -42,6 +42,7 @@ fn variant(name: &str, median: f64, dots: u64) -> VariantResult {
         variant: self::name(name),
         time: estimate(median),
         samples: samples(median),
+        cpu_samples: samples(median),
         preprocessing_seconds: Some(0.001),
         speedup: Some(1.0),
         speedup_interval: None,
@@ -107,6 +108,7 @@ fn run(baseline_s: f64, bvh_s: f64, kernel_s: f64, dots: u64) -> Results {
             calibration: Some(Calibration {
                 time: estimate(kernel_s),
                 samples: samples(kernel_s),
+                cpu_samples: samples(kernel_s),
             }),
         }],
         profile: None,

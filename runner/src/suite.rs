@@ -271,9 +271,11 @@ impl SceneRunner<'_> {
             }
             self.ctx.progress.advance(1);
         }
-        let calibration = measured
-            .calibration
-            .map(|(samples, time)| Calibration { time, samples });
+        let calibration = measured.calibration.map(|k| Calibration {
+            time: k.time,
+            samples: k.samples,
+            cpu_samples: k.cpu_samples,
+        });
         let hardware = match HwScene::from_scene(&scene) {
             Ok(hw) => match self.run_hardware(spec, &scene, &hw) {
                 Ok(h) => Some(h),
@@ -342,6 +344,7 @@ impl SceneRunner<'_> {
                 variant,
                 time: m.time,
                 samples: m.samples,
+                cpu_samples: m.cpu_samples,
                 preprocessing_seconds: Some(m.preprocessing),
                 // Filled for the whole run by results::change::fill_speedups.
                 speedup: None,

@@ -8,6 +8,7 @@
 
 use std::sync::atomic::{AtomicBool, Ordering};
 
+use analysis::profile::sampler::process_cpu_time;
 use analysis::{Estimate, median, median_with_bootstrap};
 use std::time::Duration;
 
@@ -102,6 +103,9 @@ impl<C> PhaseTimes for VariantRender<C> {
 pub struct Measured<R> {
     /// Tracing seconds of each timed render.
     pub samples: Vec<f64>,
+    /// Process CPU seconds (all threads) of each timed render, preprocessing included:
+    /// unlike wall time, it does not grow while the machine runs other work.
+    pub cpu_samples: Vec<f64>,
     /// Median and interval of `samples`.
     pub time: Estimate,
     /// Median preprocessing seconds of the same renders.
@@ -117,6 +121,7 @@ pub fn measure<R: PhaseTimes>(
     mut render: impl FnMut() -> Result<R, RunError>,
 ) -> Result<Measured<R>, RunError> {
     let mut samples = Vec::new();
+    let mut cpu_samples = Vec::new();
     let mut preprocessing = Vec::new();
     let mut last = None;
     while samples.len() < policy.min_repeats as usize
@@ -126,7 +131,9 @@ pub fn measure<R: PhaseTimes>(
         if stop.load(Ordering::SeqCst) {
             return Err(RunError::Stopped);
         }
+        let cpu_before = process_cpu_time();
         let out = render()?;
+        cpu_samples.push((process_cpu_time().saturating_sub(cpu_before)).as_secs_f64());
         samples.push(out.tracing().as_secs_f64());
         preprocessing.push(out.preprocessing().as_secs_f64());
         last = Some(out);
@@ -136,6 +143,7 @@ pub fn measure<R: PhaseTimes>(
         time: policy.estimate(&samples)?,
         preprocessing: median(&preprocessing).unwrap_or(0.0),
         samples,
+        cpu_samples,
         last,
     })
 }
@@ -144,7 +152,16 @@ pub fn measure<R: PhaseTimes>(
 /// the calibration kernel's samples (one per round) when it ran.
 pub struct Interleaved<R> {
     pub renders: Vec<Result<Measured<R>, RunError>>,
-    pub calibration: Option<(Vec<f64>, Estimate)>,
+    pub calibration: Option<KernelTimes>,
+}
+
+/// The calibration kernel's times, one per round.
+pub struct KernelTimes {
+    /// Wall seconds, and their median and interval.
+    pub samples: Vec<f64>,
+    pub time: Estimate,
+    /// Process CPU seconds.
+    pub cpu_samples: Vec<f64>,
 }
 
 /// A render job of [`measure_interleaved`].
@@ -164,6 +181,7 @@ pub fn measure_interleaved<'a, R: PhaseTimes>(
     struct Slot<'a, R> {
         render: RenderJob<'a, R>,
         samples: Vec<f64>,
+        cpu_samples: Vec<f64>,
         preprocessing: Vec<f64>,
         last: Option<R>,
         error: Option<RunError>,
@@ -178,12 +196,14 @@ pub fn measure_interleaved<'a, R: PhaseTimes>(
         .map(|render| Slot {
             render,
             samples: Vec::new(),
+            cpu_samples: Vec::new(),
             preprocessing: Vec::new(),
             last: None,
             error: None,
         })
         .collect();
     let mut calibration = Vec::new();
+    let mut calibration_cpu = Vec::new();
     loop {
         let active: Vec<usize> = (0..slots.len())
             .filter(|&i| slots[i].error.is_none() && needs_more(&slots[i].samples))
@@ -195,12 +215,18 @@ pub fn measure_interleaved<'a, R: PhaseTimes>(
             return Err(RunError::Stopped);
         }
         if let Some(kernel) = calibrate.as_mut() {
+            let cpu_before = process_cpu_time();
             calibration.push(kernel());
+            calibration_cpu.push(process_cpu_time().saturating_sub(cpu_before).as_secs_f64());
         }
         for i in active {
             let slot = &mut slots[i];
-            match (slot.render)() {
+            let cpu_before = process_cpu_time();
+            let outcome = (slot.render)();
+            let cpu = process_cpu_time().saturating_sub(cpu_before).as_secs_f64();
+            match outcome {
                 Ok(out) => {
+                    slot.cpu_samples.push(cpu);
                     slot.samples.push(out.tracing().as_secs_f64());
                     slot.preprocessing.push(out.preprocessing().as_secs_f64());
                     slot.last = Some(out);
@@ -221,6 +247,7 @@ pub fn measure_interleaved<'a, R: PhaseTimes>(
                 time: policy.estimate(&slot.samples)?,
                 preprocessing: median(&slot.preprocessing).unwrap_or(0.0),
                 samples: slot.samples,
+                cpu_samples: slot.cpu_samples,
                 last,
             })
         })
@@ -228,8 +255,11 @@ pub fn measure_interleaved<'a, R: PhaseTimes>(
     let calibration = if calibration.is_empty() {
         None
     } else {
-        let estimate = policy.estimate(&calibration)?;
-        Some((calibration, estimate))
+        Some(KernelTimes {
+            time: policy.estimate(&calibration)?,
+            samples: calibration,
+            cpu_samples: calibration_cpu,
+        })
     };
     Ok(Interleaved {
         renders,
@@ -325,9 +355,11 @@ mod tests {
         assert_eq!(m.renders[1].as_ref().unwrap().samples.len(), 3);
         assert!((m.renders[1].as_ref().unwrap().preprocessing - 0.002).abs() < 1e-12);
         assert!(matches!(m.renders[2], Err(RunError::Input(_))));
-        let (samples, estimate) = m.calibration.unwrap();
-        assert_eq!(samples.len(), 8);
-        assert_eq!(estimate.median, 0.002);
+        let kernel = m.calibration.unwrap();
+        assert_eq!(kernel.samples.len(), 8);
+        assert_eq!(kernel.cpu_samples.len(), 8);
+        assert_eq!(kernel.time.median, 0.002);
+        assert_eq!(m.renders[0].as_ref().unwrap().cpu_samples.len(), 8);
         assert_eq!(kernel_runs, 8);
         // Interleaved: the slow render's three samples come in the first three rounds.
         let order: String = order.into_inner().into_iter().collect();

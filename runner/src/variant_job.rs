@@ -19,6 +19,8 @@ pub struct VariantMeasurement {
     pub variants: VariantSet,
     /// Tracing seconds of each timed render.
     pub samples: Vec<f64>,
+    /// Process CPU seconds of each timed render (the gate's stable measure).
+    pub cpu_samples: Vec<f64>,
     /// Median and interval of `samples`.
     pub time: analysis::Estimate,
     /// Median preprocessing seconds (reported apart from the time).
@@ -43,8 +45,8 @@ pub struct RenderSetup<'a> {
 /// calibration kernel timed between them.
 pub struct VariantsMeasured {
     pub variants: Vec<Result<VariantMeasurement, RunError>>,
-    /// The kernel's samples (one per round) and their median and interval.
-    pub calibration: Option<(Vec<f64>, analysis::Estimate)>,
+    /// The kernel's times (one per round).
+    pub calibration: Option<crate::timing::KernelTimes>,
 }
 
 impl RenderSetup<'_> {
@@ -119,6 +121,7 @@ impl RenderSetup<'_> {
                 Ok(VariantMeasurement {
                     variants: set.clone(),
                     samples: m.samples,
+                    cpu_samples: m.cpu_samples,
                     time: m.time,
                     preprocessing: m.preprocessing,
                     counts,

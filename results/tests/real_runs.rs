@@ -1,0 +1,84 @@
+//! The gate on real runs: two back-to-back default-suite runs of one binary on the
+//! project's shared two-core machine (results/tests/data/default-suite-runs, trimmed
+//! to what the gate reads by its trim.py) must pass; the same second run with one
+//! variant's render times made 25 % slower must fail on that variant; a count changed
+//! by one must fail.
+
+use results::Results;
+use results::gate::{GateOptions, gate};
+use results::{VariantName, Verdict};
+
+const FIRST: &str = include_str!("data/default-suite-runs/first.json");
+const SECOND: &str = include_str!("data/default-suite-runs/second.json");
+
+fn runs() -> (Results, Results) {
+    (
+        Results::from_json(FIRST).expect("first run"),
+        Results::from_json(SECOND).expect("second run"),
+    )
+}
+
+/// Scales every timed render (wall and CPU) of `variant` on every scene.
+fn slow_down(r: &mut Results, variant: &str, factor: f64) {
+    let name = VariantName::parse(variant).expect("a variant");
+    for scene in &mut r.scenes {
+        for v in scene.variants.iter_mut().filter(|v| v.variant == name) {
+            for x in v.samples.iter_mut().chain(v.cpu_samples.iter_mut()) {
+                *x *= factor;
+            }
+            v.time = v.time.scaled(factor);
+        }
+    }
+}
+
+#[test]
+fn two_back_to_back_runs_pass() {
+    let (a, b) = runs();
+    let g = gate(&a, &b, GateOptions::default()).expect("comparable");
+    assert!(!g.failed(), "{:?}", g.tally());
+    assert_eq!(g.entries.len(), 184);
+    assert!(g.entries.iter().all(|e| e.count_changes.is_empty()));
+}
+
+#[test]
+fn one_variant_made_25_percent_slower_is_flagged_on_every_scene() {
+    let (a, mut b) = runs();
+    slow_down(&mut b, "bvh", 1.25);
+    let g = gate(&a, &b, GateOptions::default()).expect("comparable");
+    assert!(g.failed());
+    let bvh: Vec<_> = g
+        .entries
+        .iter()
+        .filter(|e| e.variant.as_str() == "bvh")
+        .collect();
+    assert_eq!(bvh.len(), 23);
+    for e in &bvh {
+        assert_eq!(e.verdict, Verdict::Slower, "{} {:?}", e.scene, e.change);
+    }
+    // Nothing else moved: the other variants pass.
+    assert!(
+        g.entries
+            .iter()
+            .filter(|e| e.variant.as_str() != "bvh")
+            .all(|e| !e.failed())
+    );
+    // Baseline 25 % slower is caught against the calibration kernel.
+    let (a, mut b) = runs();
+    slow_down(&mut b, "baseline", 1.25);
+    let g = gate(&a, &b, GateOptions::default()).expect("comparable");
+    let baseline: Vec<_> = g.entries.iter().filter(|e| e.variant.is_reference()).collect();
+    assert!(baseline.iter().all(|e| e.verdict == Verdict::Slower));
+}
+
+#[test]
+fn a_count_changed_by_one_is_flagged() {
+    let (a, mut b) = runs();
+    let v = &mut b.scenes[5].variants[2];
+    *v.counts.get_mut("ops.dot").expect("ops.dot") += 1;
+    let g = gate(&a, &b, GateOptions::default()).expect("comparable");
+    assert!(g.failed());
+    let changed: Vec<_> = g.entries.iter().filter(|e| !e.count_changes.is_empty()).collect();
+    assert_eq!(changed.len(), 1);
+    assert_eq!(changed[0].count_changes[0].counter, "ops.dot");
+    assert_eq!(changed[0].count_changes[0].new, changed[0].count_changes[0].old + 1);
+}
