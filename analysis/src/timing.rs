@@ -7,7 +7,7 @@ use crate::error::StatsError;
 use crate::prng::SplitMix64;
 
 /// A median run time with its confidence interval, all in seconds.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 pub struct Estimate {
     pub median: f64,
     pub low: f64,

@@ -25,7 +25,7 @@ use crate::timing::Estimate;
 pub const NOISE_THRESHOLD: f64 = 0.10;
 
 /// What a comparison of two times says.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord, Serialize, Deserialize)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(rename_all = "snake_case")]
 pub enum Verdict {
     /// Significantly less time than the reference.

@@ -83,7 +83,7 @@ impl Column {
 
 /// One row's figures, the model's or the thesis's: latency (cycles), logic elements,
 /// combinational functions, registers, memory bits, 9-bit multipliers.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize, schemars::JsonSchema)]
 pub struct Figures {
     pub latency: u64,
     pub le: u64,
@@ -137,7 +137,7 @@ impl Figures {
 
 /// Percentage error of the model per column (`None` where the thesis has 0 and the
 /// model does not).
-#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 pub struct Errors {
     pub latency: Option<f64>,
     pub le: Option<f64>,
@@ -179,7 +179,7 @@ impl Errors {
 }
 
 /// Where a row of the tables comes from.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(rename_all = "snake_case")]
 pub enum RowKind {
     /// An IP core of the library (table 7's first rows; the thesis gives no figures

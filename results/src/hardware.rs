@@ -10,7 +10,7 @@ pub use hwmodel::table::{
 use crate::schema::{Band, Estimate};
 
 /// One row of tables 7 or 8: the model's figures, the thesis's, the errors (%).
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 pub struct HwRow {
     pub name: String,
     pub kind: HwRowKind,
@@ -35,7 +35,7 @@ impl HwRow {
 }
 
 /// Device utilization of the thesis design.
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 pub struct DeviceUse {
     pub device: String,
     pub validated: bool,
@@ -53,7 +53,7 @@ pub struct DeviceUse {
 }
 
 /// The FPGA model's tables and fit.
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 pub struct HardwareResult {
     pub family: String,
     pub ops: Vec<HwRow>,
@@ -62,7 +62,7 @@ pub struct HardwareResult {
 }
 
 /// The FPGA model and emulator on one scene.
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 pub struct SceneHardware {
     pub primitives: u64,
     pub cycles: u64,

@@ -6,7 +6,7 @@ use serde::{Deserialize, Serialize};
 ///
 /// Serialized in snake case: `"visually_identical"`, `"similar"`, `"notable_changes"`,
 /// `"different"`; [`Band::name`] gives the human wording.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(rename_all = "snake_case")]
 pub enum Band {
     /// RMS in [0, 15).
