@@ -42,7 +42,9 @@ pub enum ResultsError {
     #[error("not an rtprof results file (no \"schema\" field): {0}")]
     NotResults(String),
     /// A `schema` field that is not rtprof's (another tool's file).
-    #[error("schema {0} is not an rtprof results schema (rtprof reads {SCHEMA}, {SCHEMA_V2} and {V1})")]
+    #[error(
+        "schema {0} is not an rtprof results schema (rtprof reads {SCHEMA}, {SCHEMA_V2} and {V1})"
+    )]
     ForeignSchema(String),
     /// An rtprof results schema this version does not know (a newer or an older one).
     #[error(

@@ -107,14 +107,18 @@ fn wrong_files_fail_validation_at_their_path() {
         ("/scenes/0/variants/1/quality", |v| {
             v["scenes"][0]["variants"][1]["quality"]["band"] = json!("very_different")
         }),
-        ("/suite/variants/1", |v| v["suite"]["variants"][1] = json!("BVH")),
+        ("/suite/variants/1", |v| {
+            v["suite"]["variants"][1] = json!("BVH")
+        }),
     ];
     for (pointer, break_it) in cases {
         let mut value = good.clone();
         break_it(&mut value);
         let errors = errors(&validator, &value);
         assert!(
-            errors.iter().any(|e| e.starts_with(&format!("{pointer}: "))),
+            errors
+                .iter()
+                .any(|e| e.starts_with(&format!("{pointer}: "))),
             "{pointer}: {errors:?}"
         );
         // serde refuses it too (the schema says what rtprof reads).
