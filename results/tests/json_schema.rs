@@ -86,11 +86,14 @@ fn a_v1_file_read_and_written_as_v3_validates() {
     assert!(errors.is_empty(), "{}", errors.join("\n"));
 }
 
+/// A JSON pointer and a change that makes the value wrong there.
+type Breakage = (&'static str, fn(&mut Value));
+
 #[test]
 fn wrong_files_fail_validation_at_their_path() {
     let validator = validator();
     let good: Value = serde_json::from_str(V2_MAIN).unwrap();
-    let cases: [(&str, fn(&mut Value)); 7] = [
+    let cases: [Breakage; 7] = [
         ("", |v| {
             v.as_object_mut().unwrap().remove("scenes");
         }),
