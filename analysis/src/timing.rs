@@ -1,13 +1,14 @@
 //! Timing statistics: the median of repeated run times and a percentile-bootstrap
 //! confidence interval for it, reproducible from a seed.
 
+use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
 
 use crate::error::StatsError;
 use crate::prng::SplitMix64;
 
 /// A median run time with its confidence interval, all in seconds.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize, JsonSchema)]
 pub struct Estimate {
     pub median: f64,
     pub low: f64,

@@ -15,6 +15,7 @@
 //! the same binary show can never be called a change. Counts are exact: they are not
 //! judged here; any changed count is a change.
 
+use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
 
 use crate::timing::Estimate;
@@ -25,7 +26,9 @@ use crate::timing::Estimate;
 pub const NOISE_THRESHOLD: f64 = 0.10;
 
 /// What a comparison of two times says.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord, Serialize, Deserialize)]
+#[derive(
+    Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord, Serialize, Deserialize, JsonSchema,
+)]
 #[serde(rename_all = "snake_case")]
 pub enum Verdict {
     /// Significantly less time than the reference.

@@ -5,6 +5,7 @@
 
 use std::fmt;
 
+use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
 
 use crate::blocks::{BlockFigures, Pipeline};
@@ -83,7 +84,10 @@ impl Column {
 
 /// One row's figures, the model's or the thesis's: latency (cycles), logic elements,
 /// combinational functions, registers, memory bits, 9-bit multipliers.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize, JsonSchema)]
+// Named in the results schema as results re-exports it (`HwFigures`, …): the
+// bare name says little there.
+#[schemars(rename = "HwFigures")]
 pub struct Figures {
     pub latency: u64,
     pub le: u64,
@@ -137,7 +141,8 @@ impl Figures {
 
 /// Percentage error of the model per column (`None` where the thesis has 0 and the
 /// model does not).
-#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[schemars(rename = "HwErrors")]
 pub struct Errors {
     pub latency: Option<f64>,
     pub le: Option<f64>,
@@ -179,8 +184,9 @@ impl Errors {
 }
 
 /// Where a row of the tables comes from.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize, JsonSchema)]
 #[serde(rename_all = "snake_case")]
+#[schemars(rename = "HwRowKind")]
 pub enum RowKind {
     /// An IP core of the library (table 7's first rows; the thesis gives no figures
     /// to compare, they are the library itself).

@@ -1,6 +1,7 @@
 //! The hardware parts of the results: the FPGA model's tables 7 and 8 with the
 //! thesis's figures, the devices it fits, and the model and emulator on one scene.
 
+use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
 
 pub use hwmodel::table::{
@@ -10,7 +11,7 @@ pub use hwmodel::table::{
 use crate::schema::{Band, Estimate};
 
 /// One row of tables 7 or 8: the model's figures, the thesis's, the errors (%).
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize, JsonSchema)]
 pub struct HwRow {
     pub name: String,
     pub kind: HwRowKind,
@@ -35,7 +36,7 @@ impl HwRow {
 }
 
 /// Device utilization of the thesis design.
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize, JsonSchema)]
 pub struct DeviceUse {
     pub device: String,
     pub validated: bool,
@@ -53,7 +54,7 @@ pub struct DeviceUse {
 }
 
 /// The FPGA model's tables and fit.
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize, JsonSchema)]
 pub struct HardwareResult {
     pub family: String,
     pub ops: Vec<HwRow>,
@@ -62,7 +63,7 @@ pub struct HardwareResult {
 }
 
 /// The FPGA model and emulator on one scene.
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize, JsonSchema)]
 pub struct SceneHardware {
     pub primitives: u64,
     pub cycles: u64,

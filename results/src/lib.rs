@@ -2,7 +2,8 @@
 //! output. This crate defines ONLY the serde types of `rtprof.results/N` (the current
 //! schema [`SCHEMA`], `rtprof.results/2`, in [`schema`] and [`hardware`]; the previous
 //! one in [`v1`], read and upgraded), their validation on read ([`Results::from_json`]),
-//! and the regression gate ([`gate`]).
+//! the regression gate ([`gate`]), and the JSON Schema derived from the types
+//! ([`json_schema`], checked in as `docs/results.schema.json`).
 //!
 //! Other crates' types appear here only where the contract is theirs: variant names
 //! are checked with `tracer`'s variant set, the RMS band and the estimate are
@@ -12,6 +13,7 @@ pub mod change;
 pub mod created;
 pub mod gate;
 pub mod hardware;
+pub mod json_schema;
 mod read;
 pub mod schema;
 pub mod timing_policy;

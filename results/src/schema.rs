@@ -11,6 +11,7 @@
 
 use std::collections::BTreeMap;
 
+use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
 
 pub use analysis::{Band, Estimate, Verdict};
@@ -25,9 +26,13 @@ pub const SCHEMA: &str = "rtprof.results/3";
 pub const SCHEMA_V2: &str = "rtprof.results/2";
 
 /// A whole suite run.
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize, JsonSchema)]
 pub struct Results {
-    /// Always [`SCHEMA`].
+    /// Always [`SCHEMA`] (files of [`SCHEMA_V2`] read as they are).
+    #[schemars(
+        description = "The schema identifier: rtprof.results/3 (rtprof.results/2 files have the same form, without /3's optional fields).",
+        extend("enum" = [SCHEMA, SCHEMA_V2])
+    )]
     pub schema: String,
     /// When the run started, RFC 3339 UTC.
     pub created: String,
@@ -53,7 +58,7 @@ pub struct Results {
 }
 
 /// The machine the run was made on.
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize, JsonSchema)]
 pub struct Machine {
     pub cpu_model: String,
     /// Logical CPUs.
@@ -63,7 +68,7 @@ pub struct Machine {
 }
 
 /// The build that ran.
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize, JsonSchema)]
 pub struct Build {
     pub rtprof_version: String,
     pub rustc: String,
@@ -73,7 +78,7 @@ pub struct Build {
 }
 
 /// What was run.
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize, JsonSchema)]
 pub struct SuiteInfo {
     pub name: String,
     pub quick: bool,
@@ -91,7 +96,9 @@ pub struct SuiteInfo {
 }
 
 /// Which test bench a scene belongs to.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord, Serialize, Deserialize)]
+#[derive(
+    Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord, Serialize, Deserialize, JsonSchema,
+)]
 #[serde(rename_all = "snake_case")]
 pub enum SceneFamily {
     /// The thesis's `ballsN` scenes.
@@ -147,7 +154,7 @@ impl std::fmt::Display for SceneFamily {
 }
 
 /// One scene and every variant run on it.
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize, JsonSchema)]
 pub struct SceneResult {
     pub name: String,
     /// `builtin`, `generated` or the file's path.
@@ -173,7 +180,7 @@ pub struct SceneResult {
 
 /// A fixed amount of arithmetic (independent of the tracer's code), timed on the same
 /// threads as the renders it was interleaved with.
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize, JsonSchema)]
 pub struct Calibration {
     /// Median and interval, seconds.
     pub time: Estimate,
@@ -185,7 +192,7 @@ pub struct Calibration {
 }
 
 /// One variant on one scene.
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize, JsonSchema)]
 pub struct VariantResult {
     pub variant: VariantName,
     /// Tracing time (median and interval over the repeats), seconds; what it covers
@@ -226,7 +233,7 @@ pub struct VariantResult {
 }
 
 /// Image error against baseline.
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize, JsonSchema)]
 pub struct Quality {
     pub rms: f64,
     /// The thesis's band for `rms`.
@@ -238,7 +245,7 @@ pub struct Quality {
 }
 
 /// One function (or phase) of a flat profile.
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize, JsonSchema)]
 pub struct FlatRow {
     pub name: String,
     /// Share of the samples with this function running (self), percent.
@@ -266,7 +273,7 @@ pub struct FlatRow {
 
 /// One row of the Amdahl table: the whole run's speed-up if one function became
 /// faster, alone (self time) and with everything it calls (inclusive time).
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize, JsonSchema)]
 pub struct AmdahlRow {
     pub name: String,
     /// Fraction of the time in this function itself.
@@ -281,7 +288,7 @@ pub struct AmdahlRow {
 }
 
 /// A fraction of the time and the speed-ups if it ran 2x, 10x, infinitely faster.
-#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize, JsonSchema)]
 pub struct AmdahlFigures {
     pub fraction: f64,
     pub speedup_2x: f64,
@@ -290,7 +297,7 @@ pub struct AmdahlFigures {
 }
 
 /// What a profile's function identities are.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize, JsonSchema)]
 #[serde(rename_all = "snake_case")]
 pub enum ProfileView {
     /// The tracer's own record of the phase each thread was in (camera ray, traversal,
@@ -302,7 +309,7 @@ pub enum ProfileView {
 }
 
 /// One view of a profile: its rows and files.
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize, JsonSchema)]
 pub struct ProfileViewFiles {
     pub view: ProfileView,
     pub flat: Vec<FlatRow>,
@@ -312,7 +319,7 @@ pub struct ProfileViewFiles {
 }
 
 /// A sampled profile of one scene and variant.
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize, JsonSchema)]
 pub struct Profile {
     pub variant: VariantName,
     pub samples: u64,
@@ -371,7 +378,7 @@ impl Profile {
 }
 
 /// The profile section.
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize, JsonSchema)]
 pub struct ProfileResult {
     pub scene: String,
     pub width: u32,
@@ -386,7 +393,7 @@ pub struct ProfileResult {
 }
 
 /// The part of a suite run that failed.
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize, JsonSchema)]
 #[serde(rename_all = "snake_case")]
 pub enum FailedPart {
     /// The scene as a whole (it could not be read, or its run stopped).
@@ -411,7 +418,7 @@ impl std::fmt::Display for FailedPart {
 }
 
 /// Something that failed; the run went on.
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize, JsonSchema)]
 pub struct Failure {
     /// The scene it happened on (for the profile: the scene profiled, when known).
     pub scene: Option<String>,
@@ -431,7 +438,7 @@ impl Failure {
 }
 
 /// One criterion benchmark's estimates (nanoseconds).
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize, JsonSchema)]
 pub struct CriterionEstimate {
     pub id: String,
     pub mean: Estimate,
@@ -442,7 +449,7 @@ pub struct CriterionEstimate {
 }
 
 /// One benchmark's instruction count under valgrind (deterministic, unlike time).
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize, JsonSchema)]
 pub struct InstructionCount {
     /// The id of the criterion benchmark that does the same work (`sqrt/fast-sqrt`).
     pub id: String,

@@ -1,9 +1,10 @@
 //! How a run's times were measured: the timing policy written into results.
 
+use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
 
 /// What a recorded time covers.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize, JsonSchema)]
 #[serde(rename_all = "snake_case")]
 pub enum TimeCovers {
     /// Tracing only (the SPD rules' figure); preprocessing (scene preparation and
@@ -25,7 +26,7 @@ impl TimeCovers {
 
 /// The timing policy of a run: how many renders were timed and how their median and
 /// interval were estimated.
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize, JsonSchema)]
 pub struct TimingPolicy {
     /// Timed renders per scene and variant, at least.
     pub min_repeats: u32,

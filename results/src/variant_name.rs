@@ -3,14 +3,18 @@
 
 use std::fmt;
 
+use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
 use tracer::{Variant, VariantError, VariantSet};
 
 /// A variant set's name, always in [`VariantSet`]'s canonical spelling: names in
 /// lower case, joined with `+`. Reading one checks it with [`VariantSet::parse`], so
 /// an unknown or conflicting name is refused where it is read.
-#[derive(Clone, Debug, PartialEq, Eq, Hash, PartialOrd, Ord, Serialize, Deserialize)]
+#[derive(
+    Clone, Debug, PartialEq, Eq, Hash, PartialOrd, Ord, Serialize, Deserialize, JsonSchema,
+)]
 #[serde(try_from = "String", into = "String")]
+#[schemars(extend("pattern" = r"^[a-z0-9-]+(\+[a-z0-9-]+)*$"))]
 pub struct VariantName(String);
 
 impl VariantName {

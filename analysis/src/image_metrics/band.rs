@@ -1,12 +1,13 @@
 //! The thesis's verbal bands for an RMS difference on the 0-255 scale.
 
+use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
 
 /// How different two images look, judged from their RMS difference.
 ///
 /// Serialized in snake case: `"visually_identical"`, `"similar"`, `"notable_changes"`,
 /// `"different"`; [`Band::name`] gives the human wording.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, JsonSchema)]
 #[serde(rename_all = "snake_case")]
 pub enum Band {
     /// RMS in [0, 15).
