@@ -93,6 +93,40 @@ pub struct SuiteInfo {
     /// `None` in files written before verdicts were recorded.
     #[serde(default)]
     pub noise_threshold: Option<f64>,
+    /// The share of the suite's scenes this file holds (`rtprof suite --shard I/N`);
+    /// `None` for a whole run, and for a merge of shards (`rtprof merge`).
+    #[serde(default)]
+    pub shard: Option<Shard>,
+}
+
+/// One of `count` deterministic shares of a suite's scenes: shard `index` (1-based)
+/// holds the scenes at the 0-based positions `p` of the suite's scene order with
+/// `p % count == index - 1`, each with all its variants.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+pub struct Shard {
+    /// 1 to `count`.
+    pub index: u32,
+    /// How many shards the suite was split into.
+    pub count: u32,
+}
+
+impl Shard {
+    /// Whether the scene at 0-based `position` of the suite's order belongs to this shard.
+    pub fn holds(self, position: usize) -> bool {
+        let (i, n) = (self.index as usize, self.count as usize);
+        i >= 1 && n > 0 && position % n == i - 1
+    }
+
+    /// The 0-based position in the suite's order of this shard's `j`-th scene.
+    pub fn position(self, j: usize) -> usize {
+        j * self.count as usize + (self.index as usize).saturating_sub(1)
+    }
+}
+
+impl std::fmt::Display for Shard {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(f, "{}/{}", self.index, self.count)
+    }
 }
 
 /// Which test bench a scene belongs to.

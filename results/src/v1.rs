@@ -442,6 +442,7 @@ impl Results {
                 interleaved: false,
             },
             noise_threshold: None,
+            shard: None,
             name: self.suite.name,
             quick: self.suite.quick,
             threads: self.suite.threads,

@@ -286,6 +286,15 @@ fn check_suite(c: &mut Check, s: &SuiteInfo) -> Checked {
             }
         })
     })?;
+    if let Some(shard) = s.shard {
+        c.field("shard", |c| {
+            if shard.index >= 1 && shard.index <= shard.count {
+                Ok(())
+            } else {
+                Err(c.err(format!("shard {shard}: the index must be 1 to the count")))
+            }
+        })?;
+    }
     c.seconds("wall_seconds", s.wall_seconds)
 }
 

@@ -90,6 +90,7 @@ fn run(baseline_s: f64, bvh_s: f64, kernel_s: f64, dots: u64) -> Results {
             },
             wall_seconds: 1.0,
             noise_threshold: None,
+            shard: None,
         },
         scenes: vec![SceneResult {
             name: "balls3".into(),

@@ -20,7 +20,8 @@
 //! - [`hardware_prediction`]: `rtprof hw time`: frame time, fit and what-ifs;
 //! - [`hardware_tables`]: `rtprof hw table` as text; [`hardware_files`]: `hw render`, `hw mif`;
 //! - [`collect`]: measurements into results entries;
-//! - [`suite`]: the whole suite into one results value;
+//! - [`suite`]: the whole suite into one results value; [`shard`]: its deterministic
+//!   shares (`--shard I/N`); [`merge`]: shards' results joined into one;
 //! - [`report_files`]: results files read back, report.html and report.pdf written;
 //! - [`benchmarks`]: criterion estimates and instruction counts picked up from disk;
 //! - [`machine`]: machine, build and command line of a run;
@@ -38,6 +39,7 @@ pub mod hardware_job;
 pub mod hardware_prediction;
 pub mod hardware_tables;
 pub mod machine;
+pub mod merge;
 pub mod pool;
 pub mod profile_files;
 pub mod profile_job;
@@ -45,6 +47,7 @@ pub mod progress;
 pub mod render_job;
 pub mod report_files;
 pub mod scenes;
+pub mod shard;
 pub mod staging;
 pub mod suite;
 pub mod timing;

@@ -12,6 +12,7 @@ use analysis::{Band, compare, difference_heat_map, gray_histogram};
 use hwmodel::hw_scene::HwScene;
 use results::{
     Calibration, FailedPart, Failure, ProfileResult, Results, SCHEMA, SceneHardware, SceneResult,
+    Shard,
     SuiteInfo, VariantName, VariantResult, slug,
 };
 use tracer::{RenderOptions, Sampling, Scene, ShadingMode, VariantSet, parse_nff};
@@ -33,6 +34,8 @@ pub struct Suite {
     pub def: SuiteDef,
     pub quick: bool,
     pub scenes: Vec<SceneSpec>,
+    /// The share of the scenes this run holds ([`Suite::with_shard`]); `None`: all.
+    pub shard: Option<Shard>,
 }
 
 /// Where a suite's work happens.
@@ -97,7 +100,30 @@ impl Suite {
         if let Some(dir) = extra_dir {
             scenes.extend(extra_scenes(dir, (def.extra_size[0], def.extra_size[1]))?);
         }
-        Ok(Suite { def, quick, scenes })
+        Ok(Suite {
+            def,
+            quick,
+            scenes,
+            shard: None,
+        })
+    }
+
+    /// Keeps only `shard`'s scenes (each with all its variants: a scene's variants are
+    /// compared within one process); `None` keeps them all. An empty share is refused.
+    pub fn with_shard(mut self, shard: Option<Shard>) -> Result<Self, RunError> {
+        let Some(shard) = shard else {
+            return Ok(self);
+        };
+        let total = self.scenes.len();
+        self.scenes = crate::shard::select(std::mem::take(&mut self.scenes), shard);
+        if self.scenes.is_empty() {
+            return Err(RunError::Input(format!(
+                "shard {shard} holds no scene: the suite has {total} scene{}, so at most {total} shards",
+                if total == 1 { "" } else { "s" }
+            )));
+        }
+        self.shard = Some(shard);
+        Ok(self)
     }
 
     /// Renders per progress step count: scenes × variants.
@@ -189,6 +215,7 @@ impl Suite {
                 timing: policy.record(),
                 wall_seconds: started.elapsed().as_secs_f64(),
                 noise_threshold: Some(results::NOISE_THRESHOLD),
+                shard: self.shard,
             },
             scenes,
             profile,

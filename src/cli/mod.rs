@@ -6,6 +6,7 @@ mod count;
 mod gate;
 mod hw;
 mod interrupt;
+mod merge;
 mod profile;
 mod progress;
 mod render;
@@ -42,6 +43,8 @@ enum Command {
     /// The main job: every scene × variant, hardware model, profile; results.json,
     /// report.html, report.pdf; --baseline gates against an earlier run.
     Suite(suite::SuiteArgs),
+    /// Join the results of `suite --shard I/N` runs into one results.json and reports.
+    Merge(merge::MergeArgs),
     /// Gate NEW.json against OLD.json: exit 1 on a significant slow-down or any
     /// changed count.
     Gate(gate::GateArgs),
@@ -101,6 +104,7 @@ pub fn run(cli: Cli) -> anyhow::Result<()> {
         Command::Variants(args) => variants::run(&args),
         Command::Hw(args) => hw::run(&args),
         Command::Suite(args) => suite::run(&args),
+        Command::Merge(args) => merge::run(&args),
         Command::Gate(args) => gate::run(&args),
         Command::Report(args) => report::run(&args),
         Command::Scene(args) => scene::run(&args),

@@ -34,6 +34,9 @@ pub struct SuiteArgs {
     /// Worker threads for the renders (default: one per core).
     #[arg(long, value_name = "N", value_parser = clap::value_parser!(u16).range(1..=1024))]
     threads: Option<u16>,
+    /// Run shard I of N: every Nth scene (all its variants), for `rtprof merge`.
+    #[arg(long, value_name = "I/N", value_parser = runner::shard::parse_shard)]
+    shard: Option<results::Shard>,
     #[command(flatten)]
     benchmarks: super::report::BenchmarkDirs,
 }
@@ -64,7 +67,8 @@ pub fn run(args: &SuiteArgs) -> Result<()> {
         .as_ref()
         .and_then(|p| p.parent().map(Path::to_path_buf))
         .unwrap_or_default();
-    let suite = Suite::prepare(def, args.quick, &base_dir, args.scenes.as_deref())?;
+    let suite = Suite::prepare(def, args.quick, &base_dir, args.scenes.as_deref())?
+        .with_shard(args.shard)?;
     std::fs::create_dir_all(&args.output)
         .with_context(|| format!("cannot create {}", args.output.display()))?;
     let staging = Staging::create(&args.output)?;

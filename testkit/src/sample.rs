@@ -669,6 +669,7 @@ pub fn sample_results() -> Results {
             },
             wall_seconds: 96.4,
             noise_threshold: Some(results::NOISE_THRESHOLD),
+            shard: None,
         },
         scenes,
         profile,
