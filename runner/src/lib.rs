@@ -12,6 +12,7 @@
 //! - [`render_job`]: one render with its phase times (`rtprof render`, `count`);
 //! - [`variant_catalogue`]: what each variant does and how accurate it is;
 //! - [`variant_job`]: one variant on one scene: counts, timed renders, picture;
+//! - [`estimate`]: how long a brute-force render of a big scene will take;
 //! - [`compare`]: variants side by side (`rtprof compare SCENE --variants`);
 //! - [`profile_job`]: counted + sampled renders into two views (phases, native symbols):
 //!   gprof tables, folded stacks, Amdahl; [`profile_files`]: their files, one naming scheme;
@@ -31,6 +32,7 @@ pub mod collect;
 pub mod compare;
 pub mod definition;
 pub mod error;
+pub mod estimate;
 pub mod hardware_files;
 pub mod hardware_job;
 pub mod hardware_prediction;

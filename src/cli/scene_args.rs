@@ -5,7 +5,10 @@ use super::progress::Bars;
 use anyhow::Result;
 use runner::render_job::{RenderRequest, RenderSettings, SceneRender, render_scene};
 use std::path::{Path, PathBuf};
-use tracer::{Counter, Limits, Scene, ShadingMode, VariantSet, load_nff_with_limits};
+use tracer::{
+    Accelerator, Counter, Limits, RenderOptions, Scene, ShadingMode, VariantSet,
+    load_nff_with_limits,
+};
 
 #[derive(clap::Args, Debug)]
 pub struct SceneArgs {
@@ -124,6 +127,7 @@ pub fn parse_size(text: &str) -> Result<(u32, u32), String> {
 
 impl SceneArgs {
     /// Loads the scene and renders it with counter `C`, progress on stderr.
+    /// A brute-force render of a big scene first says how long it will take.
     pub fn run<C: Counter>(&self, mode: ShadingMode) -> Result<SceneRender<C>> {
         let request = RenderRequest {
             path: &self.scene,
@@ -131,8 +135,28 @@ impl SceneArgs {
             settings: self.render.settings(),
             mode,
         };
-        Ok(render_scene(&request, &Bars::default())?)
+        // Loaded twice only without an accelerator, where the render costs far more.
+        if request.variants.config().accel != Accelerator::Bvh {
+            let scene = self.render.limits.load(&self.scene)?;
+            let options = request.settings.options(&scene, mode);
+            note_if_slow(&scene, &options, &request.variants, self.render.threads)?;
+        }
+        Ok(render_scene(&request, &Bars::delayed())?)
     }
+}
+
+/// Prints the estimate of a long brute-force render (`runner::estimate`) on stderr.
+pub fn note_if_slow(
+    scene: &Scene,
+    options: &RenderOptions,
+    variants: &VariantSet,
+    threads: Option<u16>,
+) -> Result<()> {
+    let estimate = runner::estimate::brute_force(scene, options, variants, threads)?;
+    if let Some(note) = estimate.and_then(|e| e.note()) {
+        eprintln!("{note}");
+    }
+    Ok(())
 }
 
 /// The default output name for a command on `input`: `<prefix><file stem><suffix>` in
