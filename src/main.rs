@@ -5,14 +5,24 @@
 
 mod cli;
 
-use clap::Parser;
+use clap::{CommandFactory, FromArgMatches};
 use std::process::ExitCode;
+
+/// The long help (--help) of the commands that draw progress bars.
+const PROGRESS_HELP: &str = "Progress bars draw on stderr when it is a terminal (a render \
+    only once it has run a second). RTPROF_PROGRESS=always draws them anyway, as plain \
+    lines in a pipe or log (CI); RTPROF_PROGRESS=never turns them off; auto is the default.";
 
 fn main() -> ExitCode {
     // Output piped into `head` ends quietly, as other Unix tools do, not with a panic.
     // SAFETY: restoring the default action of SIGPIPE before any thread starts.
     unsafe { libc::signal(libc::SIGPIPE, libc::SIG_DFL) };
-    let args = match cli::Cli::try_parse() {
+    let mut command = cli::Cli::command();
+    for name in ["suite", "render", "count", "profile", "compare"] {
+        command = command.mut_subcommand(name, |c| c.after_long_help(PROGRESS_HELP));
+    }
+    let parsed = command.try_get_matches();
+    let args = match parsed.and_then(|m| cli::Cli::from_arg_matches(&m)) {
         Ok(args) => args,
         Err(error) => return usage_error(&error),
     };

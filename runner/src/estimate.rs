@@ -168,11 +168,13 @@ mod tests {
     #[test]
     fn a_big_brute_force_scene_is_probed_and_bvh_is_not() {
         // Depth 4: 1 + 9 + 81 + 729 + 6,561 = 7,381 spheres.
-        let scene = tracer::parse_nff(&tracer::generators::sphereflake(4).unwrap(), "flake")
-            .unwrap();
+        let scene =
+            tracer::parse_nff(&tracer::generators::sphereflake(4).unwrap(), "flake").unwrap();
         let options = RenderOptions::new(640, 480, Sampling::PixelCenters, ShadingMode::Color);
         let base = VariantSet::parse("baseline").unwrap();
-        let e = brute_force(&scene, &options, &base, Some(2)).unwrap().unwrap();
+        let e = brute_force(&scene, &options, &base, Some(2))
+            .unwrap()
+            .unwrap();
         assert_eq!((e.primitives, e.width, e.height), (7_381, 640, 480));
         assert!(e.seconds > 0.0 && e.seconds.is_finite(), "{e:?}");
         let bvh = VariantSet::parse("bvh").unwrap();

@@ -22,7 +22,10 @@ impl Bars {
     /// Bars that appear only when a stage lasts longer than about a second.
     pub fn delayed() -> Self {
         let delay = Duration::from_secs(1);
-        Bars { delay, ..Bars::default() }
+        Bars {
+            delay,
+            ..Bars::default()
+        }
     }
 
     /// Replaces the current bar (finishing it) with `bar`, or removes it.
@@ -53,7 +56,9 @@ fn draw_target() -> ProgressDrawTarget {
         },
         "" | "auto" => ProgressDrawTarget::stderr(),
         other => {
-            eprintln!("rtprof: warning: {VARIABLE}={other} is not always, never or auto; using auto");
+            eprintln!(
+                "rtprof: warning: {VARIABLE}={other} is not always, never or auto; using auto"
+            );
             ProgressDrawTarget::stderr()
         }
     }

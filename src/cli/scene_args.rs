@@ -24,8 +24,7 @@ pub struct SceneArgs {
 /// How to render: the flags of every command that renders a scene.
 #[derive(clap::Args, Debug)]
 pub struct RenderFlags {
-    /// Image size WxH (default: the scene's resolution).
-    #[arg(long, value_name = "WxH", value_parser = parse_size)]
+    #[arg(long, value_name = "WxH", value_parser = parse_size, help = SIZE_HELP)]
     pub size: Option<(u32, u32)>,
     /// SPD procedure: rays through pixel corners ((W+1)x(H+1)), each pixel the mean of four.
     #[arg(long)]
@@ -111,6 +110,9 @@ impl LimitArgs {
         Ok(load_nff_with_limits(path, &self.limits())?)
     }
 }
+
+/// The help of every command's --size: one rule for all of them.
+pub const SIZE_HELP: &str = "Image size WxH [default: the scene's resolution]";
 
 /// Parses `WxH` such as `640x480` (the size limits are checked when rendering, so
 /// that `--max-side` and friends can raise them).
