@@ -29,7 +29,8 @@ fn main() -> ExitCode {
     let Err(error) = cli::run(args) else {
         return ExitCode::SUCCESS;
     };
-    let message = name_the_flag(&one_line(&format!("{error:#}")));
+    let message = format!("{error:#}");
+    let message = runner::messages::name_the_flag(&runner::messages::one_line(&message));
     match error.downcast_ref::<cli::Outcome>() {
         Some(outcome) => {
             eprintln!("rtprof: {message}");
@@ -59,69 +60,7 @@ fn usage_error(error: &clap::Error) -> ExitCode {
         let code = if error.use_stderr() { 2 } else { 0 };
         return ExitCode::from(code);
     }
-    let text = error.render().to_string();
-    let message = clap_message(&text);
-    let usage = text
-        .lines()
-        .find_map(|l| l.trim().strip_prefix("Usage: "))
-        .map(|u| format!(" (usage: {u}; see --help)"))
-        .unwrap_or_else(|| " (see rtprof --help)".to_string());
-    eprintln!("rtprof: error: {message}{usage}");
+    let message = runner::messages::usage_error(&error.render().to_string());
+    eprintln!("rtprof: error: {message}");
     ExitCode::from(2)
-}
-
-/// Clap's message (everything before its usage) on one line: the items it lists on
-/// lines of their own follow the line's colon, and its tips follow after "; ".
-fn clap_message(text: &str) -> String {
-    let mut message = String::new();
-    let lines = text.lines().take_while(|l| !l.starts_with("Usage:"));
-    for line in lines.map(str::trim).filter(|l| !l.is_empty()) {
-        let separator = if message.is_empty() {
-            ""
-        } else if message.ends_with(':') {
-            " "
-        } else if line.starts_with("tip:") {
-            "; "
-        } else {
-            ", "
-        };
-        message.push_str(separator);
-        message.push_str(line.trim_start_matches("error: "));
-    }
-    if message.is_empty() {
-        message.push_str("invalid command line");
-    }
-    message
-}
-
-/// A limit error names the flag that raises it, not the library's field: the tracer
-/// says "(limit max_side: raise it with rtprof's --max-side or tracer::Limits::max_side)".
-fn name_the_flag(message: &str) -> String {
-    let Some(start) = message.find("(limit ") else {
-        return message.to_string();
-    };
-    let Some(end) = message[start..].find(')').map(|e| start + e) else {
-        return message.to_string();
-    };
-    match message[start..end]
-        .split_once("rtprof's ")
-        .and_then(|(_, rest)| rest.split_once(" or tracer::Limits::"))
-    {
-        Some((flag, _)) => format!(
-            "{}(raise it with {flag}){}",
-            &message[..start],
-            &message[end + 1..]
-        ),
-        None => message.to_string(),
-    }
-}
-
-/// An error message on one line: any line breaks of a nested message become "; ".
-fn one_line(message: &str) -> String {
-    message
-        .lines()
-        .map(str::trim)
-        .filter(|l| !l.is_empty())
-        .collect::<Vec<_>>()
-        .join("; ")
 }

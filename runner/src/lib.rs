@@ -25,7 +25,7 @@
 //! - [`benchmarks`]: criterion estimates and instruction counts picked up from disk;
 //! - [`machine`]: machine, build and command line of a run;
 //! - [`staging`]: staged, atomic output; [`pool`]: worker threads;
-//! - [`progress`], [`error`].
+//! - [`progress`], [`error`]; [`messages`]: errors on one line, as rtprof prints them.
 
 pub mod benchmarks;
 pub mod collect;
@@ -38,6 +38,7 @@ pub mod hardware_job;
 pub mod hardware_prediction;
 pub mod hardware_tables;
 pub mod machine;
+pub mod messages;
 pub mod pool;
 pub mod profile_files;
 pub mod profile_job;
