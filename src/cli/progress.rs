@@ -56,9 +56,10 @@ fn draw_target() -> ProgressDrawTarget {
         },
         "" | "auto" => ProgressDrawTarget::stderr(),
         other => {
-            eprintln!(
-                "rtprof: warning: {VARIABLE}={other} is not always, never or auto; using auto"
-            );
+            static WARNED: std::sync::Once = std::sync::Once::new();
+            WARNED.call_once(|| {
+                eprintln!("rtprof: warning: {VARIABLE}={other} is not always, never or auto: auto");
+            });
             ProgressDrawTarget::stderr()
         }
     }
@@ -66,24 +67,25 @@ fn draw_target() -> ProgressDrawTarget {
 
 impl runner::Progress for Bars {
     fn begin(&self, stage: &str, total: u64) {
-        let (bar, template) = if total == 0 {
-            let bar = ProgressBar::new_spinner();
-            bar.enable_steady_tick(Duration::from_millis(120));
-            (bar, "{prefix:>8} {spinner} {msg} ({elapsed} elapsed)")
+        let target = match self.delay.is_zero() {
+            true => draw_target(),
+            false => ProgressDrawTarget::hidden(),
+        };
+        let template = if total == 0 {
+            "{prefix:>8} {spinner} {msg} ({elapsed} elapsed)"
         } else {
             // At most about 100 columns with a message of 35 characters.
-            let template =
-                "{prefix:>8} [{bar:20}] {pos}/{len} {msg} ({elapsed} elapsed, {eta} remaining)";
-            (ProgressBar::new(total), template)
+            "{prefix:>8} [{bar:20}] {pos}/{len} {msg} ({elapsed} elapsed, {eta} remaining)"
         };
+        let bar = ProgressBar::with_draw_target((total > 0).then_some(total), target);
         if let Ok(style) = ProgressStyle::with_template(template) {
             bar.set_style(style.progress_chars("=> "));
         }
         bar.set_prefix(stage.to_string());
-        if self.delay.is_zero() {
-            bar.set_draw_target(draw_target());
-        } else {
-            bar.set_draw_target(ProgressDrawTarget::hidden());
+        if total == 0 {
+            bar.enable_steady_tick(Duration::from_millis(120));
+        }
+        if !self.delay.is_zero() {
             let (late, delay) = (bar.clone(), self.delay);
             std::thread::spawn(move || {
                 std::thread::sleep(delay);
