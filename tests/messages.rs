@@ -62,7 +62,8 @@ fn a_misspelt_command_suggests_the_right_one() {
     assert_eq!(
         line,
         "rtprof: error: unrecognized subcommand 'rendr'; \
-         tip: a similar subcommand exists: 'render' (usage: rtprof <COMMAND>; see --help)"
+         tip: some similar subcommands exist: 'report', 'render' \
+         (usage: rtprof <COMMAND>; see --help)"
     );
 }
 
@@ -72,7 +73,8 @@ fn an_unknown_flag_keeps_the_tip() {
     assert_eq!(
         line,
         "rtprof: error: unexpected argument '--outptu' found; \
-         tip: a similar argument exists: '--output' (usage: rtprof render <SCENE>; see --help)"
+         tip: a similar argument exists: '--output' \
+         (usage: rtprof render --output <IMG> <SCENE>; see --help)"
     );
 }
 
