@@ -5,21 +5,32 @@
 
 mod cli;
 
-use clap::Parser;
+use clap::{CommandFactory, FromArgMatches};
 use std::process::ExitCode;
+
+/// The long help (--help) of the commands that draw progress bars.
+const PROGRESS_HELP: &str = "Progress bars draw on stderr when it is a terminal (a render \
+    only once it has run a second). RTPROF_PROGRESS=always draws them anyway, as plain \
+    lines in a pipe or log (CI); RTPROF_PROGRESS=never turns them off; auto is the default.";
 
 fn main() -> ExitCode {
     // Output piped into `head` ends quietly, as other Unix tools do, not with a panic.
     // SAFETY: restoring the default action of SIGPIPE before any thread starts.
     unsafe { libc::signal(libc::SIGPIPE, libc::SIG_DFL) };
-    let args = match cli::Cli::try_parse() {
+    let mut command = cli::Cli::command();
+    for name in ["suite", "render", "count", "profile", "compare"] {
+        command = command.mut_subcommand(name, |c| c.after_long_help(PROGRESS_HELP));
+    }
+    let parsed = command.try_get_matches();
+    let args = match parsed.and_then(|m| cli::Cli::from_arg_matches(&m)) {
         Ok(args) => args,
         Err(error) => return usage_error(&error),
     };
     let Err(error) = cli::run(args) else {
         return ExitCode::SUCCESS;
     };
-    let message = one_line(&format!("{error:#}"));
+    let message = format!("{error:#}");
+    let message = runner::messages::name_the_flag(&runner::messages::one_line(&message));
     match error.downcast_ref::<cli::Outcome>() {
         Some(outcome) => {
             eprintln!("rtprof: {message}");
@@ -49,27 +60,7 @@ fn usage_error(error: &clap::Error) -> ExitCode {
         let code = if error.use_stderr() { 2 } else { 0 };
         return ExitCode::from(code);
     }
-    let text = error.render().to_string();
-    let message = text
-        .lines()
-        .next()
-        .unwrap_or("invalid command line")
-        .trim_start_matches("error: ");
-    let usage = text
-        .lines()
-        .find_map(|l| l.trim().strip_prefix("Usage: "))
-        .map(|u| format!(" (usage: {u}; see --help)"))
-        .unwrap_or_else(|| " (see rtprof --help)".to_string());
-    eprintln!("rtprof: error: {message}{usage}");
+    let message = runner::messages::usage_error(&error.render().to_string());
+    eprintln!("rtprof: error: {message}");
     ExitCode::from(2)
-}
-
-/// An error message on one line: any line breaks of a nested message become "; ".
-fn one_line(message: &str) -> String {
-    message
-        .lines()
-        .map(str::trim)
-        .filter(|l| !l.is_empty())
-        .collect::<Vec<_>>()
-        .join("; ")
 }

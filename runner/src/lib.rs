@@ -13,6 +13,7 @@
 //! - [`render_job`]: one render with its phase times (`rtprof render`, `count`);
 //! - [`variant_catalogue`]: what each variant does and how accurate it is;
 //! - [`variant_job`]: one variant on one scene: counts, timed renders, picture;
+//! - [`estimate`]: how long a brute-force render of a big scene will take;
 //! - [`compare`]: variants side by side (`rtprof compare SCENE --variants`);
 //! - [`profile_job`]: counted + sampled renders into two views (phases, native symbols):
 //!   gprof tables, folded stacks, Amdahl; [`profile_files`]: their files, one naming scheme;
@@ -26,7 +27,7 @@
 //! - [`benchmarks`]: criterion estimates and instruction counts picked up from disk;
 //! - [`machine`]: machine, build and command line of a run;
 //! - [`staging`]: staged, atomic output; [`pool`]: worker threads;
-//! - [`progress`], [`error`].
+//! - [`progress`], [`error`]; [`messages`]: errors on one line, as rtprof prints them.
 
 pub mod benchmarks;
 pub mod calibration;
@@ -34,12 +35,14 @@ pub mod collect;
 pub mod compare;
 pub mod definition;
 pub mod error;
+pub mod estimate;
 pub mod hardware_files;
 pub mod hardware_job;
 pub mod hardware_prediction;
 pub mod hardware_tables;
 pub mod machine;
 pub mod merge;
+pub mod messages;
 pub mod pool;
 pub mod profile_files;
 pub mod profile_job;

@@ -3,7 +3,7 @@
 //! the measured software), `render` (the image the hardware would show) and `mif` (the
 //! scene memory as an Altera Memory Initialization File).
 
-use super::scene_args::parse_size;
+use super::scene_args::{SIZE_HELP, named_after, parse_size};
 use anyhow::Result;
 use hwmodel::blocks::Pipeline;
 use hwmodel::design::Design;
@@ -89,9 +89,8 @@ struct TimeArgs {
     /// Clock in MHz.
     #[arg(long, value_name = "MHZ", default_value_t = 50.0, value_parser = parse_clock)]
     clock: f64,
-    /// Frame size WxH.
-    #[arg(long, value_name = "WxH", default_value = "640x480", value_parser = parse_size)]
-    size: (u32, u32),
+    #[arg(long, value_name = "WxH", value_parser = parse_size, help = SIZE_HELP)]
+    size: Option<(u32, u32)>,
     /// Time spheres and cylinders alone when the scene also has other primitives.
     #[arg(long)]
     ignore_unsupported: bool,
@@ -116,11 +115,10 @@ struct TimeArgs {
 struct RenderArgs {
     /// NFF scene file (spheres and cylinders only), or a built-in scene name.
     scene: PathBuf,
-    /// Output image, .png or .ppm.
+    /// Output image, .png or .ppm [default: <scene>-hw.png, here].
     #[arg(short, long, value_name = "IMG")]
-    output: PathBuf,
-    /// Image size WxH (default: the scene's resolution).
-    #[arg(long, value_name = "WxH", value_parser = parse_size)]
+    output: Option<PathBuf>,
+    #[arg(long, value_name = "WxH", value_parser = parse_size, help = SIZE_HELP)]
     size: Option<(u32, u32)>,
 }
 
@@ -128,9 +126,9 @@ struct RenderArgs {
 struct MifArgs {
     /// NFF scene file (spheres and cylinders only), or a built-in scene name.
     scene: PathBuf,
-    /// Output .mif file.
+    /// Output .mif file [default: <scene>.mif, here].
     #[arg(short, long, value_name = "FILE.mif")]
-    output: PathBuf,
+    output: Option<PathBuf>,
 }
 
 fn parse_clock(text: &str) -> Result<f64, String> {
@@ -179,7 +177,7 @@ fn time(args: &TimeArgs) -> Result<()> {
     let request = TimeRequest {
         name: args.scene.display().to_string(),
         design: args.what_if.design(),
-        size: args.size,
+        size: args.size.unwrap_or((scene.view.width, scene.view.height)),
         clock_hz: args.clock * 1e6,
         ignore_unsupported: args.ignore_unsupported,
         software: args.vs_software.then_some((args.threads, args.repeats)),
@@ -196,16 +194,23 @@ fn time(args: &TimeArgs) -> Result<()> {
 // --------------------------------------------------------------------- render, mif
 
 fn render(args: &RenderArgs) -> Result<()> {
-    let written =
-        runner::hardware_files::write_emulator_image(&args.scene, args.size, &args.output)?;
+    let output = match &args.output {
+        Some(path) => path.clone(),
+        None => named_after(&args.scene, "", "-hw.png", "-o IMG")?,
+    };
+    let written = runner::hardware_files::write_emulator_image(&args.scene, args.size, &output)?;
     eprintln!("{written}");
     Ok(())
 }
 
 fn mif(args: &MifArgs) -> Result<()> {
+    let output = match &args.output {
+        Some(path) => path.clone(),
+        None => named_after(&args.scene, "", ".mif", "-o FILE.mif")?,
+    };
     eprintln!(
         "{}",
-        runner::hardware_files::write_mif(&args.scene, &args.output)?
+        runner::hardware_files::write_mif(&args.scene, &output)?
     );
     Ok(())
 }

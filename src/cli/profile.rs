@@ -4,7 +4,7 @@
 //! projections. Calls come from a counted render of the same scene and variant.
 
 use super::progress::Bars;
-use super::scene_args::{RenderFlags, named_after};
+use super::scene_args::{RenderFlags, named_after, note_if_slow};
 use anyhow::{Context, Result};
 use runner::pool::thread_pool;
 use runner::profile_job::{DEFAULT_MIN_SAMPLES, ProfileJob};
@@ -73,7 +73,8 @@ pub fn run(args: &ProfileArgs) -> Result<()> {
         min_samples: args.min_samples,
     };
 
-    let progress = Bars::default();
+    note_if_slow(&scene, &options, &set, args.render.threads)?;
+    let progress = Bars::delayed();
     let report = job.report(&set, other.as_ref(), args.measure_overhead, &progress)?;
     let saved = report.save(&dir, "")?;
     if args.json {

@@ -1,15 +1,33 @@
-//! Progress bars on stderr (indicatif) for the runner's long work.
+//! Progress bars on stderr (indicatif) for the runner's long work. `RTPROF_PROGRESS`
+//! says when they draw: `auto` (the default: when stderr is a terminal), `always` (into a
+//! pipe or a file too, as plain lines: CI logs) or `never`.
 
-use indicatif::{ProgressBar, ProgressStyle};
+use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle, TermLike};
+use std::io::Write;
 use std::sync::Mutex;
+use std::time::Duration;
+
+/// The environment variable that says when progress draws.
+pub const VARIABLE: &str = "RTPROF_PROGRESS";
 
 /// Draws one bar per stage; a stage of unknown length is a spinner.
 #[derive(Default)]
 pub struct Bars {
     bar: Mutex<Option<ProgressBar>>,
+    /// Bars show only once their stage has run this long (a quick render shows none).
+    delay: Duration,
 }
 
 impl Bars {
+    /// Bars that appear only when a stage lasts longer than about a second.
+    pub fn delayed() -> Self {
+        let delay = Duration::from_secs(1);
+        Bars {
+            delay,
+            ..Bars::default()
+        }
+    }
+
     /// Replaces the current bar (finishing it) with `bar`, or removes it.
     fn replace(&self, bar: Option<ProgressBar>) {
         if let Ok(mut guard) = self.bar.lock()
@@ -24,20 +42,58 @@ impl Bars {
     }
 }
 
+/// Where bars draw, as `RTPROF_PROGRESS` says.
+fn draw_target() -> ProgressDrawTarget {
+    let value = std::env::var(VARIABLE).unwrap_or_default();
+    match value.as_str() {
+        "never" => ProgressDrawTarget::hidden(),
+        "always" => match ProgressDrawTarget::stderr() {
+            // Not a terminal: one plain line per redraw, at most one a second.
+            target if target.is_hidden() => {
+                ProgressDrawTarget::term_like_with_hz(Box::new(PlainLines::default()), 1)
+            }
+            target => target,
+        },
+        "" | "auto" => ProgressDrawTarget::stderr(),
+        other => {
+            static WARNED: std::sync::Once = std::sync::Once::new();
+            WARNED.call_once(|| {
+                eprintln!("rtprof: warning: {VARIABLE}={other} is not always, never or auto: auto");
+            });
+            ProgressDrawTarget::stderr()
+        }
+    }
+}
+
 impl runner::Progress for Bars {
     fn begin(&self, stage: &str, total: u64) {
-        let (bar, template) = if total == 0 {
-            let bar = ProgressBar::new_spinner();
-            bar.enable_steady_tick(std::time::Duration::from_millis(120));
-            (bar, "{prefix:>10} {spinner} {msg} ({elapsed})")
-        } else {
-            let template = "{prefix:>10} [{bar:30}] {pos}/{len} {msg} ({elapsed})";
-            (ProgressBar::new(total), template)
+        let target = match self.delay.is_zero() {
+            true => draw_target(),
+            false => ProgressDrawTarget::hidden(),
         };
+        let template = if total == 0 {
+            "{prefix:>8} {spinner} {msg} ({elapsed} elapsed)"
+        } else {
+            // At most about 100 columns with a message of 35 characters.
+            "{prefix:>8} [{bar:20}] {pos}/{len} {msg} ({elapsed} elapsed, {eta} remaining)"
+        };
+        let bar = ProgressBar::with_draw_target((total > 0).then_some(total), target);
         if let Ok(style) = ProgressStyle::with_template(template) {
             bar.set_style(style.progress_chars("=> "));
         }
         bar.set_prefix(stage.to_string());
+        if total == 0 {
+            bar.enable_steady_tick(Duration::from_millis(120));
+        }
+        if !self.delay.is_zero() {
+            let (late, delay) = (bar.clone(), self.delay);
+            std::thread::spawn(move || {
+                std::thread::sleep(delay);
+                if !late.is_finished() {
+                    late.set_draw_target(draw_target());
+                }
+            });
+        }
         self.replace(Some(bar));
     }
 
@@ -59,5 +115,56 @@ impl runner::Progress for Bars {
             Some(bar) => bar.suspend(|| eprintln!("{text}")),
             None => eprintln!("{text}"),
         }
+    }
+}
+
+/// A "terminal" that cannot move the cursor: each finished redraw becomes one line on
+/// stderr (repeats and clears dropped), for logs that are not terminals.
+#[derive(Debug, Default)]
+struct PlainLines {
+    /// (the redraw being written, the last line written)
+    lines: Mutex<(String, String)>,
+}
+
+impl TermLike for PlainLines {
+    fn width(&self) -> u16 {
+        100
+    }
+    fn move_cursor_up(&self, _: usize) -> std::io::Result<()> {
+        Ok(())
+    }
+    fn move_cursor_down(&self, _: usize) -> std::io::Result<()> {
+        Ok(())
+    }
+    fn move_cursor_right(&self, _: usize) -> std::io::Result<()> {
+        Ok(())
+    }
+    fn move_cursor_left(&self, _: usize) -> std::io::Result<()> {
+        Ok(())
+    }
+    fn write_line(&self, s: &str) -> std::io::Result<()> {
+        self.write_str(s)?;
+        self.flush()
+    }
+    fn write_str(&self, s: &str) -> std::io::Result<()> {
+        if let Ok(mut lines) = self.lines.lock() {
+            lines.0.push_str(s.trim_start_matches('\r'));
+        }
+        Ok(())
+    }
+    fn clear_line(&self) -> std::io::Result<()> {
+        Ok(())
+    }
+    fn flush(&self) -> std::io::Result<()> {
+        let Ok(mut lines) = self.lines.lock() else {
+            return Ok(());
+        };
+        let line = std::mem::take(&mut lines.0).trim_end().to_string();
+        if line.is_empty() || line == lines.1 {
+            return Ok(());
+        }
+        writeln!(std::io::stderr().lock(), "{line}")?;
+        lines.1 = line;
+        Ok(())
     }
 }

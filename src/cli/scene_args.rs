@@ -5,7 +5,10 @@ use super::progress::Bars;
 use anyhow::Result;
 use runner::render_job::{RenderRequest, RenderSettings, SceneRender, render_scene};
 use std::path::{Path, PathBuf};
-use tracer::{Counter, Limits, Scene, ShadingMode, VariantSet, load_nff_with_limits};
+use tracer::{
+    Accelerator, Counter, Limits, RenderOptions, Scene, ShadingMode, VariantSet,
+    load_nff_with_limits,
+};
 
 #[derive(clap::Args, Debug)]
 pub struct SceneArgs {
@@ -21,8 +24,7 @@ pub struct SceneArgs {
 /// How to render: the flags of every command that renders a scene.
 #[derive(clap::Args, Debug)]
 pub struct RenderFlags {
-    /// Image size WxH (default: the scene's resolution).
-    #[arg(long, value_name = "WxH", value_parser = parse_size)]
+    #[arg(long, value_name = "WxH", value_parser = parse_size, help = SIZE_HELP)]
     pub size: Option<(u32, u32)>,
     /// SPD procedure: rays through pixel corners ((W+1)x(H+1)), each pixel the mean of four.
     #[arg(long)]
@@ -109,6 +111,9 @@ impl LimitArgs {
     }
 }
 
+/// The help of every command's --size: one rule for all of them.
+pub const SIZE_HELP: &str = "Image size WxH [default: the scene's resolution]";
+
 /// Parses `WxH` such as `640x480` (the size limits are checked when rendering, so
 /// that `--max-side` and friends can raise them).
 pub fn parse_size(text: &str) -> Result<(u32, u32), String> {
@@ -124,6 +129,7 @@ pub fn parse_size(text: &str) -> Result<(u32, u32), String> {
 
 impl SceneArgs {
     /// Loads the scene and renders it with counter `C`, progress on stderr.
+    /// A brute-force render of a big scene first says how long it will take.
     pub fn run<C: Counter>(&self, mode: ShadingMode) -> Result<SceneRender<C>> {
         let request = RenderRequest {
             path: &self.scene,
@@ -131,8 +137,28 @@ impl SceneArgs {
             settings: self.render.settings(),
             mode,
         };
-        Ok(render_scene(&request, &Bars::default())?)
+        // Loaded twice only without an accelerator, where the render costs far more.
+        if request.variants.config().accel != Accelerator::Bvh {
+            let scene = self.render.limits.load(&self.scene)?;
+            let options = request.settings.options(&scene, mode);
+            note_if_slow(&scene, &options, &request.variants, self.render.threads)?;
+        }
+        Ok(render_scene(&request, &Bars::delayed())?)
     }
+}
+
+/// Prints the estimate of a long brute-force render (`runner::estimate`) on stderr.
+pub fn note_if_slow(
+    scene: &Scene,
+    options: &RenderOptions,
+    variants: &VariantSet,
+    threads: Option<u16>,
+) -> Result<()> {
+    let estimate = runner::estimate::brute_force(scene, options, variants, threads)?;
+    if let Some(note) = estimate.and_then(|e| e.note()) {
+        eprintln!("{note}");
+    }
+    Ok(())
 }
 
 /// The default output name for a command on `input`: `<prefix><file stem><suffix>` in
