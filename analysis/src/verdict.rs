@@ -20,10 +20,11 @@ use serde::{Deserialize, Serialize};
 
 use crate::timing::Estimate;
 
-/// The default noise threshold (a fraction): the largest run-to-run change of a
-/// relative time seen in back-to-back default-suite runs with the same binary, with a
-/// margin (docs/gate.md has the measurement).
-pub const NOISE_THRESHOLD: f64 = 0.10;
+/// The default noise threshold (a fraction): above the largest run-to-run change of a
+/// relative CPU time whose interval excluded no change, 19.6 %, in five back-to-back
+/// default-suite runs of one binary on a shared, heavily loaded two-core machine
+/// (docs/gate.md has the measurement).
+pub const NOISE_THRESHOLD: f64 = 0.20;
 
 /// What a comparison of two times says.
 #[derive(

@@ -51,10 +51,16 @@ fn the_reports_comparison_shows_the_gates_verdicts() {
     let (old, new) = two_runs();
     let g = gate(&old, &new, GateOptions::default()).expect("comparable");
     let tally = g.tally();
-    assert!(tally.slower > 0 && tally.faster > 0 && tally.within_noise > 0, "{tally:?}");
+    assert!(
+        tally.slower > 0 && tally.faster > 0 && tally.within_noise > 0,
+        "{tally:?}"
+    );
     let doc = document::build(&[run("old", old), run("new", new)]).expect("document");
     let comparison = &doc.sections[0];
-    assert_eq!(comparison.id, "comparison", "a report of several runs opens with it");
+    assert_eq!(
+        comparison.id, "comparison",
+        "a report of several runs opens with it"
+    );
     // The big table: scene, variant, medians, then change, verdict, counts.
     let table = comparison
         .blocks
@@ -105,7 +111,10 @@ fn every_verdict_label_reaches_every_format() {
         assert!(markdown.contains(label), "markdown lacks {label}");
         assert!(csv.contains(&format!(",{label},")), "csv lacks {label}");
         let serde_name = serde_json::to_string(&v).expect("name");
-        assert!(json.contains(&format!("\"verdict\":{serde_name}")), "json lacks {serde_name}");
+        assert!(
+            json.contains(&format!("\"verdict\":{serde_name}")),
+            "json lacks {serde_name}"
+        );
     }
     assert!(text.contains("changed: ops.dot: "), "{text}");
     assert!(markdown.contains("**slower**"));

@@ -102,7 +102,7 @@ pub struct SuiteInfo {
 /// One of `count` deterministic shares of a suite's scenes: shard `index` (1-based)
 /// holds the scenes at the 0-based positions `p` of the suite's scene order with
 /// `p % count == index - 1`, each with all its variants.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize, JsonSchema)]
 pub struct Shard {
     /// 1 to `count`.
     pub index: u32,

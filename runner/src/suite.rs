@@ -12,8 +12,7 @@ use analysis::{Band, compare, difference_heat_map, gray_histogram};
 use hwmodel::hw_scene::HwScene;
 use results::{
     Calibration, FailedPart, Failure, ProfileResult, Results, SCHEMA, SceneHardware, SceneResult,
-    Shard,
-    SuiteInfo, VariantName, VariantResult, slug,
+    Shard, SuiteInfo, VariantName, VariantResult, slug,
 };
 use tracer::{RenderOptions, Sampling, Scene, ShadingMode, VariantSet, parse_nff};
 
