@@ -180,7 +180,8 @@ fn parts_that_are_not_one_split_are_always_refused() {
 fn parts_of_different_suites_binaries_or_machines_are_refused_unless_allowed() {
     let dir = scratch("mixed");
     let parts = split(&dir, 2);
-    let edits: [(&str, fn(&mut Results)); 9] = [
+    type Edit = (&'static str, fn(&mut Results));
+    let edits: [Edit; 9] = [
         ("suite.name", |r| r.suite.name = "other".into()),
         ("suite.quick", |r| r.suite.quick = true),
         ("suite.variants", |r| {
