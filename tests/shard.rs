@@ -163,7 +163,8 @@ fn two_shards_merged_equal_the_unsharded_run() {
             .as_str()
             .map(str::to_string),
     );
-    assert!(referenced.len() >= 3 * 2 + 3 + 1, "{referenced:?}");
+    // Per scene: two images, bvh's heat map, the emulator's image; and the flamegraph.
+    assert_eq!(referenced.len(), 3 * 4 + 1, "{referenced:?}");
     for rel in &referenced {
         assert!(merged.join(rel).is_file(), "{rel} is missing");
     }
