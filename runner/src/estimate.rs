@@ -36,7 +36,7 @@ impl BruteForceEstimate {
     pub fn note(&self) -> Option<String> {
         (self.seconds > WORTH_A_NOTE.as_secs_f64()).then(|| {
             format!(
-                "note: brute force over {} primitives at {}: about {}; --variant bvh is usually far faster",
+                "note: brute force over {} primitives at {}: {}; --variant bvh is usually far faster",
                 reports::format::count(self.primitives as u64),
                 reports::format::size(self.width, self.height),
                 rough_duration(self.seconds)
