@@ -36,7 +36,7 @@ impl BruteForceEstimate {
     pub fn note(&self) -> Option<String> {
         (self.seconds > WORTH_A_NOTE.as_secs_f64()).then(|| {
             format!(
-                "note: brute force over {} primitives at {}: about {}; --variant bvh is usually far faster",
+                "note: brute force over {} primitives at {}: {}; --variant bvh is usually far faster",
                 reports::format::count(self.primitives as u64),
                 reports::format::size(self.width, self.height),
                 rough_duration(self.seconds)
@@ -72,7 +72,11 @@ pub fn brute_force(
     threads: Option<u16>,
 ) -> Result<Option<BruteForceEstimate>, RunError> {
     let primitives = scene.primitive_count();
-    if variants.config().accel == Accelerator::Bvh || primitives < MANY_PRIMITIVES {
+    let (w, h) = (u64::from(options.width), u64::from(options.height));
+    // A render the limits refuse gets no estimate: its error is the message.
+    let refused = options.limits.check_size(w, h).is_err()
+        || options.limits.check_ray_depth(options.max_depth).is_err();
+    if refused || variants.config().accel == Accelerator::Bvh || primitives < MANY_PRIMITIVES {
         return Ok(None);
     }
     let probe = RenderOptions {
@@ -177,6 +181,8 @@ mod tests {
             .unwrap();
         assert_eq!((e.primitives, e.width, e.height), (7_381, 640, 480));
         assert!(e.seconds > 0.0 && e.seconds.is_finite(), "{e:?}");
+        let too_big = RenderOptions::new(99_999, 480, Sampling::PixelCenters, ShadingMode::Color);
+        assert_eq!(brute_force(&scene, &too_big, &base, Some(2)).unwrap(), None);
         let bvh = VariantSet::parse("bvh").unwrap();
         assert_eq!(brute_force(&scene, &options, &bvh, Some(2)).unwrap(), None);
     }
