@@ -21,12 +21,12 @@ pub mod v1;
 pub mod validate;
 pub mod variant_name;
 
+pub use analysis::verdict::NOISE_THRESHOLD;
 pub use created::rfc3339_utc;
 pub use hardware::{
     DeviceUse, HardwareResult, HwColumn, HwErrors, HwFigures, HwRow, HwRowKind, SceneHardware,
 };
 pub use read::{FileError, ResultsError};
-pub use analysis::verdict::NOISE_THRESHOLD;
 pub use schema::*;
 pub use timing_policy::{TimeCovers, TimingPolicy};
 pub use variant_name::VariantName;
