@@ -883,7 +883,8 @@ fn suite_writes_results_and_reports_and_the_gate_sets_the_exit_code() {
             let kernel = seconds / 10.0;
             scene["calibration"] = serde_json::json!({
                 "time": {"median": kernel, "low": kernel, "high": kernel},
-                "samples": round(kernel)
+                "samples": round(kernel),
+                "cpu_samples": round(kernel)
             });
             for variant in scene["variants"].as_array_mut().unwrap() {
                 let m = if variant["variant"] == "bvh" {
@@ -892,6 +893,7 @@ fn suite_writes_results_and_reports_and_the_gate_sets_the_exit_code() {
                     seconds
                 };
                 variant["samples"] = round(m);
+                variant["cpu_samples"] = round(m);
                 variant["time"] =
                     serde_json::json!({"median": m, "low": m * 0.99, "high": m * 1.01});
             }
