@@ -264,7 +264,7 @@ impl SceneRunner<'_> {
         };
         let doing = |what: &str| {
             self.ctx.progress.message(&format!(
-                "scene {}/{} {}: {what}",
+                "{}/{} {}: {what}",
                 position.0 + 1,
                 position.1,
                 spec.name

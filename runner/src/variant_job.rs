@@ -93,7 +93,7 @@ impl RenderSetup<'_> {
                 }) as RenderJob<'_, _>
             })
             .collect();
-        doing(&format!("timing {} variants interleaved", jobs.len()));
+        doing(&format!("timing {} variants", jobs.len()));
         let mut kernel = || time_kernel(self.pool);
         let measured = measure_interleaved(
             policy,
