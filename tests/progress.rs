@@ -103,9 +103,7 @@ fn flake(dir: &Path) -> String {
         &[
             "scene",
             "gen",
-            "sphereflake",
-            "--depth",
-            "4",
+            "sphereflake:4",
             "-o",
             path.to_str().unwrap(),
         ],

@@ -42,7 +42,8 @@ pub const INSTRUCTION_THRESHOLD: f64 = 0.01;
 pub enum Measure {
     /// The variant's time divided by the reference variant's, same scene, same run.
     RelativeToReference,
-    /// The reference variant's time divided by the calibration kernel's, same rounds.
+    /// The reference variant's time (any variant's on a scene run without the
+    /// reference) divided by the calibration kernel's, same rounds.
     RelativeToCalibration,
     /// Seconds (a file without the reference or the calibration kernel): a busier
     /// machine reads as slower.
@@ -323,12 +324,17 @@ fn yardstick<'a>(
     scene: &'a SceneResult,
     v: &VariantResult,
 ) -> Option<(&'a [f64], &'a [f64], Measure)> {
-    if v.variant.is_reference() {
-        let c = scene.calibration.as_ref()?;
-        Some((&c.samples, &c.cpu_samples, Measure::RelativeToCalibration))
-    } else {
-        let r = scene.variants.iter().find(|r| r.variant.is_reference())?;
-        Some((&r.samples, &r.cpu_samples, Measure::RelativeToReference))
+    let reference = scene.variants.iter().find(|r| r.variant.is_reference());
+    match reference {
+        Some(r) if !v.variant.is_reference() => {
+            Some((&r.samples, &r.cpu_samples, Measure::RelativeToReference))
+        }
+        // The reference itself, or a scene run without it (the SPD's full frame, where
+        // only accelerated variants run): the kernel timed in the same rounds.
+        _ => {
+            let c = scene.calibration.as_ref()?;
+            Some((&c.samples, &c.cpu_samples, Measure::RelativeToCalibration))
+        }
     }
 }
 

@@ -210,6 +210,43 @@ pub struct SceneResult {
     /// slower on one run does not read as a change of the tracer. `None` in older files.
     #[serde(default)]
     pub calibration: Option<Calibration>,
+    /// The ray statistics the SPD publishes for this scene, when it is a classic SPD
+    /// scene rendered as the figures were (512 × 512, corner rays, depth 5): each
+    /// variant's counts can be read against them. `None` otherwise and in older files.
+    #[serde(default)]
+    pub published: Option<PublishedRays>,
+    /// What the scene's renders hold in memory. `None` in older files.
+    #[serde(default)]
+    pub memory: Option<MemoryUse>,
+}
+
+/// Ray counts a reference publishes for a scene (the SPD's `Readme.txt` table).
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize, JsonSchema)]
+pub struct PublishedRays {
+    /// Where the figures come from.
+    pub source: String,
+    pub primary: u64,
+    pub primary_hit: u64,
+    pub reflection: u64,
+    pub refraction: u64,
+    pub shadow: u64,
+    /// The agreement the source expects of a classical tracer (0.10: within 10 %).
+    pub tolerance: f64,
+}
+
+/// Bytes a scene's render holds: the parsed scene, the largest acceleration structure
+/// any variant built, and the framebuffer (12 bytes a pixel); their sum is the peak the
+/// tracer's own data reach (the process adds its code and the run's images).
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize, JsonSchema)]
+pub struct MemoryUse {
+    pub scene_bytes: u64,
+    /// The largest acceleration structure among the variants (0: brute force only).
+    pub accelerator_bytes: u64,
+    pub framebuffer_bytes: u64,
+    /// scene + accelerator + framebuffer.
+    pub peak_bytes: u64,
+    /// The BVH's bytes per primitive, when a variant built one.
+    pub bvh_bytes_per_primitive: Option<f64>,
 }
 
 /// A fixed amount of arithmetic (independent of the tracer's code), timed on the same

@@ -356,6 +356,8 @@ fn scene(s: SceneResult, path: &str) -> Result<v2::SceneResult, ResultsError> {
         spd: s.spd,
         hardware,
         calibration: None,
+        published: None,
+        memory: None,
     })
 }
 

@@ -111,6 +111,8 @@ fn run(baseline_s: f64, bvh_s: f64, kernel_s: f64, dots: u64) -> Results {
                 samples: samples(kernel_s),
                 cpu_samples: samples(kernel_s),
             }),
+            published: None,
+            memory: None,
         }],
         profile: None,
         hardware: None,
@@ -137,6 +139,25 @@ fn identical_runs_pass_with_every_entry_within_noise() {
     assert_eq!(g.entries[0].old.median, 100.0);
     assert_eq!(g.entries[1].new.median, 0.2);
     assert_eq!(g.entries[1].change.median, 1.0);
+}
+
+#[test]
+fn a_scene_run_without_baseline_is_gated_against_the_calibration_kernel() {
+    // The suite's SPD scenes at full size run bvh alone: bvh ÷ kernel, not seconds, so
+    // a machine twice as slow on the second run (kernel too) is no regression.
+    let only_bvh = |mut r: Results| {
+        r.scenes[0].variants.retain(|v| v.variant.as_str() == "bvh");
+        r
+    };
+    let old = only_bvh(run(1.0, 0.2, 0.01, 1000));
+    let new = only_bvh(run(2.0, 0.4, 0.02, 1000));
+    let g = default_gate(&old, &new);
+    assert_eq!(g.entries.len(), 1);
+    assert_eq!(g.entries[0].measure, Measure::RelativeToCalibration);
+    // 0.2 / 0.01 = 20 in both runs.
+    assert_eq!(g.entries[0].old.median, 20.0);
+    assert_eq!(g.entries[0].change.median, 1.0);
+    assert!(!g.failed());
 }
 
 #[test]

@@ -40,7 +40,27 @@ pub struct SuiteDef {
     #[serde(default = "default_profile_samples")]
     pub profile_samples: u64,
     pub hardware_repeats: u32,
+    /// The SPD databases, generated, each run twice (see [`SpdDef`]).
+    #[serde(default)]
+    pub spd: Option<SpdDef>,
     pub quick: Option<QuickDef>,
+}
+
+/// The SPD part of a suite. Each scene runs twice: every variant on a small frame
+/// (brute force tests every primitive against every ray, so at the SPD's frame it would
+/// take hours), and the accelerated variants at the SPD's own frame with its procedure
+/// (corner rays), whose ray counts are those the SPD publishes.
+#[derive(Clone, Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct SpdDef {
+    /// Scene entries, normally `spd:NAME` (the SPD's size factor).
+    pub scenes: Vec<String>,
+    /// The frame of the every-variant run.
+    pub size: [u32; 2],
+    /// The frame of the accelerated run (512 × 512: the SPD's).
+    pub full_size: [u32; 2],
+    /// The variants of the accelerated run (none of them brute force).
+    pub full_variants: Vec<String>,
 }
 
 /// Overrides for `--quick`.
@@ -56,6 +76,7 @@ pub struct QuickDef {
     pub profile_size: Option<[u32; 2]>,
     pub profile_samples: Option<u64>,
     pub hardware_repeats: Option<u32>,
+    pub spd: Option<SpdDef>,
 }
 
 impl SuiteDef {
@@ -117,7 +138,23 @@ impl SuiteDef {
                 return bad(format!("variant '{v}': {e}"));
             }
         }
-        for size in [self.size, self.extra_size, self.profile_size] {
+        let mut sizes = vec![self.size, self.extra_size, self.profile_size];
+        if let Some(spd) = &self.spd {
+            sizes.extend([spd.size, spd.full_size]);
+            for v in &spd.full_variants {
+                match VariantSet::parse(v) {
+                    Err(e) => return bad(format!("[spd] variant '{v}': {e}")),
+                    Ok(set) if set.config().accel == tracer::Accelerator::BruteForce => {
+                        return bad(format!(
+                            "[spd] full_variants: '{v}' is brute force, which would take hours at full_size; \
+                             give accelerated variants (bvh, simd) or run it in the small frame"
+                        ));
+                    }
+                    Ok(_) => {}
+                }
+            }
+        }
+        for size in sizes {
             if let Err(e) =
                 tracer::Limits::default().check_size(u64::from(size[0]), u64::from(size[1]))
             {
@@ -139,6 +176,7 @@ impl SuiteDef {
             self.profile_size = q.profile_size.unwrap_or(self.profile_size);
             self.profile_samples = q.profile_samples.unwrap_or(self.profile_samples);
             self.hardware_repeats = q.hardware_repeats.unwrap_or(self.hardware_repeats);
+            self.spd = q.spd.or(self.spd);
         }
         self
     }
@@ -146,6 +184,11 @@ impl SuiteDef {
     /// How the variants' renders are timed.
     pub fn timing(&self) -> TimingPolicy {
         TimingPolicy::new(self.repeats, self.min_seconds)
+    }
+
+    /// The variants `spec` runs: its own subset, or the suite's.
+    pub fn variants_of<'a>(&'a self, spec: &'a crate::scenes::SceneSpec) -> &'a [String] {
+        spec.variants.as_deref().unwrap_or(&self.variants)
     }
 
     /// How the software side of the hardware comparison is timed.

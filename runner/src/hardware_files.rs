@@ -6,20 +6,19 @@ use std::path::Path;
 use hwmodel::hw_scene::HwScene;
 
 use crate::error::RunError;
-use crate::scenes::load_file_or_builtin;
+use crate::scene_input::SceneInput;
 
-/// A scene (file or built-in name) and the same scene as the hardware stores it.
-fn hardware_scene(path: &Path) -> Result<(tracer::Scene, HwScene), RunError> {
-    let scene = load_file_or_builtin(path)?;
-    let hw = HwScene::from_scene(&scene)
-        .map_err(|e| RunError::Input(format!("{}: {e}", path.display())))?;
+/// A scene and the same scene as the hardware stores it.
+pub fn hardware_scene(input: &SceneInput) -> Result<(tracer::Scene, HwScene), RunError> {
+    let scene = input.load(&tracer::Limits::default())?;
+    let hw = HwScene::from_scene(&scene).map_err(|e| RunError::Input(format!("{input}: {e}")))?;
     Ok((scene, hw))
 }
 
 /// Renders `scene` with the emulator at `size` (default: the scene's resolution) into
 /// `output` (.png or .ppm); returns what was written, for the user.
 pub fn write_emulator_image(
-    scene: &Path,
+    scene: &SceneInput,
     size: Option<(u32, u32)>,
     output: &Path,
 ) -> Result<String, RunError> {
@@ -37,7 +36,7 @@ pub fn write_emulator_image(
 }
 
 /// Writes the scene memory of `scene` to `output`; returns what was written.
-pub fn write_mif(scene: &Path, output: &Path) -> Result<String, RunError> {
+pub fn write_mif(scene: &SceneInput, output: &Path) -> Result<String, RunError> {
     let (_, hw) = hardware_scene(scene)?;
     tracer::image_io::write_atomically(output, hwmodel::mif::to_mif(&hw).as_bytes())
         .map_err(|e| RunError::io("write", output, &e))?;

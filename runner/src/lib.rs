@@ -6,6 +6,7 @@
 //!
 //! Modules:
 //! - [`definition`]: the suite definition (scenes/suite.toml) and its `[quick]` form;
+//! - [`scene_input`]: a scene as users name it (file, built-in, `spd:rings:3`, generator);
 //! - [`scenes`]: suite entries and directories resolved to scene texts;
 //! - [`timing`]: the one timing policy (repeats, minimum measured time, bootstrap) and
 //!   what a time covers (tracing; preprocessing apart);
@@ -49,6 +50,7 @@ pub mod profile_job;
 pub mod progress;
 pub mod render_job;
 pub mod report_files;
+pub mod scene_input;
 pub mod scenes;
 pub mod shard;
 pub mod staging;

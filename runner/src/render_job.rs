@@ -2,21 +2,21 @@
 //! render it once with the chosen counter and variants, and time the two phases
 //! (preprocessing = parse + build, tracing) as the SPD rules ask.
 
-use std::path::Path;
 use std::time::{Duration, Instant};
 
 use tracer::{
     Counter, Limits, RenderOptions, Rendered, Sampling, Scene, ShadingMode, VariantSet,
-    load_nff_with_limits, render_variant,
+    render_variant,
 };
 
 use crate::error::RunError;
 use crate::pool::thread_pool;
 use crate::progress::Progress;
+use crate::scene_input::SceneInput;
 
 /// What to render and how.
 pub struct RenderRequest<'a> {
-    pub path: &'a Path,
+    pub scene: &'a SceneInput,
     pub variants: VariantSet,
     pub settings: RenderSettings,
     pub mode: ShadingMode,
@@ -70,14 +70,13 @@ pub fn render_scene<C: Counter>(
     progress: &dyn Progress,
 ) -> Result<SceneRender<C>, RunError> {
     let start = Instant::now();
-    let scene = load_nff_with_limits(req.path, &req.settings.limits)
-        .map_err(|e| RunError::Input(e.to_string()))?;
+    let scene = req.scene.load(&req.settings.limits)?;
     let parsing = start.elapsed();
     let options = req.settings.options(&scene, req.mode);
     let (width, height) = (options.width, options.height);
     // Refused before the progress bar and the framebuffer exist.
     let refuse = |message: String| RunError::Render {
-        context: req.path.display().to_string(),
+        context: req.scene.to_string(),
         message,
     };
     options
@@ -93,7 +92,7 @@ pub fn render_scene<C: Counter>(
     let out = pool
         .install(|| render_variant::<C>(&scene, &options, &req.variants, &|n| progress.advance(n)));
     progress.end();
-    let out = out.map_err(|e| RunError::render(req.path.display(), &e))?;
+    let out = out.map_err(|e| RunError::render(req.scene, &e))?;
     Ok(SceneRender {
         scene,
         rendered: out.rendered,
@@ -106,12 +105,12 @@ pub fn render_scene<C: Counter>(
 
 impl<C> SceneRender<C> {
     /// The SPD-style timing report: preprocessing vs tracing, rays per second.
-    pub fn timing_report(&self, scene_path: &Path) -> String {
+    pub fn timing_report(&self, input: &SceneInput) -> String {
         let rays = self.rendered.rays;
         let secs = self.tracing.as_secs_f64().max(1e-9);
         format!(
             "{}: {}, variant {}\npreprocessing {:.3} s (parse + build), tracing {:.3} s on {} thread{}\n{} rays ({} eye), {:.0} rays/s",
-            scene_path.display(),
+            input,
             self.scene.summary(),
             self.variants,
             self.preprocessing.as_secs_f64(),

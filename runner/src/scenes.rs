@@ -7,6 +7,7 @@ use std::path::{Path, PathBuf};
 use results::SceneFamily;
 
 use crate::error::RunError;
+use crate::scene_input::SceneInput;
 
 /// A scene to run.
 #[derive(Clone, Debug)]
@@ -17,60 +18,65 @@ pub struct SceneSpec {
     pub family: SceneFamily,
     pub text: String,
     pub size: (u32, u32),
+    /// SPD corner sampling ((W+1)×(H+1) rays, each pixel the mean of four).
+    pub spd_sampling: bool,
+    /// The variants to run when not the suite's (a subset: the SPD's full frame).
+    pub variants: Option<Vec<String>>,
+    /// Whether the suite may pick it as the heaviest scene to profile.
+    pub profile_candidate: bool,
 }
 
-/// Resolves one suite entry; relative paths start at `base`.
+impl SceneSpec {
+    /// The two runs of an SPD entry (see [`crate::definition::SpdDef`]): the accelerated
+    /// variants at `full_size` with corner sampling, named as the scene, and every
+    /// variant at `size`, named `NAME-small`.
+    pub fn spd_pair(
+        entry: &str,
+        def: &crate::definition::SpdDef,
+        base: &Path,
+    ) -> Result<[SceneSpec; 2], RunError> {
+        let full_size = (def.full_size[0], def.full_size[1]);
+        let full = SceneSpec {
+            spd_sampling: true,
+            variants: Some(def.full_variants.clone()),
+            profile_candidate: false,
+            ..resolve_scene(entry, full_size, base)?
+        };
+        let small = SceneSpec {
+            name: format!("{}-small", full.name),
+            size: (def.size[0], def.size[1]),
+            spd_sampling: false,
+            variants: None,
+            ..full.clone()
+        };
+        Ok([full, small])
+    }
+}
+
+/// Resolves one suite entry (see [`SceneInput`]); relative paths start at `base`.
 pub fn resolve_scene(entry: &str, size: (u32, u32), base: &Path) -> Result<SceneSpec, RunError> {
-    let bad = |message: String| RunError::Scene {
-        scene: entry.to_string(),
-        message,
-    };
-    if let Some((kind, param)) = entry.split_once(':') {
-        let n: u32 = param
-            .parse()
-            .map_err(|_| bad(format!("'{param}' is not a number")))?;
-        let text = match kind {
-            "sphereflake" => tracer::generators::sphereflake(n),
-            "lattice" => tracer::generators::lattice(n),
-            _ => {
-                return Err(bad(format!(
-                    "unknown generator '{kind}' (sphereflake, lattice)"
-                )));
-            }
-        }
-        .map_err(|e| bad(e.to_string()))?;
-        return Ok(SceneSpec {
-            name: format!("{kind}{n}"),
-            source: "generated".into(),
-            family: SceneFamily::Generated,
-            text,
-            size,
-        });
-    }
-    if let Some(b) = tracer::builtin_scenes::find(entry) {
-        return Ok(SceneSpec {
-            name: b.name.to_string(),
-            source: "builtin".into(),
-            family: SceneFamily::of_builtin(b.name),
-            text: b.text.to_string(),
-            size,
-        });
-    }
-    let path = base.join(entry);
-    let text = std::fs::read_to_string(&path).map_err(|e| {
-        bad(format!(
-            "not a built-in name and cannot read {}: {e}",
-            path.display()
-        ))
-    })?;
+    let input = SceneInput::parse(entry, base)?;
+    let text = input
+        .text(&tracer::Limits::default())
+        .map_err(|e| match e {
+            RunError::Io { path, message, .. } => RunError::Scene {
+                scene: entry.to_string(),
+                message: format!(
+                    "not a built-in name (`rtprof scene list`) and cannot read {}: {message}",
+                    path.display()
+                ),
+            },
+            other => other,
+        })?;
     Ok(SceneSpec {
-        name: path
-            .file_stem()
-            .map_or_else(|| entry.to_string(), |s| s.to_string_lossy().into_owned()),
-        source: path.display().to_string(),
-        family: SceneFamily::Other,
+        name: input.name(),
+        source: input.source(),
+        family: input.family(),
         text,
         size,
+        spd_sampling: false,
+        variants: None,
+        profile_candidate: true,
     })
 }
 
@@ -109,20 +115,12 @@ pub fn extra_scenes(dir: &Path, size: (u32, u32)) -> Result<Vec<SceneSpec>, RunE
                 },
                 text,
                 size,
+                spd_sampling: false,
+                variants: None,
+                profile_candidate: true,
             })
         })
         .collect()
-}
-
-/// Loads an NFF file, or a built-in scene when `path` is a bare built-in name that is
-/// not also a file.
-pub fn load_file_or_builtin(path: &Path) -> Result<tracer::Scene, RunError> {
-    if !path.exists()
-        && let Some(builtin) = path.to_str().and_then(tracer::builtin_scenes::find)
-    {
-        return builtin.parse().map_err(|e| RunError::Input(e.to_string()));
-    }
-    tracer::load_nff(path).map_err(|e| RunError::Input(e.to_string()))
 }
 
 #[cfg(test)]
@@ -141,8 +139,11 @@ mod tests {
             (g.name.as_str(), g.family),
             ("sphereflake1", SceneFamily::Generated)
         );
-        let err = resolve_scene("cube:2", (8, 6), Path::new(".")).unwrap_err();
-        assert!(err.to_string().contains("unknown generator"), "{err}");
+        let spd = resolve_scene("spd:tetra:1", (8, 6), Path::new(".")).unwrap();
+        assert_eq!(
+            (spd.name.as_str(), spd.source.as_str(), spd.family),
+            ("tetra-sf1", "spd:tetra:1", SceneFamily::Spd)
+        );
         let err = resolve_scene("no-such.nff", (8, 6), Path::new("/nonexistent")).unwrap_err();
         assert!(
             err.to_string().contains("/nonexistent/no-such.nff"),

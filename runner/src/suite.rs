@@ -96,6 +96,11 @@ impl Suite {
             .iter()
             .map(|s| resolve_scene(s, size, base_dir))
             .collect::<Result<_, _>>()?;
+        if let Some(spd) = &def.spd {
+            for entry in &spd.scenes {
+                scenes.extend(SceneSpec::spd_pair(entry, spd, base_dir)?);
+            }
+        }
         if let Some(dir) = extra_dir {
             scenes.extend(extra_scenes(dir, (def.extra_size[0], def.extra_size[1]))?);
         }
@@ -125,9 +130,12 @@ impl Suite {
         Ok(self)
     }
 
-    /// Renders per progress step count: scenes × variants.
+    /// Renders per progress step count: every scene's variants.
     pub fn steps(&self) -> u64 {
-        (self.scenes.len() * self.def.variants.len()) as u64
+        self.scenes
+            .iter()
+            .map(|s| self.def.variants_of(s).len() as u64)
+            .sum()
     }
 
     /// Runs everything. Stopping returns [`RunError::StoppedAfter`] with the scenes done.
@@ -226,6 +234,57 @@ impl Suite {
     }
 }
 
+/// The SPD's published ray counts for `spec`, when it was rendered as they were: a
+/// classic SPD scene at its size factor, 512 × 512 corner rays, depth 5.
+fn published_rays(spec: &SceneSpec, options: &RenderOptions) -> Option<results::PublishedRays> {
+    use spd::published::{FRAME, MAX_DEPTH, TOLERANCE, published};
+    let input = crate::scene_input::SceneInput::parse(&spec.source, Path::new("")).ok()?;
+    let crate::scene_input::SceneInput::Spd {
+        program,
+        size_factor,
+    } = input
+    else {
+        return None;
+    };
+    let as_published = spec.spd_sampling
+        && size_factor == program.default_size_factor
+        && (options.width, options.height) == FRAME
+        && options.max_depth == MAX_DEPTH;
+    let p = published(program.name).filter(|_| as_published)?;
+    Some(results::PublishedRays {
+        source: "SPD 3.14 Readme.txt (Haines): 513 x 513 corner rays, depth 5".into(),
+        primary: p.eye_rays,
+        primary_hit: p.eye_hits,
+        reflection: p.reflection_rays,
+        refraction: p.refraction_rays,
+        shadow: p.shadow_rays,
+        tolerance: TOLERANCE,
+    })
+}
+
+/// What the scene's renders held: the scene, the largest structure a variant built and
+/// the framebuffer.
+fn memory_use(
+    scene: &Scene,
+    measured: &[Result<crate::variant_job::VariantMeasurement, RunError>],
+) -> Option<results::MemoryUse> {
+    let ok: Vec<_> = measured.iter().filter_map(|m| m.as_ref().ok()).collect();
+    let framebuffer = ok.iter().map(|m| m.framebuffer_bytes).max()? as u64;
+    let accelerator = ok.iter().map(|m| m.accelerator_bytes).max().unwrap_or(0) as u64;
+    let bvh = ok
+        .iter()
+        .find(|m| m.variants.config().accel == tracer::Accelerator::Bvh)
+        .map(|m| m.accelerator_bytes as f64 / scene.primitive_count().max(1) as f64);
+    let scene_bytes = scene.memory_bytes() as u64;
+    Some(results::MemoryUse {
+        scene_bytes,
+        accelerator_bytes: accelerator,
+        framebuffer_bytes: framebuffer,
+        peak_bytes: scene_bytes + accelerator + framebuffer,
+        bvh_bytes_per_primitive: bvh,
+    })
+}
+
 fn failure(scene: Option<&str>, part: FailedPart, e: &RunError) -> Failure {
     Failure {
         scene: scene.map(str::to_string),
@@ -254,7 +313,12 @@ impl SceneRunner<'_> {
             message: e.to_string(),
         })?;
         let (width, height) = spec.size;
-        let options = RenderOptions::new(width, height, Sampling::PixelCenters, ShadingMode::Color);
+        let sampling = if spec.spd_sampling {
+            Sampling::SpdCorners
+        } else {
+            Sampling::PixelCenters
+        };
+        let options = RenderOptions::new(width, height, sampling, ShadingMode::Color);
         let setup = RenderSetup {
             scene: &scene,
             name: &spec.name,
@@ -270,16 +334,16 @@ impl SceneRunner<'_> {
                 spec.name
             ));
         };
-        let sets: Vec<VariantSet> = self
-            .def
-            .variants
+        let names = self.def.variants_of(spec);
+        let sets: Vec<VariantSet> = names
             .iter()
             .map(|name| VariantSet::parse(name))
             .collect::<Result<_, _>>()?;
         let measured = setup.measure_all(&sets, &self.def.timing(), true, &doing)?;
         let mut variants: Vec<VariantResult> = Vec::new();
         let mut reference: Option<analysis::RgbImage> = None;
-        for (name, outcome) in self.def.variants.iter().zip(measured.variants) {
+        let memory = memory_use(&scene, &measured.variants);
+        for (name, outcome) in names.iter().zip(measured.variants) {
             match outcome.and_then(|m| self.variant_result(spec, m, reference.as_ref())) {
                 Ok((v, image)) => {
                     if v.variant.is_reference() {
@@ -331,10 +395,12 @@ impl SceneRunner<'_> {
             primitive_counts,
             width,
             height,
-            spd: false,
+            spd: spec.spd_sampling,
             variants,
             hardware,
             calibration,
+            published: published_rays(spec, &options),
+            memory,
         };
         results::change::fill_scene_speedups(&mut result, results::NOISE_THRESHOLD);
         Ok(result)
@@ -434,8 +500,14 @@ impl SceneRunner<'_> {
             let v = s.variants.iter().find(|v| v.variant.is_reference())?;
             Some(v.time.median)
         };
+        let candidate = |s: &&SceneResult| {
+            specs
+                .iter()
+                .any(|spec| spec.name == s.name && spec.profile_candidate)
+        };
         let Some(heaviest) = results
             .iter()
+            .filter(candidate)
             .filter_map(|s| Some((s, reference(s)?)))
             .max_by(|a, b| a.1.total_cmp(&b.1))
             .map(|(s, _)| s)

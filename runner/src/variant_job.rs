@@ -29,6 +29,10 @@ pub struct VariantMeasurement {
     pub counts: Counts,
     /// The picture.
     pub image: RgbImage,
+    /// Bytes of the intersection structure the variant built (0: none).
+    pub accelerator_bytes: usize,
+    /// Bytes of the framebuffer (12 a pixel).
+    pub framebuffer_bytes: usize,
 }
 
 /// Where and how to render.
@@ -126,6 +130,8 @@ impl RenderSetup<'_> {
                     preprocessing: m.preprocessing,
                     counts,
                     image,
+                    accelerator_bytes: m.last.accelerator_bytes,
+                    framebuffer_bytes: m.last.rendered.frame.memory_bytes(),
                 })
             }));
         }

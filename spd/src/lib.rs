@@ -13,6 +13,7 @@
 //! NFF side), then one module per program.
 
 pub mod output;
+pub mod published;
 pub mod random;
 pub mod tessellate;
 pub mod transform_stack;

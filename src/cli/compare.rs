@@ -8,6 +8,7 @@ use super::scene_args::RenderFlags;
 use anyhow::{Context, Result, bail};
 use runner::compare::compare_variants;
 use runner::pool::thread_pool;
+use runner::scene_input::SceneInput;
 use runner::timing::TimingPolicy;
 use runner::variant_job::RenderSetup;
 use std::path::{Path, PathBuf};
@@ -16,7 +17,8 @@ use tracer::VariantSet;
 
 #[derive(clap::Args, Debug)]
 pub struct CompareArgs {
-    /// Two images (PNG or PPM) to compare, or one NFF scene with --variants.
+    /// Two images (PNG or PPM) to compare, or one scene with --variants (an NFF file,
+    /// a built-in or generated name such as spd:gears; `rtprof scene list`).
     #[arg(required = true, num_args = 1..=2, value_name = "IMG_A IMG_B | SCENE")]
     inputs: Vec<PathBuf>,
     /// Variants to run on the scene, the first being the reference; combine with '+',
@@ -67,16 +69,17 @@ fn compare_images(args: &CompareArgs, a: &Path, b: &Path) -> Result<()> {
     Ok(())
 }
 
-fn side_by_side(args: &CompareArgs, scene_path: &Path, list: &str) -> Result<()> {
+fn side_by_side(args: &CompareArgs, scene_arg: &Path, list: &str) -> Result<()> {
     let sets = VariantSet::parse_list(list)?;
+    let input = SceneInput::parse(&scene_arg.to_string_lossy(), Path::new(""))?;
     if let Some(dir) = &args.output {
         std::fs::create_dir_all(dir)
             .with_context(|| format!("cannot create directory {}", dir.display()))?;
     }
-    let scene = args.render.limits.load(scene_path)?;
+    let scene = args.render.limits.load(&input)?;
     let options = args.render.options(&scene);
     let pool = thread_pool(args.render.threads)?;
-    let name = scene_path.display().to_string();
+    let name = input.to_string();
     let never = AtomicBool::new(false);
     let setup = RenderSetup {
         scene: &scene,

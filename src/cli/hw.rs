@@ -3,14 +3,14 @@
 //! the measured software), `render` (the image the hardware would show) and `mif` (the
 //! scene memory as an Altera Memory Initialization File).
 
-use super::scene_args::{SIZE_HELP, named_after, parse_size};
+use super::scene_args::{SCENE_HELP, SIZE_HELP, named_after, parse_scene, parse_size};
 use anyhow::Result;
 use hwmodel::blocks::Pipeline;
 use hwmodel::design::Design;
 use hwmodel::library::{DeviceSpec, Library, find_device};
 use hwmodel::table::tables;
 use runner::hardware_prediction::{TimeRequest, time_report};
-use runner::scenes::load_file_or_builtin;
+use runner::scene_input::SceneInput;
 use std::path::PathBuf;
 
 #[derive(clap::Args, Debug)]
@@ -82,8 +82,8 @@ struct TableArgs {
 
 #[derive(clap::Args, Debug)]
 struct TimeArgs {
-    /// NFF scene file, or the name of a built-in scene (e.g. balls3).
-    scene: PathBuf,
+    #[arg(value_name = "SCENE", value_parser = parse_scene, help = SCENE_HELP)]
+    scene: SceneInput,
     #[command(flatten)]
     what_if: WhatIf,
     /// Clock in MHz.
@@ -113,8 +113,8 @@ struct TimeArgs {
 
 #[derive(clap::Args, Debug)]
 struct RenderArgs {
-    /// NFF scene file (spheres and cylinders only), or a built-in scene name.
-    scene: PathBuf,
+    #[arg(value_name = "SCENE", value_parser = parse_scene, help = SCENE_HELP)]
+    scene: SceneInput,
     /// Output image, .png or .ppm [default: <scene>-hw.png, here].
     #[arg(short, long, value_name = "IMG")]
     output: Option<PathBuf>,
@@ -124,8 +124,8 @@ struct RenderArgs {
 
 #[derive(clap::Args, Debug)]
 struct MifArgs {
-    /// NFF scene file (spheres and cylinders only), or a built-in scene name.
-    scene: PathBuf,
+    #[arg(value_name = "SCENE", value_parser = parse_scene, help = SCENE_HELP)]
+    scene: SceneInput,
     /// Output .mif file [default: <scene>.mif, here].
     #[arg(short, long, value_name = "FILE.mif")]
     output: Option<PathBuf>,
@@ -173,9 +173,9 @@ fn table(args: &TableArgs) -> Result<()> {
 
 fn time(args: &TimeArgs) -> Result<()> {
     let (lib, device) = args.what_if.device()?;
-    let scene = load_file_or_builtin(&args.scene)?;
+    let scene = args.scene.load(&tracer::Limits::default())?;
     let request = TimeRequest {
-        name: args.scene.display().to_string(),
+        name: args.scene.to_string(),
         design: args.what_if.design(),
         size: args.size.unwrap_or((scene.view.width, scene.view.height)),
         clock_hz: args.clock * 1e6,
@@ -196,7 +196,7 @@ fn time(args: &TimeArgs) -> Result<()> {
 fn render(args: &RenderArgs) -> Result<()> {
     let output = match &args.output {
         Some(path) => path.clone(),
-        None => named_after(&args.scene, "", "-hw.png", "-o IMG")?,
+        None => named_after(&args.scene, "", "-hw.png"),
     };
     let written = runner::hardware_files::write_emulator_image(&args.scene, args.size, &output)?;
     eprintln!("{written}");
@@ -206,7 +206,7 @@ fn render(args: &RenderArgs) -> Result<()> {
 fn mif(args: &MifArgs) -> Result<()> {
     let output = match &args.output {
         Some(path) => path.clone(),
-        None => named_after(&args.scene, "", ".mif", "-o FILE.mif")?,
+        None => named_after(&args.scene, "", ".mif"),
     };
     eprintln!(
         "{}",

@@ -4,17 +4,18 @@
 //! projections. Calls come from a counted render of the same scene and variant.
 
 use super::progress::Bars;
-use super::scene_args::{RenderFlags, named_after, note_if_slow};
+use super::scene_args::{RenderFlags, SCENE_HELP, named_after, note_if_slow, parse_scene};
 use anyhow::{Context, Result};
 use runner::pool::thread_pool;
 use runner::profile_job::{DEFAULT_MIN_SAMPLES, ProfileJob};
+use runner::scene_input::SceneInput;
 use std::path::PathBuf;
 use tracer::VariantSet;
 
 #[derive(clap::Args, Debug)]
 pub struct ProfileArgs {
-    /// NFF scene file.
-    scene: PathBuf,
+    #[arg(value_name = "SCENE", value_parser = parse_scene, help = SCENE_HELP)]
+    scene: SceneInput,
     /// Variant to profile (combine with ',' or '+').
     #[arg(long, default_value = "baseline", value_name = "V")]
     variant: String,
@@ -58,12 +59,12 @@ pub fn run(args: &ProfileArgs) -> Result<()> {
     let options = args.render.options(&scene);
     let dir = match &args.output {
         Some(dir) => dir.clone(),
-        None => named_after(&args.scene, "profile-", "", "-o DIR")?,
+        None => named_after(&args.scene, "profile-", ""),
     };
     std::fs::create_dir_all(&dir)
         .with_context(|| format!("cannot create directory {}", dir.display()))?;
     let pool = thread_pool(args.render.threads)?;
-    let name = args.scene.display().to_string();
+    let name = args.scene.to_string();
     let job = ProfileJob {
         scene: &scene,
         options,

@@ -25,7 +25,7 @@ pub struct RenderArgs {
 pub fn run(args: &RenderArgs) -> Result<()> {
     let output = match &args.output {
         Some(path) => path.clone(),
-        None => named_after(&args.scene.scene, "", ".png", "-o IMG")?,
+        None => named_after(&args.scene.scene, "", ".png"),
     };
     // Refuse a bad output name before spending the render time.
     ImageFormat::from_path(&output)?;

@@ -1,7 +1,10 @@
-//! `rtprof scene`: the project's scenes. `list` names the built-in ones; `gen` writes a
-//! generated scene (sphereflake, lattice) as NFF.
+//! `rtprof scene`: the scenes rtprof knows by name. `list` names them with their
+//! primitive counts; `gen` writes any of them as NFF (an SPD database at any size
+//! factor, a generator, a built-in scene).
 
-use anyhow::{Context, Result};
+use super::scene_args::{SCENE_HELP, parse_scene};
+use anyhow::{Context, Result, bail};
+use runner::scene_input::SceneInput;
 use std::path::PathBuf;
 use tracer::image_io::write_atomically;
 
@@ -13,57 +16,52 @@ pub struct SceneArgs {
 
 #[derive(clap::Subcommand, Debug)]
 enum SceneCommand {
-    /// List the built-in scenes (usable by name wherever a scene is asked for).
+    /// List the scenes usable by name wherever a scene is asked for.
     List,
-    /// Generate a scene as NFF.
+    /// Write a named scene as NFF: `rtprof scene gen spd:balls --size-factor 5 -o balls.nff`.
     Gen(GenArgs),
 }
 
 #[derive(clap::Args, Debug)]
 struct GenArgs {
-    #[command(subcommand)]
-    kind: GenKind,
-    /// Output NFF file (default: standard output).
-    #[arg(short, long, value_name = "FILE.nff", global = true)]
+    #[arg(value_name = "NAME", value_parser = parse_scene, help = SCENE_HELP)]
+    name: SceneInput,
+    /// SPD size factor (the same as spd:NAME:N) [default: the SPD's own].
+    #[arg(long, value_name = "N")]
+    size_factor: Option<u32>,
+    /// Output NFF file [default: standard output].
+    #[arg(short, long, value_name = "FILE.nff")]
     output: Option<PathBuf>,
-}
-
-#[derive(clap::Subcommand, Debug)]
-enum GenKind {
-    /// Eric Haines's recursive sphereflake: 1 + 9 + 81 + … spheres (depth 4: 7381).
-    Sphereflake {
-        /// Recursion depth (0-6).
-        #[arg(long, default_value_t = 3)]
-        depth: u32,
-    },
-    /// An n×n×n lattice of spheres joined by cylinders (a heavy mixed scene).
-    Lattice {
-        /// Spheres per side (1-40).
-        #[arg(long, default_value_t = 5)]
-        side: u32,
-    },
 }
 
 pub fn run(args: &SceneArgs) -> Result<()> {
     match &args.command {
         SceneCommand::List => {
-            print!("{}", tracer::builtin_scenes::list_text());
+            print!("{}", runner::scene_input::catalogue_text());
             Ok(())
         }
-        SceneCommand::Gen(g) => {
-            let text = match g.kind {
-                GenKind::Sphereflake { depth } => tracer::generators::sphereflake(depth)?,
-                GenKind::Lattice { side } => tracer::generators::lattice(side)?,
-            };
-            match &g.output {
-                Some(path) => {
-                    write_atomically(path, text.as_bytes())
-                        .with_context(|| format!("cannot write {}", path.display()))?;
-                    eprintln!("wrote {}", path.display());
-                }
-                None => print!("{text}"),
-            }
-            Ok(())
-        }
+        SceneCommand::Gen(g) => generate(g),
     }
+}
+
+fn generate(args: &GenArgs) -> Result<()> {
+    let input = match (&args.name, args.size_factor) {
+        (SceneInput::Spd { program, .. }, Some(n)) => SceneInput::spd(program, n)?,
+        (SceneInput::File(path), _) => bail!(
+            "{} is not a scene name: `rtprof scene list` names the scenes rtprof can write",
+            path.display()
+        ),
+        (other, Some(_)) => bail!("--size-factor is for spd:NAME scenes, not {other}"),
+        (other, None) => other.clone(),
+    };
+    let text = input.text(&tracer::Limits::default())?;
+    match &args.output {
+        Some(path) => {
+            write_atomically(path, text.as_bytes())
+                .with_context(|| format!("cannot write {}", path.display()))?;
+            eprintln!("wrote {} ({input})", path.display());
+        }
+        None => print!("{text}"),
+    }
+    Ok(())
 }

@@ -4,16 +4,14 @@
 use super::progress::Bars;
 use anyhow::Result;
 use runner::render_job::{RenderRequest, RenderSettings, SceneRender, render_scene};
+use runner::scene_input::SceneInput;
 use std::path::{Path, PathBuf};
-use tracer::{
-    Accelerator, Counter, Limits, RenderOptions, Scene, ShadingMode, VariantSet,
-    load_nff_with_limits,
-};
+use tracer::{Accelerator, Counter, Limits, RenderOptions, Scene, ShadingMode, VariantSet};
 
 #[derive(clap::Args, Debug)]
 pub struct SceneArgs {
-    /// NFF scene file.
-    pub scene: PathBuf,
+    #[arg(value_name = "SCENE", value_parser = parse_scene, help = SCENE_HELP)]
+    pub scene: SceneInput,
     /// Optimization variants, combined: e.g. bvh,fast-sqrt (`rtprof variants` lists them).
     #[arg(long, default_value = "baseline", value_name = "V")]
     pub variant: String,
@@ -105,10 +103,20 @@ impl LimitArgs {
         }
     }
 
-    /// Loads an NFF scene within these limits.
-    pub fn load(&self, path: &std::path::Path) -> Result<Scene> {
-        Ok(load_nff_with_limits(path, &self.limits())?)
+    /// Loads a scene within these limits.
+    pub fn load(&self, input: &SceneInput) -> Result<Scene> {
+        Ok(input.load(&self.limits())?)
     }
+}
+
+/// The help of every command's scene argument: one list of what a scene can be.
+pub const SCENE_HELP: &str = "NFF file, built-in scene (balls3) or generated scene (spd:rings, \
+                              spd:balls:2 = size factor 2, sphereflake:3); `rtprof scene list` \
+                              names them all";
+
+/// Reads a scene argument (relative paths from the current directory).
+pub fn parse_scene(text: &str) -> Result<SceneInput, String> {
+    SceneInput::parse(text, Path::new("")).map_err(|e| e.to_string())
 }
 
 /// The help of every command's --size: one rule for all of them.
@@ -132,7 +140,7 @@ impl SceneArgs {
     /// A brute-force render of a big scene first says how long it will take.
     pub fn run<C: Counter>(&self, mode: ShadingMode) -> Result<SceneRender<C>> {
         let request = RenderRequest {
-            path: &self.scene,
+            scene: &self.scene,
             variants: VariantSet::parse(&self.variant)?,
             settings: self.render.settings(),
             mode,
@@ -161,17 +169,8 @@ pub fn note_if_slow(
     Ok(())
 }
 
-/// The default output name for a command on `input`: `<prefix><file stem><suffix>` in
-/// the current directory; `flag` is the option that names it instead.
-pub fn named_after(input: &Path, prefix: &str, suffix: &str, flag: &str) -> Result<PathBuf> {
-    match input.file_stem() {
-        Some(stem) => Ok(PathBuf::from(format!(
-            "{prefix}{}{suffix}",
-            stem.to_string_lossy()
-        ))),
-        None => anyhow::bail!(
-            "cannot name the output after {}: pass {flag}",
-            input.display()
-        ),
-    }
+/// The default output name for a command on `input`: `<prefix><scene name><suffix>`
+/// in the current directory.
+pub fn named_after(input: &SceneInput, prefix: &str, suffix: &str) -> PathBuf {
+    PathBuf::from(format!("{prefix}{}{suffix}", input.name()))
 }

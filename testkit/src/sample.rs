@@ -388,6 +388,15 @@ fn sample_scene(s: &SceneSpec, failed: &[(&str, &str)]) -> SceneResult {
                 samples,
             })
         },
+        published: None,
+        // 12 bytes a pixel; the sample's scenes hold about 100 bytes a primitive.
+        memory: Some(results::MemoryUse {
+            scene_bytes: 100 * s.primitives(),
+            accelerator_bytes: 0,
+            framebuffer_bytes: 12 * u64::from(s.width) * u64::from(s.height),
+            peak_bytes: 100 * s.primitives() + 12 * u64::from(s.width) * u64::from(s.height),
+            bvh_bytes_per_primitive: None,
+        }),
     }
 }
 

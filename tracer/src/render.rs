@@ -109,6 +109,11 @@ impl Frame {
         self.pixels.iter().flat_map(|p| p.to_rgb8()).collect()
     }
 
+    /// Bytes of the pixels (12 a pixel: three f32).
+    pub fn memory_bytes(&self) -> usize {
+        self.pixels.capacity() * std::mem::size_of::<Rgb>()
+    }
+
     /// Whether every channel of every pixel is finite.
     pub fn is_finite(&self) -> bool {
         self.pixels.iter().all(|p| p.is_finite())

@@ -99,6 +99,31 @@ impl Scene {
             + self.patches.len()
     }
 
+    /// Bytes the parsed scene holds: its vectors and every polygon's and patch's
+    /// vertex lists (what a render keeps in memory besides its structure and image).
+    pub fn memory_bytes(&self) -> usize {
+        fn vec_bytes<T>(v: &Vec<T>) -> usize {
+            v.capacity() * std::mem::size_of::<T>()
+        }
+        let outlines: usize = self
+            .polygons
+            .iter()
+            .map(|p| p.outline.heap_bytes())
+            .chain(self.patches.iter().map(|p| {
+                p.outline.heap_bytes() + vec_bytes(&p.normals) + vec_bytes(&p.written_normals)
+            }))
+            .sum();
+        std::mem::size_of::<Self>()
+            + vec_bytes(&self.lights)
+            + vec_bytes(&self.materials)
+            + vec_bytes(&self.spheres)
+            + vec_bytes(&self.cylinders)
+            + vec_bytes(&self.cones)
+            + vec_bytes(&self.polygons)
+            + vec_bytes(&self.patches)
+            + outlines
+    }
+
     /// The SPD intensity for lights given without a colour: `sqrt(n) / (2 n)` each for
     /// `n` lights, so that the sum over lights grows like `sqrt(n) / 2`.
     pub fn default_light_intensity(light_count: usize) -> f32 {

@@ -28,6 +28,7 @@ pub fn time_vs_primitives(b: &mut Builder) -> Section {
         Column::number("primitives"),
         Column::text("size"),
         Column::number("baseline time").detail("[95 % interval]"),
+        Column::number("peak memory").detail("scene + structure + image"),
         Column::text("fastest variant").grow(),
     ])
     .sortable()
@@ -47,6 +48,17 @@ pub fn time_vs_primitives(b: &mut Builder) -> Section {
             Cell::text(format::size(scene.width, scene.height)),
             match access::reference(r, scene) {
                 Some(v) => Cell::estimate(v.time.median, v.time.low, v.time.high),
+                None => Cell::dash(),
+            },
+            match &scene.memory {
+                Some(m) => {
+                    Cell::number(format::bytes(m.peak_bytes), m.peak_bytes as f64).hover(format!(
+                        "scene {}, structure {}, framebuffer {}",
+                        format::bytes(m.scene_bytes),
+                        format::bytes(m.accelerator_bytes),
+                        format::bytes(m.framebuffer_bytes)
+                    ))
+                }
                 None => Cell::dash(),
             },
             match fastest {
@@ -87,6 +99,13 @@ pub fn spd(b: &mut Builder) -> Section {
         return s.empty("No SPD scene ran in this suite (add them with --scenes ../shared/spd).");
     }
     s.text("Exact ray and intersection counts of each SPD scene, per variant.");
+    if scenes.iter().any(|s| s.name.ends_with("-small")) {
+        s.text(
+            "The suite runs each SPD scene twice: NAME at the SPD's own frame with its procedure \
+             (corner rays) and accelerated variants only, and NAME-small on a small frame with \
+             every variant, because brute force tests every primitive against every ray.",
+        );
+    }
     for scene in scenes {
         s.blocks.push(Block::Heading {
             level: 2,
@@ -94,6 +113,12 @@ pub fn spd(b: &mut Builder) -> Section {
             detail: Some(scene_line(scene)),
             anchor: None,
         });
+        if let Some(m) = &scene.memory {
+            s.text(memory_line(m));
+        }
+        if let (Some(published), Some(v)) = (&scene.published, scene.variants.first()) {
+            s.blocks.push(Block::Table(published_table(published, v)));
+        }
         if scene.variants.is_empty() {
             s.blocks.push(Block::empty("No variant ran on this scene."));
             continue;
@@ -114,6 +139,66 @@ pub fn spd(b: &mut Builder) -> Section {
         s.blocks.push(Block::Table(t));
     }
     s
+}
+
+/// Where the scene's memory went.
+fn memory_line(m: &crate::results::MemoryUse) -> String {
+    let bvh = match m.bvh_bytes_per_primitive {
+        Some(per) => format!(" (BVH: {per:.0} bytes a primitive)"),
+        None => String::new(),
+    };
+    format!(
+        "Memory: peak {} = scene {} + acceleration structure {}{bvh} + framebuffer {}.",
+        format::bytes(m.peak_bytes),
+        format::bytes(m.scene_bytes),
+        format::bytes(m.accelerator_bytes),
+        format::bytes(m.framebuffer_bytes)
+    )
+}
+
+/// The variant's ray counts against the published ones.
+fn published_table(p: &crate::results::PublishedRays, v: &VariantResult) -> Table {
+    let mut t = Table::new(vec![
+        Column::text("ray count"),
+        Column::number(format!("rtprof ({})", v.variant)),
+        Column::number("published"),
+        Column::number("difference"),
+    ])
+    .caption(format!(
+        "Against the published figures ({}; a classical tracer is within {}).",
+        p.source,
+        format::percent(p.tolerance * 100.0, 0)
+    ));
+    let rows = [
+        ("eye rays", "rays.primary", p.primary),
+        ("eye rays that hit", "rays.primary_hit", p.primary_hit),
+        ("reflection rays", "rays.reflection", p.reflection),
+        ("refraction rays", "rays.refraction", p.refraction),
+        ("shadow rays", "rays.shadow", p.shadow),
+    ];
+    for (label, key, published) in rows {
+        let measured = v.counts.get(key).copied().unwrap_or(0);
+        let difference = if published > 0 {
+            let d = measured as f64 / published as f64 - 1.0;
+            let tone = if d.abs() <= p.tolerance {
+                Tone::Good
+            } else {
+                Tone::Bad
+            };
+            Cell::number(format::signed_percent(d * 100.0, 1), d).tone(tone)
+        } else if measured == 0 {
+            Cell::text("equal").tone(Tone::Good)
+        } else {
+            Cell::text("none published").tone(Tone::Bad)
+        };
+        t.rows.push(vec![
+            Cell::text(label),
+            Cell::count(measured),
+            Cell::count(published),
+            difference,
+        ]);
+    }
+    t
 }
 
 fn spd_row(v: &VariantResult, pixels: u64) -> Vec<Cell> {

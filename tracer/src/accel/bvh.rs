@@ -143,6 +143,10 @@ pub struct BvhStats {
     pub leaves: usize,
     pub max_depth: usize,
     pub max_leaf_size: usize,
+    /// Bytes of the nodes and the primitive references (what the tree adds to the
+    /// scene).
+    #[serde(default)]
+    pub bytes: usize,
 }
 
 /// A SAH bounding volume hierarchy over a scene.
@@ -195,6 +199,9 @@ impl<'s> Bvh<'s> {
             bvh.build_node(&mut items, 1);
         }
         bvh.stats.nodes = bvh.nodes.len();
+        bvh.nodes.shrink_to_fit();
+        bvh.stats.bytes = bvh.nodes.capacity() * std::mem::size_of::<Node>()
+            + bvh.prims.capacity() * std::mem::size_of::<PrimRef>();
         bvh
     }
 

@@ -59,6 +59,12 @@ pub struct Simd<'s> {
 }
 
 impl<'s> Simd<'s> {
+    /// Bytes of the packed lanes (what the structure adds to the scene).
+    pub fn memory_bytes(&self) -> usize {
+        self.spheres.capacity() * std::mem::size_of::<SphereLanes>()
+            + self.cylinders.capacity() * std::mem::size_of::<CylinderLanes>()
+    }
+
     /// Packs the spheres and cylinders of `scene` into lanes and detects AVX2.
     pub fn new(scene: &'s Scene) -> Self {
         let spheres = scene

@@ -23,6 +23,12 @@ pub struct PlanarOutline {
 }
 
 impl PlanarOutline {
+    /// Bytes of the vertex lists on the heap.
+    pub fn heap_bytes(&self) -> usize {
+        self.vertices.capacity() * std::mem::size_of::<Vec3>()
+            + self.projected.capacity() * std::mem::size_of::<[f32; 2]>()
+    }
+
     /// Builds the outline; fails with fewer than three vertices or when the first three
     /// define no plane.
     pub fn new(vertices: Vec<Vec3>) -> Result<Self, GeometryError> {

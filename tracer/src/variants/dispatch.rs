@@ -27,6 +27,8 @@ pub struct VariantRender<C> {
     pub tracing: Duration,
     /// The BVH's figures when the `bvh` variant ran.
     pub bvh: Option<BvhStats>,
+    /// Bytes of the intersection structure (0 for brute force, which builds none).
+    pub accelerator_bytes: usize,
 }
 
 /// Renders `scene` with `variants`; `options` are the caller's (size, sampling, shading
@@ -63,11 +65,18 @@ pub fn render_variant<C: Counter>(
     };
     match config.accel {
         Accelerator::BruteForce => job.with_sqrt(&BruteForce::new(scene), config.sqrt, None),
-        Accelerator::Simd => job.with_sqrt(&Simd::new(scene), config.sqrt, None),
+        Accelerator::Simd => {
+            let simd = Simd::new(scene);
+            let mut out = job.with_sqrt(&simd, config.sqrt, None)?;
+            out.accelerator_bytes = simd.memory_bytes();
+            Ok(out)
+        }
         Accelerator::Bvh => {
             let bvh = Bvh::build(scene);
             let stats = bvh.stats();
-            job.with_sqrt(&bvh, config.sqrt, Some(stats))
+            let mut out = job.with_sqrt(&bvh, config.sqrt, Some(stats))?;
+            out.accelerator_bytes = stats.bytes;
+            Ok(out)
         }
     }
 }
@@ -153,6 +162,7 @@ impl Job<'_> {
             preprocessing,
             tracing: start.elapsed(),
             bvh,
+            accelerator_bytes: 0,
         })
     }
 
@@ -176,6 +186,7 @@ impl Job<'_> {
             preprocessing: out.preprocessing,
             tracing: out.tracing,
             bvh: out.bvh,
+            accelerator_bytes: out.accelerator_bytes,
         })
     }
 }
