@@ -10,6 +10,7 @@
 //! - [`ppm_text`]: method 2 of the thesis, histograms from the plain-text PPM (P3) form,
 //!   with a P3 writer and parser;
 //! - [`timing`]: median run time with a seeded percentile-bootstrap interval;
+//! - [`power_law`]: `y = a x^b` fitted on log-log axes (how costs grow with scene size);
 //! - [`verdict`]: the one rule that labels a time change faster, slower or within noise;
 //! - [`profile`]: the sampling profiler (pprof) and what is made of its stacks: gprof
 //!   flat profile and call graph, folded stacks, flamegraphs, Amdahl projections;
@@ -17,6 +18,7 @@
 
 pub mod error;
 pub mod image_metrics;
+pub mod power_law;
 pub mod ppm_text;
 mod prng;
 pub mod profile;

@@ -19,6 +19,7 @@ pub mod gallery;
 pub mod gate_text;
 pub mod html;
 pub mod pdf;
+pub mod scaling_text;
 pub mod sections;
 pub mod text;
 

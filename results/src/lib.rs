@@ -15,6 +15,7 @@ pub mod gate;
 pub mod hardware;
 pub mod json_schema;
 mod read;
+pub mod scaling;
 pub mod schema;
 pub mod timing_policy;
 pub mod v1;

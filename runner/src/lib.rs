@@ -22,6 +22,7 @@
 //! - [`hardware_prediction`]: `rtprof hw time`: frame time, fit and what-ifs;
 //! - [`hardware_tables`]: `rtprof hw table` as text; [`hardware_files`]: `hw render`, `hw mif`;
 //! - [`collect`]: measurements into results entries;
+//! - [`scaling`]: the growth study (`rtprof scaling`), cost per ray against scene size;
 //! - [`suite`]: the whole suite into one results value; [`shard`]: its deterministic
 //!   shares (`--shard I/N`); [`merge`]: shards' results joined into one;
 //! - [`report_files`]: results files read back, report.html and report.pdf written;
@@ -50,6 +51,7 @@ pub mod profile_job;
 pub mod progress;
 pub mod render_job;
 pub mod report_files;
+pub mod scaling;
 pub mod scene_input;
 pub mod scenes;
 pub mod shard;

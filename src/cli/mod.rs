@@ -11,6 +11,7 @@ mod profile;
 mod progress;
 mod render;
 mod report;
+mod scaling;
 mod scene;
 mod scene_args;
 mod suite;
@@ -50,8 +51,11 @@ enum Command {
     Gate(gate::GateArgs),
     /// Rebuild report.html and report.pdf from results.json files (several: compared).
     Report(report::ReportArgs),
-    /// Built-in scenes and scene generators.
+    /// Scenes by name: list them, write any of them as NFF (SPD databases at any size).
     Scene(scene::SceneArgs),
+    /// Growth study: time, tests and nodes per ray of each accelerator against scene
+    /// size, tens to a million primitives, with fitted exponents; scaling.json, .svg.
+    Scaling(scaling::ScalingArgs),
 }
 
 /// How a table is printed: aligned text for a terminal, GitHub-flavoured Markdown (a
@@ -108,5 +112,6 @@ pub fn run(cli: Cli) -> anyhow::Result<()> {
         Command::Gate(args) => gate::run(&args),
         Command::Report(args) => report::run(&args),
         Command::Scene(args) => scene::run(&args),
+        Command::Scaling(args) => scaling::run(&args),
     }
 }

@@ -41,6 +41,7 @@ mod numbers;
 mod profile;
 mod quality;
 mod scale;
+mod scaling;
 mod style;
 mod timing;
 
@@ -49,6 +50,7 @@ pub use histogram::{CELL_SIZE, histogram_chart, scene_histograms, variant_histog
 pub use numbers::{format_number, short_name};
 pub use profile::{calls_chart, self_seconds_chart};
 pub use quality::quality_speed_chart;
+pub use scaling::scaling_chart;
 pub use timing::time_vs_primitives_chart;
 
 use crate::results::Results;

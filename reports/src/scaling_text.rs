@@ -1,0 +1,210 @@
+//! The growth study ([`results::scaling::ScalingStudy`]) as tables and their plain
+//! forms: aligned text for a terminal, Markdown, and CSV of plain numbers. The chart is
+//! [`crate::charts::scaling_chart`].
+
+use crate::document::{Cell, Column, Table, Tone};
+use crate::format;
+use crate::results::scaling::{ScalingFit, ScalingPoint, ScalingStudy};
+use crate::text;
+
+/// Every point: measured ones with their counts, extrapolated ones marked.
+pub fn points_table(study: &ScalingStudy) -> Table {
+    let mut t = Table::new(vec![
+        Column::text("scene"),
+        Column::number("primitives"),
+        Column::text("accelerator"),
+        Column::number("time per ray"),
+        Column::number("tests per ray"),
+        Column::number("nodes per ray"),
+        Column::number("build"),
+        Column::number("structure"),
+        Column::number("bytes per primitive"),
+    ]);
+    for p in &study.points {
+        let optional = |v: Option<f64>, cell: fn(f64) -> Cell| v.map_or_else(Cell::dash, cell);
+        let time = Cell::number(format::seconds(p.seconds_per_ray), p.seconds_per_ray);
+        let time = if p.measured {
+            time
+        } else {
+            time.detail("extrapolated").tone(Tone::Muted)
+        };
+        t.rows.push(vec![
+            Cell::text(format!("spd:{}:{}", p.family, p.size_factor)),
+            Cell::count(p.primitives),
+            Cell::text(&p.accelerator),
+            time,
+            optional(p.tests_per_ray, |v| Cell::number(format::significant(v), v)),
+            // No structure, no nodes: a dash rather than a zero that reads as measured.
+            optional(p.nodes_per_ray.filter(|n| *n > 0.0), |v| {
+                Cell::number(format::significant(v), v)
+            }),
+            optional(p.build_seconds, |v| Cell::number(format::seconds(v), v)),
+            match p.accelerator_bytes {
+                Some(b) => Cell::number(format::bytes(b), b as f64),
+                None => Cell::dash(),
+            },
+            match p.accelerator_bytes {
+                Some(b) if b > 0 => {
+                    let per = b as f64 / p.primitives.max(1) as f64;
+                    Cell::number(format::fixed(per, 1), per)
+                }
+                _ => Cell::dash(),
+            },
+        ]);
+    }
+    t
+}
+
+/// The fitted exponents: time per ray ∝ primitives^exponent.
+pub fn fits_table(study: &ScalingStudy) -> Table {
+    let mut t = Table::new(vec![
+        Column::text("family"),
+        Column::text("accelerator"),
+        Column::number("time exponent").detail("per ray ∝ N^b"),
+        Column::number("tests exponent"),
+        Column::number("measured points"),
+    ]);
+    for f in &study.fits {
+        t.rows.push(vec![
+            Cell::text(&f.family),
+            Cell::text(&f.accelerator),
+            Cell::number(format::fixed(f.exponent, 2), f.exponent),
+            f.tests_exponent
+                .map_or_else(Cell::dash, |e| Cell::number(format::fixed(e, 2), e)),
+            Cell::count(u64::from(f.points)),
+        ]);
+    }
+    t
+}
+
+/// Growth of time per ray of `accelerator` on `family` between the measured points
+/// nearest `from` and `to` primitives: (primitives, primitives, factor).
+pub fn growth(
+    study: &ScalingStudy,
+    family: &str,
+    accelerator: &str,
+    from: u64,
+    to: u64,
+) -> Option<(u64, u64, f64)> {
+    let measured: Vec<&ScalingPoint> = study
+        .points
+        .iter()
+        .filter(|p| p.family == family && p.accelerator == accelerator && p.measured)
+        .collect();
+    let nearest = |n: u64| {
+        measured.iter().min_by(|a, b| {
+            let d = |p: &ScalingPoint| ((p.primitives as f64).ln() - (n as f64).ln()).abs();
+            d(a).total_cmp(&d(b))
+        })
+    };
+    let (a, b) = (nearest(from)?, nearest(to)?);
+    (a.primitives < b.primitives).then(|| {
+        (
+            a.primitives,
+            b.primitives,
+            b.seconds_per_ray / a.seconds_per_ray,
+        )
+    })
+}
+
+/// The headline: each family's bvh growth over its measured range.
+pub fn headline(study: &ScalingStudy) -> String {
+    let mut lines = format!(
+        "growth study: {} points ({} measured) at {}, {} thread{}, median of {}\n",
+        study.points.len(),
+        study.points.iter().filter(|p| p.measured).count(),
+        format::size(study.width, study.height),
+        study.threads,
+        if study.threads == 1 { "" } else { "s" },
+        study.repeats
+    );
+    let families: Vec<&str> =
+        study
+            .fits
+            .iter()
+            .map(|f| f.family.as_str())
+            .fold(Vec::new(), |mut v, f| {
+                if !v.contains(&f) {
+                    v.push(f);
+                }
+                v
+            });
+    for family in families {
+        let fits: Vec<&ScalingFit> = study.fits.iter().filter(|f| f.family == family).collect();
+        let exponents: Vec<String> = fits
+            .iter()
+            .map(|f| format!("{} {}", f.accelerator, format::fixed(f.exponent, 2)))
+            .collect();
+        let bvh = growth(study, family, "bvh", 1_000, u64::MAX / 2)
+            .map(|(a, b, g)| {
+                format!(
+                    "; bvh time per ray ×{} from {} to {} primitives",
+                    format::fixed(g, 2),
+                    format::count(a),
+                    format::count(b)
+                )
+            })
+            .unwrap_or_default();
+        lines += &format!("  {family}: exponents {}{bvh}\n", exponents.join(", "));
+    }
+    lines
+}
+
+pub fn to_text(study: &ScalingStudy) -> String {
+    format!(
+        "{}\n{}\n{}",
+        headline(study),
+        text::table(&points_table(study)),
+        text::table(&fits_table(study))
+    )
+}
+
+pub fn to_markdown(study: &ScalingStudy) -> String {
+    format!(
+        "{}\n{}\n{}",
+        headline(study),
+        text::markdown(&points_table(study)),
+        text::markdown(&fits_table(study))
+    )
+}
+
+/// Plain numbers, one row per point.
+pub fn to_csv(study: &ScalingStudy) -> String {
+    let header = [
+        "family",
+        "size_factor",
+        "primitives",
+        "accelerator",
+        "measured",
+        "rays",
+        "seconds_per_ray",
+        "tests_per_ray",
+        "nodes_per_ray",
+        "build_seconds",
+        "accelerator_bytes",
+        "scene_bytes",
+    ];
+    let rows: Vec<Vec<String>> = study
+        .points
+        .iter()
+        .map(|p| {
+            vec![
+                p.family.clone(),
+                p.size_factor.to_string(),
+                p.primitives.to_string(),
+                p.accelerator.clone(),
+                p.measured.to_string(),
+                p.rays.map(|r| r.to_string()).unwrap_or_default(),
+                text::csv_number(Some(p.seconds_per_ray)),
+                text::csv_number(p.tests_per_ray),
+                text::csv_number(p.nodes_per_ray),
+                text::csv_number(p.build_seconds),
+                p.accelerator_bytes
+                    .map(|b| b.to_string())
+                    .unwrap_or_default(),
+                p.scene_bytes.to_string(),
+            ]
+        })
+        .collect();
+    text::csv(&header, &rows)
+}

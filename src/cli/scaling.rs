@@ -1,0 +1,134 @@
+//! `rtprof scaling`: the growth study. Each accelerator's time, tests and nodes visited
+//! per ray against the primitive count of SPD scenes generated at growing size factors
+//! (tens to over a million primitives), with the fitted exponent per accelerator and
+//! the BVH's build time and memory. Writes scaling.json, scaling.csv, scaling.md and
+//! the log-log chart scaling.svg.
+
+use super::Format;
+use super::progress::Bars;
+use super::scene_args::parse_size;
+use anyhow::{Context, Result, bail};
+use runner::pool::thread_pool;
+use runner::scaling::{Family, ScalingPlan, run_scaling};
+use std::path::{Path, PathBuf};
+use tracer::image_io::write_atomically;
+
+#[derive(clap::Args, Debug)]
+pub struct ScalingArgs {
+    /// Output directory.
+    #[arg(short, long, value_name = "DIR", default_value = "rtprof-scaling")]
+    output: PathBuf,
+    /// The CI-sized study: small scenes, one repeat.
+    #[arg(long)]
+    quick: bool,
+    /// A scene family and its size factors, e.g. balls:1-6 or shells:1-13:2 (step 2);
+    /// repeat for several [default: balls:1-6, shells:1-13:2, tetra:2-10:2].
+    #[arg(long, value_name = "SPD:FROM-TO[:STEP]", value_parser = parse_family)]
+    family: Vec<Family>,
+    /// Frame of every render, pixel centres [default: 64x64].
+    #[arg(long, value_name = "WxH", value_parser = parse_size)]
+    size: Option<(u32, u32)>,
+    /// Timed renders per point (the median is kept) [default: 3].
+    #[arg(long, value_name = "N", value_parser = clap::value_parser!(u32).range(1..=100))]
+    repeats: Option<u32>,
+    /// Brute-force and SIMD renders predicted longer than this are extrapolated
+    /// instead of run [default: 2].
+    #[arg(long, value_name = "SECONDS")]
+    budget: Option<f64>,
+    /// Worker threads (default: one per core).
+    #[arg(long, value_name = "N", value_parser = clap::value_parser!(u16).range(1..=1024))]
+    threads: Option<u16>,
+    /// What to print: a table, Markdown, CSV or JSON.
+    #[arg(long, value_enum, default_value_t = Format::Text)]
+    format: Format,
+}
+
+/// `balls:1-6` or `shells:1-13:2`.
+fn parse_family(text: &str) -> Result<Family, String> {
+    let bad = || format!("'{text}' is not a family: expected SPD:FROM-TO[:STEP], e.g. balls:1-6");
+    let mut parts = text.split(':');
+    let (Some(name), Some(range)) = (parts.next(), parts.next()) else {
+        return Err(bad());
+    };
+    let step: u32 = match parts.next() {
+        Some(s) => s.parse().map_err(|_| bad())?,
+        None => 1,
+    };
+    let (from, to) = range.split_once('-').unwrap_or((range, range));
+    let (from, to): (u32, u32) = (
+        from.parse().map_err(|_| bad())?,
+        to.parse().map_err(|_| bad())?,
+    );
+    if step == 0 || from > to || parts.next().is_some() {
+        return Err(bad());
+    }
+    let program = spd::find(name).ok_or_else(|| {
+        spd::SpdError::UnknownProgram {
+            name: name.to_string(),
+        }
+        .to_string()
+    })?;
+    Ok(Family {
+        program: program.name,
+        size_factors: (from..=to).step_by(step as usize).collect(),
+    })
+}
+
+pub fn run(args: &ScalingArgs) -> Result<()> {
+    let mut plan = ScalingPlan::default_plan(args.quick);
+    if !args.family.is_empty() {
+        plan.families = args.family.clone();
+    }
+    plan.size = args.size.unwrap_or(plan.size);
+    plan.repeats = args.repeats.unwrap_or(plan.repeats);
+    if let Some(budget) = args.budget {
+        if !(budget.is_finite() && budget > 0.0) {
+            bail!("--budget {budget}: give a positive number of seconds");
+        }
+        plan.budget_seconds = budget;
+    }
+    plan.check()?;
+    std::fs::create_dir_all(&args.output)
+        .with_context(|| format!("cannot create directory {}", args.output.display()))?;
+    let pool = thread_pool(args.threads)?;
+    let stop = super::interrupt::install();
+    let study = pool.install(|| run_scaling(&plan, &Bars::default(), stop))?;
+    let json = serde_json::to_string_pretty(&study)? + "\n";
+    let chart = reports::charts::scaling_chart(&study);
+    let dir = &args.output;
+    let write = |name: &str, bytes: &[u8]| -> Result<()> {
+        let path = dir.join(name);
+        write_atomically(&path, bytes).with_context(|| format!("cannot write {}", path.display()))
+    };
+    write("scaling.json", json.as_bytes())?;
+    write(
+        "scaling.csv",
+        reports::scaling_text::to_csv(&study).as_bytes(),
+    )?;
+    write(
+        "scaling.md",
+        reports::scaling_text::to_markdown(&study).as_bytes(),
+    )?;
+    if let Some(chart) = &chart {
+        write("scaling.svg", chart.svg.as_bytes())?;
+    }
+    print!(
+        "{}",
+        match args.format {
+            Format::Text => reports::scaling_text::to_text(&study),
+            Format::Markdown => reports::scaling_text::to_markdown(&study),
+            Format::Csv => reports::scaling_text::to_csv(&study),
+            Format::Json => json,
+        }
+    );
+    eprintln!("wrote {}", files(dir, chart.is_some()));
+    Ok(())
+}
+
+fn files(dir: &Path, chart: bool) -> String {
+    format!(
+        "{}/{{scaling.json, scaling.csv, scaling.md{}}}",
+        dir.display(),
+        if chart { ", scaling.svg" } else { "" }
+    )
+}
