@@ -14,13 +14,21 @@ fn rtprof(args: &[&str]) -> Output {
 }
 
 fn ok(args: &[&str]) -> String {
+    ok_with_stderr(args).0
+}
+
+/// Standard output and standard error of a run that must succeed.
+fn ok_with_stderr(args: &[&str]) -> (String, String) {
     let out = rtprof(args);
     assert!(
         out.status.success(),
         "rtprof {args:?} failed: {}",
         String::from_utf8_lossy(&out.stderr)
     );
-    String::from_utf8_lossy(&out.stdout).into_owned()
+    (
+        String::from_utf8_lossy(&out.stdout).into_owned(),
+        String::from_utf8_lossy(&out.stderr).into_owned(),
+    )
 }
 
 fn scratch(test: &str) -> PathBuf {
@@ -41,7 +49,7 @@ fn png_size(path: &std::path::Path) -> (u32, u32) {
 fn render_takes_an_spd_name() {
     let dir = scratch("render");
     let image = dir.join("r.png");
-    ok(&[
+    let (_, stderr) = ok_with_stderr(&[
         "render",
         "spd:rings",
         "--size",
@@ -52,6 +60,13 @@ fn render_takes_an_spd_name() {
         image.to_str().unwrap(),
     ]);
     assert_eq!(png_size(&image), (16, 12));
+    // The memory it held: 16 x 12 pixels of three f32 = 2,304 bytes = 2.2 KiB.
+    let memory = stderr
+        .lines()
+        .find(|l| l.starts_with("memory: scene "))
+        .unwrap_or_else(|| panic!("no memory line in {stderr}"));
+    assert!(memory.contains("+ framebuffer 2.2 KiB ="), "{memory}");
+    assert!(memory.contains("process peak resident"), "{memory}");
     std::fs::remove_dir_all(&dir).ok();
 }
 

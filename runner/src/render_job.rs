@@ -62,6 +62,8 @@ pub struct SceneRender<C> {
     pub tracing: Duration,
     pub threads: usize,
     pub variants: VariantSet,
+    /// Bytes of the intersection structure the variant built (0: none).
+    pub accelerator_bytes: usize,
 }
 
 /// Loads and renders; progress counts sample rows.
@@ -100,6 +102,7 @@ pub fn render_scene<C: Counter>(
         tracing: out.tracing,
         threads: pool.current_num_threads(),
         variants: req.variants.clone(),
+        accelerator_bytes: out.accelerator_bytes,
     })
 }
 
@@ -120,6 +123,24 @@ impl<C> SceneRender<C> {
             rays.total(),
             rays.primary,
             rays.total() as f64 / secs,
+        ) + &format!("\n{}", self.memory_line())
+    }
+
+    /// What the render held: scene, structure and framebuffer, and the process's peak.
+    pub fn memory_line(&self) -> String {
+        use reports::format::bytes;
+        let scene = self.scene.memory_bytes() as u64;
+        let structure = self.accelerator_bytes as u64;
+        let frame = self.rendered.frame.memory_bytes() as u64;
+        let process = analysis::profile::sampler::process_peak_resident_bytes()
+            .map(|b| format!("; process peak resident {}", bytes(b)))
+            .unwrap_or_default();
+        format!(
+            "memory: scene {} + structure {} + framebuffer {} = {}{process}",
+            bytes(scene),
+            bytes(structure),
+            bytes(frame),
+            bytes(scene + structure + frame)
         )
     }
 }
