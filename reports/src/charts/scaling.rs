@@ -6,7 +6,7 @@ use plotters::prelude::*;
 
 use super::Chart;
 use super::frame::render;
-use super::marks::{Dashed, Key, keyed};
+use super::marks::{Dashed, Key, Place, keyed};
 use super::scale::{Axis, log_range};
 use super::style::{HEIGHT, PALETTE, WIDTH};
 use crate::results::scaling::{ScalingPoint, ScalingStudy};
@@ -73,6 +73,10 @@ pub fn scaling_chart(study: &ScalingStudy) -> Option<Chart> {
                         .filter(|p| !p.measured)
                         .map(|p| (p.primitives as f64, p.seconds_per_ray * 1e9)),
                 );
+                // The family's name at the line's end: the colours tell accelerators.
+                if let Some(&end) = extrapolated.last() {
+                    plot.text(family, end, Place::Right, colour)?;
+                }
                 if extrapolated.len() > 1 {
                     plot.dashed(
                         extrapolated,
