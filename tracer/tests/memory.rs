@@ -1,5 +1,5 @@
 //! The bytes rtprof reports for a render: the framebuffer (three f32 a pixel), the
-//! BVH (48-byte nodes: two 16-byte-aligned corners, offset, count and axis; 8-byte
+//! BVH (32-byte nodes: two corners of three f32, offset, count and axis; 8-byte
 //! primitive references) and the parsed scene.
 
 use tracer::{Bvh, NoCount, RenderOptions, Sampling, ShadingMode, VariantSet, render_variant};
@@ -23,7 +23,7 @@ fn framebuffer_holds_twelve_bytes_a_pixel() {
 fn bvh_bytes_are_its_nodes_and_primitive_references() {
     let scene = flake(3);
     let stats = Bvh::build(&scene).stats();
-    assert_eq!(stats.bytes, stats.nodes * 48 + scene.primitive_count() * 8);
+    assert_eq!(stats.bytes, stats.nodes * 32 + scene.primitive_count() * 8);
     // The variant reports the same structure.
     let options = RenderOptions::new(4, 4, Sampling::PixelCenters, ShadingMode::Color);
     let bvh = VariantSet::parse("bvh").unwrap_or_else(|e| panic!("{e}"));

@@ -126,14 +126,38 @@ fn bounds_of(scene: &Scene, prim: PrimRef) -> Aabb {
 
 /// One node of the flattened tree. Interior nodes keep their first child right after
 /// themselves and the second at `offset`; leaves keep `count` primitives from `offset`.
+/// 32 bytes, aligned so that two nodes share a 64-byte cache line and none straddles
+/// two: on scenes of a million primitives the tree outgrows the caches, and a 48-byte
+/// node (the box as two 16-byte `Vec3A`) costs a third more memory traffic per visit.
 #[derive(Clone, Copy, Debug)]
+#[repr(C, align(32))]
 struct Node {
-    bounds: Aabb,
+    min: [f32; 3],
     offset: u32,
+    max: [f32; 3],
     /// Primitives in the leaf; 0 for interior nodes.
     count: u16,
     /// Split axis of an interior node (front-to-back order).
     axis: u16,
+}
+
+impl Node {
+    fn new(bounds: Aabb, offset: u32, count: u16, axis: u16) -> Self {
+        Node {
+            min: bounds.min.to_array(),
+            offset,
+            max: bounds.max.to_array(),
+            count,
+            axis,
+        }
+    }
+
+    fn bounds(&self) -> Aabb {
+        Aabb {
+            min: Vec3A::from_array(self.min),
+            max: Vec3A::from_array(self.max),
+        }
+    }
 }
 
 /// Figures about a built tree (reported as preprocessing).
@@ -211,12 +235,12 @@ impl<'s> Bvh<'s> {
     }
 
     fn push_leaf(&mut self, bounds: Aabb, items: &[BuildItem]) {
-        self.nodes.push(Node {
+        self.nodes.push(Node::new(
             bounds,
-            offset: self.prims.len() as u32,
-            count: items.len() as u16,
-            axis: 0,
-        });
+            self.prims.len() as u32,
+            items.len() as u16,
+            0,
+        ));
         self.prims.extend(items.iter().map(|it| it.prim));
         self.stats.leaves += 1;
         self.stats.max_leaf_size = self.stats.max_leaf_size.max(items.len());
@@ -303,12 +327,7 @@ impl<'s> Bvh<'s> {
         depth: usize,
     ) {
         let at = self.nodes.len();
-        self.nodes.push(Node {
-            bounds,
-            offset: 0,
-            count: 0,
-            axis: axis as u16,
-        });
+        self.nodes.push(Node::new(bounds, 0, 0, axis as u16));
         let (left, right) = items.split_at_mut(mid);
         self.build_node(left, depth + 1);
         self.nodes[at].offset = self.nodes.len() as u32;
@@ -342,7 +361,7 @@ impl<'s> Bvh<'s> {
         loop {
             let node = &self.nodes[index];
             c.tally(Stat::NodesVisited);
-            if slab_hit(&node.bounds, origin, inv_dir, t_min, *t_max) {
+            if slab_hit(&node.bounds(), origin, inv_dir, t_min, *t_max) {
                 if node.count > 0 {
                     c.tally(Stat::LeavesVisited);
                     let first = node.offset as usize;
