@@ -412,6 +412,17 @@ mod tests {
     }
 
     #[test]
+    fn bytes_use_binary_units_with_one_decimal() {
+        assert_eq!(bytes(0), "0 B");
+        assert_eq!(bytes(1023), "1023 B");
+        // 16 x 12 pixels of three f32: 2,304 bytes = 2.25 KiB.
+        assert_eq!(bytes(2304), "2.2 KiB");
+        assert_eq!(bytes(3 * 1024 * 1024), "3.0 MiB");
+        assert_eq!(bytes(5 << 40), "5.0 TiB");
+        assert_eq!(bytes(2048 << 40), "2048.0 TiB");
+    }
+
+    #[test]
     fn ratios_show_the_digits_their_interval_needs() {
         // Width 0.070: its two significant digits need three decimals.
         assert_eq!(

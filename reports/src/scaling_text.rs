@@ -208,3 +208,97 @@ pub fn to_csv(study: &ScalingStudy) -> String {
         .collect();
     text::csv(&header, &rows)
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::results::scaling::SCALING_SCHEMA;
+
+    fn point(
+        primitives: u64,
+        accelerator: &str,
+        seconds_per_ray: f64,
+        measured: bool,
+    ) -> ScalingPoint {
+        ScalingPoint {
+            family: "balls".into(),
+            size_factor: 0,
+            primitives,
+            accelerator: accelerator.into(),
+            measured,
+            rays: None,
+            seconds_per_ray,
+            tests_per_ray: None,
+            nodes_per_ray: None,
+            build_seconds: None,
+            accelerator_bytes: Some(0),
+            scene_bytes: 0,
+        }
+    }
+
+    fn study(points: Vec<ScalingPoint>) -> ScalingStudy {
+        ScalingStudy {
+            schema: SCALING_SCHEMA.into(),
+            created: String::new(),
+            command: String::new(),
+            machine: results::Machine {
+                cpu_model: "test".into(),
+                cores: 2,
+                os: "test".into(),
+                hostname: "test".into(),
+            },
+            build: results::Build {
+                rtprof_version: "0".into(),
+                rustc: "rustc".into(),
+                git_commit: "none".into(),
+                profile: "test".into(),
+            },
+            threads: 2,
+            width: 8,
+            height: 8,
+            repeats: 1,
+            budget_seconds: 1.0,
+            fits: vec![ScalingFit {
+                family: "balls".into(),
+                accelerator: "bvh".into(),
+                exponent: 0.2,
+                coefficient: 1.0,
+                tests_exponent: None,
+                points: 3,
+            }],
+            points,
+        }
+    }
+
+    #[test]
+    fn growth_runs_between_the_measured_points_nearest_the_bounds() {
+        let s = study(vec![
+            point(10, "bvh", 50e-9, true),
+            point(821, "bvh", 100e-9, true),
+            point(597_872, "bvh", 280e-9, true),
+            // Extrapolated points never bound a growth.
+            point(5_000_000, "bvh", 1e-6, false),
+        ]);
+        let (from, to, factor) = growth(&s, "balls", "bvh", 1_000, u64::MAX / 2).unwrap();
+        assert_eq!((from, to), (821, 597_872));
+        assert!((factor - 2.8).abs() < 1e-9, "{factor}");
+        assert!(headline(&s).contains("bvh time per ray ×2.80 from 821 to 597,872 primitives"));
+        assert_eq!(growth(&s, "balls", "simd", 1_000, 1_000_000), None);
+    }
+
+    #[test]
+    fn extrapolated_points_are_marked_and_csv_keeps_every_point() {
+        let s = study(vec![
+            point(10, "baseline", 1e-8, true),
+            point(1_000, "baseline", 1e-6, false),
+        ]);
+        let text = to_text(&s);
+        assert!(text.contains("extrapolated"), "{text}");
+        let csv = to_csv(&s);
+        assert_eq!(csv.lines().count(), 3);
+        assert!(
+            csv.lines().nth(2).unwrap_or_default().contains(",false,"),
+            "{csv}"
+        );
+    }
+}

@@ -24,6 +24,8 @@ pub struct SceneSpec {
     pub variants: Option<Vec<String>>,
     /// Whether the suite may pick it as the heaviest scene to profile.
     pub profile_candidate: bool,
+    /// What the entry named (`None` for a file found in a `--scenes` directory).
+    pub input: Option<SceneInput>,
 }
 
 impl SceneSpec {
@@ -77,6 +79,7 @@ pub fn resolve_scene(entry: &str, size: (u32, u32), base: &Path) -> Result<Scene
         spd_sampling: false,
         variants: None,
         profile_candidate: true,
+        input: Some(input),
     })
 }
 
@@ -118,6 +121,7 @@ pub fn extra_scenes(dir: &Path, size: (u32, u32)) -> Result<Vec<SceneSpec>, RunE
                 spd_sampling: false,
                 variants: None,
                 profile_candidate: true,
+                input: None,
             })
         })
         .collect()

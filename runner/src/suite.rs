@@ -238,11 +238,10 @@ impl Suite {
 /// classic SPD scene at its size factor, 512 × 512 corner rays, depth 5.
 fn published_rays(spec: &SceneSpec, options: &RenderOptions) -> Option<results::PublishedRays> {
     use spd::published::{FRAME, MAX_DEPTH, TOLERANCE, published};
-    let input = crate::scene_input::SceneInput::parse(&spec.source, Path::new("")).ok()?;
-    let crate::scene_input::SceneInput::Spd {
+    let Some(crate::scene_input::SceneInput::Spd {
         program,
         size_factor,
-    } = input
+    }) = spec.input
     else {
         return None;
     };
