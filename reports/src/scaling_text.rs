@@ -107,16 +107,31 @@ pub fn growth(
     })
 }
 
+/// How each measured point was timed: "median of 3" or "median of at least 3 renders,
+/// more until 250 ms of tracing".
+pub fn timing_text(study: &ScalingStudy) -> String {
+    if study.min_seconds > 0.0 {
+        format!(
+            "median of at least {} render{}, more until {} of tracing",
+            study.repeats,
+            if study.repeats == 1 { "" } else { "s" },
+            format::seconds(study.min_seconds)
+        )
+    } else {
+        format!("median of {}", study.repeats)
+    }
+}
+
 /// The headline: each family's bvh growth over its measured range.
 pub fn headline(study: &ScalingStudy) -> String {
     let mut lines = format!(
-        "growth study: {} points ({} measured) at {}, {} thread{}, median of {}\n",
+        "growth study: {} points ({} measured) at {}, {} thread{}, {}\n",
         study.points.len(),
         study.points.iter().filter(|p| p.measured).count(),
         format::size(study.width, study.height),
         study.threads,
         if study.threads == 1 { "" } else { "s" },
-        study.repeats
+        timing_text(study)
     );
     let families: Vec<&str> =
         study
@@ -257,6 +272,7 @@ mod tests {
             width: 8,
             height: 8,
             repeats: 1,
+            min_seconds: 0.0,
             budget_seconds: 1.0,
             fits: vec![ScalingFit {
                 family: "balls".into(),

@@ -24,8 +24,12 @@ pub struct ScalingStudy {
     /// The frame every point renders (pixel centres).
     pub width: u32,
     pub height: u32,
-    /// Timed renders per measured point (the median is kept).
+    /// Timed renders per measured point, at least (the median is kept).
     pub repeats: u32,
+    /// More timed renders (up to 100) until this many seconds of tracing were
+    /// measured for the point.
+    #[serde(default)]
+    pub min_seconds: f64,
     /// A render predicted longer than this many seconds is extrapolated, not run.
     pub budget_seconds: f64,
     pub points: Vec<ScalingPoint>,

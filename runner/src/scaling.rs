@@ -17,6 +17,7 @@ use tracer::{
 use crate::error::RunError;
 use crate::machine::{build_info, command_line, machine, now_rfc3339};
 use crate::progress::Progress;
+use crate::timing::{self, TimingPolicy};
 
 /// One family: an SPD program and the size factors to run.
 #[derive(Clone, Debug, PartialEq)]
@@ -32,7 +33,12 @@ pub struct ScalingPlan {
     /// Variants, one per accelerator: `baseline`, `simd`, `bvh`.
     pub accelerators: Vec<String>,
     pub size: (u32, u32),
+    /// Timed renders per point, at least.
     pub repeats: u32,
+    /// More timed renders (up to [`crate::timing::MAX_REPEATS`]) until this many seconds
+    /// of tracing are measured: a small scene's render of a few milliseconds is at the
+    /// mercy of one interruption, and its point sets every ratio of the study.
+    pub min_seconds: f64,
     /// Longest predicted render (seconds) that is run; longer ones are extrapolated.
     pub budget_seconds: f64,
 }
@@ -58,8 +64,11 @@ impl ScalingPlan {
         ScalingPlan {
             families,
             accelerators: ["baseline", "simd", "bvh"].map(String::from).to_vec(),
-            size: if quick { (16, 16) } else { (64, 64) },
+            // 128x128: at 64x64 a render of a million primitives is short enough that
+            // warming the caches with its freshly built tree is a fifth of its time.
+            size: if quick { (16, 16) } else { (128, 128) },
             repeats: if quick { 1 } else { 3 },
+            min_seconds: if quick { 0.0 } else { 0.25 },
             budget_seconds: if quick { 0.2 } else { 2.0 },
         }
     }
@@ -137,7 +146,7 @@ pub fn run_scaling(
                     ));
                 } else {
                     progress.message(&format!("{name}: {accel} ({primitives} primitives)"));
-                    let m = measure(&scene, &options, &set, plan.repeats, &name)?;
+                    let m = measure(&scene, &options, &set, plan, stop, &name)?;
                     last[a] = Some((primitives, m.render_seconds));
                     points.push(ScalingPoint {
                         family: family.program.to_string(),
@@ -163,6 +172,7 @@ pub fn run_scaling(
         width: plan.size.0,
         height: plan.size.1,
         repeats: plan.repeats,
+        min_seconds: plan.min_seconds,
         budget_seconds: plan.budget_seconds,
         points,
         fits,
@@ -212,22 +222,19 @@ fn measure(
     scene: &Scene,
     options: &RenderOptions,
     set: &VariantSet,
-    repeats: u32,
+    plan: &ScalingPlan,
+    stop: &AtomicBool,
     name: &str,
 ) -> Result<Measured, RunError> {
     let fail = |e: tracer::RenderError| RunError::render(name, &e);
     let counted = render_variant::<Count>(scene, options, set, &|_| {}).map_err(fail)?;
     let counts: Counts = counted.rendered.counts().unwrap_or_default();
-    let mut tracing = Vec::new();
-    let mut building = Vec::new();
-    let mut accelerator_bytes = counted.accelerator_bytes;
-    for _ in 0..repeats {
-        let out = render_variant::<NoCount>(scene, options, set, &|_| {}).map_err(fail)?;
-        tracing.push(out.tracing.as_secs_f64());
-        building.push(out.preprocessing.as_secs_f64());
-        accelerator_bytes = out.accelerator_bytes;
-    }
-    let render_seconds = median(&mut tracing);
+    let policy = TimingPolicy::new(plan.repeats, plan.min_seconds);
+    let timed = timing::measure(&policy, stop, || {
+        render_variant::<NoCount>(scene, options, set, &|_| {}).map_err(fail)
+    })?;
+    let render_seconds = timed.time.median;
+    let accelerator_bytes = timed.last.accelerator_bytes;
     let rays = counts.rays.total();
     let per_ray = |x: u64| x as f64 / rays.max(1) as f64;
     let t = counts.tests;
@@ -243,21 +250,12 @@ fn measure(
             seconds_per_ray: render_seconds / rays.max(1) as f64,
             tests_per_ray: Some(per_ray(tests)),
             nodes_per_ray: Some(per_ray(counts.accel.nodes_visited)),
-            build_seconds: Some(median(&mut building)),
+            build_seconds: Some(timed.preprocessing),
             accelerator_bytes: Some(accelerator_bytes as u64),
             scene_bytes: scene.memory_bytes() as u64,
         },
         render_seconds,
     })
-}
-
-fn median(values: &mut [f64]) -> f64 {
-    values.sort_by(f64::total_cmp);
-    match values.len() {
-        0 => f64::NAN,
-        n if n % 2 == 1 => values[n / 2],
-        n => 0.5 * (values[n / 2 - 1] + values[n / 2]),
-    }
 }
 
 /// Fits each family × accelerator's measured points and fills its unmeasured ones.

@@ -25,10 +25,11 @@ pub struct ScalingArgs {
     /// repeat for several [default: balls:1-6, shells:1-13:2, tetra:2-10:2].
     #[arg(long, value_name = "SPD:FROM-TO[:STEP]", value_parser = parse_family)]
     family: Vec<Family>,
-    /// Frame of every render, pixel centres [default: 64x64].
+    /// Frame of every render, pixel centres [default: 128x128].
     #[arg(long, value_name = "WxH", value_parser = parse_size)]
     size: Option<(u32, u32)>,
-    /// Timed renders per point (the median is kept) [default: 3].
+    /// Timed renders per point, at least (the median is kept); more, up to 100, until
+    /// 0.25 s of tracing is measured [default: 3].
     #[arg(long, value_name = "N", value_parser = clap::value_parser!(u32).range(1..=100))]
     repeats: Option<u32>,
     /// Brute-force and SIMD renders predicted longer than this are extrapolated

@@ -38,6 +38,7 @@ pub mod color;
 pub mod counter;
 pub mod fuzz_check;
 pub mod generators;
+mod huge_pages;
 pub mod image_io;
 pub mod nff;
 pub mod nff_writer;

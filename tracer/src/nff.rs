@@ -8,6 +8,7 @@
 
 use crate::color::Rgb;
 use crate::counter::{Counter, NoCount};
+use crate::huge_pages;
 use crate::primitives::{Cone, Cylinder, GeometryError, Patch, Polygon, Sphere};
 use crate::scene::{Light, Material, Scene, View};
 use crate::vec3::Vec3;
@@ -626,11 +627,11 @@ impl<'a> Parser<'a> {
         scene.background = background;
         scene.lights = lights;
         scene.materials = materials;
-        scene.spheres = scene_parts.spheres;
-        scene.cylinders = scene_parts.cylinders;
-        scene.cones = scene_parts.cones;
-        scene.polygons = scene_parts.polygons;
-        scene.patches = scene_parts.patches;
+        scene.spheres = huge_pages::rehoused(scene_parts.spheres);
+        scene.cylinders = huge_pages::rehoused(scene_parts.cylinders);
+        scene.cones = huge_pages::rehoused(scene_parts.cones);
+        scene.polygons = huge_pages::rehoused(scene_parts.polygons);
+        scene.patches = huge_pages::rehoused(scene_parts.patches);
         Ok(scene)
     }
 
