@@ -7,7 +7,9 @@
 //! [`sections`], the charts of [`charts`] and the numbers written by [`format`].
 //! Renderers only lay the document out: [`html`] (one self-contained file), [`pdf`]
 //! (typst, with the template `templates/report.typ`) and [`text`] (tables on a
-//! terminal). This crate never renders a scene.
+//! terminal). Per-pixel counter maps leave as NumPy arrays ([`npy`]) and as
+//! false-colour pictures with a legend ([`pixel_maps`]). This crate never renders a
+//! scene.
 
 pub mod charts;
 pub mod document;
@@ -18,7 +20,9 @@ pub mod fuzz_check;
 pub mod gallery;
 pub mod gate_text;
 pub mod html;
+pub mod npy;
 pub mod pdf;
+pub mod pixel_maps;
 pub mod scaling_text;
 pub mod sections;
 pub mod text;

@@ -14,6 +14,7 @@ pub mod created;
 pub mod gate;
 pub mod hardware;
 pub mod json_schema;
+pub mod pixel_stats;
 mod read;
 pub mod scaling;
 pub mod schema;

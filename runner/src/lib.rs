@@ -12,6 +12,7 @@
 //!   what a time covers (tracing; preprocessing apart);
 //! - [`calibration`]: the fixed kernel timed between renders (the gate's yardstick);
 //! - [`render_job`]: one render with its phase times (`rtprof render`, `count`);
+//! - [`pixel_maps`]: per-sample records into per-pixel maps (NPY, PNG, JSON);
 //! - [`variant_catalogue`]: what each variant does and how accurate it is;
 //! - [`variant_job`]: one variant on one scene: counts, timed renders, picture;
 //! - [`estimate`]: how long a brute-force render of a big scene will take;
@@ -45,6 +46,7 @@ pub mod hardware_tables;
 pub mod machine;
 pub mod merge;
 pub mod messages;
+pub mod pixel_maps;
 pub mod pool;
 pub mod profile_files;
 pub mod profile_job;

@@ -33,6 +33,8 @@ pub struct RenderSettings {
     /// Ray-tree depth (default: the SPD's 5).
     pub depth: Option<u32>,
     pub limits: Limits,
+    /// Record each sample's work ([`tracer::SampleStats`], for per-pixel maps).
+    pub per_sample: bool,
 }
 
 impl RenderSettings {
@@ -49,6 +51,7 @@ impl RenderSettings {
         if let Some(depth) = self.depth {
             options.max_depth = depth;
         }
+        options.per_sample = self.per_sample;
         options
     }
 }

@@ -51,6 +51,7 @@ impl RenderFlags {
             threads: self.threads,
             depth: self.depth,
             limits: self.limits.limits(),
+            per_sample: false,
         }
     }
 }
@@ -139,10 +140,22 @@ impl SceneArgs {
     /// Loads the scene and renders it with counter `C`, progress on stderr.
     /// A brute-force render of a big scene first says how long it will take.
     pub fn run<C: Counter>(&self, mode: ShadingMode) -> Result<SceneRender<C>> {
+        self.run_with(mode, false)
+    }
+
+    /// [`SceneArgs::run`], recording each sample's work when `per_sample`.
+    pub fn run_with<C: Counter>(
+        &self,
+        mode: ShadingMode,
+        per_sample: bool,
+    ) -> Result<SceneRender<C>> {
         let request = RenderRequest {
             scene: &self.scene,
             variants: VariantSet::parse(&self.variant)?,
-            settings: self.render.settings(),
+            settings: RenderSettings {
+                per_sample,
+                ..self.render.settings()
+            },
             mode,
         };
         // Loaded twice only without an accelerator, where the render costs far more.

@@ -42,6 +42,7 @@ mod huge_pages;
 pub mod image_io;
 pub mod nff;
 pub mod nff_writer;
+pub mod pixel_stats;
 pub mod primitives;
 pub mod ray;
 pub mod render;
@@ -59,10 +60,11 @@ pub use counter::{
 };
 pub use nff::{Limits, LoadError, NffError, load_nff, load_nff_with_limits, parse_nff};
 pub use nff_writer::{scene_to_nff, write_scene};
+pub use pixel_stats::SampleStats;
 pub use ray::{Hit, PrimKind, PrimRef, Ray};
 pub use render::{Frame, RenderError, RenderMethod, RenderOptions, Rendered, render};
 pub use scene::{Light, Material, Scene, View};
-pub use shading::{MAX_DEPTH, ShadingMode};
+pub use shading::{MAX_DEPTH, RayLog, ShadingMode};
 pub use variants::{
     Accelerator, DiffuseForm, SqrtMethod, Variant, VariantConfig, VariantError, VariantRender,
     VariantSet, render_variant,

@@ -16,10 +16,12 @@ use crate::camera::{Camera, Projection, Sampling};
 use crate::color::Rgb;
 use crate::counter::{Counter, Counts, Phase, RayCounts};
 use crate::nff::Limits;
+use crate::pixel_stats::{SampleRows, SampleStats};
 use crate::scene::Scene;
-use crate::shading::{MAX_DEPTH, Shader, ShadingMode};
+use crate::shading::{MAX_DEPTH, RayLog, Shader, ShadingMode};
 use crate::variants::diffuse::DiffuseForm;
 use rayon::prelude::*;
+use std::time::Instant;
 
 /// What to render: the choices of whoever asks for the picture.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -33,6 +35,10 @@ pub struct RenderOptions {
     pub max_depth: u32,
     /// Image size and depth limits checked before anything is allocated.
     pub limits: Limits,
+    /// Record each sample's counts, rays, depth and time ([`Rendered::samples`], for
+    /// the per-pixel maps). Costs a clock read and, when counting, a counter merge per
+    /// sample.
+    pub per_sample: bool,
 }
 
 /// How the renderer computes the picture: the choices of the variant set that the
@@ -72,6 +78,7 @@ impl RenderOptions {
             mode,
             max_depth: MAX_DEPTH,
             limits: Limits::default(),
+            per_sample: false,
         }
     }
 
@@ -126,6 +133,8 @@ pub struct Rendered<C> {
     pub frame: Frame,
     pub counter: C,
     pub rays: RayCounts,
+    /// Each sample's work, when [`RenderOptions::per_sample`] asked for it.
+    pub samples: Option<SampleStats>,
 }
 
 impl<C: Counter> Rendered<C> {
@@ -172,49 +181,80 @@ pub fn render<C: Counter, I: Intersector>(
     let (columns, rows) = camera.grid();
     let from_eye = method.projection == Projection::EyeRows;
 
-    let traced: Vec<(Vec<Rgb>, C, RayCounts)> = (0..rows)
+    let traced: Vec<TracedRow<C>> = (0..rows)
         .into_par_iter()
         .map(|row| {
             let _phase = C::enter_phase(Phase::SampleRow);
             let mut c = C::default();
-            let mut rays = RayCounts::default();
+            let mut rays = RayLog::default();
             // The bounded walk: the row's base direction once, then one step per pixel.
             let row_base = from_eye.then(|| {
                 let _phase = C::enter_phase(Phase::CameraRay);
                 camera.row_base(row, &mut c)
             });
+            let trace = |column: u32, c: &mut C, rays: &mut RayLog| {
+                if let Some(base) = row_base {
+                    let ray = {
+                        let _phase = C::enter_phase(Phase::CameraRay);
+                        camera.ray_from_eye(column, base, c)
+                    };
+                    shader.primary_from_eye(&ray, c, rays)
+                } else {
+                    let ray = {
+                        let _phase = C::enter_phase(Phase::CameraRay);
+                        camera.ray(column, row, c)
+                    };
+                    shader.primary(&ray, c, rays)
+                }
+            };
+            let mut records = options
+                .per_sample
+                .then(|| SampleRows::with_capacity(columns as usize, C::ENABLED));
             let samples = (0..columns)
                 .map(|column| {
                     if method.checkerboard && (column + row) % 2 == 1 {
                         // Filled from the neighbours after the loop.
+                        if let Some(records) = &mut records {
+                            records.push_untraced();
+                        }
                         Rgb::BLACK
-                    } else if let Some(base) = row_base {
-                        let ray = {
-                            let _phase = C::enter_phase(Phase::CameraRay);
-                            camera.ray_from_eye(column, base, &mut c)
-                        };
-                        shader.primary_from_eye(&ray, &mut c, &mut rays)
+                    } else if let Some(records) = &mut records {
+                        // Each sample on its own counter, then added to the row's.
+                        let (mut own, mut own_rays) = (C::default(), RayLog::default());
+                        let start = Instant::now();
+                        let colour = trace(column, &mut own, &mut own_rays);
+                        records.push(start.elapsed(), &own, &own_rays);
+                        c.merge(&own);
+                        rays.merge(&own_rays);
+                        colour
                     } else {
-                        let ray = {
-                            let _phase = C::enter_phase(Phase::CameraRay);
-                            camera.ray(column, row, &mut c)
-                        };
-                        shader.primary(&ray, &mut c, &mut rays)
+                        trace(column, &mut c, &mut rays)
                     }
                 })
                 .collect();
             progress(1);
-            (samples, c, rays)
+            TracedRow {
+                samples,
+                counter: c,
+                rays: rays.counts,
+                records,
+            }
         })
         .collect();
 
     let pixel_fill = C::enter_phase(Phase::PixelFill);
     let mut ray_counts = RayCounts::default();
     let mut samples = Vec::with_capacity(columns as usize * rows as usize);
-    for (row, c, rays) in traced {
-        counter.merge(&c);
-        ray_counts.merge(&rays);
-        samples.extend(row);
+    let mut records = options
+        .per_sample
+        .then(|| SampleStats::new(columns, rows, C::ENABLED));
+    for row in traced {
+        counter.merge(&row.counter);
+        ray_counts.merge(&row.rays);
+        samples.extend(row.samples);
+        if let (Some(all), Some(part)) = (&mut records, row.records) {
+            all.append(part);
+        }
     }
     if method.checkerboard {
         fill_checkerboard(&mut samples, columns as usize, rows as usize);
@@ -232,7 +272,16 @@ pub fn render<C: Counter, I: Intersector>(
         },
         counter,
         rays: ray_counts,
+        samples: records,
     })
+}
+
+/// One sample row's result, merged in row order after the parallel loop.
+struct TracedRow<C> {
+    samples: Vec<Rgb>,
+    counter: C,
+    rays: RayCounts,
+    records: Option<SampleRows>,
 }
 
 /// Sets every odd (`column + row`) sample to the mean of its even 4-neighbours.

@@ -46,6 +46,27 @@ pub enum ShadingMode {
     DiffuseOnly,
 }
 
+/// What the shader records of the rays it traces: the SPD ray counts, and the deepest
+/// ray-tree level reached (a maximum, so it is not one of the counts, which add up).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct RayLog {
+    pub counts: RayCounts,
+    /// Deepest level traced, the eye ray being 1 (0: nothing traced).
+    pub deepest: u32,
+}
+
+impl RayLog {
+    fn reached(&mut self, depth: u32) {
+        self.deepest = self.deepest.max(depth);
+    }
+
+    /// Adds `other`'s counts and keeps the deeper of the two levels.
+    pub fn merge(&mut self, other: &RayLog) {
+        self.counts.merge(&other.counts);
+        self.deepest = self.deepest.max(other.deepest);
+    }
+}
+
 /// Maximum ray-tree depth; the eye ray is depth 1 (SPD rule 7).
 pub const MAX_DEPTH: u32 = 5;
 
@@ -111,8 +132,9 @@ impl<'s, I: Intersector> Shader<'s, I> {
 
     /// The sample value of one eye ray (depth 1). Counts `rays.primary` and
     /// `rays.primary_hit`.
-    pub fn primary<C: Counter>(&self, ray: &Ray, c: &mut C, rays: &mut RayCounts) -> Rgb {
-        rays.primary += 1;
+    pub fn primary<C: Counter>(&self, ray: &Ray, c: &mut C, rays: &mut RayLog) -> Rgb {
+        rays.counts.primary += 1;
+        rays.reached(1);
         c.tally(Stat::Trace);
         let hit = {
             let _phase = C::enter_phase(Phase::ClosestHit);
@@ -126,9 +148,10 @@ impl<'s, I: Intersector> Shader<'s, I> {
         &self,
         ray: &Ray<true>,
         c: &mut C,
-        rays: &mut RayCounts,
+        rays: &mut RayLog,
     ) -> Rgb {
-        rays.primary += 1;
+        rays.counts.primary += 1;
+        rays.reached(1);
         c.tally(Stat::Trace);
         let hit = {
             let _phase = C::enter_phase(Phase::ClosestHit);
@@ -142,7 +165,7 @@ impl<'s, I: Intersector> Shader<'s, I> {
         ray: &Ray,
         hit: Option<Hit>,
         c: &mut C,
-        rays: &mut RayCounts,
+        rays: &mut RayLog,
     ) -> Rgb {
         let background = match self.mode {
             ShadingMode::Color => self.scene.background,
@@ -153,7 +176,7 @@ impl<'s, I: Intersector> Shader<'s, I> {
         let Some(hit) = hit else {
             return background;
         };
-        rays.primary_hit += 1;
+        rays.counts.primary_hit += 1;
         match self.mode {
             ShadingMode::Color => self.shade(ray, &hit, 1, c, rays),
             ShadingMode::Gray => Rgb::gray(self.shade(ray, &hit, 1, c, rays).luminance()),
@@ -162,7 +185,8 @@ impl<'s, I: Intersector> Shader<'s, I> {
     }
 
     /// Colour seen along a secondary `ray` at tree depth `depth` (> 1).
-    pub fn trace<C: Counter>(&self, ray: &Ray, depth: u32, c: &mut C, rays: &mut RayCounts) -> Rgb {
+    pub fn trace<C: Counter>(&self, ray: &Ray, depth: u32, c: &mut C, rays: &mut RayLog) -> Rgb {
+        rays.reached(depth);
         c.tally(Stat::Trace);
         let hit = {
             let _phase = C::enter_phase(Phase::ClosestHit);
@@ -195,7 +219,7 @@ impl<'s, I: Intersector> Shader<'s, I> {
         hit: &Hit,
         depth: u32,
         c: &mut C,
-        rays: &mut RayCounts,
+        rays: &mut RayLog,
     ) -> Rgb {
         let _phase = C::enter_phase(Phase::Shading);
         c.tally(Stat::Shade);
@@ -222,7 +246,7 @@ impl<'s, I: Intersector> Shader<'s, I> {
             let distance_sq = c.dot(to_light, to_light);
             let distance = c.sqrt(distance_sq);
             let l = c.scale(to_light, 1.0 / distance);
-            rays.shadow += 1;
+            rays.counts.shadow += 1;
             let shadow = Ray {
                 origin: above,
                 dir: l,
@@ -232,7 +256,7 @@ impl<'s, I: Intersector> Shader<'s, I> {
                 self.accel.occluded(&shadow, 0.0, distance, c)
             };
             if blocked {
-                rays.shadow_blocked += 1;
+                rays.counts.shadow_blocked += 1;
                 continue;
             }
             let cos_theta = match self.sphere_diffuse(hit, s.point, light_index, c) {
@@ -250,7 +274,7 @@ impl<'s, I: Intersector> Shader<'s, I> {
                 let eta = if s.front { 1.0 / m.ior } else { m.ior };
                 match refract(ray.dir, s.normal, eta, c) {
                     Some(dir) => {
-                        rays.refraction += 1;
+                        rays.counts.refraction += 1;
                         let below = c.sub(s.point, lift);
                         let refracted = self.trace(&Ray { origin: below, dir }, depth + 1, c, rays);
                         color += refracted * m.t;
@@ -260,7 +284,7 @@ impl<'s, I: Intersector> Shader<'s, I> {
                 }
             }
             if let Some(dir) = mirror {
-                rays.reflection += 1;
+                rays.counts.reflection += 1;
                 let reflected = self.trace(&Ray { origin: above, dir }, depth + 1, c, rays);
                 color += reflected * reflect_weight;
             }

@@ -8,7 +8,10 @@
 //! and with AVX2 + FMA, chosen at run time when the CPU has them. Cones, polygons and
 //! patches are tested one by one as in brute force.
 //!
-//! Counts: every lane holding a primitive counts one test with the operations of the
+//! Counts: every chunk tested issues [`LANES`] lanes (`accel.lanes_issued`), of which
+//! those holding a primitive are active (`accel.lanes_active`); their ratio is the
+//! lane utilization, low when a scene has fewer primitives of a kind than lanes. Every
+//! lane holding a primitive counts one test with the operations of the
 //! scalar test (`sub`, `dot`s, a `sqrt` where the discriminant is positive); a hit is a
 //! lane whose distance falls inside the interval known when its chunk started (brute
 //! force shrinks the interval after every primitive, so `hits` may differ slightly;
@@ -436,6 +439,8 @@ fn count_lanes<C: Counter>(
     test: Stat,
 ) {
     let n = live as u64;
+    c.tally_n(Stat::LanesIssued, LANES as u64);
+    c.tally_n(Stat::LanesActive, n);
     c.tally_n(test, n);
     c.tally_n(Stat::Sub, subs * n);
     c.tally_n(Stat::Dot, dots * n);
@@ -500,6 +505,30 @@ mod tests {
             text += &format!("c\n{x} 1 -1 0.3\n{x} 1.5 1 0.3\n");
         }
         parse_nff(&text, "lanes.nff").unwrap_or_else(|e| panic!("{e}"))
+    }
+
+    #[test]
+    fn lane_utilization_counts_padding_lanes_as_idle() {
+        // 19 spheres: chunks of 8, 8 and 3; 11 cylinders: 8 and 3. A ray that misses
+        // everything tests every chunk: 5 chunks issue 40 lanes, 30 of them active.
+        let scene = scene();
+        let simd = Simd::new(&scene);
+        let away: Ray = Ray {
+            origin: Vec3::new(0.0, 0.0, 50.0),
+            dir: Vec3::new(0.0, 0.0, 1.0),
+        };
+        let mut c = Count::default();
+        assert!(simd.closest_hit(&away, 0.0, &mut c).is_none());
+        assert_eq!(c.get(Stat::LanesIssued), 40);
+        assert_eq!(c.get(Stat::LanesActive), 30);
+        assert_eq!(c.get(Stat::SphereTest) + c.get(Stat::CylinderTest), 30);
+        // A shadow query that misses tests the same chunks.
+        let mut c = Count::default();
+        assert!(!simd.occluded(&away, 0.0, f32::INFINITY, &mut c));
+        assert_eq!(
+            (c.get(Stat::LanesIssued), c.get(Stat::LanesActive)),
+            (40, 30)
+        );
     }
 
     #[test]

@@ -88,6 +88,12 @@ pub struct TestCounts {
 pub struct AccelCounts {
     pub nodes_visited: u64,
     pub leaves_visited: u64,
+    /// SIMD lanes issued: 8 per chunk of primitives tested (variant `simd`).
+    #[serde(default)]
+    pub lanes_issued: u64,
+    /// Lanes issued that held a primitive (the rest are padding of a last chunk).
+    #[serde(default)]
+    pub lanes_active: u64,
 }
 
 /// Every count of one render, in the JSON shape of `rtprof count --json`

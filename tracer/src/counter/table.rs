@@ -169,9 +169,11 @@ counter_table! {
     _ => rays.shadow_blocked: "shadow rays that found an occluder" [];
     _ => rays.reflection: "reflection rays spawned" [];
     _ => rays.refraction: "refraction rays spawned" [];
-    // accel.*: the BVH's traversal (zero for the other structures).
+    // accel.*: the BVH's traversal and the SIMD lanes (zero for the other structures).
     NodesVisited => accel.nodes_visited: "BVH nodes visited" [];
     LeavesVisited => accel.leaves_visited: "BVH leaves visited" [];
+    LanesIssued => accel.lanes_issued: "SIMD lanes issued (8 per chunk tested)" [];
+    LanesActive => accel.lanes_active: "SIMD lanes issued that held a primitive" [];
 }
 
 /// Profiled functions whose calls combine counters.
@@ -291,7 +293,7 @@ mod tests {
                 "{stat:?}"
             );
         }
-        assert_eq!(STAT_COUNT, 27);
+        assert_eq!(STAT_COUNT, 29);
         // The rest are the six ray counts.
         let rays: Vec<_> = COUNTERS.iter().filter(|d| d.stat.is_none()).collect();
         assert_eq!(rays.len(), 6);
@@ -313,7 +315,7 @@ mod tests {
             .collect();
         // Every value is distinct, so equal maps mean every key reads its own field.
         assert_eq!(rows, leaves);
-        assert_eq!(rows.values().collect::<BTreeSet<_>>().len(), 33);
+        assert_eq!(rows.values().collect::<BTreeSet<_>>().len(), 35);
         assert_eq!(
             by_key("tests.sphere.tests").map(|d| d.stat),
             Some(Some(Stat::SphereTest))

@@ -176,12 +176,14 @@ impl Job<'_> {
             frame,
             counter,
             rays,
+            samples,
         } = out.rendered;
         Ok(VariantRender {
             rendered: Rendered {
                 frame,
                 counter: counter.inner,
                 rays,
+                samples,
             },
             preprocessing: out.preprocessing,
             tracing: out.tracing,
