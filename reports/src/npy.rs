@@ -57,12 +57,16 @@ pub enum NpyError {
         columns: usize,
         len: usize,
     },
+    /// A header longer than version 1.0's 16-bit length field allows (not possible
+    /// for two dimensions; kept as an error rather than a panic).
+    #[error("an NPY header of {0} bytes does not fit version 1.0")]
+    HeaderTooLong(usize),
 }
 
 /// The NPY header of a `rows` x `columns` C-order array of `descr`: magic, version
 /// 1.0, header length and the dict literal, padded with spaces and ended by a newline
 /// so that the data starts at a multiple of [`DATA_ALIGNMENT`].
-fn header(descr: &str, rows: usize, columns: usize) -> Vec<u8> {
+fn header(descr: &str, rows: usize, columns: usize) -> Result<Vec<u8>, NpyError> {
     // The trailing ", " inside the braces is how NumPy itself writes the dict.
     let dict =
         format!("{{'descr': '{descr}', 'fortran_order': False, 'shape': ({rows}, {columns}), }}");
@@ -71,7 +75,7 @@ fn header(descr: &str, rows: usize, columns: usize) -> Vec<u8> {
     // The dict is at most about 100 characters (two usize numbers), so the padded
     // header is at most 128 bytes, far below the u16 limit of version 1.0.
     let header_len_field =
-        u16::try_from(header_len).expect("an NPY header of two dimensions fits in 64 KiB");
+        u16::try_from(header_len).map_err(|_| NpyError::HeaderTooLong(header_len))?;
     let mut out = Vec::with_capacity(data_offset);
     out.extend_from_slice(MAGIC);
     out.extend_from_slice(&[1, 0]);
@@ -79,7 +83,7 @@ fn header(descr: &str, rows: usize, columns: usize) -> Vec<u8> {
     out.extend_from_slice(dict.as_bytes());
     out.resize(data_offset - 1, b' ');
     out.push(b'\n');
-    out
+    Ok(out)
 }
 
 /// The bytes of an NPY file (version 1.0) of the `rows` x `columns` array `data`,
@@ -97,7 +101,7 @@ pub fn npy_bytes<T: NpyElement>(
             len: data.len(),
         });
     }
-    let mut out = header(T::DESCR, rows, columns);
+    let mut out = header(T::DESCR, rows, columns)?;
     out.reserve_exact(data.len() * T::SIZE);
     for &element in data {
         element.append_le_bytes(&mut out);

@@ -186,6 +186,21 @@ pub struct BvhStats {
     /// scene).
     #[serde(default)]
     pub bytes: usize,
+    /// The tree's surface area heuristic cost: the expected cost of a ray that enters
+    /// the root box, for random lines (a box is entered with probability its area over
+    /// the root's), each interior node costing [`TRAVERSAL_COST`] and each primitive
+    /// test 1: `Σ_interior 0.5 A(n)/A(root) + Σ_leaves N(l) A(l)/A(root)`.
+    #[serde(default)]
+    pub sah_cost: f64,
+    /// What the same model predicts per ray that enters the root box, searching the
+    /// whole line (no early exit): boxes tested (the root and both children of every
+    /// interior node entered), leaves entered and primitive tests.
+    #[serde(default)]
+    pub predicted_nodes_per_ray: f64,
+    #[serde(default)]
+    pub predicted_leaves_per_ray: f64,
+    #[serde(default)]
+    pub predicted_tests_per_ray: f64,
 }
 
 /// A SAH bounding volume hierarchy over a scene.
@@ -243,9 +258,38 @@ impl<'s> Bvh<'s> {
         }
         // Interior nodes are fewer than n - 1 when leaves hold several primitives.
         bvh.nodes.shrink_to_fit();
+        bvh.surface_area_metrics();
         bvh.stats.bytes = bvh.nodes.capacity() * std::mem::size_of::<NodePair>()
             + bvh.prims.capacity() * std::mem::size_of::<PrimRef>();
         bvh
+    }
+
+    /// Fills the SAH cost and the predictions of [`BvhStats`] from the built tree.
+    fn surface_area_metrics(&mut self) {
+        if self.prims.is_empty() {
+            return;
+        }
+        let root = f64::from(self.nodes[0].0[0].bounds().surface_area());
+        if !(root > 0.0) {
+            return;
+        }
+        let (mut interior, mut leaves, mut tests) = (0.0, 0.0, 0.0);
+        let every_node = std::iter::once(&self.nodes[0].0[0])
+            .chain(self.nodes[1..].iter().flat_map(|pair| pair.0.iter()));
+        for node in every_node {
+            let p = f64::from(node.bounds().surface_area()) / root;
+            if node.count == 0 {
+                interior += p;
+            } else {
+                leaves += p;
+                tests += p * f64::from(node.count);
+            }
+        }
+        let stats = &mut self.stats;
+        stats.sah_cost = f64::from(TRAVERSAL_COST) * interior + tests;
+        stats.predicted_nodes_per_ray = 1.0 + 2.0 * interior;
+        stats.predicted_leaves_per_ray = leaves;
+        stats.predicted_tests_per_ray = tests;
     }
 
     /// Figures about the tree.
@@ -628,6 +672,37 @@ mod tests {
         assert!(c.get(Stat::NodesVisited) >= 1);
         assert!(c.get(Stat::LeavesVisited) >= 1);
         assert!(tests < scene.primitive_count() as u64 / 2, "{tests}");
+    }
+
+    #[test]
+    fn sah_cost_of_a_two_leaf_tree_is_the_hand_computed_one() {
+        // Two unit spheres 10 apart: a root over both and one leaf per sphere.
+        // Leaf boxes 2x2x2: area 24 each. Root box 12x2x2: area 2(24 + 4 + 24) = 104.
+        // SAH = 0.5 * 104/104 + 1 * 24/104 + 1 * 24/104 = 0.5 + 48/104.
+        let scene = parse_nff(
+            "v\nfrom 0 -20 0\nat 0 0 0\nup 0 0 1\nangle 40\nhither 0\nresolution 4 4\n\
+             f 1 1 1 1 0 1 0 1\ns -5 0 0 1\ns 5 0 0 1\n",
+            "two.nff",
+        )
+        .unwrap_or_else(|e| panic!("{e}"));
+        let stats = Bvh::build(&scene).stats();
+        assert_eq!((stats.nodes, stats.leaves), (3, 2));
+        // The boxes are padded by 1e-5 of their size against rounding.
+        let close = |a: f64, b: f64| (a - b).abs() < 1e-3 * b;
+        assert!(close(stats.sah_cost, 0.5 + 48.0 / 104.0), "{stats:?}");
+        assert!(close(stats.predicted_nodes_per_ray, 3.0), "{stats:?}");
+        assert!(close(stats.predicted_leaves_per_ray, 48.0 / 104.0));
+        assert!(close(stats.predicted_tests_per_ray, 48.0 / 104.0));
+        // A shadow ray along the x axis through both spheres tests the 3 boxes the
+        // model counts for a line that enters the root, and stops at the first leaf.
+        let ray: Ray = Ray {
+            origin: Vec3::new(-20.0, 0.0, 0.0),
+            dir: Vec3::new(1.0, 0.0, 0.0),
+        };
+        let mut c = crate::counter::Count::default();
+        assert!(Bvh::build(&scene).occluded(&ray, 0.0, f32::INFINITY, &mut c));
+        assert_eq!(c.get(Stat::NodesVisited), 3);
+        assert_eq!(c.get(Stat::LeavesVisited), 1);
     }
 
     #[test]
