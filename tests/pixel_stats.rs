@@ -145,3 +145,35 @@ fn pixel_maps_sum_to_the_printed_counters() {
     assert!(!listed.contains(&"tests.cone.tests"));
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+/// Standard error of a run that must succeed.
+fn rtprof_stderr(args: &[&str]) -> String {
+    let out = Command::new(env!("CARGO_BIN_EXE_rtprof"))
+        .args(args)
+        .env("RTPROF_PROGRESS", "never")
+        .output()
+        .unwrap_or_else(|e| panic!("cannot run rtprof: {e}"));
+    assert!(out.status.success(), "rtprof {args:?} failed");
+    String::from_utf8_lossy(&out.stderr).into_owned()
+}
+
+#[test]
+fn count_states_lane_utilization_and_bvh_quality() {
+    // balls1 is one sphere (and no cylinder): every chunk of 8 lanes holds 1 sphere.
+    let simd = rtprof_stderr(&["count", "balls1", "--variant", "simd", "--size", "8x8"]);
+    assert!(
+        simd.contains("simd lanes: ") && simd.contains("(12.5 %)"),
+        "{simd}"
+    );
+    let bvh = rtprof_stderr(&["count", "spd:balls:2", "--variant", "bvh", "--size", "8x8"]);
+    assert!(bvh.contains("bvh: ") && bvh.contains("SAH cost"), "{bvh}");
+    assert!(
+        bvh.contains("bvh per ray, measured / predicted: boxes "),
+        "{bvh}"
+    );
+    let brute = rtprof_stderr(&["count", "balls1", "--size", "4x4"]);
+    assert!(
+        !brute.contains("bvh") && !brute.contains("simd lanes"),
+        "{brute}"
+    );
+}

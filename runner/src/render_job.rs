@@ -4,8 +4,9 @@
 
 use std::time::{Duration, Instant};
 
+use tracer::accel::BvhStats;
 use tracer::{
-    Counter, Limits, RenderOptions, Rendered, Sampling, Scene, ShadingMode, VariantSet,
+    Counter, Counts, Limits, RenderOptions, Rendered, Sampling, Scene, ShadingMode, VariantSet,
     render_variant,
 };
 
@@ -67,6 +68,8 @@ pub struct SceneRender<C> {
     pub variants: VariantSet,
     /// Bytes of the intersection structure the variant built (0: none).
     pub accelerator_bytes: usize,
+    /// The BVH's figures when the variant built one.
+    pub bvh: Option<BvhStats>,
 }
 
 /// Loads and renders; progress counts sample rows.
@@ -106,6 +109,7 @@ pub fn render_scene<C: Counter>(
         threads: pool.current_num_threads(),
         variants: req.variants.clone(),
         accelerator_bytes: out.accelerator_bytes,
+        bvh: out.bvh,
     })
 }
 
@@ -127,6 +131,52 @@ impl<C> SceneRender<C> {
             rays.primary,
             rays.total() as f64 / secs,
         ) + &format!("\n{}", self.memory_line())
+    }
+
+    /// How good the structure is, from its own figures and the render's `counts`: for a
+    /// BVH, its size, SAH cost and the boxes, leaves and tests per ray the surface
+    /// area model predicts against those measured; for SIMD lanes, how many of the
+    /// lanes issued held a primitive. Nothing for brute force.
+    pub fn structure_lines(&self, counts: &Counts) -> Vec<String> {
+        use reports::format::{count, fixed, percent, plural};
+        let mut lines = Vec::new();
+        let rays = counts.rays.total().max(1) as f64;
+        let tests = counts.tests.sphere.tests
+            + counts.tests.cylinder.tests
+            + counts.tests.cone.tests
+            + counts.tests.polygon.tests
+            + counts.tests.patch.tests;
+        if let Some(b) = &self.bvh {
+            lines.push(format!(
+                "bvh: {} nodes ({} leaves of at most {}), depth {}; SAH cost {}",
+                count(b.nodes as u64),
+                count(b.leaves as u64),
+                plural(b.max_leaf_size, "primitive"),
+                b.max_depth,
+                fixed(b.sah_cost, 2)
+            ));
+            lines.push(format!(
+                "bvh per ray, measured / predicted: boxes {} / {}, leaves {} / {}, tests {} / {} (predicted for random lines through the root box, searched to the end)",
+                fixed(counts.accel.nodes_visited as f64 / rays, 1),
+                fixed(b.predicted_nodes_per_ray, 1),
+                fixed(counts.accel.leaves_visited as f64 / rays, 2),
+                fixed(b.predicted_leaves_per_ray, 2),
+                fixed(tests as f64 / rays, 2),
+                fixed(b.predicted_tests_per_ray, 2),
+            ));
+        }
+        if counts.accel.lanes_issued > 0 {
+            lines.push(format!(
+                "simd lanes: {} of {} issued held a primitive ({})",
+                count(counts.accel.lanes_active),
+                count(counts.accel.lanes_issued),
+                percent(
+                    100.0 * counts.accel.lanes_active as f64 / counts.accel.lanes_issued as f64,
+                    1
+                )
+            ));
+        }
+        lines
     }
 
     /// What the render held: scene, structure and framebuffer, and the process's peak.

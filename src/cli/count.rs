@@ -37,6 +37,9 @@ pub fn run(args: &CountArgs) -> Result<()> {
         print!("{}", counts.to_text());
     }
     eprintln!("{}", run.timing_report(&args.scene.scene));
+    for line in run.structure_lines(&counts) {
+        eprintln!("{line}");
+    }
     if let Some(dir) = &args.pixel_stats {
         write_pixel_stats(args, &run, dir)?;
     }
