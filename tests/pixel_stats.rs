@@ -5,7 +5,8 @@
 use std::path::{Path, PathBuf};
 use std::process::Command;
 
-fn rtprof(args: &[&str]) -> String {
+/// Standard output and standard error of a run that must succeed.
+fn rtprof_out_err(args: &[&str]) -> (String, String) {
     let out = Command::new(env!("CARGO_BIN_EXE_rtprof"))
         .args(args)
         .env("RTPROF_PROGRESS", "never")
@@ -16,7 +17,18 @@ fn rtprof(args: &[&str]) -> String {
         "rtprof {args:?} failed: {}",
         String::from_utf8_lossy(&out.stderr)
     );
-    String::from_utf8_lossy(&out.stdout).into_owned()
+    (
+        String::from_utf8_lossy(&out.stdout).into_owned(),
+        String::from_utf8_lossy(&out.stderr).into_owned(),
+    )
+}
+
+fn rtprof(args: &[&str]) -> String {
+    rtprof_out_err(args).0
+}
+
+fn rtprof_stderr(args: &[&str]) -> String {
+    rtprof_out_err(args).1
 }
 
 fn scratch(test: &str) -> PathBuf {
@@ -144,17 +156,6 @@ fn pixel_maps_sum_to_the_printed_counters() {
     // No map of work the render did not do: balls has no cones.
     assert!(!listed.contains(&"tests.cone.tests"));
     let _ = std::fs::remove_dir_all(&dir);
-}
-
-/// Standard error of a run that must succeed.
-fn rtprof_stderr(args: &[&str]) -> String {
-    let out = Command::new(env!("CARGO_BIN_EXE_rtprof"))
-        .args(args)
-        .env("RTPROF_PROGRESS", "never")
-        .output()
-        .unwrap_or_else(|e| panic!("cannot run rtprof: {e}"));
-    assert!(out.status.success(), "rtprof {args:?} failed");
-    String::from_utf8_lossy(&out.stderr).into_owned()
 }
 
 #[test]

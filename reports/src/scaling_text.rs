@@ -287,6 +287,19 @@ mod tests {
     }
 
     #[test]
+    fn the_headline_says_how_each_point_was_timed() {
+        let mut s = study(Vec::new());
+        assert_eq!(timing_text(&s), "median of 1");
+        s.repeats = 3;
+        s.min_seconds = 0.25;
+        assert_eq!(
+            timing_text(&s),
+            "median of at least 3 renders, more until 250 ms of tracing"
+        );
+        assert!(headline(&s).contains(", median of at least 3 renders,"));
+    }
+
+    #[test]
     fn growth_runs_between_the_measured_points_nearest_the_bounds() {
         let s = study(vec![
             point(10, "bvh", 50e-9, true),
