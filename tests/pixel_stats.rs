@@ -167,7 +167,27 @@ fn count_states_lane_utilization_and_bvh_quality() {
         "{simd}"
     );
     let bvh = rtprof_stderr(&["count", "spd:balls:2", "--variant", "bvh", "--size", "8x8"]);
-    assert!(bvh.contains("bvh: ") && bvh.contains("SAH cost"), "{bvh}");
+    assert!(
+        bvh.contains("bvh (binned_sah builder): ")
+            && bvh.contains("SAH cost")
+            && bvh.contains("end-point overlap "),
+        "{bvh}"
+    );
+    assert!(bvh.contains("bvh leaves by depth (root 1): "), "{bvh}");
+    let midpoint = rtprof_stderr(&[
+        "count",
+        "spd:balls:2",
+        "--variant",
+        "bvh",
+        "--size",
+        "8x8",
+        "--bvh-builder",
+        "midpoint",
+    ]);
+    assert!(midpoint.contains("bvh (midpoint builder): "), "{midpoint}");
+    // The midpoint split makes a leaf per primitive: 91 spheres and the floor, 92
+    // leaves of 1.
+    assert!(midpoint.contains("by size: 1:92"), "{midpoint}");
     assert!(
         bvh.contains("bvh per ray, measured / predicted: boxes "),
         "{bvh}"

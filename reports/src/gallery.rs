@@ -83,6 +83,11 @@ pub enum Picture {
 
 /// Reads `base/rel` and returns it as a PNG no wider than [`THUMBNAIL_WIDTH`].
 pub fn thumbnail(base: &Path, rel: &str) -> Picture {
+    thumbnail_within(base, rel, THUMBNAIL_WIDTH)
+}
+
+/// Reads `base/rel` and returns it as a PNG no wider than `max_width`.
+pub fn thumbnail_within(base: &Path, rel: &str, max_width: u32) -> Picture {
     let bytes = match std::fs::read(base.join(rel)) {
         Ok(b) => b,
         Err(e) => return Picture::Unusable(e.kind().to_string()),
@@ -90,7 +95,7 @@ pub fn thumbnail(base: &Path, rel: &str) -> Picture {
     if !bytes.starts_with(b"\x89PNG\r\n\x1a\n") {
         return Picture::Unusable("not a PNG file".to_string());
     }
-    match scale_png(&bytes, THUMBNAIL_WIDTH) {
+    match scale_png(&bytes, max_width) {
         Ok(Some(smaller)) => Picture::Png(smaller),
         Ok(None) => Picture::Png(bytes),
         Err(why) => Picture::Unusable(why),

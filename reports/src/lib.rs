@@ -1,7 +1,7 @@
 //! `reports`: the results of an rtprof suite and the reports made from them.
 //!
 //! Data flows one way: the suite runner fills [`results::Results`] (schema
-//! `rtprof.results/2`, the `results` crate); [`document::build`] turns the runs into
+//! `rtprof.results/3`, the `results` crate); [`document::build`] turns the runs into
 //! one report [`document::Document`] (sections of paragraphs, tables of typed cells,
 //! charts, image grids, flamegraphs, notes), with the section builders of
 //! [`sections`], the charts of [`charts`] and the numbers written by [`format`].

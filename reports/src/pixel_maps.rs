@@ -85,8 +85,7 @@ pub fn false_colour(values: &[f64], columns: u32, rows: u32, legend: &Legend) ->
     let factor = scale_factor(columns, rows);
     // No overflow: a factor above 1 keeps each side within MAX_SIDE.
     let (map_width, map_height) = (columns * factor, rows * factor);
-    let width = map_width.max(MIN_WIDTH);
-    let height = map_height.saturating_add(LEGEND_HEIGHT);
+    let (width, height) = picture_size(columns, rows);
     let mut image = RgbImage::from_pixel(width, height, WHITE);
 
     // A map narrower than the legend sits in the middle.
@@ -107,6 +106,17 @@ pub fn false_colour(values: &[f64], columns: u32, rows: u32, legend: &Legend) ->
     }
     draw_legend(&mut image, map_height, legend);
     image
+}
+
+/// The size in pixels of [`false_colour`]'s picture of a `columns` x `rows` map, its
+/// legend included (what a report needs to lay the picture out before reading it).
+pub fn picture_size(columns: u32, rows: u32) -> (u32, u32) {
+    let factor = scale_factor(columns, rows);
+    let (map_width, map_height) = (columns * factor, rows * factor);
+    (
+        map_width.max(MIN_WIDTH),
+        map_height.saturating_add(LEGEND_HEIGHT),
+    )
 }
 
 /// The whole enlargement of a `columns` x `rows` map (see [`false_colour`]).
@@ -302,6 +312,20 @@ mod tests {
         // Each value is one 24 x 24 square: the square's corners agree.
         assert_eq!(image.get_pixel(24, 0), image.get_pixel(47, 23));
         assert_ne!(image.get_pixel(23, 0), image.get_pixel(24, 0));
+    }
+
+    #[test]
+    fn the_picture_size_is_known_before_drawing() {
+        // Small (enlarged), narrower than the legend, tall and the SPD's corner grid.
+        for (columns, rows) in [(16, 8), (3, 40), (40, 600), (513, 513), (320, 240)] {
+            let values = vec![1.0; (columns * rows) as usize];
+            let image = false_colour(&values, columns, rows, &legend(0.0, 2.0));
+            assert_eq!(
+                picture_size(columns, rows),
+                (image.width(), image.height()),
+                "{columns}x{rows}"
+            );
+        }
     }
 
     #[test]

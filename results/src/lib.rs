@@ -9,8 +9,10 @@
 //! are checked with `tracer`'s variant set, the RMS band and the estimate are
 //! `analysis`'s, the hardware tables' figures are `hwmodel`'s.
 
+pub mod bvh_quality;
 pub mod change;
 pub mod created;
+pub mod efficiency;
 pub mod gate;
 pub mod hardware;
 pub mod json_schema;
@@ -24,10 +26,12 @@ pub mod validate;
 pub mod variant_name;
 
 pub use analysis::verdict::NOISE_THRESHOLD;
+pub use bvh_quality::BvhQuality;
 pub use created::rfc3339_utc;
 pub use hardware::{
     DeviceUse, HardwareResult, HwColumn, HwErrors, HwFigures, HwRow, HwRowKind, SceneHardware,
 };
+pub use pixel_stats::{PixelMap, PixelStats, VariantPixelMaps};
 pub use read::{FileError, ResultsError};
 pub use schema::*;
 pub use timing_policy::{TimeCovers, TimingPolicy};

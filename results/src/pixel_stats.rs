@@ -51,3 +51,16 @@ pub struct PixelMap {
     pub max: u64,
     pub mean: f64,
 }
+
+/// Where a suite put one variant's maps of a scene, and what they hold.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize, JsonSchema)]
+pub struct VariantPixelMaps {
+    pub variant: crate::VariantName,
+    /// The directory of the maps and their `pixel-stats.json`, relative to
+    /// results.json; the maps' file names are relative to it.
+    pub directory: String,
+    pub columns: u32,
+    pub rows: u32,
+    pub clock_resolution_ns: f64,
+    pub maps: Vec<PixelMap>,
+}

@@ -16,7 +16,10 @@ use serde::{Deserialize, Serialize};
 
 pub use analysis::{Band, Estimate, Verdict};
 
+use crate::bvh_quality::BvhQuality;
+pub use crate::efficiency::{Efficiency, MachinePeak, RayRates};
 use crate::hardware::{HardwareResult, SceneHardware};
+use crate::pixel_stats::VariantPixelMaps;
 use crate::timing_policy::TimingPolicy;
 use crate::variant_name::VariantName;
 
@@ -55,6 +58,9 @@ pub struct Results {
     /// any; their ids match the criterion benchmark doing the same work.
     #[serde(default)]
     pub instructions: Vec<InstructionCount>,
+    /// The machine's measured compute and bandwidth peaks (the roofline's roofs).
+    #[serde(default)]
+    pub peak: Option<MachinePeak>,
 }
 
 /// The machine the run was made on.
@@ -218,6 +224,12 @@ pub struct SceneResult {
     /// What the scene's renders hold in memory. `None` in older files.
     #[serde(default)]
     pub memory: Option<MemoryUse>,
+    /// The BVH of each build strategy, when the suite studied it on this scene.
+    #[serde(default)]
+    pub bvh_quality: Vec<BvhQuality>,
+    /// Per-pixel maps of the variants that wrote them (suite option `pixel_stats`).
+    #[serde(default)]
+    pub pixel_maps: Vec<VariantPixelMaps>,
 }
 
 /// Ray counts a reference publishes for a scene (the SPD's `Readme.txt` table).
@@ -301,6 +313,15 @@ pub struct VariantResult {
     pub quality: Option<Quality>,
     /// Gray histogram (256 bins) of the image; empty when there is no image.
     pub histogram: Vec<u64>,
+    /// `accel.lanes_active / accel.lanes_issued` for the SIMD batches (`simd` only).
+    #[serde(default)]
+    pub lane_utilization: Option<f64>,
+    /// The render as a point of the roofline model. `None` in older files.
+    #[serde(default)]
+    pub efficiency: Option<Efficiency>,
+    /// Time and rays per second by ray kind. `None` in older files.
+    #[serde(default)]
+    pub ray_rates: Option<RayRates>,
 }
 
 /// Image error against baseline.

@@ -320,6 +320,9 @@ fn variant_result(v: VariantResult, path: &str) -> Result<v2::VariantResult, Res
         heat_map: v.heat_map,
         quality,
         histogram: v.histogram,
+        lane_utilization: None,
+        efficiency: None,
+        ray_rates: None,
     })
 }
 
@@ -358,6 +361,8 @@ fn scene(s: SceneResult, path: &str) -> Result<v2::SceneResult, ResultsError> {
         calibration: None,
         published: None,
         memory: None,
+        bvh_quality: Vec::new(),
+        pixel_maps: Vec::new(),
     })
 }
 
@@ -473,6 +478,7 @@ impl Results {
                 .collect::<Result<_, _>>()?,
             criterion: self.criterion,
             instructions: self.instructions,
+            peak: None,
         })
     }
 }

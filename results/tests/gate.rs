@@ -52,6 +52,9 @@ fn variant(name: &str, median: f64, dots: u64) -> VariantResult {
         heat_map: None,
         quality: None,
         histogram: vec![0; 256],
+        lane_utilization: None,
+        efficiency: None,
+        ray_rates: None,
     }
 }
 
@@ -113,12 +116,15 @@ fn run(baseline_s: f64, bvh_s: f64, kernel_s: f64, dots: u64) -> Results {
             }),
             published: None,
             memory: None,
+            bvh_quality: Vec::new(),
+            pixel_maps: Vec::new(),
         }],
         profile: None,
         hardware: None,
         failures: Vec::new(),
         criterion: Vec::new(),
         instructions: Vec::new(),
+        peak: None,
     }
 }
 

@@ -40,6 +40,10 @@ pub struct SuiteDef {
     #[serde(default = "default_profile_samples")]
     pub profile_samples: u64,
     pub hardware_repeats: u32,
+    /// Scenes (by their name in results, e.g. `balls4`, `rings-small`) whose baseline,
+    /// simd and bvh renders also write per-pixel maps.
+    #[serde(default)]
+    pub pixel_stats: Vec<String>,
     /// The SPD databases, generated, each run twice (see [`SpdDef`]).
     #[serde(default)]
     pub spd: Option<SpdDef>,
@@ -76,6 +80,7 @@ pub struct QuickDef {
     pub profile_size: Option<[u32; 2]>,
     pub profile_samples: Option<u64>,
     pub hardware_repeats: Option<u32>,
+    pub pixel_stats: Option<Vec<String>>,
     pub spd: Option<SpdDef>,
 }
 
@@ -176,6 +181,7 @@ impl SuiteDef {
             self.profile_size = q.profile_size.unwrap_or(self.profile_size);
             self.profile_samples = q.profile_samples.unwrap_or(self.profile_samples);
             self.hardware_repeats = q.hardware_repeats.unwrap_or(self.hardware_repeats);
+            self.pixel_stats = q.pixel_stats.unwrap_or(self.pixel_stats);
             self.spd = q.spd.or(self.spd);
         }
         self

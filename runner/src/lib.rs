@@ -22,17 +22,21 @@
 //! - [`hardware_job`]: the FPGA model, emulator and software time on the same job;
 //! - [`hardware_prediction`]: `rtprof hw time`: frame time, fit and what-ifs;
 //! - [`hardware_tables`]: `rtprof hw table` as text; [`hardware_files`]: `hw render`, `hw mif`;
-//! - [`collect`]: measurements into results entries;
+//! - [`collect`]: measurements into results entries; [`bvh_study`]: the BVH's quality
+//!   per build strategy;
 //! - [`scaling`]: the growth study (`rtprof scaling`), cost per ray against scene size;
 //! - [`suite`]: the whole suite into one results value; [`shard`]: its deterministic
 //!   shares (`--shard I/N`); [`merge`]: shards' results joined into one;
 //! - [`report_files`]: results files read back, report.html and report.pdf written;
 //! - [`benchmarks`]: criterion estimates and instruction counts picked up from disk;
-//! - [`machine`]: machine, build and command line of a run;
+//! - [`machine`]: machine, build and command line of a run; [`machine_peak`]: its
+//!   measured compute and bandwidth roofs;
+//! - [`ray_rates`]: rays per second by kind, from a clocked pass;
 //! - [`staging`]: staged, atomic output; [`pool`]: worker threads;
 //! - [`progress`], [`error`]; [`messages`]: errors on one line, as rtprof prints them.
 
 pub mod benchmarks;
+pub mod bvh_study;
 pub mod calibration;
 pub mod collect;
 pub mod compare;
@@ -44,6 +48,7 @@ pub mod hardware_job;
 pub mod hardware_prediction;
 pub mod hardware_tables;
 pub mod machine;
+pub mod machine_peak;
 pub mod merge;
 pub mod messages;
 pub mod pixel_maps;
@@ -51,6 +56,7 @@ pub mod pool;
 pub mod profile_files;
 pub mod profile_job;
 pub mod progress;
+pub mod ray_rates;
 pub mod render_job;
 pub mod report_files;
 pub mod scaling;

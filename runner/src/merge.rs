@@ -45,7 +45,7 @@ pub fn read_part(path: &Path) -> Result<(PathBuf, Results), RunError> {
 }
 
 /// Every file `results` references, relative to its results.json: images, heat maps,
-/// emulator images, profile texts, flamegraphs and exports.
+/// emulator images, per-pixel maps, profile texts, flamegraphs and exports.
 pub fn referenced_files(results: &Results) -> Vec<String> {
     let mut files: Vec<String> = results.scenes.iter().flat_map(scene_files).collect();
     if let Some(profile) = &results.profile {
@@ -61,6 +61,13 @@ fn scene_files(scene: &SceneResult) -> Vec<String> {
     }
     if let Some(hw) = &scene.hardware {
         files.extend(hw.emulator_image.iter().chain(&hw.software_image).cloned());
+    }
+    for maps in &scene.pixel_maps {
+        files.push(format!("{}/pixel-stats.json", maps.directory));
+        for map in &maps.maps {
+            files.push(format!("{}/{}", maps.directory, map.npy));
+            files.push(format!("{}/{}", maps.directory, map.png));
+        }
     }
     files
 }

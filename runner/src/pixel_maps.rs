@@ -11,10 +11,13 @@ use std::path::Path;
 
 use results::pixel_stats::{PIXEL_STATS_SCHEMA, PixelMap, PixelStats};
 use tracer::counter::{COUNTERS, CounterDef, STAT_COUNT};
-use tracer::{SampleStats, Sampling};
+use tracer::{
+    Count, Counter, NoCount, RenderOptions, SampleStats, Sampling, VariantSet, render_variant,
+};
 
 use crate::error::RunError;
 use crate::staging::save;
+use crate::variant_job::RenderSetup;
 use tracer::image_io::encode_png_rgb8;
 
 /// The counters mapped, when the render did any of that work (a map of zeros says
@@ -173,6 +176,42 @@ pub fn maps_of(
         maps,
         frame_level,
     })
+}
+
+/// Records the maps of `set` on `setup`'s scene: one counted render and
+/// [`TIMED_PASSES`] uncounted ones, each keeping every sample's record.
+pub fn record_maps(setup: &RenderSetup, set: &VariantSet) -> Result<Maps, RunError> {
+    let options = RenderOptions {
+        per_sample: true,
+        ..*setup.options
+    };
+    let fail = |e: tracer::RenderError| RunError::render(setup.name, &e);
+    let missing = |what: &str| RunError::Render {
+        context: setup.name.to_string(),
+        message: format!("the counted render kept no {what}"),
+    };
+    let counted = setup
+        .pool
+        .install(|| render_variant::<Count>(setup.scene, &options, set, &|_| {}))
+        .map_err(fail)?;
+    let totals = counted
+        .rendered
+        .counter
+        .totals()
+        .ok_or_else(|| missing("counts"))?;
+    let samples = counted
+        .rendered
+        .samples
+        .ok_or_else(|| missing("per-sample records"))?;
+    let mut timed = Vec::with_capacity(TIMED_PASSES);
+    for _ in 0..TIMED_PASSES {
+        let run = setup
+            .pool
+            .install(|| render_variant::<NoCount>(setup.scene, &options, set, &|_| {}))
+            .map_err(fail)?;
+        timed.extend(run.rendered.samples);
+    }
+    maps_of(&samples, &timed, &totals)
 }
 
 /// What `pixel-stats.json` records besides the maps.

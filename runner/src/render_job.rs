@@ -36,7 +36,13 @@ pub struct RenderSettings {
     pub limits: Limits,
     /// Record each sample's work ([`tracer::SampleStats`], for per-pixel maps).
     pub per_sample: bool,
+    /// How the `bvh` variant builds its tree.
+    pub bvh_builder: tracer::BvhBuilder,
 }
+
+/// Largest scene whose end-point overlap `rtprof count` computes (it clips every
+/// primitive against the boxes it overlaps: seconds at this size).
+const EPO_MAX_PRIMITIVES: usize = 200_000;
 
 impl RenderSettings {
     /// The render options for `scene` (limits are checked when rendering).
@@ -53,6 +59,7 @@ impl RenderSettings {
             options.max_depth = depth;
         }
         options.per_sample = self.per_sample;
+        options.bvh_builder = self.bvh_builder;
         options
     }
 }
@@ -140,15 +147,28 @@ impl<C> SceneRender<C> {
     pub fn structure_lines(&self, counts: &Counts) -> Vec<String> {
         use reports::format::{count, fixed, percent, plural};
         let mut lines = Vec::new();
-        let rays = counts.rays.total().max(1) as f64;
-        let tests = counts.tests.sphere.tests
-            + counts.tests.cylinder.tests
-            + counts.tests.cone.tests
-            + counts.tests.polygon.tests
-            + counts.tests.patch.tests;
+        let per_ray = crate::bvh_study::PerRay::of(counts);
         if let Some(b) = &self.bvh {
+            let tree = tracer::Bvh::build_with(&self.scene, b.builder);
+            let epo = if self.scene.primitive_count() <= EPO_MAX_PRIMITIVES {
+                fixed(tree.end_point_overlap(), 2)
+            } else {
+                format!(
+                    "not computed (more than {} primitives)",
+                    count(EPO_MAX_PRIMITIVES as u64)
+                )
+            };
+            let histogram = |h: &[u64], offset: usize| {
+                h.iter()
+                    .enumerate()
+                    .filter(|&(_, &n)| n > 0)
+                    .map(|(i, n)| format!("{}:{}", i + offset, count(*n)))
+                    .collect::<Vec<_>>()
+                    .join(" ")
+            };
             lines.push(format!(
-                "bvh: {} nodes ({} leaves of at most {}), depth {}; SAH cost {}",
+                "bvh ({} builder): {} nodes ({} leaves of at most {}), depth {}; SAH cost {}, end-point overlap {epo}",
+                b.builder,
                 count(b.nodes as u64),
                 count(b.leaves as u64),
                 plural(b.max_leaf_size, "primitive"),
@@ -156,12 +176,17 @@ impl<C> SceneRender<C> {
                 fixed(b.sah_cost, 2)
             ));
             lines.push(format!(
+                "bvh leaves by depth (root 1): {}; by size: {}",
+                histogram(&tree.shape().depth_histogram, 1),
+                histogram(&tree.shape().leaf_size_histogram, 0)
+            ));
+            lines.push(format!(
                 "bvh per ray, measured / predicted: boxes {} / {}, leaves {} / {}, tests {} / {} (predicted for random lines through the root box, searched to the end)",
-                fixed(counts.accel.nodes_visited as f64 / rays, 1),
+                fixed(per_ray.nodes, 1),
                 fixed(b.predicted_nodes_per_ray, 1),
-                fixed(counts.accel.leaves_visited as f64 / rays, 2),
+                fixed(per_ray.leaves, 2),
                 fixed(b.predicted_leaves_per_ray, 2),
-                fixed(tests as f64 / rays, 2),
+                fixed(per_ray.tests, 2),
                 fixed(b.predicted_tests_per_ray, 2),
             ));
         }

@@ -11,19 +11,23 @@ use std::time::Instant;
 use analysis::{Band, compare, difference_heat_map, gray_histogram};
 use hwmodel::hw_scene::HwScene;
 use results::{
-    Calibration, FailedPart, Failure, ProfileResult, Results, SCHEMA, SceneHardware, SceneResult,
-    Shard, SuiteInfo, VariantName, VariantResult, slug,
+    Calibration, Efficiency, FailedPart, Failure, MachinePeak, ProfileResult, Results, SCHEMA,
+    SceneHardware, SceneResult, Shard, SuiteInfo, VariantName, VariantResult, slug,
 };
-use tracer::{RenderOptions, Sampling, Scene, ShadingMode, VariantSet, parse_nff};
+use tracer::{BvhBuilder, RenderOptions, Sampling, Scene, ShadingMode, VariantSet, parse_nff};
 
+use crate::bvh_study;
 use crate::collect::{count_map, quality};
 use crate::definition::SuiteDef;
 use crate::error::RunError;
 use crate::hardware_job::{hardware_tables, run_hardware};
 use crate::machine::{build_info, command_line, machine, now_rfc3339};
+use crate::machine_peak::{PeakPlan, measure_peak};
+use crate::pixel_maps::{MapsContext, record_maps, write_maps};
 use crate::pool::thread_pool;
 use crate::profile_job::ProfileJob;
 use crate::progress::Progress;
+use crate::ray_rates::ray_rates;
 use crate::scenes::{SceneSpec, extra_scenes, resolve_scene};
 use crate::staging::save_png;
 use crate::variant_job::{RenderSetup, VariantMeasurement};
@@ -144,11 +148,22 @@ impl Suite {
         let created = now_rfc3339();
         let pool = thread_pool(ctx.threads)?;
         let one_thread = thread_pool(Some(1))?;
+        ctx.progress.begin("machine", 0);
+        ctx.progress
+            .message("measuring the FMA and memory bandwidth peaks");
+        let plan = if self.quick {
+            PeakPlan::QUICK
+        } else {
+            PeakPlan::FULL
+        };
+        let peak = measure_peak(&pool, plan);
+        ctx.progress.end();
         let runner = SceneRunner {
             def: &self.def,
             ctx,
             pool: &pool,
             one_thread: &one_thread,
+            peak: &peak,
         };
         ctx.progress.begin("scenes", self.steps());
         let mut failures = Vec::new();
@@ -230,6 +245,7 @@ impl Suite {
             failures,
             criterion: Vec::new(),
             instructions: Vec::new(),
+            peak: Some(peak),
         })
     }
 }
@@ -259,6 +275,40 @@ fn published_rays(spec: &SceneSpec, options: &RenderOptions) -> Option<results::
         shadow: p.shadow_rays,
         tolerance: TOLERANCE,
     })
+}
+
+/// Frames up to this many pixels get the BVH study (the SPD scenes' small runs and the
+/// quick suite's scenes): two builders, each counted and timed again.
+const BVH_STUDY_PIXELS: u64 = 128 * 128;
+
+/// The variants whose per-pixel maps the suite writes.
+const MAPPED_VARIANTS: [&str; 3] = ["baseline", "simd", "bvh"];
+
+/// A render of `counts` that took `seconds` as a point under `peak`'s roofs.
+fn efficiency(
+    counts: &tracer::Counts,
+    scene: &Scene,
+    simd: bool,
+    seconds: f64,
+    peak: &MachinePeak,
+) -> Efficiency {
+    let flops = tracer::work_model::flops(counts);
+    let bytes = tracer::work_model::bytes_touched(counts, scene, simd);
+    let intensity = flops as f64 / bytes.max(1) as f64;
+    let achieved = if seconds > 0.0 {
+        flops as f64 / seconds / 1e9
+    } else {
+        0.0
+    };
+    let roof = peak.roof_gflops(intensity);
+    Efficiency {
+        flops,
+        bytes_moved: bytes,
+        arithmetic_intensity: intensity,
+        achieved_gflops: achieved,
+        roof_gflops: Some(roof),
+        fraction_of_roof: (roof > 0.0).then(|| achieved / roof),
+    }
 }
 
 /// What the scene's renders held: the scene, the largest structure a variant built and
@@ -297,6 +347,7 @@ struct SceneRunner<'a> {
     ctx: &'a RunContext<'a>,
     pool: &'a rayon::ThreadPool,
     one_thread: &'a rayon::ThreadPool,
+    peak: &'a MachinePeak,
 }
 
 impl SceneRunner<'_> {
@@ -343,7 +394,7 @@ impl SceneRunner<'_> {
         let mut reference: Option<analysis::RgbImage> = None;
         let memory = memory_use(&scene, &measured.variants);
         for (name, outcome) in names.iter().zip(measured.variants) {
-            match outcome.and_then(|m| self.variant_result(spec, m, reference.as_ref())) {
+            match outcome.and_then(|m| self.variant_result(spec, &scene, m, reference.as_ref())) {
                 Ok((v, image)) => {
                     if v.variant.is_reference() {
                         reference = Some(image);
@@ -360,6 +411,8 @@ impl SceneRunner<'_> {
             }
             self.ctx.progress.advance(1);
         }
+        let bvh_quality = self.bvh_quality(&setup, &sets, &doing, failures)?;
+        let pixel_maps = self.pixel_maps(spec, &setup, &sets, &doing, failures)?;
         let calibration = measured.calibration.map(|k| Calibration {
             time: k.time,
             samples: k.samples,
@@ -400,15 +453,101 @@ impl SceneRunner<'_> {
             calibration,
             published: published_rays(spec, &options),
             memory,
+            bvh_quality,
+            pixel_maps,
         };
         results::change::fill_scene_speedups(&mut result, results::NOISE_THRESHOLD);
         Ok(result)
+    }
+
+    /// The BVH study of both builders, when the scene ran `bvh` on a frame small
+    /// enough ([`BVH_STUDY_PIXELS`]); a builder that fails is recorded and skipped.
+    fn bvh_quality(
+        &self,
+        setup: &RenderSetup,
+        sets: &[VariantSet],
+        doing: &dyn Fn(&str),
+        failures: &mut Vec<Failure>,
+    ) -> Result<Vec<results::BvhQuality>, RunError> {
+        let ran_bvh = sets
+            .iter()
+            .any(|s| s.config().accel == tracer::Accelerator::Bvh);
+        let pixels = u64::from(setup.options.width) * u64::from(setup.options.height);
+        if !ran_bvh || pixels > BVH_STUDY_PIXELS {
+            return Ok(Vec::new());
+        }
+        let mut studies = Vec::new();
+        for builder in BvhBuilder::ALL {
+            doing(&format!("bvh {builder}"));
+            match bvh_study::study(setup, builder, &self.def.timing()) {
+                Ok(q) => studies.push(q),
+                Err(RunError::Stopped) => return Err(RunError::Stopped),
+                Err(e) => failures.push(failure(Some(setup.name), FailedPart::Scene, &e)),
+            }
+        }
+        Ok(studies)
+    }
+
+    /// Per-pixel maps of baseline, simd and bvh, when the suite asks for them on this
+    /// scene (`pixel_stats`), under `pixel-stats/SCENE/VARIANT/`.
+    fn pixel_maps(
+        &self,
+        spec: &SceneSpec,
+        setup: &RenderSetup,
+        sets: &[VariantSet],
+        doing: &dyn Fn(&str),
+        failures: &mut Vec<Failure>,
+    ) -> Result<Vec<results::VariantPixelMaps>, RunError> {
+        if !self.def.pixel_stats.contains(&spec.name) {
+            return Ok(Vec::new());
+        }
+        let mut all = Vec::new();
+        for set in sets
+            .iter()
+            .filter(|s| MAPPED_VARIANTS.contains(&s.to_string().as_str()))
+        {
+            doing(&format!("maps of {set}"));
+            let directory = format!(
+                "pixel-stats/{}/{}",
+                slug(&spec.name),
+                slug(&set.to_string())
+            );
+            let written = record_maps(setup, set).and_then(|maps| {
+                let context = MapsContext {
+                    scene: &spec.name,
+                    variant: &set.to_string(),
+                    sampling: setup.options.sampling,
+                    threads: self.pool.current_num_threads(),
+                    clock_resolution_ns: tracer::pixel_stats::clock_resolution().as_secs_f64()
+                        * 1e9,
+                };
+                write_maps(&self.ctx.out.join(&directory), &maps, &context)
+            });
+            match written {
+                Ok(stats) => all.push(results::VariantPixelMaps {
+                    variant: VariantName::of(set),
+                    directory,
+                    columns: stats.columns,
+                    rows: stats.rows,
+                    clock_resolution_ns: stats.clock_resolution_ns,
+                    maps: stats.maps,
+                }),
+                Err(RunError::Stopped) => return Err(RunError::Stopped),
+                Err(e) => failures.push(failure(
+                    Some(&spec.name),
+                    FailedPart::Variant(VariantName::of(set)),
+                    &e,
+                )),
+            }
+        }
+        Ok(all)
     }
 
     /// One measured variant: its image saved, compared with the reference's.
     fn variant_result(
         &self,
         spec: &SceneSpec,
+        scene: &Scene,
         m: VariantMeasurement,
         reference: Option<&analysis::RgbImage>,
     ) -> Result<(VariantResult, analysis::RgbImage), RunError> {
@@ -430,6 +569,14 @@ impl SceneRunner<'_> {
             _ => (None, None),
         };
         let histogram = gray_histogram(&m.image).to_vec();
+        let lanes = &m.counts.accel;
+        let lane_utilization =
+            (lanes.lanes_issued > 0).then(|| lanes.lanes_active as f64 / lanes.lanes_issued as f64);
+        let simd = m.variants.config().accel == tracer::Accelerator::Simd;
+        let efficiency = efficiency(&m.counts, scene, simd, m.time.median, self.peak);
+        let ray_rates = m
+            .query_shares
+            .map(|shares| ray_rates(&shares, &m.counts.rays, m.time.median));
         Ok((
             VariantResult {
                 variant,
@@ -446,6 +593,9 @@ impl SceneRunner<'_> {
                 heat_map,
                 quality,
                 histogram,
+                lane_utilization,
+                efficiency: Some(efficiency),
+                ray_rates,
             },
             m.image,
         ))

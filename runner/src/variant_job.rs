@@ -1,7 +1,8 @@
 //! The variant job: variant sets on one scene, measured the one way rtprof measures:
 //! a counted render of each first (exact counts; it also warms caches and the thread
-//! pool up), then the timed uncounted renders under the timing policy, interleaved in
-//! rounds with the calibration kernel. The last timed frame is each variant's image.
+//! pool up) and a clocked one (the time split by query, [`crate::ray_rates`]), then
+//! the timed uncounted renders under the timing policy, interleaved in rounds with the
+//! calibration kernel. The last timed frame is each variant's image.
 
 use std::sync::atomic::AtomicBool;
 
@@ -12,6 +13,7 @@ use tracer::{
 
 use crate::calibration::time_kernel;
 use crate::error::RunError;
+use crate::ray_rates::{QueryShares, clocked_pass};
 use crate::timing::{RenderJob, TimingPolicy, measure_interleaved};
 
 /// A measured variant.
@@ -33,6 +35,8 @@ pub struct VariantMeasurement {
     pub accelerator_bytes: usize,
     /// Bytes of the framebuffer (12 a pixel).
     pub framebuffer_bytes: usize,
+    /// The clocked pass's split of the time by query (`None` if it failed).
+    pub query_shares: Option<QueryShares>,
 }
 
 /// Where and how to render.
@@ -82,6 +86,15 @@ impl RenderSetup<'_> {
                 })
             })
             .collect();
+        let shares: Vec<Option<QueryShares>> = sets
+            .iter()
+            .zip(&counts)
+            .map(|(set, counted)| {
+                counted.as_ref().ok()?;
+                doing(&format!("clocking {set}"));
+                clocked_pass(self, set).ok()
+            })
+            .collect();
         // Only the sets whose counted render worked are timed.
         let timed: Vec<usize> = (0..sets.len()).filter(|&i| counts[i].is_ok()).collect();
         let jobs: Vec<RenderJob<'_, VariantRender<NoCount>>> = timed
@@ -107,7 +120,7 @@ impl RenderSetup<'_> {
         )?;
         let mut timings = timed.into_iter().zip(measured.renders);
         let mut variants = Vec::with_capacity(sets.len());
-        for (i, (set, counted)) in sets.iter().zip(counts).enumerate() {
+        for (i, ((set, counted), query_shares)) in sets.iter().zip(counts).zip(shares).enumerate() {
             let counts = match counted {
                 Ok(c) => c,
                 Err(e) => {
@@ -132,6 +145,7 @@ impl RenderSetup<'_> {
                     image,
                     accelerator_bytes: m.last.accelerator_bytes,
                     framebuffer_bytes: m.last.rendered.frame.memory_bytes(),
+                    query_shares,
                 })
             }));
         }

@@ -1,6 +1,8 @@
 //! A fresh results.json, made by running a tiny suite through the runner library,
 //! validates against the checked-in JSON Schema (`docs/results.schema.json`); the
 //! same value with a required field removed, or a value of the wrong type, does not.
+//! The same run's analysis fields (roofline, rays per second, SIMD lanes, BVH quality,
+//! per-pixel maps) are checked against independent expectations.
 
 use std::path::PathBuf;
 use std::sync::atomic::AtomicBool;
@@ -12,14 +14,15 @@ use runner::suite::{RunContext, Suite};
 use serde_json::{Value, json};
 
 /// Two small built-in scenes (spheres, cylinders: the hardware model runs on both),
-/// the reference and one variant, one timed render each.
+/// the reference and two variants, one timed render each; per-pixel maps of balls4.
 const TINY_SUITE: &str = r#"
 name = "schema-test"
 size = [32, 24]
 repeats = 1
 min_seconds = 0
-variants = ["baseline", "bvh"]
-scenes = ["balls1", "cylinder2"]
+variants = ["baseline", "bvh", "simd"]
+scenes = ["balls4", "cylinder2"]
+pixel_stats = ["balls4"]
 extra_size = [32, 24]
 profile_size = [32, 24]
 profile_frequency = 1000
@@ -43,7 +46,8 @@ fn errors(validator: &jsonschema::Validator, value: &Value) -> Vec<String> {
         .collect()
 }
 
-fn run_tiny_suite() -> Results {
+/// The tiny suite's results and the directory it wrote them to.
+fn run_tiny_suite() -> (Results, PathBuf) {
     let out = std::env::temp_dir().join(format!("rtprof-results-schema-{}", std::process::id()));
     std::fs::create_dir_all(&out).unwrap();
     let def = SuiteDef::parse(TINY_SUITE, "tiny.toml").unwrap();
@@ -56,18 +60,19 @@ fn run_tiny_suite() -> Results {
         stop: &stop,
     };
     let results = suite.run(&ctx).unwrap();
-    std::fs::remove_dir_all(&out).ok();
-    results
+    (results, out)
 }
 
 #[test]
 fn a_fresh_results_file_validates_against_the_checked_in_schema() {
-    let results = run_tiny_suite();
+    let (results, out) = run_tiny_suite();
+    analysis_fields_hold(&results, &out);
+    std::fs::remove_dir_all(&out).ok();
     // The run is what was asked for: the test checks real content, not an empty run.
     assert_eq!(results.schema, results::SCHEMA);
     assert_eq!(results.scenes.len(), 2, "failures: {:?}", results.failures);
     for scene in &results.scenes {
-        assert_eq!(scene.variants.len(), 2, "{}", scene.name);
+        assert_eq!(scene.variants.len(), 3, "{}", scene.name);
         assert_eq!((scene.width, scene.height), (32, 24));
     }
     let value = serde_json::to_value(&results).unwrap();
@@ -103,4 +108,124 @@ fn a_fresh_results_file_validates_against_the_checked_in_schema() {
     let mut broken = value;
     broken.as_object_mut().unwrap().remove("machine");
     assert!(!validator.is_valid(&broken));
+}
+
+/// The flops of a flattened count map, by the documented table (a dot product is 3
+/// multiplies and 2 adds, …; a box test 6 subtractions and 6 multiplies).
+fn flops_by_hand(counts: &std::collections::BTreeMap<String, u64>) -> u64 {
+    let n = |key: &str| counts.get(key).copied().unwrap_or(0);
+    3 * (n("ops.add") + n("ops.sub") + n("ops.scale"))
+        + 5 * n("ops.dot")
+        + 9 * n("ops.cross")
+        + 10 * n("ops.normalize")
+        + n("ops.sqrt")
+        + n("ops.pow")
+        + 12 * n("accel.nodes_visited")
+}
+
+/// Roofline, ray rates, lanes, BVH quality and per-pixel maps of the tiny suite.
+fn analysis_fields_hold(results: &Results, out: &std::path::Path) {
+    let peak = results.peak.as_ref().expect("the suite measures the peaks");
+    assert!(peak.peak_gflops > 0.0 && peak.bandwidth_gbs > 0.0 && peak.cache_bandwidth_gbs > 0.0);
+    for scene in &results.scenes {
+        for v in &scene.variants {
+            let what = format!("{} {}", scene.name, v.variant);
+            let e = v.efficiency.as_ref().expect("efficiency");
+            assert_eq!(e.flops, flops_by_hand(&v.counts), "{what}");
+            assert!(e.bytes_moved > 0, "{what}");
+            let achieved = e.flops as f64 / v.time.median / 1e9;
+            assert!((e.achieved_gflops / achieved - 1.0).abs() < 1e-9, "{what}");
+            assert!(
+                e.achieved_gflops <= peak.peak_gflops,
+                "{what}: {e:?} above {peak:?}"
+            );
+            let r = v.ray_rates.as_ref().expect("ray rates");
+            let shares = [
+                r.eye_fraction,
+                r.secondary_fraction,
+                r.shadow_fraction,
+                r.other_fraction,
+                r.idle_fraction,
+            ];
+            assert!(
+                shares.iter().all(|s| (0.0..=1.0).contains(s)),
+                "{what}: {r:?}"
+            );
+            assert!(
+                (shares.iter().sum::<f64>() - 1.0).abs() < 1e-9,
+                "{what}: {r:?}"
+            );
+            let rays = [
+                "rays.primary",
+                "rays.shadow",
+                "rays.reflection",
+                "rays.refraction",
+            ]
+            .iter()
+            .map(|k| v.counts[*k])
+            .sum::<u64>();
+            let all = rays as f64 / v.time.median / 1e6;
+            assert!((r.all_mrays_per_s / all - 1.0).abs() < 1e-9, "{what}");
+            let lanes = v.counts["accel.lanes_issued"];
+            match v.lane_utilization {
+                Some(u) => {
+                    assert!(v.variant == "simd");
+                    let by_hand = v.counts["accel.lanes_active"] as f64 / lanes as f64;
+                    assert!((u - by_hand).abs() < 1e-12 && u > 0.0 && u <= 1.0);
+                }
+                None => assert_eq!(lanes, 0, "{what}"),
+            }
+        }
+        // Both builders studied (the frame is small); their trees hold every primitive.
+        let builders: Vec<&str> = scene
+            .bvh_quality
+            .iter()
+            .map(|q| q.builder.as_str())
+            .collect();
+        assert_eq!(builders, ["binned_sah", "midpoint"], "{}", scene.name);
+        for q in &scene.bvh_quality {
+            let held: u64 = q
+                .leaf_size_histogram
+                .iter()
+                .enumerate()
+                .map(|(s, n)| s as u64 * n)
+                .sum();
+            assert_eq!(held, scene.primitives);
+            assert!(q.sah_cost > 0.0 && q.epo >= 0.0);
+        }
+        // The binned SAH tree is the bvh variant's: its counted render measured the same.
+        let bvh = scene
+            .variants
+            .iter()
+            .find(|v| v.variant == "bvh")
+            .expect("bvh");
+        let rays: u64 = [
+            "rays.primary",
+            "rays.shadow",
+            "rays.reflection",
+            "rays.refraction",
+        ]
+        .iter()
+        .map(|k| bvh.counts[*k])
+        .sum();
+        let nodes = bvh.counts["accel.nodes_visited"] as f64 / rays as f64;
+        assert!((scene.bvh_quality[0].measured_nodes_per_ray - nodes).abs() < 1e-9);
+    }
+    // Per-pixel maps of balls4's three variants, summing to each variant's counts.
+    let balls = &results.scenes[0];
+    assert_eq!(balls.pixel_maps.len(), 3);
+    for maps in &balls.pixel_maps {
+        let v = balls
+            .variants
+            .iter()
+            .find(|v| v.variant == maps.variant)
+            .expect("variant");
+        for map in maps.maps.iter().filter(|m| m.key.starts_with("tests.")) {
+            assert_eq!(map.sum, v.counts[&map.key], "{} {}", maps.variant, map.key);
+            for file in [&map.npy, &map.png] {
+                assert!(out.join(&maps.directory).join(file).is_file(), "{file}");
+            }
+        }
+        assert!(maps.maps.iter().any(|m| m.key == "time.ns"));
+    }
 }

@@ -34,6 +34,10 @@ pub struct RenderFlags {
     /// (default: 5, the SPD rule; at most --max-ray-depth).
     #[arg(long, value_name = "N")]
     pub depth: Option<u32>,
+    /// How the bvh variant builds its tree: binned_sah (surface area heuristic) or
+    /// midpoint (the middle of the widest axis).
+    #[arg(long, value_name = "B", default_value = "binned_sah", value_parser = parse_builder)]
+    pub bvh_builder: tracer::BvhBuilder,
     #[command(flatten)]
     pub limits: LimitArgs,
 }
@@ -52,6 +56,7 @@ impl RenderFlags {
             depth: self.depth,
             limits: self.limits.limits(),
             per_sample: false,
+            bvh_builder: self.bvh_builder,
         }
     }
 }
@@ -186,4 +191,15 @@ pub fn note_if_slow(
 /// in the current directory.
 pub fn named_after(input: &SceneInput, prefix: &str, suffix: &str) -> PathBuf {
     PathBuf::from(format!("{prefix}{}{suffix}", input.name()))
+}
+
+/// A `--bvh-builder` name.
+fn parse_builder(name: &str) -> Result<tracer::BvhBuilder, String> {
+    tracer::BvhBuilder::parse(name).ok_or_else(|| {
+        let names: Vec<&str> = tracer::BvhBuilder::ALL.iter().map(|b| b.name()).collect();
+        format!(
+            "unknown builder '{name}'; choose one of {}",
+            names.join(", ")
+        )
+    })
 }

@@ -16,6 +16,25 @@ pub const TINY_PNG: [u8; 67] = [
     0x42, 0x60, 0x82,
 ];
 
+/// A valid NumPy file: one `<u8` value, 0, in a 1x1 array.
+pub const TINY_NPY: [u8; 136] = {
+    let header =
+        *b"\x93NUMPY\x01\x00\x76\x00{'descr': '<u8', 'fortran_order': False, 'shape': (1, 1), }";
+    let mut out = [b' '; 136];
+    let mut i = 0;
+    while i < header.len() {
+        out[i] = header[i];
+        i += 1;
+    }
+    out[127] = b'\n';
+    let mut j = 128;
+    while j < 136 {
+        out[j] = 0;
+        j += 1;
+    }
+    out
+};
+
 /// Every relative path the results refer to: images, texts and SVGs.
 pub fn referenced_files(results: &Results) -> Vec<String> {
     let mut paths = Vec::new();
@@ -27,6 +46,13 @@ pub fn referenced_files(results: &Results) -> Vec<String> {
         if let Some(hw) = &scene.hardware {
             paths.extend(hw.emulator_image.iter().cloned());
             paths.extend(hw.software_image.iter().cloned());
+        }
+        for maps in &scene.pixel_maps {
+            paths.push(format!("{}/pixel-stats.json", maps.directory));
+            for map in &maps.maps {
+                paths.push(format!("{}/{}", maps.directory, map.npy));
+                paths.push(format!("{}/{}", maps.directory, map.png));
+            }
         }
     }
     if let Some(p) = &results.profile {
@@ -114,6 +140,10 @@ pub fn write_sample_files(dir: &Path) -> std::io::Result<()> {
     for rel in referenced_files(&results) {
         if rel.ends_with(".png") {
             write(&rel, &TINY_PNG)?;
+        } else if rel.ends_with(".npy") {
+            write(&rel, &TINY_NPY)?;
+        } else if rel.ends_with("pixel-stats.json") {
+            write(&rel, b"{}\n")?;
         }
     }
     if let Some(p) = &results.profile {

@@ -6,18 +6,23 @@
 //! intervals, speed-ups, exact counts and image metrics, a profile of `rings`
 //! (baseline and `bvh`), the hardware model's tables 7 and 8 (computed by `hwmodel`
 //! for the thesis's design, with the thesis's figures it holds), two devices, machine and build
-//! information, three criterion estimates with their instruction counts and one failure. The numbers are made up but
-//! consistent with each other (speed-ups are baseline median / variant median, counts
-//! follow from the ray counts, histograms sum to the pixel count).
+//! information, three criterion estimates with their instruction counts and one failure;
+//! the machine's measured peaks, every variant's roofline point and rays per second,
+//! `simd`'s lane utilization, both BVH builders' quality on `rings` and the per-pixel
+//! maps of `rings` for baseline, `bvh` and `simd` (their files are not written). The
+//! numbers are made up but consistent with each other (speed-ups are baseline median /
+//! variant median, counts follow from the ray counts, histograms sum to the pixel
+//! count, achieved GFLOP/s are the flops over the median time, time shares sum to 1).
 //! [`crate::files::write_sample_files`] writes the files it refers to.
 
 use std::collections::BTreeMap;
 
 use results::{
-    AmdahlFigures, AmdahlRow, Band, Build, CriterionEstimate, DeviceUse, Estimate, FailedPart,
-    Failure, FlatRow, HardwareResult, HwRow, InstructionCount, Machine, Profile, ProfileResult,
-    ProfileView, Quality, Results, SCHEMA, SceneFamily, SceneHardware, SceneResult, SuiteInfo,
-    TimeCovers, TimingPolicy, VariantName, VariantResult,
+    AmdahlFigures, AmdahlRow, Band, Build, BvhQuality, CriterionEstimate, DeviceUse, Efficiency,
+    Estimate, FailedPart, Failure, FlatRow, HardwareResult, HwRow, InstructionCount, Machine,
+    MachinePeak, PixelMap, Profile, ProfileResult, ProfileView, Quality, RayRates, Results, SCHEMA,
+    SceneFamily, SceneHardware, SceneResult, SuiteInfo, TimeCovers, TimingPolicy, VariantName,
+    VariantPixelMaps, VariantResult,
 };
 
 /// The variants of the sample, baseline first.
@@ -281,6 +286,128 @@ fn image_path(scene: &str, what: &str) -> String {
     format!("images/{scene}-{what}.png")
 }
 
+/// The sample machine's measured peaks: two cores with AVX2 and FMA, a modest memory bus.
+fn sample_peak() -> MachinePeak {
+    MachinePeak {
+        peak_gflops: 148.6,
+        bandwidth_gbs: 11.8,
+        // L1-resident triad: two cores' loads and stores at a few bytes a cycle each.
+        cache_bandwidth_gbs: 190.0,
+        threads: 2,
+        fma_kernel: "AVX2+FMA, 8 lanes × 10 chains".to_string(),
+        stream_bytes: 3 * 4 * (8 << 20),
+    }
+}
+
+/// Flops the sample charges each counted vector operation (a dot product: three
+/// multiplies and two adds).
+const SAMPLE_FLOPS: [(&str, u64); 8] = [
+    ("ops.dot", 5),
+    ("ops.sub", 3),
+    ("ops.add", 3),
+    ("ops.cross", 9),
+    ("ops.scale", 3),
+    ("ops.normalize", 9),
+    ("ops.sqrt", 1),
+    ("ops.pow", 1),
+];
+
+/// Bytes the sample's traffic model charges a primitive test (a record of five
+/// floats), a SIMD lane (the same record in structure-of-arrays form), a BVH node and
+/// a leaf visited: every byte asked of the memory system, wherever it is found, as the
+/// cache-aware roofline counts them.
+const TEST_BYTES: u64 = 20;
+const LANE_BYTES: u64 = 20;
+const NODE_BYTES: u64 = 32;
+const LEAF_BYTES: u64 = 8;
+
+/// The lanes of the sample's SIMD variant.
+const SIMD_LANES: u64 = 8;
+
+/// SIMD lanes one ray issues: whole chunks of spheres and of cylinders.
+fn lanes_per_ray(s: &SceneSpec) -> u64 {
+    s.spheres.div_ceil(SIMD_LANES) * SIMD_LANES + s.cylinders.div_ceil(SIMD_LANES) * SIMD_LANES
+}
+
+/// The share of `simd`'s lanes that hold a primitive.
+fn lane_utilization(s: &SceneSpec) -> f64 {
+    (s.spheres + s.cylinders) as f64 / lanes_per_ray(s).max(1) as f64
+}
+
+/// A variant's roofline point, from its counts and median time.
+fn sample_efficiency(
+    s: &SceneSpec,
+    variant: &str,
+    counts: &BTreeMap<String, u64>,
+    median: f64,
+) -> Efficiency {
+    let get = |k: &str| counts.get(k).copied().unwrap_or(0);
+    let flops: u64 = SAMPLE_FLOPS.iter().map(|(k, w)| get(k) * w).sum();
+    let tests: u64 = counts
+        .iter()
+        .filter(|(k, _)| k.starts_with("tests.") && k.ends_with(".tests"))
+        .map(|(_, n)| n)
+        .sum();
+    let primitive_bytes = if variant == "simd" {
+        let vector_tests = get("tests.sphere.tests") + get("tests.cylinder.tests");
+        lanes_per_ray(s) * get("calls.intersect") * LANE_BYTES + (tests - vector_tests) * TEST_BYTES
+    } else {
+        tests * TEST_BYTES
+    };
+    let bytes_moved = primitive_bytes
+        + get("accel.nodes_visited") * NODE_BYTES
+        + get("accel.leaves_visited") * LEAF_BYTES;
+    let arithmetic_intensity = flops as f64 / bytes_moved as f64;
+    let achieved_gflops = flops as f64 / median / 1e9;
+    let roof = sample_peak().roof_gflops(arithmetic_intensity);
+    Efficiency {
+        flops,
+        bytes_moved,
+        arithmetic_intensity,
+        achieved_gflops,
+        roof_gflops: Some(roof),
+        fraction_of_roof: Some(achieved_gflops / roof),
+    }
+}
+
+/// A variant's time split by ray kind and its rays per second: the queries take most of
+/// a brute-force render's time and less of a tree's; a shadow ray (any hit) costs 0.6
+/// of a closest-hit ray.
+fn sample_ray_rates(
+    s: &SceneSpec,
+    variant: &str,
+    counts: &BTreeMap<String, u64>,
+    median: f64,
+) -> RayRates {
+    let get = |k: &str| counts.get(k).copied().unwrap_or(0) as f64;
+    let (eye, secondary, shadow) = (
+        get("rays.primary"),
+        get("rays.reflection") + get("rays.refraction"),
+        get("rays.shadow"),
+    );
+    let queries = if variant == "bvh" { 0.72 } else { 0.9 };
+    let weight = eye + secondary + 0.6 * shadow;
+    let share = |rays: f64, cost: f64| queries * cost * rays / weight;
+    let (eye_fraction, secondary_fraction, shadow_fraction) =
+        (share(eye, 1.0), share(secondary, 1.0), share(shadow, 0.6));
+    let rate = |rays: f64, fraction: f64| {
+        (rays > 0.0 && fraction > 0.0).then(|| rays / (fraction * median) / 1e6)
+    };
+    RayRates {
+        eye_fraction,
+        secondary_fraction,
+        shadow_fraction,
+        // The sample's workers never wait: a large frame has rows for every thread.
+        other_fraction: 1.0 - queries,
+        idle_fraction: 0.0,
+        eye_mrays_per_s: rate(eye, eye_fraction),
+        secondary_mrays_per_s: rate(secondary, secondary_fraction),
+        shadow_mrays_per_s: rate(shadow, shadow_fraction),
+        all_mrays_per_s: (eye + secondary + shadow) / median / 1e6,
+        clock_overhead: 1.06 + 0.1 * unit_hash(&format!("clock/{}/{variant}", s.name)),
+    }
+}
+
 fn sample_variant(s: &SceneSpec, variant: &str, base_median: f64) -> VariantResult {
     let speedup = variant_speedup(s, variant);
     let median = base_median / speedup;
@@ -319,11 +446,14 @@ fn sample_variant(s: &SceneSpec, variant: &str, base_median: f64) -> VariantResu
         speedup: Some(speedup),
         speedup_interval: None,
         verdict: None,
-        counts,
         image,
         heat_map,
         quality,
         histogram: sample_histogram(s.pixels(), object_pixels, centre, spread),
+        lane_utilization: (variant == "simd").then(|| lane_utilization(s)),
+        efficiency: Some(sample_efficiency(s, variant, &counts, median)),
+        ray_rates: Some(sample_ray_rates(s, variant, &counts, median)),
+        counts,
     }
 }
 
@@ -348,13 +478,273 @@ fn sample_scene_hardware(s: &SceneSpec, base_median: f64) -> SceneHardware {
     }
 }
 
+/// `total` spread over bins by `weights` (rounded down), the rest in the heaviest bin,
+/// so the bins sum to `total`.
+fn spread(total: u64, weights: &[f64]) -> Vec<u64> {
+    let sum: f64 = weights.iter().sum();
+    let mut bins: Vec<u64> = weights
+        .iter()
+        .map(|w| (w / sum * total as f64) as u64)
+        .collect();
+    let heaviest = weights
+        .iter()
+        .enumerate()
+        .max_by(|a, b| a.1.total_cmp(b.1))
+        .map_or(0, |(i, _)| i);
+    let used: u64 = bins.iter().sum();
+    if let Some(bin) = bins.get_mut(heaviest) {
+        *bin += total.saturating_sub(used);
+    }
+    bins
+}
+
+/// Bell-shaped weights over depths 0 to `deepest` around `centre`.
+fn depth_weights(centre: f64, width: f64, deepest: usize) -> Vec<f64> {
+    (0..=deepest)
+        .map(|d| {
+            let z = (d as f64 - centre) / width;
+            // No leaf above depth 3: the top of a tree is all interior nodes.
+            if d < 3 { 0.0 } else { (-0.5 * z * z).exp() }
+        })
+        .collect()
+}
+
+/// What differs between the sample's two builds of a tree.
+struct TreeSpec {
+    builder: &'static str,
+    /// Leaves per primitive count, as weights (index 0: empty leaves).
+    leaf_sizes: &'static [f64],
+    depth_centre: f64,
+    depth_width: f64,
+    deepest: usize,
+    sah_cost: f64,
+    epo: f64,
+    /// Nodes, leaves and tests per ray: predicted, measured.
+    nodes: (f64, f64),
+    leaves: (f64, f64),
+    tests: (f64, f64),
+    trace_seconds: f64,
+}
+
+/// One build of a tree over `s`'s primitives.
+fn sample_tree(s: &SceneSpec, t: &TreeSpec) -> BvhQuality {
+    let mean_leaf: f64 = t
+        .leaf_sizes
+        .iter()
+        .enumerate()
+        .map(|(size, w)| size as f64 * w)
+        .sum::<f64>()
+        / t.leaf_sizes.iter().sum::<f64>();
+    let leaves = (s.primitives() as f64 / mean_leaf).round() as u64;
+    let leaf_size_histogram = spread(leaves, t.leaf_sizes);
+    let depth_histogram = spread(
+        leaves,
+        &depth_weights(t.depth_centre, t.depth_width, t.deepest),
+    );
+    let nodes = 2 * leaves - 1;
+    BvhQuality {
+        builder: t.builder.to_string(),
+        nodes,
+        leaves,
+        // 32-byte nodes and a 4-byte reference per primitive.
+        bytes: nodes * 32 + s.primitives() * 4,
+        max_depth: t.deepest as u32,
+        max_leaf_size: (t.leaf_sizes.len() - 1) as u32,
+        sah_cost: t.sah_cost,
+        epo: t.epo,
+        depth_histogram,
+        leaf_size_histogram,
+        predicted_nodes_per_ray: t.nodes.0,
+        measured_nodes_per_ray: t.nodes.1,
+        predicted_leaves_per_ray: t.leaves.0,
+        measured_leaves_per_ray: t.leaves.1,
+        predicted_tests_per_ray: t.tests.0,
+        measured_tests_per_ray: t.tests.1,
+        width: s.width,
+        height: s.height,
+        trace_seconds: t.trace_seconds,
+    }
+}
+
+/// Both builders' trees of an SPD scene: the SAH tree is cheaper by its metrics and in
+/// time, yet visits a few more nodes per ray than the midpoint split (the metric does
+/// not predict everything, and the report has to say so). `bvh_seconds` is the `bvh`
+/// variant's median, which uses the SAH tree.
+fn sample_bvh_quality(s: &SceneSpec, bvh_seconds: f64) -> Vec<BvhQuality> {
+    if !s.is_spd() {
+        return Vec::new();
+    }
+    let sah = TreeSpec {
+        builder: "binned_sah",
+        leaf_sizes: &[0.0, 0.06, 0.14, 0.22, 0.24, 0.16, 0.09, 0.05, 0.04],
+        depth_centre: 11.5,
+        depth_width: 1.6,
+        deepest: 16,
+        sah_cost: 38.2,
+        epo: 12.4,
+        nodes: (31.4, 44.9),
+        leaves: (6.1, 8.3),
+        tests: (9.8, 14.2),
+        trace_seconds: bvh_seconds,
+    };
+    let midpoint = TreeSpec {
+        builder: "midpoint",
+        leaf_sizes: &[
+            0.02, 0.10, 0.15, 0.16, 0.14, 0.12, 0.09, 0.07, 0.05, 0.04, 0.03, 0.02, 0.01,
+        ],
+        depth_centre: 13.5,
+        depth_width: 3.0,
+        deepest: 23,
+        sah_cost: 61.7,
+        epo: 27.9,
+        nodes: (52.3, 42.1),
+        leaves: (9.8, 10.4),
+        tests: (18.2, 21.5),
+        trace_seconds: bvh_seconds * 1.27,
+    };
+    vec![sample_tree(s, &sah), sample_tree(s, &midpoint)]
+}
+
+/// The variants whose per-pixel maps the sample has.
+const MAPPED_VARIANTS: [&str; 3] = ["baseline", "bvh", "simd"];
+
+/// The per-pixel maps of the variants of [`MAPPED_VARIANTS`] on an SPD scene (pixel
+/// centres, one sample a pixel): each map sums to the variant's count, its files named
+/// as the runner names them (not written).
+fn sample_pixel_maps(s: &SceneSpec, variants: &[VariantResult]) -> Vec<VariantPixelMaps> {
+    if !s.is_spd() {
+        return Vec::new();
+    }
+    let samples = s.pixels();
+    let lights = 3;
+    variants
+        .iter()
+        .filter(|v| MAPPED_VARIANTS.contains(&v.variant.as_str()))
+        .map(|v| {
+            let get = |k: &str| v.counts.get(k).copied().unwrap_or(0);
+            let tree = get("accel.nodes_visited") > 0;
+            let map =
+                |key: &str, description: &str, unit: &str, sum: u64, range: (u64, u64)| PixelMap {
+                    key: key.to_string(),
+                    description: description.to_string(),
+                    unit: unit.to_string(),
+                    npy: format!("{key}.npy"),
+                    png: format!("{key}.png"),
+                    dtype: match key {
+                        "ray_tree.depth" => "|u1",
+                        "time.ns" => "<u4",
+                        _ => "<u8",
+                    }
+                    .to_string(),
+                    sum,
+                    min: range.0,
+                    max: range.1,
+                    mean: sum as f64 / samples as f64,
+                };
+            let mut maps = Vec::new();
+            for (kind, n) in [
+                ("sphere", s.spheres),
+                ("cylinder", s.cylinders),
+                ("polygon", s.polygons),
+            ] {
+                let key = format!("tests.{kind}.tests");
+                let sum = get(&key);
+                if sum == 0 {
+                    continue;
+                }
+                // Brute force: every ray tests every primitive of the kind; the
+                // busiest pixel traces its eye ray, two reflections and their shadows.
+                let range = if tree {
+                    (0, (sum / samples * 7).max(1))
+                } else {
+                    (n, n * (3 + 3 * lights))
+                };
+                maps.push(map(
+                    &key,
+                    &format!("{kind} intersection tests"),
+                    "tests per sample",
+                    sum,
+                    range,
+                ));
+            }
+            if tree {
+                let nodes = get("accel.nodes_visited");
+                let leaves = get("accel.leaves_visited");
+                maps.push(map(
+                    "accel.nodes_visited",
+                    "BVH nodes visited",
+                    "nodes per sample",
+                    nodes,
+                    (1, nodes / samples * 6),
+                ));
+                maps.push(map(
+                    "accel.leaves_visited",
+                    "BVH leaves visited",
+                    "leaves per sample",
+                    leaves,
+                    (0, leaves / samples * 6),
+                ));
+            }
+            maps.push(map(
+                "rays.shadow",
+                "shadow rays",
+                "rays per sample",
+                get("rays.shadow"),
+                (0, 3 * lights),
+            ));
+            maps.push(map(
+                "ops.dot",
+                "dot products",
+                "operations per sample",
+                get("ops.dot"),
+                (get("ops.dot") / samples / 4, get("ops.dot") / samples * 5),
+            ));
+            let secondary = get("rays.reflection") + get("rays.refraction");
+            maps.push(map(
+                "rays.secondary",
+                "reflection and refraction rays",
+                "rays per sample",
+                secondary,
+                (0, 2),
+            ));
+            maps.push(map(
+                "ray_tree.depth",
+                "deepest ray-tree level reached (eye ray 1, 0 not traced)",
+                "levels",
+                samples + secondary,
+                (1, 3),
+            ));
+            // Two worker threads' time, nanoseconds.
+            let nanos = (v.time.median * 2e9) as u64;
+            maps.push(map(
+                "time.ns",
+                "tracing time of the sample, the least of 3 uncounted renders",
+                "ns per sample",
+                nanos,
+                (nanos / samples / 5, nanos / samples * 8),
+            ));
+            VariantPixelMaps {
+                variant: v.variant.clone(),
+                directory: format!("pixel-maps/{}/{}", s.name, v.variant),
+                columns: s.width,
+                rows: s.height,
+                clock_resolution_ns: 0.42,
+                maps,
+            }
+        })
+        .collect()
+}
+
 fn sample_scene(s: &SceneSpec, failed: &[(&str, &str)]) -> SceneResult {
     let base_median = baseline_seconds(s);
-    let variants = SAMPLE_VARIANTS
+    let variants: Vec<VariantResult> = SAMPLE_VARIANTS
         .iter()
         .filter(|v| !failed.contains(&(s.name, **v)))
         .map(|v| sample_variant(s, v, base_median))
         .collect();
+    let bvh_seconds = base_median / variant_speedup(s, "bvh");
+    let bvh_quality = sample_bvh_quality(s, bvh_seconds);
+    let pixel_maps = sample_pixel_maps(s, &variants);
     let mut primitive_counts = BTreeMap::new();
     for (kind, n) in [
         ("spheres", s.spheres),
@@ -397,6 +787,8 @@ fn sample_scene(s: &SceneSpec, failed: &[(&str, &str)]) -> SceneResult {
             peak_bytes: 100 * s.primitives() + 12 * u64::from(s.width) * u64::from(s.height),
             bvh_bytes_per_primitive: None,
         }),
+        bvh_quality,
+        pixel_maps,
     }
 }
 
@@ -730,6 +1122,7 @@ pub fn sample_results() -> Results {
                 measured: Some("2026-11-21T10:05:00Z".to_string()),
             },
         ],
+        peak: Some(sample_peak()),
     };
     // Speed-ups, intervals and verdicts by the one rule, from the samples above.
     results::change::fill_speedups(&mut results, results::NOISE_THRESHOLD);
@@ -791,5 +1184,59 @@ mod tests {
                 .collect()
         };
         assert_eq!(models(&back), models(&r));
+    }
+
+    #[test]
+    fn the_machine_figures_are_consistent() {
+        let r = sample_results();
+        let peak = r.peak.as_ref().expect("peak");
+        let close = |a: f64, b: f64| (a - b).abs() <= 1e-9 * a.abs().max(b.abs());
+        for scene in &r.scenes {
+            for v in &scene.variants {
+                let e = v.efficiency.as_ref().expect("efficiency");
+                assert!(close(
+                    e.achieved_gflops,
+                    e.flops as f64 / v.time.median / 1e9
+                ));
+                assert!(close(
+                    e.arithmetic_intensity,
+                    e.flops as f64 / e.bytes_moved as f64
+                ));
+                let roof = peak.roof_gflops(e.arithmetic_intensity);
+                assert_eq!(e.roof_gflops, Some(roof));
+                let fraction = e.fraction_of_roof.expect("fraction");
+                assert!(fraction < 0.8, "{}/{}: {fraction}", scene.name, v.variant);
+                let rates = v.ray_rates.as_ref().expect("ray rates");
+                let sum = rates.eye_fraction
+                    + rates.secondary_fraction
+                    + rates.shadow_fraction
+                    + rates.other_fraction;
+                assert!(close(sum, 1.0), "{sum}");
+                assert_eq!(v.lane_utilization.is_some(), v.variant == "simd");
+            }
+            for tree in &scene.bvh_quality {
+                assert_eq!(tree.depth_histogram.iter().sum::<u64>(), tree.leaves);
+                assert_eq!(tree.leaf_size_histogram.iter().sum::<u64>(), tree.leaves);
+                assert_eq!(tree.depth_histogram.len(), tree.max_depth as usize + 1);
+            }
+            for maps in &scene.pixel_maps {
+                let v = scene
+                    .variants
+                    .iter()
+                    .find(|v| v.variant == maps.variant)
+                    .expect("the variant of the maps");
+                for m in maps.maps.iter().filter(|m| m.key.starts_with("tests.")) {
+                    assert_eq!(Some(&m.sum), v.counts.get(&m.key));
+                    assert!(
+                        m.min as f64 <= m.mean && m.mean <= m.max as f64,
+                        "{}",
+                        m.key
+                    );
+                }
+            }
+        }
+        let rings = r.scenes.iter().find(|s| s.name == "rings").expect("rings");
+        assert_eq!(rings.bvh_quality.len(), 2);
+        assert_eq!(rings.pixel_maps.len(), 3);
     }
 }

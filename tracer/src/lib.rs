@@ -50,8 +50,9 @@ pub mod scene;
 pub mod shading;
 pub mod variants;
 pub mod vec3;
+pub mod work_model;
 
-pub use accel::{BruteForce, Bvh, Intersector, Simd};
+pub use accel::{BruteForce, Bvh, BvhBuilder, BvhShape, BvhStats, Intersector, Simd};
 pub use camera::{Camera, Projection, Sampling};
 pub use color::Rgb;
 pub use counter::{

@@ -11,6 +11,7 @@
 //! wherever the picture is smooth; we read it as the neighbours' mean it describes in
 //! words, and use all traced 4-neighbours rather than only the two vertical ones.
 
+use crate::accel::BvhBuilder;
 use crate::accel::Intersector;
 use crate::camera::{Camera, Projection, Sampling};
 use crate::color::Rgb;
@@ -39,6 +40,8 @@ pub struct RenderOptions {
     /// the per-pixel maps). Costs a clock read and, when counting, a counter merge per
     /// sample.
     pub per_sample: bool,
+    /// How the `bvh` variant builds its tree (default the binned SAH).
+    pub bvh_builder: BvhBuilder,
 }
 
 /// How the renderer computes the picture: the choices of the variant set that the
@@ -79,6 +82,7 @@ impl RenderOptions {
             max_depth: MAX_DEPTH,
             limits: Limits::default(),
             per_sample: false,
+            bvh_builder: BvhBuilder::BinnedSah,
         }
     }
 

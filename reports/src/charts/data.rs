@@ -129,3 +129,38 @@ pub(super) fn rms_bands() -> impl Iterator<Item = (f64, &'static str)> {
         .into_iter()
         .filter_map(|b| Some((b.upper_edge()?, b.name())))
 }
+
+/// One render as a roofline point: its variant, arithmetic intensity (flop/byte) and
+/// attained GFLOP/s.
+pub(super) struct RooflinePoint<'r> {
+    pub variant: &'r VariantResult,
+    pub intensity: f64,
+    pub gflops: f64,
+}
+
+/// Every render with a usable roofline point (finite positive intensity and GFLOP/s),
+/// in run order.
+pub(super) fn roofline_points(results: &Results) -> Vec<RooflinePoint<'_>> {
+    results
+        .scenes
+        .iter()
+        .flat_map(|s| &s.variants)
+        .filter_map(|variant| {
+            let e = variant.efficiency.as_ref()?;
+            (finite_positive(e.arithmetic_intensity) && finite_positive(e.achieved_gflops))
+                .then_some(RooflinePoint {
+                    variant,
+                    intensity: e.arithmetic_intensity,
+                    gflops: e.achieved_gflops,
+                })
+        })
+        .collect()
+}
+
+/// The machine's measured peaks, when both are usable.
+pub(super) fn machine_peak(results: &Results) -> Option<&crate::results::MachinePeak> {
+    results
+        .peak
+        .as_ref()
+        .filter(|p| finite_positive(p.peak_gflops) && finite_positive(p.bandwidth_gbs))
+}

@@ -108,6 +108,20 @@ impl<'r, 'b> Canvas<'r, 'b> {
         })
     }
 
+    /// Panels side by side, one per title, each drawn by `draw` (its index and a
+    /// canvas of its own, titled) on an equal share of the page.
+    pub(super) fn panels(
+        &self,
+        titles: &[String],
+        mut draw: impl FnMut(usize, &Canvas<'_, 'b>) -> DrawResult,
+    ) -> DrawResult {
+        let areas = self.root.split_evenly((1, titles.len().max(1)));
+        for (i, (area, title)) in areas.iter().zip(titles).enumerate() {
+            draw(i, &Canvas { root: area, title })?;
+        }
+        Ok(())
+    }
+
     /// The whole page as a plot without title, axes or margins (for small multiples).
     pub(super) fn bare_plot<XR, YR>(
         &self,

@@ -21,6 +21,9 @@ pub(super) enum Place {
     AboveRight,
     /// Below and to the right, left-aligned (the note of a guide line).
     BelowRight,
+    /// Above and to the left, right-aligned (the note of a rising line, on its empty
+    /// side).
+    AboveLeft,
 }
 
 impl Place {
@@ -32,6 +35,7 @@ impl Place {
             Place::AboveUpwards => (Pos::new(HPos::Left, VPos::Center), true, (0, -3)),
             Place::AboveRight => (Pos::new(HPos::Left, VPos::Bottom), false, (4, -3)),
             Place::BelowRight => (Pos::new(HPos::Left, VPos::Top), false, (4, 3)),
+            Place::AboveLeft => (Pos::new(HPos::Right, VPos::Bottom), false, (-4, -3)),
         }
     }
 }

@@ -19,18 +19,22 @@
 //! | `histogram` | [`histogram_chart`] | `histogram` of baseline and the variant with the largest RMS | fig. 35-37 |
 //! | `scene-histogram` | [`scene_histograms`] | one scene's `histogram`s that differ from baseline's | — |
 //! | `variant-histogram` | [`variant_histogram`] | one variant's `histogram`, for an image grid cell | — |
+//! | `roofline` | [`roofline_chart`] | every scene × variant: `efficiency`; `peak` | — |
+//! | `bvh-histograms` | [`bvh_histograms`] | one scene's `bvh_quality`: depth and leaf-size histograms | — |
 //!
-//! [`all`] gives the first eight, those the data allows; a chart that fails to draw is
-//! replaced by a small SVG that says so.
+//! [`all`] gives the first eight and the roofline, those the data allows; a chart that
+//! fails to draw is replaced by a small SVG that says so.
 //!
 //! Files: `frame.rs` (backend, title, axes, grid, legend, failure SVG), `scale.rs`
 //! (ranges, ticks), `marks.rs` (placed texts, reference lines, whiskers, legend keys),
 //! `bars.rs` (bar layout, horizontal bar charts), `categories.rs` (charts over named
 //! categories), `style.rs` (sizes, fonts, colours), `data.rs` (the results fields the
 //! charts read), `numbers.rs` (number and name formatting); one file per group of
-//! charts: `profile.rs`, `quality.rs`, `hardware.rs`, `timing.rs`, `histogram.rs`.
+//! charts: `profile.rs`, `quality.rs`, `hardware.rs`, `timing.rs`, `histogram.rs`,
+//! `roofline.rs`, `bvh.rs`.
 
 mod bars;
+mod bvh;
 mod categories;
 mod data;
 mod frame;
@@ -40,16 +44,19 @@ mod marks;
 mod numbers;
 mod profile;
 mod quality;
+mod roofline;
 mod scale;
 mod scaling;
 mod style;
 mod timing;
 
+pub use bvh::bvh_histograms;
 pub use hardware::{device_utilization_chart, hw_speedup_chart, sw_hw_times_chart};
 pub use histogram::{CELL_SIZE, histogram_chart, scene_histograms, variant_histogram};
 pub use numbers::{format_number, short_name};
 pub use profile::{calls_chart, self_seconds_chart};
 pub use quality::quality_speed_chart;
+pub use roofline::roofline_chart;
 pub use scaling::scaling_chart;
 pub use timing::time_vs_primitives_chart;
 
@@ -89,6 +96,7 @@ pub fn all(results: &Results) -> Vec<Chart> {
         time_vs_primitives_chart(results),
         device_utilization_chart(results),
         histogram_chart(results),
+        roofline_chart(results),
     ]
     .into_iter()
     .flatten()

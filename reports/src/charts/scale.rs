@@ -92,7 +92,10 @@ impl Ticks {
     pub(super) fn plain_label(self, v: f64) -> String {
         match self {
             Ticks::Numbers => format_number(v),
-            Ticks::Whole => format!("{v:.0}"),
+            // Only the whole numbers among the ticks (a range of a few units gets ticks
+            // at halves too), and 0 never as "-0".
+            Ticks::Whole if (v - v.round()).abs() < 1e-9 => format!("{:.0}", v.round() + 0.0),
+            Ticks::Whole => String::new(),
             Ticks::Categories | Ticks::Log { .. } => String::new(),
         }
     }
@@ -133,6 +136,9 @@ impl<'t> Axis<'t, LogCoord<f64>> {
         title: &'t str,
         room: u32,
     ) -> Self {
+        // A hair wider: plotters finds the first decade as 10^ceil(ln(lo) / ln(10)),
+        // which for lo = 0.1 rounds to 10^0 and leaves the decade below 1 unlabelled.
+        let (lo, hi) = (lo * (1.0 - 1e-9), hi * (1.0 + 1e-9));
         Axis {
             range: (lo..hi).log_scale().into(),
             ticks: Ticks::Log { suffix, candidates },
@@ -145,6 +151,15 @@ impl<'t> Axis<'t, LogCoord<f64>> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn whole_number_ticks_label_only_whole_numbers() {
+        let labels: Vec<String> = [-0.4, 0.0, 0.5, 1.0, 1.5, 12.0]
+            .map(|v| Ticks::Whole.plain_label(v))
+            .to_vec();
+        assert_eq!(labels, ["", "0", "", "1", "", "12"]);
+        assert_eq!(Ticks::Whole.plain_label(-0.0), "0");
+    }
 
     #[test]
     fn log_ranges_span_whole_decades_or_hug_the_data() {

@@ -11,6 +11,7 @@ fn every_chart() -> Vec<Chart> {
     let mut charts = all(&r);
     for scene in &r.scenes {
         charts.extend(scene_histograms(&r, scene));
+        charts.extend(bvh_histograms(scene));
         charts.extend(
             scene
                 .variants
@@ -44,6 +45,45 @@ fn polygon_points(svg: &str) -> Vec<(f64, f64)> {
         .collect()
 }
 
+/// The value of attribute `name` of one element's text.
+fn attribute(element: &str, name: &str) -> Option<f64> {
+    element
+        .split(&format!(" {name}=\""))
+        .nth(1)?
+        .split('"')
+        .next()?
+        .parse()
+        .ok()
+}
+
+/// The centres of the `<circle>`s of an SVG.
+fn circles(svg: &str) -> Vec<(f64, f64)> {
+    svg.split("<circle")
+        .skip(1)
+        .filter_map(|c| Some((attribute(c, "cx")?, attribute(c, "cy")?)))
+        .collect()
+}
+
+/// The points of every `<polyline>` of an SVG.
+fn polylines(svg: &str) -> Vec<Vec<(f64, f64)>> {
+    svg.split("<polyline")
+        .skip(1)
+        .map(|p| {
+            let points = p.split("points=\"").nth(1).unwrap_or("");
+            points
+                .split('"')
+                .next()
+                .unwrap_or("")
+                .split_whitespace()
+                .filter_map(|xy| {
+                    let (x, y) = xy.split_once(',')?;
+                    Some((x.parse().ok()?, y.parse().ok()?))
+                })
+                .collect()
+        })
+        .collect()
+}
+
 /// The `(x, y, width, height)` of the filled `<rect>`s of colour `fill` (as `#RRGGBB`).
 fn rects(svg: &str, fill: &str) -> Vec<[f64; 4]> {
     svg.split("<rect")
@@ -66,7 +106,7 @@ fn rects(svg: &str, fill: &str) -> Vec<[f64; 4]> {
 #[test]
 fn every_chart_of_the_sample_is_svg_with_its_axis_titles() {
     let charts = all(&sample_results());
-    let expected: [(&str, &[&str]); 8] = [
+    let expected: [(&str, &[&str]); 9] = [
         (
             "calls",
             &[
@@ -108,6 +148,17 @@ fn every_chart_of_the_sample_is_svg_with_its_axis_titles() {
         (
             "histogram",
             &["gray level (0-255)", "pixels (log scale)", "baseline"],
+        ),
+        (
+            "roofline",
+            &[
+                "arithmetic intensity (flop/byte, log scale)",
+                "attained GFLOP/s (log scale)",
+                "peak 149 GFLOP/s",
+                "L1 190 GB/s",
+                "DRAM 11.8 GB/s",
+                "bvh",
+            ],
         ),
     ];
     let ids: Vec<&str> = charts.iter().map(|c| c.id).collect();
@@ -301,4 +352,70 @@ fn scene_histograms_leave_out_identical_variants() {
     let c = scene_histograms(&r, scene).expect("chart");
     assert!(c.svg.contains("ortho") && !c.svg.contains(">\nsimd\n<"));
     assert!(c.caption.contains("not drawn") && c.caption.contains("simd"));
+}
+
+#[test]
+fn roofline_points_sit_at_their_intensity_and_speed_under_the_roof() {
+    let r = sample_results();
+    let peak = r.peak.clone().expect("the sample measured the peaks");
+    let (chart, scale) = roofline::roofline_with_scale(&r).expect("chart");
+    // Pixels from the scale alone: a log axis puts ln(v) linearly between its edges,
+    // and the pixel rows grow downwards.
+    let along = |v: f64, (lo, hi): (f64, f64)| (v.ln() - lo.ln()) / (hi.ln() - lo.ln());
+    let (left, right) = scale.columns;
+    let (top, bottom) = scale.rows;
+    let x_of = |intensity: f64| left + along(intensity, scale.intensity) * (right - left);
+    let y_of = |gflops: f64| bottom - along(gflops, scale.gflops) * (bottom - top);
+    assert!(0.0 < left && right < f64::from(chart.width), "{scale:?}");
+    assert!(0.0 < top && bottom < f64::from(chart.height), "{scale:?}");
+    let drawn = circles(&chart.svg);
+    let mut checked = 0;
+    for scene in &r.scenes {
+        for v in &scene.variants {
+            let e = v
+                .efficiency
+                .as_ref()
+                .expect("every sample render has a point");
+            let (x, y) = (x_of(e.arithmetic_intensity), y_of(e.achieved_gflops));
+            assert!(
+                drawn
+                    .iter()
+                    .any(|c| (c.0 - x).abs() <= 1.5 && (c.1 - y).abs() <= 1.5),
+                "{} {}: no point at ({x:.1}, {y:.1})",
+                scene.name,
+                v.variant
+            );
+            // The roof over the point is higher on the page (a smaller row).
+            let roof = y_of(peak.roof_gflops(e.arithmetic_intensity));
+            assert!(
+                roof < y - 1.0,
+                "{} {}: roof {roof:.1}, point {y:.1}",
+                scene.name,
+                v.variant
+            );
+            checked += 1;
+        }
+    }
+    assert!(checked > 50, "{checked} points");
+    // The roof bends at the ridge, at the peak's height, and ends flat.
+    let ridge = (x_of(peak.ridge_intensity()), y_of(peak.peak_gflops));
+    let roof = polylines(&chart.svg)
+        .into_iter()
+        .find(|line| line.len() == 3)
+        .expect("the roof's polyline");
+    assert!(
+        (roof[1].0 - ridge.0).abs() <= 1.5 && (roof[1].1 - ridge.1).abs() <= 1.5,
+        "ridge drawn at {:?}, expected {ridge:?}",
+        roof[1]
+    );
+    assert!((roof[2].1 - roof[1].1).abs() <= 1.0 && roof[0].1 > roof[1].1);
+
+    // Without the peaks: the same points, no roof.
+    let unmeasured = Results {
+        peak: None,
+        ..r.clone()
+    };
+    let c = roofline_chart(&unmeasured).expect("chart");
+    assert!(!c.svg.contains("GFLOP/s peak") && !c.svg.contains("peak 149"));
+    assert!(c.caption.contains("not measured"));
 }

@@ -11,8 +11,10 @@ use crate::gallery::{self, Picture};
 use crate::sections;
 
 /// The report's sections: id and heading, in order. The comparison comes only with
-/// several runs, and first: a report of several runs opens with what changed.
-pub const SECTIONS: [(&str, &str); 16] = [
+/// several runs, and first: a report of several runs opens with what changed. The
+/// ray-rates, roofline, pixel-maps and bvh-quality sections come only with results
+/// that hold their data.
+pub const SECTIONS: [(&str, &str); 20] = [
     ("comparison", "What changed between the runs"),
     ("summary", "Summary"),
     ("profile", "Flat profile and call graph"),
@@ -23,12 +25,22 @@ pub const SECTIONS: [(&str, &str); 16] = [
         "Amdahl's law: what speeding up a function would give",
     ),
     ("variants", "Optimization variants"),
+    ("ray-rates", "Rays per second and where the time goes"),
+    (
+        "roofline",
+        "Roofline: attained GFLOP/s against the machine's peaks",
+    ),
     ("images", "Images, difference heat maps and histograms"),
+    ("pixel-maps", "Per-pixel maps of the work"),
     ("hardware-tables", "Hardware model: tables 7 and 8"),
     ("device-utilization", "Device utilization"),
     ("sw-hw", "Software against hardware"),
     ("time-vs-primitives", "Render time against primitive count"),
     ("spd", "SPD scene statistics"),
+    (
+        "bvh-quality",
+        "BVH quality: predicted against measured cost",
+    ),
     ("criterion", "Micro-benchmarks: time and instructions"),
     ("failures", "Failures"),
     ("reproduce", "How to reproduce"),
@@ -58,23 +70,29 @@ pub fn build(runs: &[Run]) -> Option<Document> {
     if runs.len() > 1 {
         sections_out.push(sections::comparison::comparison(&mut b));
     }
-    sections_out.extend([
-        sections::summary::summary(&mut b),
-        sections::profile::profile(&mut b),
-        sections::profile::profile_charts(&mut b),
-        sections::profile::flamegraphs(&mut b),
-        sections::profile::amdahl(&mut b),
-        sections::variants::variants(&mut b),
-        sections::images::images(&mut b),
-        sections::hardware::hardware_tables(&mut b),
-        sections::hardware::device_utilization(&mut b),
-        sections::hardware::sw_hw(&mut b),
-        sections::scaling::time_vs_primitives(&mut b),
-        sections::scaling::spd(&mut b),
-        sections::benchmarks::criterion(&mut b),
-        sections::closing::failures(&mut b),
-        sections::closing::reproduce(&mut b),
-    ]);
+    for section in [
+        Some(sections::summary::summary(&mut b)),
+        Some(sections::profile::profile(&mut b)),
+        Some(sections::profile::profile_charts(&mut b)),
+        Some(sections::profile::flamegraphs(&mut b)),
+        Some(sections::profile::amdahl(&mut b)),
+        Some(sections::variants::variants(&mut b)),
+        sections::ray_rates::ray_rates(&mut b),
+        sections::roofline::roofline(&mut b),
+        Some(sections::images::images(&mut b)),
+        sections::pixel_maps::pixel_maps(&mut b),
+        Some(sections::hardware::hardware_tables(&mut b)),
+        Some(sections::hardware::device_utilization(&mut b)),
+        Some(sections::hardware::sw_hw(&mut b)),
+        Some(sections::scaling::time_vs_primitives(&mut b)),
+        Some(sections::scaling::spd(&mut b)),
+        sections::bvh_quality::bvh_quality(&mut b),
+        Some(sections::benchmarks::criterion(&mut b)),
+        Some(sections::closing::failures(&mut b)),
+        Some(sections::closing::reproduce(&mut b)),
+    ] {
+        sections_out.extend(section);
+    }
     // A chart no section placed (a new kind) is not lost.
     if !b.charts.is_empty() {
         let mut more = b.section("more-charts", None);
@@ -175,12 +193,24 @@ impl<'a> Builder<'a> {
     /// [`crate::gallery`]), or why it cannot be shown. `size` is the picture's size
     /// in pixels (its aspect ratio).
     pub fn picture(&mut self, rel: Option<&str>, alt: &str, size: (u32, u32)) -> Visual {
+        self.picture_within(rel, alt, size, gallery::THUMBNAIL_WIDTH)
+    }
+
+    /// [`Builder::picture`] embedded up to `max_width` pixels wide rather than the
+    /// thumbnail width (a picture with text drawn in, which shrinking would blur).
+    pub fn picture_within(
+        &mut self,
+        rel: Option<&str>,
+        alt: &str,
+        size: (u32, u32),
+        max_width: u32,
+    ) -> Visual {
         let Some(rel) = rel else {
             return Visual::Missing {
                 text: format!("no image recorded for {alt}"),
             };
         };
-        match gallery::thumbnail(&self.run.base_dir, rel) {
+        match gallery::thumbnail_within(&self.run.base_dir, rel, max_width) {
             Picture::Png(bytes) => Visual::Image(Image {
                 asset: self.assets.add(AssetKind::Png, bytes),
                 width: f64::from(size.0.max(1)),

@@ -216,6 +216,9 @@ pub struct ImageGrid {
     pub columns: u32,
     pub row_labels: Vec<String>,
     pub tiles: Vec<Tile>,
+    /// The columns share the whole text width (pictures with a legend to read), where
+    /// a grid otherwise gives each column a sixth of it.
+    pub wide: bool,
 }
 
 #[derive(Clone, Debug, Serialize)]
@@ -458,7 +461,14 @@ impl ImageGrid {
             columns: columns as u32,
             row_labels,
             tiles,
+            wide: false,
         }
+    }
+
+    /// The grid across the whole text width.
+    pub fn wide(mut self) -> ImageGrid {
+        self.wide = true;
+        self
     }
 }
 

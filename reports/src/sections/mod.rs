@@ -6,22 +6,34 @@
 //! | `summary.rs` | summary (findings, machine, scenes, runs) |
 //! | `profile.rs` | profile, profile-charts, flamegraphs, amdahl |
 //! | `variants.rs` | variants |
+//! | `ray_rates.rs` | ray-rates |
+//! | `roofline.rs` | roofline |
 //! | `images.rs` | images |
+//! | `pixel_maps.rs` | pixel-maps |
 //! | `hardware.rs` | hardware-tables, device-utilization, sw-hw |
 //! | `scaling.rs` | time-vs-primitives, spd |
+//! | `bvh_quality.rs` | bvh-quality |
 //! | `benchmarks.rs` | criterion |
 //! | `closing.rs` | failures, reproduce |
 //! | `comparison.rs` | comparison (several runs) |
+//!
+//! The builders of sections that only some results files can fill (the comparison,
+//! ray-rates, roofline, pixel-maps, bvh-quality) return `None` when the data lack
+//! them: an older file's report leaves them out rather than showing them empty.
 //!
 //! [`Section`]: crate::document::Section
 
 pub(crate) mod access;
 pub(crate) mod benchmarks;
+pub(crate) mod bvh_quality;
 pub(crate) mod closing;
 pub(crate) mod comparison;
 pub mod hardware;
 pub(crate) mod images;
+pub(crate) mod pixel_maps;
 pub(crate) mod profile;
+pub(crate) mod ray_rates;
+pub(crate) mod roofline;
 pub(crate) mod scaling;
 pub(crate) mod summary;
 pub(crate) mod variants;

@@ -36,11 +36,7 @@ pub fn time_vs_primitives(b: &mut Builder) -> Section {
     let mut scenes: Vec<&SceneResult> = r.scenes.iter().collect();
     scenes.sort_by_key(|s| (s.family, s.primitives));
     for scene in scenes {
-        let fastest = scene
-            .variants
-            .iter()
-            .filter(|v| v.time.median > 0.0)
-            .min_by(|a, b| a.time.median.total_cmp(&b.time.median));
+        let fastest = access::fastest(scene);
         t.rows.push(vec![
             Cell::text(&scene.name),
             Cell::text(scene.family.name()),

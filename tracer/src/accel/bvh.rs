@@ -1,6 +1,9 @@
 //! Bounding volume hierarchy (variant `bvh`): axis-aligned boxes over every primitive
-//! kind, built once with the surface area heuristic (binned, as pbrt does), traversed
-//! front to back for closest hits and stopped at the first blocker for shadow rays.
+//! kind, built once with the surface area heuristic (binned, as pbrt does; or, for
+//! comparing how the quality metrics predict the cost, at the spatial middle:
+//! [`BvhBuilder`]), traversed front to back for closest hits and stopped at the first
+//! blocker for shadow rays. Its quality metrics (SAH cost, end-point overlap, shape) are
+//! in [`quality`].
 //!
 //! Counting: every node whose box is tested adds one `accel.nodes_visited`, every
 //! leaf whose primitives are tested one `accel.leaves_visited`; the primitive tests
@@ -8,6 +11,10 @@
 //! thesis's table (they use no dot product), so they add nothing to `ops.*`. With a
 //! BVH the bottleneck moves from the primitive tests to this traversal: compare
 //! `tests.*` and `accel.*` between `baseline` and `bvh`.
+
+mod quality;
+
+pub use quality::BvhShape;
 
 use super::{Intersector, intersect_primitive};
 use crate::counter::{Counter, Phase, Stat};
@@ -175,9 +182,51 @@ impl Node {
 #[repr(C, align(64))]
 struct NodePair([Node; 2]);
 
+/// How the tree chooses its splits.
+#[derive(
+    Clone, Copy, Debug, Default, PartialEq, Eq, Hash, serde::Serialize, serde::Deserialize,
+)]
+#[serde(rename_all = "snake_case")]
+pub enum BvhBuilder {
+    /// The surface area heuristic over 16 bins of the widest centroid axis; a leaf
+    /// when splitting would cost more than testing (at most 8 primitives). The `bvh`
+    /// variant's tree.
+    #[default]
+    BinnedSah,
+    /// The middle of the widest centroid axis (pbrt's `SplitMethod::Middle`): blind to
+    /// the primitives' sizes; a leaf per primitive (unless centroids coincide).
+    Midpoint,
+}
+
+impl BvhBuilder {
+    pub const ALL: [BvhBuilder; 2] = [BvhBuilder::BinnedSah, BvhBuilder::Midpoint];
+
+    /// The name in results and on the command line.
+    pub fn name(self) -> &'static str {
+        match self {
+            BvhBuilder::BinnedSah => "binned_sah",
+            BvhBuilder::Midpoint => "midpoint",
+        }
+    }
+
+    /// The builder called `name`, if any.
+    pub fn parse(name: &str) -> Option<Self> {
+        Self::ALL.into_iter().find(|b| b.name() == name)
+    }
+}
+
+impl std::fmt::Display for BvhBuilder {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.pad(self.name())
+    }
+}
+
 /// Figures about a built tree (reported as preprocessing).
 #[derive(Clone, Copy, Debug, Default, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct BvhStats {
+    /// The strategy that built it.
+    #[serde(default)]
+    pub builder: BvhBuilder,
     pub nodes: usize,
     pub leaves: usize,
     pub max_depth: usize,
@@ -210,6 +259,8 @@ pub struct Bvh<'s> {
     nodes: Vec<NodePair>,
     prims: Vec<PrimRef>,
     stats: BvhStats,
+    /// Leaves per depth and per primitive count, filled by the build.
+    shape: BvhShape,
 }
 
 struct BuildItem {
@@ -219,8 +270,13 @@ struct BuildItem {
 }
 
 impl<'s> Bvh<'s> {
-    /// Builds the tree over every primitive of `scene`.
+    /// Builds the tree over every primitive of `scene` with the binned SAH.
     pub fn build(scene: &'s Scene) -> Self {
+        Self::build_with(scene, BvhBuilder::BinnedSah)
+    }
+
+    /// Builds the tree over every primitive of `scene` with `builder`.
+    pub fn build_with(scene: &'s Scene, builder: BvhBuilder) -> Self {
         let mut items = Vec::with_capacity(scene.primitive_count());
         let kinds = [
             (PrimKind::Sphere, scene.spheres.len()),
@@ -248,7 +304,11 @@ impl<'s> Bvh<'s> {
             // Pairs: one per interior node (at most n - 1) and the root's.
             nodes: huge_pages::vec_with_capacity(items.len().max(1)),
             prims: huge_pages::vec_with_capacity(items.len()),
-            stats: BvhStats::default(),
+            stats: BvhStats {
+                builder,
+                ..BvhStats::default()
+            },
+            shape: BvhShape::default(),
         };
         bvh.nodes.push(NodePair([Node::UNUSED; 2]));
         if !items.is_empty() {
@@ -297,11 +357,17 @@ impl<'s> Bvh<'s> {
         self.stats
     }
 
-    fn push_leaf(&mut self, bounds: Aabb, items: &[BuildItem]) -> Node {
+    /// The tree's shape: leaves per depth and per size.
+    pub fn shape(&self) -> &BvhShape {
+        &self.shape
+    }
+
+    fn push_leaf(&mut self, bounds: Aabb, items: &[BuildItem], depth: usize) -> Node {
         let leaf = Node::new(bounds, self.prims.len() as u32, items.len() as u16, 0);
         self.prims.extend(items.iter().map(|it| it.prim));
         self.stats.leaves += 1;
         self.stats.max_leaf_size = self.stats.max_leaf_size.max(items.len());
+        self.shape.add_leaf(depth, items.len());
         leaf
     }
 
@@ -321,11 +387,22 @@ impl<'s> Bvh<'s> {
         };
         let fits_leaf = n <= u16::MAX as usize;
         if n == 1 || (fits_leaf && (!(extent[axis] > 0.0) || depth >= MAX_DEPTH)) {
-            return self.push_leaf(bounds, items);
+            return self.push_leaf(bounds, items, depth);
         }
         if !(extent[axis] > 0.0) {
             // Too many primitives with one centroid for a leaf: split by count.
             return self.push_interior(bounds, axis, items, n / 2, depth);
+        }
+        if self.stats.builder == BvhBuilder::Midpoint {
+            // The extremes' centroids fall on either side: both halves hold some.
+            let middle = centroids.min[axis] + 0.5 * extent[axis];
+            let mut mid = partition(items, |it| it.centroid[axis] < middle);
+            if mid == 0 || mid == n {
+                // The middle rounded onto an extreme: halve by count instead.
+                items.sort_by(|a, b| a.centroid[axis].total_cmp(&b.centroid[axis]));
+                mid = n / 2;
+            }
+            return self.push_interior(bounds, axis, items, mid, depth);
         }
 
         // Binned SAH along the widest centroid axis.
@@ -368,7 +445,7 @@ impl<'s> Bvh<'s> {
         }
         let area = bounds.surface_area().max(f32::MIN_POSITIVE);
         if n <= MAX_LEAF && TRAVERSAL_COST + best_cost / area >= n as f32 {
-            return self.push_leaf(bounds, items);
+            return self.push_leaf(bounds, items, depth);
         }
         let mid = partition(items, |it| bin_of(it.centroid) < best_split);
         self.push_interior(bounds, axis, items, mid, depth)

@@ -12,7 +12,7 @@ mod simd;
 
 pub use brute_force::BruteForce;
 use brute_force::occluded_by_cones_and_planars;
-pub use bvh::{Bvh, BvhStats};
+pub use bvh::{Bvh, BvhBuilder, BvhShape, BvhStats};
 pub use simd::Simd;
 
 use crate::counter::{Counter, Phase};

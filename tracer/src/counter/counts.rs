@@ -83,6 +83,18 @@ pub struct TestCounts {
     pub plane: TestHits,
 }
 
+impl TestCounts {
+    /// Primitive tests of every kind (the plane tests open the polygon and patch tests
+    /// they belong to, so they are not added again).
+    pub fn total(&self) -> u64 {
+        self.sphere.tests
+            + self.cylinder.tests
+            + self.cone.tests
+            + self.polygon.tests
+            + self.patch.tests
+    }
+}
+
 /// `accel.*`: acceleration-structure traversal (zero for brute force).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
 pub struct AccelCounts {

@@ -27,6 +27,7 @@
 
 pub mod counts;
 pub mod phase;
+pub mod query_clock;
 pub mod table;
 
 pub use counts::{AccelCounts, CallCounts, Counts, OpCounts, RayCounts, TestCounts, TestHits};
@@ -34,6 +35,7 @@ pub use phase::{
     Phase, PhaseGuard, enter_phase, phase_calls, phase_depth, phase_names, phase_stack_key,
     phases_of, with_phase,
 };
+pub use query_clock::{QueryClock, QueryKind, QueryTicks, clock_ticks, take_query_ticks};
 pub use table::{
     COUNTERS, CounterDef, DERIVED_CALLS, DerivedCalls, STAT_COUNT, Stat, by_key, counted_operations,
 };
@@ -44,7 +46,14 @@ use crate::vec3::Vec3;
 /// the square-root adaptor of the `fast-sqrt*` variants): a profile prints their
 /// methods by the bare operation name, as the thesis's table 6 does (`dot`, not
 /// `Counter::dot`). A test checks each against the source.
-pub const COUNTING_LAYER: [&str; 5] = ["Counter", "NoCount", "Count", "Phased", "WithSqrt"];
+pub const COUNTING_LAYER: [&str; 6] = [
+    "Counter",
+    "NoCount",
+    "Count",
+    "Phased",
+    "QueryClock",
+    "WithSqrt",
+];
 
 /// A sink for operation counts, and the home of every counted operation.
 ///

@@ -72,7 +72,7 @@ pub fn render_variant<C: Counter>(
             Ok(out)
         }
         Accelerator::Bvh => {
-            let bvh = Bvh::build(scene);
+            let bvh = Bvh::build_with(scene, options.bvh_builder);
             let stats = bvh.stats();
             let mut out = job.with_sqrt(&bvh, config.sqrt, Some(stats))?;
             out.accelerator_bytes = stats.bytes;

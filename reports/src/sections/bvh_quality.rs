@@ -1,0 +1,186 @@
+//! The BVH quality section: for each scene the suite studied, every build strategy's
+//! tree, the metrics that predict its cost (SAH cost, end-point overlap), what a
+//! counted render measured and the time, the shape of the trees, and a sentence saying
+//! whether the metrics predicted the measurement. Omitted when no scene has the study.
+
+use crate::charts;
+use crate::document::{Block, Builder, Cell, Column, Section, Table, Tone};
+use crate::format;
+use crate::results::{BvhQuality, SceneResult};
+
+pub fn bvh_quality(b: &mut Builder) -> Option<Section> {
+    let scenes: Vec<&SceneResult> = b
+        .results()
+        .scenes
+        .iter()
+        .filter(|s| !s.bvh_quality.is_empty())
+        .collect();
+    if scenes.is_empty() {
+        return None;
+    }
+    let mut s = b.section("bvh-quality", None);
+    s.text("Each build strategy's tree: its size and shape, the surface area heuristic's cost and the end-point overlap (both with an interior node costing 0.5 and a primitive test 1; lower predicts a cheaper traversal), the nodes, leaves and tests per ray the SAH model predicts against what a counted render measured, and the time of a timed render with the tree.");
+    for scene in scenes {
+        s.blocks.push(Block::Heading {
+            level: 2,
+            text: scene.name.clone(),
+            detail: counted_size(&scene.bvh_quality),
+            anchor: Some(format!("bvh-quality-{}", crate::slug(&scene.name))),
+        });
+        if let Some(sentence) = prediction_sentence(&scene.name, &scene.bvh_quality) {
+            s.text(sentence);
+        }
+        s.blocks.push(Block::Table(trees_table(&scene.bvh_quality)));
+        if let Some(chart) = charts::bvh_histograms(scene) {
+            let id = format!("{}-{}", chart.id, crate::slug(&scene.name));
+            let figure = b.figure_at(id, chart, 6.0);
+            s.blocks.push(figure);
+        }
+    }
+    Some(s)
+}
+
+/// The size of the counted renders, when they share one.
+fn counted_size(trees: &[BvhQuality]) -> Option<String> {
+    let first = trees.first()?;
+    trees
+        .iter()
+        .all(|t| (t.width, t.height) == (first.width, first.height))
+        .then(|| format!("counted at {}", format::size(first.width, first.height)))
+}
+
+/// Which build the metrics favour and whether the measurement agrees: the build with
+/// the lowest SAH cost against each other one, on EPO, nodes per ray and time.
+fn prediction_sentence(scene: &str, trees: &[BvhQuality]) -> Option<String> {
+    let best = trees
+        .iter()
+        .min_by(|a, b| a.sah_cost.total_cmp(&b.sah_cost))?;
+    let others: Vec<&BvhQuality> = trees.iter().filter(|t| !std::ptr::eq(*t, best)).collect();
+    if others.is_empty() {
+        return Some(format!(
+            "On {scene} only {} was built: nothing to compare its SAH cost of {} with.",
+            best.builder,
+            format::significant(best.sah_cost)
+        ));
+    }
+    let mut sentences = Vec::new();
+    for other in others {
+        sentences.push(compare(scene, best, other));
+    }
+    Some(sentences.join(" "))
+}
+
+/// One comparison: `best` has the lower SAH cost than `other`; the EPO, the measured
+/// nodes per ray and the time either follow it or not.
+fn compare(scene: &str, best: &BvhQuality, other: &BvhQuality) -> String {
+    let pair = |a: f64, b: f64, text: fn(f64) -> String| format!("{} against {}", text(a), text(b));
+    let epo_agrees = best.epo <= other.epo;
+    let mut text = format!(
+        "On {scene}, {} has the lower SAH cost ({})",
+        best.builder,
+        pair(best.sah_cost, other.sah_cost, format::significant),
+    );
+    text += &if epo_agrees {
+        format!(
+            " and the lower EPO ({}) than {}",
+            pair(best.epo, other.epo, format::significant),
+            other.builder
+        )
+    } else {
+        format!(
+            " than {}, but not the lower EPO ({})",
+            other.builder,
+            pair(best.epo, other.epo, format::significant)
+        )
+    };
+    let nodes = (best.measured_nodes_per_ray, other.measured_nodes_per_ray);
+    let time = (best.trace_seconds, other.trace_seconds);
+    let fewer_nodes = nodes.0 <= nodes.1;
+    let faster = time.0 <= time.1;
+    let nodes_text = format!(
+        "visits {} nodes per ray ({})",
+        if fewer_nodes { "fewer" } else { "more" },
+        pair(nodes.0, nodes.1, format::significant)
+    );
+    let time_text = format!(
+        "traces {} ({})",
+        if faster { "faster" } else { "slower" },
+        pair(time.0, time.1, format::seconds)
+    );
+    text += &match (fewer_nodes, faster) {
+        (true, true) => {
+            format!("; it also {nodes_text} and {time_text}: the metrics predict the measurement.")
+        }
+        (false, false) => format!(
+            "; yet it {nodes_text} and {time_text}: here the metrics do not predict the measurement."
+        ),
+        (false, true) => format!(
+            "; it {time_text}, but {nodes_text}: here the metrics do not predict the nodes visited."
+        ),
+        (true, false) => {
+            format!("; it {nodes_text}, but {time_text}: here the metrics do not predict the time.")
+        }
+    };
+    text
+}
+
+/// Every build of one scene's tree.
+fn trees_table(trees: &[BvhQuality]) -> Table {
+    let mut t = Table::new(vec![
+        Column::text("builder"),
+        Column::number("nodes"),
+        Column::number("leaves"),
+        Column::number("bytes"),
+        Column::number("max depth"),
+        Column::number("max leaf"),
+        Column::number("SAH cost"),
+        Column::number("EPO"),
+        Column::number("nodes per ray").detail("predicted"),
+        Column::number("nodes per ray").detail("measured"),
+        Column::number("measured ÷ predicted"),
+        Column::number("tests per ray").detail("measured (predicted)"),
+        Column::number("trace time"),
+    ])
+    .dense();
+    for tree in trees {
+        let ratio = tree.measured_nodes_per_ray / tree.predicted_nodes_per_ray;
+        t.rows.push(vec![
+            Cell::text(&tree.builder).code(),
+            Cell::count(tree.nodes),
+            Cell::count(tree.leaves),
+            Cell::number(format::bytes(tree.bytes), tree.bytes as f64),
+            Cell::count(u64::from(tree.max_depth)),
+            Cell::count(u64::from(tree.max_leaf_size)),
+            Cell::number(format::significant(tree.sah_cost), tree.sah_cost),
+            Cell::number(format::significant(tree.epo), tree.epo),
+            Cell::number(
+                format::significant(tree.predicted_nodes_per_ray),
+                tree.predicted_nodes_per_ray,
+            ),
+            Cell::number(
+                format::significant(tree.measured_nodes_per_ray),
+                tree.measured_nodes_per_ray,
+            ),
+            Cell::number(format::speedup(ratio), ratio).tone(if ratio.is_finite() {
+                Tone::Neutral
+            } else {
+                Tone::Muted
+            }),
+            Cell::number(
+                format::significant(tree.measured_tests_per_ray),
+                tree.measured_tests_per_ray,
+            )
+            .detail(format!(
+                "({})",
+                format::significant(tree.predicted_tests_per_ray)
+            ))
+            .hover(format!(
+                "leaves per ray: {} measured, {} predicted",
+                format::significant(tree.measured_leaves_per_ray),
+                format::significant(tree.predicted_leaves_per_ray)
+            )),
+            Cell::number(format::seconds(tree.trace_seconds), tree.trace_seconds),
+        ]);
+    }
+    t
+}

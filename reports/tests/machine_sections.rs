@@ -1,0 +1,525 @@
+//! The sections of `rtprof.results/3`'s machine figures (ray rates, roofline, per-pixel
+//! maps, BVH quality) from the synthetic sample: each is there, says the numbers its
+//! data give (computed here again from the sample's fields), lays out what it should,
+//! and is left out of the report of a file without those fields.
+
+use std::path::{Path, PathBuf};
+
+use reports::Run;
+use reports::document::{self, Block, Document, ImageGrid, Inline, Section, Table, Visual};
+use reports::format;
+use reports::results::{Results, SceneResult, VariantResult};
+use testkit::{sample_results, write_sample_files};
+
+/// A fresh directory under the system temp dir, removed on drop.
+struct TempDir(PathBuf);
+
+impl TempDir {
+    fn new(tag: &str) -> Self {
+        let dir = std::env::temp_dir().join(format!("rtprof-machine-{tag}-{}", std::process::id()));
+        let _ = std::fs::remove_dir_all(&dir);
+        std::fs::create_dir_all(&dir).expect("create temp dir");
+        TempDir(dir)
+    }
+
+    fn path(&self) -> &Path {
+        &self.0
+    }
+}
+
+impl Drop for TempDir {
+    fn drop(&mut self) {
+        let _ = std::fs::remove_dir_all(&self.0);
+    }
+}
+
+fn document_of(results: Results, dir: &Path) -> Document {
+    write_sample_files(dir).expect("sample files");
+    let run = Run {
+        label: "bench-1".to_string(),
+        results,
+        base_dir: dir.to_path_buf(),
+    };
+    document::build(&[run]).expect("document")
+}
+
+fn section<'d>(doc: &'d Document, id: &str) -> &'d Section {
+    doc.section(id).unwrap_or_else(|| panic!("no section {id}"))
+}
+
+/// The plain text of a section's paragraphs, one after another.
+fn prose(s: &Section) -> String {
+    s.blocks
+        .iter()
+        .filter_map(|b| match b {
+            Block::Paragraph { content } => Some(
+                content
+                    .iter()
+                    .map(|i| match i {
+                        Inline::Text { text } | Inline::Strong { text } | Inline::Code { text } => {
+                            text.as_str()
+                        }
+                        _ => "",
+                    })
+                    .collect::<String>(),
+            ),
+            _ => None,
+        })
+        .collect::<Vec<_>>()
+        .join("\n")
+}
+
+fn tables(s: &Section) -> Vec<&Table> {
+    s.blocks
+        .iter()
+        .filter_map(|b| match b {
+            Block::Table(t) => Some(t),
+            _ => None,
+        })
+        .collect()
+}
+
+fn grids(s: &Section) -> Vec<&ImageGrid> {
+    s.blocks
+        .iter()
+        .filter_map(|b| match b {
+            Block::ImageGrid(g) => Some(g),
+            _ => None,
+        })
+        .collect()
+}
+
+fn titles(t: &Table) -> Vec<&str> {
+    t.columns.iter().map(|c| c.title.as_str()).collect()
+}
+
+fn rings(r: &Results) -> &SceneResult {
+    r.scenes.iter().find(|s| s.name == "rings").expect("rings")
+}
+
+fn variant<'a>(scene: &'a SceneResult, name: &str) -> &'a VariantResult {
+    scene
+        .variants
+        .iter()
+        .find(|v| v.variant == name)
+        .unwrap_or_else(|| panic!("no {name}"))
+}
+
+#[test]
+fn the_roofline_states_the_peak_and_the_fastest_variants_distance_to_its_roof() {
+    let dir = TempDir::new("roofline");
+    let r = sample_results();
+    let doc = document_of(r.clone(), dir.path());
+    let s = section(&doc, "roofline");
+    let text = prose(s);
+
+    // rings is the profiled scene: its baseline against the peak.
+    let peak = r.peak.as_ref().expect("peak");
+    let scene = rings(&r);
+    let base = variant(scene, "baseline")
+        .efficiency
+        .as_ref()
+        .expect("efficiency");
+    let of_peak =
+        base.flops as f64 / variant(scene, "baseline").time.median / 1e9 / peak.peak_gflops * 100.0;
+    let expected = format!(
+        "On rings, baseline attains {} GFLOP/s",
+        format::significant(base.achieved_gflops)
+    );
+    assert!(text.contains(&expected), "{expected} not in: {text}");
+    let expected = format!("{} of the 149 GFLOP/s peak", format::percent(of_peak, 1));
+    assert!(text.contains(&expected), "{expected} not in: {text}");
+
+    // Its records came from the caches: it attains more than DRAM could feed.
+    let base_intensity = base.flops as f64 / base.bytes_moved as f64;
+    let dram = peak.peak_gflops.min(peak.bandwidth_gbs * base_intensity);
+    assert!(base.achieved_gflops > dram);
+    let expected = format!(
+        "above the {} GFLOP/s DRAM alone could feed it",
+        format::significant(dram)
+    );
+    assert!(text.contains(&expected), "{expected} not in: {text}");
+
+    // The fastest variant on rings (least median time), and its share of its roof:
+    // attained over min(peak, L1 bandwidth × intensity), the cache-aware roof.
+    let fastest = scene
+        .variants
+        .iter()
+        .min_by(|a, b| a.time.median.total_cmp(&b.time.median))
+        .expect("variants");
+    let e = fastest.efficiency.as_ref().expect("efficiency");
+    let intensity = e.flops as f64 / e.bytes_moved as f64;
+    let roof = peak.peak_gflops.min(peak.cache_bandwidth_gbs * intensity);
+    let share = e.achieved_gflops / roof * 100.0;
+    assert!(share < 100.0, "the sample's points are under their roofs");
+    let bound = if intensity < peak.peak_gflops / peak.cache_bandwidth_gbs {
+        "bandwidth"
+    } else {
+        "compute"
+    };
+    let expected = format!(
+        "the fastest variant, {}, attains {} GFLOP/s at {} flop/byte, {} of its {bound} roof of {} GFLOP/s",
+        fastest.variant,
+        format::significant(e.achieved_gflops),
+        format::significant(intensity),
+        format::percent(share, 1),
+        format::significant(roof)
+    );
+    assert!(text.contains(&expected), "{expected} not in: {text}");
+    assert!(text.contains("counted vector operations only, a lower bound"));
+
+    // The chart and the table of every point, with its roof.
+    assert!(
+        s.blocks
+            .iter()
+            .any(|b| matches!(b, Block::Figure(f) if f.id == "roofline"))
+    );
+    // One row per scene, one column per variant of the suite.
+    let t = tables(s)[0];
+    let variants: Vec<&str> = r.suite.variants.iter().map(|v| v.as_str()).collect();
+    let mut expected_titles = vec!["scene"];
+    expected_titles.extend(&variants);
+    assert_eq!(titles(t), expected_titles);
+    assert_eq!(t.rows.len(), r.scenes.len());
+    let row = t
+        .rows
+        .iter()
+        .find(|row| row[0].text == "rings")
+        .expect("rings' row");
+    let column = 1 + variants
+        .iter()
+        .position(|v| *v == fastest.variant.as_str())
+        .expect("the fastest variant's column");
+    let cell = format!(
+        "{} ({})",
+        format::significant(e.achieved_gflops),
+        format::percent(share, 1)
+    );
+    assert_eq!(row[column].text, cell);
+}
+
+#[test]
+fn without_the_peaks_the_roofline_has_no_roof() {
+    let dir = TempDir::new("no-peak");
+    let mut r = sample_results();
+    r.peak = None;
+    let doc = document_of(r, dir.path());
+    let s = section(&doc, "roofline");
+    assert!(
+        s.blocks
+            .iter()
+            .any(|b| matches!(b, Block::Note(n) if n.text.contains("peaks were not measured")))
+    );
+    let text = prose(s);
+    assert!(
+        text.contains("On rings, baseline attains") && !text.contains("% of the"),
+        "{text}"
+    );
+    // The attained GFLOP/s alone, without a share of a roof.
+    let t = tables(s)[0];
+    assert!(t.rows.iter().flatten().all(|c| !c.text.contains('%')));
+}
+
+#[test]
+fn the_rays_section_sets_the_lanes_in_use_against_the_speed_up() {
+    let dir = TempDir::new("rays");
+    let r = sample_results();
+    let doc = document_of(r.clone(), dir.path());
+    let s = section(&doc, "ray-rates");
+    let text = prose(s);
+
+    // The fullest and the emptiest lanes of simd, from lanes active / lanes issued.
+    let simd: Vec<(&SceneResult, &VariantResult)> = r
+        .scenes
+        .iter()
+        .map(|scene| (scene, variant(scene, "simd")))
+        .collect();
+    let used = |(_, v): &(&SceneResult, &VariantResult)| v.lane_utilization.expect("simd lanes");
+    let fullest = simd
+        .iter()
+        .max_by(|a, b| {
+            used(a)
+                .total_cmp(&used(b))
+                .then(a.0.primitives.cmp(&b.0.primitives))
+        })
+        .expect("simd");
+    let emptiest = simd
+        .iter()
+        .min_by(|a, b| {
+            used(a)
+                .total_cmp(&used(b))
+                .then(a.0.primitives.cmp(&b.0.primitives))
+        })
+        .expect("simd");
+    // rings: 4,200 spheres and 4,200 cylinders fill chunks of 8 exactly; balls1's one
+    // sphere uses one lane of 8.
+    assert_eq!((fullest.0.name.as_str(), used(fullest)), ("rings", 1.0));
+    assert_eq!(
+        (emptiest.0.name.as_str(), used(emptiest)),
+        ("balls1", 0.125)
+    );
+    let speed =
+        |(_, v): &(&SceneResult, &VariantResult)| format::speedup(v.speedup.expect("speed-up"));
+    for expected in [
+        format!(
+            "simd keeps 100.0 % of its lanes busy on rings (8,402 primitives) at {} baseline's speed",
+            speed(fullest)
+        ),
+        format!(
+            "and only 12.5 % on balls1 (1 primitive) at {} baseline's speed",
+            speed(emptiest)
+        ),
+    ] {
+        assert!(text.contains(&expected), "{expected} not in: {text}");
+    }
+    let pays = fullest.1.speedup > emptiest.1.speedup;
+    assert_eq!(text.contains("packing pays"), pays, "{text}");
+
+    let t = tables(s)[0];
+    let lanes = titles(t)
+        .iter()
+        .position(|c| *c == "SIMD lanes")
+        .expect("a lanes column");
+    assert_eq!(
+        titles(t)[lanes - 1],
+        "speed-up",
+        "the lanes sit next to the speed-up"
+    );
+    for row in &t.rows {
+        let is_simd = row[1].text == "simd";
+        assert_eq!(row[lanes].text != format::DASH, is_simd, "{}", row[1].text);
+    }
+    // The time shares of a row (eye, secondary, shadow, other, idle) sum to 100 %.
+    let row = &t.rows[0];
+    let shares: f64 = row[row.len() - 5..]
+        .iter()
+        .map(|c| c.sort.expect("a share"))
+        .sum();
+    assert!((shares - 1.0).abs() < 1e-9, "{shares}");
+}
+
+#[test]
+fn the_bvh_section_says_where_the_metrics_do_not_predict_the_measurement() {
+    let dir = TempDir::new("bvh");
+    let r = sample_results();
+    let doc = document_of(r.clone(), dir.path());
+    let s = section(&doc, "bvh-quality");
+    let text = prose(s);
+    let trees = &rings(&r).bvh_quality;
+    let sah = trees
+        .iter()
+        .find(|t| t.builder == "binned_sah")
+        .expect("sah");
+    let mid = trees
+        .iter()
+        .find(|t| t.builder == "midpoint")
+        .expect("midpoint");
+    assert!(sah.sah_cost < mid.sah_cost && sah.epo < mid.epo);
+    // The sample's SAH tree visits more nodes per ray yet traces faster.
+    assert!(sah.measured_nodes_per_ray > mid.measured_nodes_per_ray);
+    assert!(sah.trace_seconds < mid.trace_seconds);
+    let sig = format::significant;
+    for expected in [
+        format!(
+            "binned_sah has the lower SAH cost ({} against {}) and the lower EPO ({} against {}) than midpoint",
+            sig(sah.sah_cost),
+            sig(mid.sah_cost),
+            sig(sah.epo),
+            sig(mid.epo)
+        ),
+        format!(
+            "it traces faster ({} against {}), but visits more nodes per ray ({} against {}): here the metrics do not predict the nodes visited",
+            format::seconds(sah.trace_seconds),
+            format::seconds(mid.trace_seconds),
+            sig(sah.measured_nodes_per_ray),
+            sig(mid.measured_nodes_per_ray)
+        ),
+    ] {
+        assert!(text.contains(&expected), "{expected} not in: {text}");
+    }
+    let t = tables(s)[0];
+    assert_eq!(t.rows.len(), 2);
+    let ratio = titles(t)
+        .iter()
+        .position(|c| *c == "measured ÷ predicted")
+        .expect("ratio column");
+    assert_eq!(
+        t.rows[0][ratio].text,
+        format::speedup(sah.measured_nodes_per_ray / sah.predicted_nodes_per_ray)
+    );
+    assert!(
+        s.blocks
+            .iter()
+            .any(|b| matches!(b, Block::Figure(f) if f.id == "bvh-histograms-rings"))
+    );
+}
+
+#[test]
+fn pixel_maps_stand_side_by_side_per_counter_and_missing_files_cost_their_tile() {
+    let dir = TempDir::new("maps");
+    let r = sample_results();
+    write_sample_files(dir.path()).expect("sample files");
+    // The maps of rings are lost: each tile must say so.
+    std::fs::remove_dir_all(dir.path().join("pixel-maps/rings")).expect("remove the maps");
+    let run = Run {
+        label: "bench-1".to_string(),
+        results: r.clone(),
+        base_dir: dir.path().to_path_buf(),
+    };
+    let doc = document::build(&[run]).expect("document");
+    let s = section(&doc, "pixel-maps");
+    let scene = rings(&r);
+
+    let grids = grids(s);
+    let labels: Vec<&str> = grids.iter().map(|g| g.row_labels[0].as_str()).collect();
+    assert_eq!(
+        labels,
+        [
+            "time",
+            "sphere tests",
+            "cylinder tests",
+            "polygon tests",
+            "BVH nodes",
+            "shadow rays",
+            "ray-tree depth"
+        ]
+    );
+    for g in &grids {
+        assert_eq!(g.columns, 3);
+        assert!(g.wide, "maps take the whole width");
+    }
+    // The suite's variant order: baseline, simd, bvh.
+    let order: Vec<&str> = r
+        .suite
+        .variants
+        .iter()
+        .map(|v| v.as_str())
+        .filter(|v| scene.pixel_maps.iter().any(|m| m.variant == *v))
+        .collect();
+    assert_eq!(order, ["baseline", "simd", "bvh"]);
+    let time = grids[0];
+    for (tile, name) in time.tiles.iter().zip(&order) {
+        assert!(
+            tile.caption
+                .starts_with(&format!("{name} · time.ns, ns per sample (min ")),
+            "{}",
+            tile.caption
+        );
+        // The map files are gone: each tile says so.
+        assert!(
+            matches!(&tile.visual, Visual::Missing { text } if text.contains(&format!("image missing: pixel-maps/rings/{name}/time.ns.png"))),
+            "{:?}",
+            tile.visual
+        );
+    }
+    // Only bvh traverses a tree.
+    let nodes = grids[4];
+    assert!(
+        matches!(&nodes.tiles[0].visual, Visual::Placeholder { text } if text == "no BVH nodes with baseline")
+    );
+    assert!(
+        matches!(&nodes.tiles[1].visual, Visual::Placeholder { text } if text == "no BVH nodes with simd")
+    );
+    assert!(
+        nodes.tiles[2]
+            .caption
+            .starts_with("bvh · accel.nodes_visited, nodes per sample")
+    );
+
+    // The busiest pixel's sphere tests (the most tested kind of baseline: the first of
+    // the largest maxima) and the clock.
+    let max_of = |name: &str, key: &str| {
+        scene
+            .pixel_maps
+            .iter()
+            .find(|m| m.variant == name)
+            .and_then(|m| m.maps.iter().find(|x| x.key == key))
+            .map(|x| x.max)
+            .expect("map")
+    };
+    let text = prose(s);
+    let expected = format!(
+        "On rings the busiest pixel makes {} sphere tests with baseline, against {} with simd and {} with bvh.",
+        format::count(max_of("baseline", "tests.sphere.tests")),
+        format::count(max_of("simd", "tests.sphere.tests")),
+        format::count(max_of("bvh", "tests.sphere.tests")),
+    );
+    assert!(text.contains(&expected), "{expected} not in: {text}");
+    assert!(
+        text.contains("The time maps' clock ticks every 0.42 ns"),
+        "{text}"
+    );
+}
+
+#[test]
+fn pixel_map_files_are_embedded_when_they_are_there() {
+    let dir = TempDir::new("map-files");
+    let r = sample_results();
+    let maps = &rings(&r).pixel_maps[0];
+    let legend = reports::pixel_maps::Legend {
+        title: "time.ns".to_string(),
+        unit: "ns per sample".to_string(),
+        min: 0.0,
+        max: 10.0,
+    };
+    let values: Vec<f64> = (0..maps.columns * maps.rows)
+        .map(|i| f64::from(i % 11))
+        .collect();
+    let picture = reports::pixel_maps::false_colour(&values, maps.columns, maps.rows, &legend);
+    let path = dir.path().join(&maps.directory).join("time.ns.png");
+    std::fs::create_dir_all(path.parent().expect("parent")).expect("mkdir");
+    picture.save(&path).expect("png");
+    let doc = document_of(r.clone(), dir.path());
+    let tile = &grids(section(&doc, "pixel-maps"))[0].tiles[0];
+    let Visual::Image(image) = &tile.visual else {
+        panic!("not embedded: {:?}", tile.visual);
+    };
+    // Laid out at the file's size, embedded at most as wide as a small map is drawn
+    // (the PNG header's width: bytes 16 to 19, big-endian).
+    assert_eq!(
+        (image.width, image.height),
+        (f64::from(picture.width()), f64::from(picture.height()))
+    );
+    let png = &doc.assets.get(&image.asset).expect("asset").bytes;
+    let width = u32::from_be_bytes([png[16], png[17], png[18], png[19]]);
+    assert!(
+        width <= reports::pixel_maps::MIN_WIDTH && width < picture.width(),
+        "{width}"
+    );
+    let html = reports::html::render(&doc);
+    assert!(html.contains("alt=\"rings baseline time.ns\""));
+}
+
+#[test]
+fn a_file_without_the_new_fields_leaves_their_sections_out() {
+    let dir = TempDir::new("older");
+    let mut r = sample_results();
+    r.peak = None;
+    for scene in &mut r.scenes {
+        scene.bvh_quality.clear();
+        scene.pixel_maps.clear();
+        for v in &mut scene.variants {
+            v.efficiency = None;
+            v.ray_rates = None;
+            v.lane_utilization = None;
+        }
+    }
+    let doc = document_of(r, dir.path());
+    let html = reports::html::render(&doc);
+    for id in ["ray-rates", "roofline", "pixel-maps", "bvh-quality"] {
+        assert!(doc.section(id).is_none(), "{id} is there");
+        assert!(
+            !html.contains(&format!("<section id=\"{id}\">")),
+            "{id} in the HTML"
+        );
+        assert!(
+            !html.contains(&format!("href=\"#{id}\"")),
+            "{id} in the nav"
+        );
+    }
+    assert!(
+        !doc.tables()
+            .any(|t| t.columns.iter().any(|c| c.title == "SIMD lanes"))
+    );
+    assert!(doc.section("variants").is_some() && doc.section("spd").is_some());
+}

@@ -1,0 +1,285 @@
+//! The machine's roofs for the roofline model: a floating-point peak (a chain of fused
+//! multiply-adds, independent enough to fill both FMA pipes) and two bandwidths, the
+//! STREAM triad over arrays far larger than the caches (DRAM) and over arrays that stay
+//! in L1 (the cache-aware roofline's top memory roof), all on every thread of the
+//! renders' pool, in AVX2 where the processor has it (as the tracer's `simd` runs).
+//! Each runs a few times and keeps its best, as STREAM does: the roof is what the
+//! machine can do, not what it did while busy.
+
+use std::hint::black_box;
+use std::time::Instant;
+
+use rayon::prelude::*;
+use results::MachinePeak;
+
+/// Lanes of one vector.
+const LANES: usize = 8;
+/// Independent FMA chains per thread: latency (4-5 cycles) × 2 pipes, rounded up.
+const CHAINS: usize = 12;
+/// Repetitions; the best is kept.
+const REPEATS: usize = 3;
+/// The multiplier and addend of the chains: `x ← x·A + B` stays finite and normal.
+const A: f32 = 0.999_999;
+const B: f32 = 1e-6;
+
+/// How long each measurement runs.
+#[derive(Clone, Copy, Debug)]
+pub struct PeakPlan {
+    /// Seconds of one FMA run.
+    pub fma_seconds: f64,
+    /// Elements of each of the triad's three arrays.
+    pub stream_elements: usize,
+}
+
+impl PeakPlan {
+    /// About a second in all: 0.1 s per FMA run, 3 × 32 MiB arrays.
+    pub const FULL: PeakPlan = PeakPlan {
+        fma_seconds: 0.1,
+        stream_elements: 8 << 20,
+    };
+    /// For `--quick`: a tenth of the FMA time, 3 × 16 MiB (still past the caches).
+    pub const QUICK: PeakPlan = PeakPlan {
+        fma_seconds: 0.01,
+        stream_elements: 4 << 20,
+    };
+}
+
+/// Measures both roofs on `pool`.
+pub fn measure_peak(pool: &rayon::ThreadPool, plan: PeakPlan) -> MachinePeak {
+    let threads = pool.current_num_threads();
+    let (peak_gflops, fma_kernel) = fma_peak(pool, plan.fma_seconds);
+    let bandwidth_gbs = stream_bandwidth(pool, plan.stream_elements);
+    let cache_bandwidth_gbs = l1_bandwidth(pool, plan.fma_seconds);
+    MachinePeak {
+        peak_gflops,
+        bandwidth_gbs,
+        cache_bandwidth_gbs,
+        threads: threads as u32,
+        fma_kernel,
+        stream_bytes: 3 * 4 * plan.stream_elements as u64,
+    }
+}
+
+/// GFLOP/s of the FMA chains on every thread of `pool` and what they ran.
+fn fma_peak(pool: &rayon::ThreadPool, seconds: f64) -> (f64, String) {
+    let avx2 = has_avx2_fma();
+    let kernel = if avx2 {
+        format!("AVX2+FMA, {LANES} lanes × {CHAINS} chains")
+    } else {
+        format!("portable multiply-add, {LANES} lanes × {CHAINS} chains")
+    };
+    // Size the run from a short probe on one thread.
+    let probe = 20_000u64;
+    let start = Instant::now();
+    black_box(chains(probe, 1.0, avx2));
+    let per_step = start.elapsed().as_secs_f64().max(1e-9) / probe as f64;
+    let steps = ((seconds / per_step) as u64).max(probe);
+    let mut best = 0.0f64;
+    for _ in 0..REPEATS {
+        let start = Instant::now();
+        let sums = pool.broadcast(|ctx| chains(steps, 1.0 + ctx.index() as f32, avx2));
+        let elapsed = start.elapsed().as_secs_f64();
+        black_box(sums);
+        let flops = (2 * LANES * CHAINS) as f64 * steps as f64 * pool.current_num_threads() as f64;
+        best = best.max(flops / elapsed / 1e9);
+    }
+    (best, kernel)
+}
+
+/// Runs `steps` of every chain from `seed`; the sum of the final values.
+fn chains(steps: u64, seed: f32, avx2: bool) -> f32 {
+    #[cfg(target_arch = "x86_64")]
+    if avx2 {
+        // SAFETY: the caller checked that the processor has AVX2 and FMA.
+        return unsafe { chains_avx2(steps, seed) };
+    }
+    let _ = avx2;
+    chains_portable(steps, seed)
+}
+
+fn chains_portable(steps: u64, seed: f32) -> f32 {
+    let mut x = [[seed; LANES]; CHAINS];
+    for _ in 0..steps {
+        for chain in &mut x {
+            for lane in chain.iter_mut() {
+                *lane = *lane * A + B;
+            }
+        }
+        black_box(&mut x);
+    }
+    x.iter().flatten().sum()
+}
+
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx2,fma")]
+fn chains_avx2(steps: u64, seed: f32) -> f32 {
+    use std::arch::x86_64::{
+        __m256, _mm256_add_ps, _mm256_fmadd_ps, _mm256_set1_ps, _mm256_storeu_ps,
+    };
+    let (a, b) = (_mm256_set1_ps(A), _mm256_set1_ps(B));
+    let mut x: [__m256; CHAINS] = [_mm256_set1_ps(seed); CHAINS];
+    for _ in 0..steps {
+        for chain in &mut x {
+            *chain = _mm256_fmadd_ps(*chain, a, b);
+        }
+    }
+    let mut total = _mm256_set1_ps(0.0);
+    for chain in x {
+        total = _mm256_add_ps(total, chain);
+    }
+    let mut lanes = [0.0f32; LANES];
+    // SAFETY: `lanes` holds 8 floats.
+    unsafe { _mm256_storeu_ps(lanes.as_mut_ptr(), total) };
+    lanes.iter().sum()
+}
+
+fn has_avx2_fma() -> bool {
+    #[cfg(target_arch = "x86_64")]
+    {
+        std::arch::is_x86_feature_detected!("avx2") && std::arch::is_x86_feature_detected!("fma")
+    }
+    #[cfg(not(target_arch = "x86_64"))]
+    {
+        false
+    }
+}
+
+/// GB/s of the triad `a = b + s·c` over `n` elements per array, split over `pool`.
+fn stream_bandwidth(pool: &rayon::ThreadPool, n: usize) -> f64 {
+    let avx2 = has_avx2_fma();
+    pool.install(|| {
+        let chunk = n.div_ceil(pool.current_num_threads() * 4).max(1);
+        // First touch in parallel, so each thread's pages are its own.
+        let mut a = vec![0.0f32; n];
+        let mut b = vec![0.0f32; n];
+        let mut c = vec![0.0f32; n];
+        b.par_chunks_mut(chunk).for_each(|s| s.fill(1.0));
+        c.par_chunks_mut(chunk).for_each(|s| s.fill(2.0));
+        a.par_chunks_mut(chunk).for_each(|s| s.fill(0.0));
+        let scalar = black_box(3.0f32);
+        let mut best = 0.0f64;
+        for _ in 0..REPEATS + 2 {
+            let start = Instant::now();
+            a.par_chunks_mut(chunk)
+                .zip(b.par_chunks(chunk).zip(c.par_chunks(chunk)))
+                .for_each(|(a, (b, c))| triad_best(a, b, c, scalar, avx2));
+            let elapsed = start.elapsed().as_secs_f64();
+            black_box(&a);
+            best = best.max((12 * n) as f64 / elapsed / 1e9);
+        }
+        best
+    })
+}
+
+/// Elements of each array of the L1 triad: 3 × 2 KiB, well inside a 32 KiB L1.
+const L1_ELEMENTS: usize = 512;
+
+/// GB/s of the triad over arrays in each thread's L1, repeated for about `seconds`.
+fn l1_bandwidth(pool: &rayon::ThreadPool, seconds: f64) -> f64 {
+    let avx2 = has_avx2_fma();
+    let run = |passes: u64| {
+        let (mut a, b, c) = (
+            [0.0f32; L1_ELEMENTS],
+            [1.0f32; L1_ELEMENTS],
+            [2.0f32; L1_ELEMENTS],
+        );
+        let s = black_box(3.0f32);
+        for _ in 0..passes {
+            triad_best(&mut a, black_box(&b), black_box(&c), s, avx2);
+            black_box(&mut a);
+        }
+        a[0]
+    };
+    let probe = 2_000u64;
+    let start = Instant::now();
+    black_box(run(probe));
+    let per_pass = start.elapsed().as_secs_f64().max(1e-9) / probe as f64;
+    let passes = ((seconds / per_pass) as u64).max(probe);
+    let mut best = 0.0f64;
+    for _ in 0..REPEATS {
+        let start = Instant::now();
+        black_box(pool.broadcast(|_| run(passes)));
+        let elapsed = start.elapsed().as_secs_f64();
+        let bytes = (12 * L1_ELEMENTS) as f64 * passes as f64 * pool.current_num_threads() as f64;
+        best = best.max(bytes / elapsed / 1e9);
+    }
+    best
+}
+
+/// The triad in AVX2 where the processor has it.
+fn triad_best(a: &mut [f32], b: &[f32], c: &[f32], s: f32, avx2: bool) {
+    #[cfg(target_arch = "x86_64")]
+    if avx2 {
+        // SAFETY: the caller checked that the processor has AVX2 and FMA.
+        return unsafe { triad_avx2(a, b, c, s) };
+    }
+    let _ = avx2;
+    triad(a, b, c, s);
+}
+
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx2,fma")]
+fn triad_avx2(a: &mut [f32], b: &[f32], c: &[f32], s: f32) {
+    triad(a, b, c, s);
+}
+
+/// STREAM's triad on one chunk.
+#[inline(always)]
+fn triad(a: &mut [f32], b: &[f32], c: &[f32], s: f32) {
+    for ((a, b), c) in a.iter_mut().zip(b).zip(c) {
+        *a = b + s * c;
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// `x ← x·A + B` from `x0`, n times: `A^n x0 + B (1 - A^n) / (1 - A)`.
+    fn closed_form(x0: f64, n: u64) -> f64 {
+        let (a, b) = (f64::from(A), f64::from(B));
+        let an = a.powi(n as i32);
+        an * x0 + b * (1.0 - an) / (1.0 - a)
+    }
+
+    #[test]
+    fn the_chains_do_the_steps_they_are_credited_with() {
+        let steps = 10_000;
+        let expected = (CHAINS * LANES) as f64 * closed_form(1.0, steps);
+        for avx2 in [false, has_avx2_fma()] {
+            let sum = f64::from(chains(steps, 1.0, avx2));
+            assert!(
+                (sum / expected - 1.0).abs() < 1e-3,
+                "avx2 {avx2}: {sum} vs {expected}"
+            );
+        }
+        // Fewer steps leave a different value: the loop is not folded away.
+        assert!((f64::from(chains(steps / 2, 1.0, false)) - expected).abs() > 1e-3);
+    }
+
+    #[test]
+    fn the_triad_computes_b_plus_s_c() {
+        let (b, c) = ([1.0, 2.0, 3.0], [0.5, 0.25, 2.0]);
+        let mut a = [0.0; 3];
+        triad(&mut a, &b, &c, 2.0);
+        assert_eq!(a, [2.0, 2.5, 7.0]);
+    }
+
+    #[test]
+    fn the_peaks_are_positive_and_the_ridge_is_their_ratio() {
+        let pool = crate::pool::thread_pool(Some(1)).unwrap_or_else(|e| panic!("{e}"));
+        let plan = PeakPlan {
+            fma_seconds: 0.002,
+            stream_elements: 1 << 16,
+        };
+        let peak = measure_peak(&pool, plan);
+        assert!(
+            peak.peak_gflops > 0.0 && peak.bandwidth_gbs > 0.0,
+            "{peak:?}"
+        );
+        assert!(peak.cache_bandwidth_gbs > 0.0, "{peak:?}");
+        let ridge = peak.ridge_intensity();
+        assert!((peak.roof_gflops(ridge) - peak.peak_gflops).abs() < 1e-9 * peak.peak_gflops);
+        assert!(peak.roof_gflops(ridge / 2.0) < peak.peak_gflops);
+    }
+}
