@@ -36,3 +36,34 @@ pub fn fastest(scene: &SceneResult) -> Option<&VariantResult> {
         .filter(|v| v.time.median > 0.0)
         .min_by(|a, b| a.time.median.total_cmp(&b.time.median))
 }
+
+/// The scenes and variants of `(scene, variant)` rows, as a scene × variant table lays
+/// them out: scenes in the rows' order, variants in the suite's order (then any other,
+/// as met), each once.
+pub fn pivot<'a>(
+    r: &'a Results,
+    rows: &[(&'a SceneResult, &'a VariantResult)],
+) -> (Vec<&'a SceneResult>, Vec<&'a str>) {
+    let mut variants: Vec<&str> = r.suite.variants.iter().map(|v| v.as_str()).collect();
+    let mut scenes: Vec<&SceneResult> = Vec::new();
+    for (scene, v) in rows {
+        if !variants.contains(&v.variant.as_str()) {
+            variants.push(v.variant.as_str());
+        }
+        if !scenes.iter().any(|s| std::ptr::eq(*s, *scene)) {
+            scenes.push(scene);
+        }
+    }
+    (scenes, variants)
+}
+
+/// The row of `rows` for `scene` and `variant`, if any.
+pub fn pivot_cell<'a>(
+    rows: &[(&'a SceneResult, &'a VariantResult)],
+    scene: &SceneResult,
+    variant: &str,
+) -> Option<&'a VariantResult> {
+    rows.iter()
+        .find(|(s, v)| std::ptr::eq(*s, scene) && v.variant.as_str() == variant)
+        .map(|(_, v)| *v)
+}

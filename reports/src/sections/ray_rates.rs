@@ -3,6 +3,7 @@
 //! utilization beside its speed-up, with a sentence on whether packing primitives into
 //! lanes pays. Omitted when no variant has ray rates or lane counts (older files).
 
+use super::access;
 use crate::document::{Block, Builder, Cell, Column, Section, Table};
 use crate::format;
 use crate::results::{RayRates, SceneFamily, SceneResult, VariantResult};
@@ -47,30 +48,16 @@ pub fn ray_rates(b: &mut Builder) -> Option<Section> {
 
 /// Every ray per second, one row per scene and one column per variant.
 fn all_rays_table(r: &crate::results::Results, rows: &[(&SceneResult, &VariantResult)]) -> Table {
-    let mut variants: Vec<&str> = r.suite.variants.iter().map(|v| v.as_str()).collect();
-    for (_, v) in rows {
-        if !variants.contains(&v.variant.as_str()) {
-            variants.push(v.variant.as_str());
-        }
-    }
+    let (scenes, variants) = access::pivot(r, rows);
     let mut columns = vec![Column::text("scene")];
     columns.extend(variants.iter().map(|v| Column::number(*v)));
     let mut t = Table::new(columns).sortable().dense().caption(
         "All rays, Mrays/s, the other scenes (their split by kind is in results.json, ray_rates)",
     );
-    let mut scenes: Vec<&SceneResult> = Vec::new();
-    for (scene, _) in rows {
-        if !scenes.iter().any(|s| std::ptr::eq(*s, *scene)) {
-            scenes.push(scene);
-        }
-    }
     for scene in scenes {
         let mut row = vec![Cell::text(&scene.name)];
         for variant in &variants {
-            let rates = rows
-                .iter()
-                .find(|(s, v)| std::ptr::eq(*s, scene) && v.variant.as_str() == *variant)
-                .and_then(|(_, v)| v.ray_rates.as_ref());
+            let rates = access::pivot_cell(rows, scene, variant).and_then(|v| v.ray_rates.as_ref());
             row.push(match rates {
                 Some(x) if x.all_mrays_per_s.is_finite() => {
                     Cell::number(format::significant(x.all_mrays_per_s), x.all_mrays_per_s)

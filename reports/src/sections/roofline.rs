@@ -162,12 +162,9 @@ fn points_table(
     points: &[(&SceneResult, &VariantResult, &Efficiency)],
     peak: Option<&MachinePeak>,
 ) -> Table {
-    let mut variants: Vec<&str> = r.suite.variants.iter().map(|v| v.as_str()).collect();
-    for (_, v, _) in points {
-        if !variants.contains(&v.variant.as_str()) {
-            variants.push(v.variant.as_str());
-        }
-    }
+    let rows: Vec<(&SceneResult, &VariantResult)> =
+        points.iter().map(|(s, v, _)| (*s, *v)).collect();
+    let (scenes, variants) = access::pivot(r, &rows);
     let mut columns = vec![Column::text("scene")];
     columns.extend(variants.iter().map(|v| Column::number(*v)));
     let caption = if peak.is_some() {
@@ -176,22 +173,17 @@ fn points_table(
         "Attained GFLOP/s per scene and variant; hover for the intensity"
     };
     let mut t = Table::new(columns).sortable().dense().caption(caption);
-    let mut scenes: Vec<&SceneResult> = Vec::new();
-    for (scene, _, _) in points {
-        if !scenes.iter().any(|s| std::ptr::eq(*s, *scene)) {
-            scenes.push(scene);
-        }
-    }
     for scene in scenes {
         let mut row = vec![Cell::text(&scene.name)];
         for variant in &variants {
-            let point = points
-                .iter()
-                .find(|(s, v, _)| std::ptr::eq(*s, scene) && v.variant.as_str() == *variant);
-            row.push(match point {
-                Some((_, v, e)) => point_cell(v, e, peak),
-                None => Cell::dash(),
-            });
+            row.push(
+                match access::pivot_cell(&rows, scene, variant)
+                    .and_then(|v| Some((v, v.efficiency.as_ref()?)))
+                {
+                    Some((v, e)) => point_cell(v, e, peak),
+                    None => Cell::dash(),
+                },
+            );
         }
         t.rows.push(row);
     }
