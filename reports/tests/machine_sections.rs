@@ -523,3 +523,38 @@ fn a_file_without_the_new_fields_leaves_their_sections_out() {
     );
     assert!(doc.section("variants").is_some() && doc.section("spd").is_some());
 }
+
+#[test]
+fn scenes_with_one_tree_share_a_table_of_measured_against_predicted_boxes() {
+    let dir = TempDir::new("bvh-single");
+    let mut r = sample_results();
+    // Rings keeps only the binned SAH tree, as a suite leaves a large frame.
+    let scene = r
+        .scenes
+        .iter_mut()
+        .find(|s| s.name == "rings")
+        .expect("rings");
+    scene.bvh_quality.retain(|t| t.builder == "binned_sah");
+    let tree = scene.bvh_quality[0].clone();
+    let doc = document_of(r, dir.path());
+    let s = section(&doc, "bvh-quality");
+    let t = tables(s)[0];
+    assert_eq!(t.rows.len(), 1);
+    let row = &t.rows[0];
+    assert_eq!(row[0].text, "rings");
+    let ratio = tree.measured_nodes_per_ray / tree.predicted_nodes_per_ray;
+    let column = titles(t)
+        .iter()
+        .position(|c| *c == "measured ÷ predicted")
+        .expect("ratio column");
+    assert_eq!(row[column].text, format::speedup(ratio));
+    let text = prose(s);
+    assert!(
+        text.contains(&format!(
+            "were {} (rings) to {} (rings)",
+            format::speedup(ratio),
+            format::speedup(ratio)
+        )),
+        "{text}"
+    );
+}

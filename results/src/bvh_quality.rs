@@ -29,7 +29,7 @@ pub struct BvhQuality {
     pub measured_leaves_per_ray: f64,
     pub predicted_tests_per_ray: f64,
     pub measured_tests_per_ray: f64,
-    /// Size of the counted render (the scene's own or a smaller one).
+    /// Size of the counted render (the scene's frame).
     pub width: u32,
     pub height: u32,
     /// Seconds of one timed render with this tree (after a warm-up render).

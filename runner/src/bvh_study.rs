@@ -37,10 +37,6 @@ pub fn study(
     builder: BvhBuilder,
     policy: &TimingPolicy,
 ) -> Result<BvhQuality, RunError> {
-    let bvh = Bvh::build_with(setup.scene, builder);
-    let stats = bvh.stats();
-    let epo = bvh.end_point_overlap();
-    let shape = bvh.shape().clone();
     let options = RenderOptions {
         bvh_builder: builder,
         ..*setup.options
@@ -61,8 +57,24 @@ pub fn study(
             .install(|| render_variant::<NoCount>(setup.scene, &options, &set, &|_| {}))
             .map_err(fail)
     })?;
-    let measured = PerRay::of(&counts);
-    Ok(BvhQuality {
+    Ok(quality(setup, builder, &counts, timed.time.median))
+}
+
+/// The quality of the tree `builder` makes of `setup`'s scene, with what a render with
+/// it counted (`counts`) and how long it traced (`seconds`): the suite's `bvh` variant
+/// gives both for frames too large to render again.
+pub fn quality(
+    setup: &RenderSetup,
+    builder: BvhBuilder,
+    counts: &Counts,
+    seconds: f64,
+) -> BvhQuality {
+    let bvh = Bvh::build_with(setup.scene, builder);
+    let stats = bvh.stats();
+    let epo = bvh.end_point_overlap();
+    let shape = bvh.shape().clone();
+    let measured = PerRay::of(counts);
+    BvhQuality {
         builder: builder.name().to_string(),
         nodes: stats.nodes as u64,
         leaves: stats.leaves as u64,
@@ -79,10 +91,10 @@ pub fn study(
         measured_leaves_per_ray: measured.leaves,
         predicted_tests_per_ray: stats.predicted_tests_per_ray,
         measured_tests_per_ray: measured.tests,
-        width: options.width,
-        height: options.height,
-        trace_seconds: timed.time.median,
-    })
+        width: setup.options.width,
+        height: setup.options.height,
+        trace_seconds: seconds,
+    }
 }
 
 #[cfg(test)]

@@ -393,6 +393,13 @@ impl SceneRunner<'_> {
         let mut variants: Vec<VariantResult> = Vec::new();
         let mut reference: Option<analysis::RgbImage> = None;
         let memory = memory_use(&scene, &measured.variants);
+        // The `bvh` variant's counts and time, for the BVH quality of a large frame.
+        let bvh_measured = names
+            .iter()
+            .zip(&measured.variants)
+            .find(|(name, _)| name.as_str() == "bvh")
+            .and_then(|(_, m)| m.as_ref().ok())
+            .map(|m| (m.counts, m.time.median));
         for (name, outcome) in names.iter().zip(measured.variants) {
             match outcome.and_then(|m| self.variant_result(spec, &scene, m, reference.as_ref())) {
                 Ok((v, image)) => {
@@ -411,7 +418,7 @@ impl SceneRunner<'_> {
             }
             self.ctx.progress.advance(1);
         }
-        let bvh_quality = self.bvh_quality(&setup, &sets, &doing, failures)?;
+        let bvh_quality = self.bvh_quality(&setup, &sets, bvh_measured, &doing, failures)?;
         let pixel_maps = self.pixel_maps(spec, &setup, &sets, &doing, failures)?;
         let calibration = measured.calibration.map(|k| Calibration {
             time: k.time,
@@ -461,11 +468,13 @@ impl SceneRunner<'_> {
     }
 
     /// The BVH study of both builders, when the scene ran `bvh` on a frame small
-    /// enough ([`BVH_STUDY_PIXELS`]); a builder that fails is recorded and skipped.
+    /// enough ([`BVH_STUDY_PIXELS`]); a builder that fails is recorded and skipped. On a
+    /// larger frame, the `bvh` variant's own tree with its measured counts and time.
     fn bvh_quality(
         &self,
         setup: &RenderSetup,
         sets: &[VariantSet],
+        bvh_measured: Option<(tracer::Counts, f64)>,
         doing: &dyn Fn(&str),
         failures: &mut Vec<Failure>,
     ) -> Result<Vec<results::BvhQuality>, RunError> {
@@ -473,8 +482,17 @@ impl SceneRunner<'_> {
             .iter()
             .any(|s| s.config().accel == tracer::Accelerator::Bvh);
         let pixels = u64::from(setup.options.width) * u64::from(setup.options.height);
-        if !ran_bvh || pixels > BVH_STUDY_PIXELS {
+        if !ran_bvh {
             return Ok(Vec::new());
+        }
+        if pixels > BVH_STUDY_PIXELS {
+            return Ok(bvh_measured
+                .map(|(counts, seconds)| {
+                    doing("bvh quality");
+                    bvh_study::quality(setup, BvhBuilder::BinnedSah, &counts, seconds)
+                })
+                .into_iter()
+                .collect());
         }
         let mut studies = Vec::new();
         for builder in BvhBuilder::ALL {

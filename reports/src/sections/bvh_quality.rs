@@ -20,7 +20,18 @@ pub fn bvh_quality(b: &mut Builder) -> Option<Section> {
     }
     let mut s = b.section("bvh-quality", None);
     s.text("Each build strategy's tree: its size and shape, the surface area heuristic's cost and the end-point overlap (both with an interior node costing 0.5 and a primitive test 1; lower predicts a cheaper traversal), the nodes, leaves and tests per ray the SAH model predicts against what a counted render measured, and the time of a timed render with the tree.");
-    for scene in scenes {
+    // Scenes with one tree (the bvh variant's, on frames too large to render again)
+    // share one table; those with both builders get their comparison.
+    let (compared, single): (Vec<&SceneResult>, Vec<&SceneResult>) =
+        scenes.into_iter().partition(|s| s.bvh_quality.len() > 1);
+    if !single.is_empty() {
+        s.blocks.push(Block::subheading("The bvh variant's tree"));
+        if let Some(sentence) = spread_sentence(&single) {
+            s.text(sentence);
+        }
+        s.blocks.push(Block::Table(single_table(&single)));
+    }
+    for scene in compared {
         s.blocks.push(Block::Heading {
             level: 2,
             text: scene.name.clone(),
@@ -180,6 +191,72 @@ fn trees_table(trees: &[BvhQuality]) -> Table {
                 format::significant(tree.predicted_leaves_per_ray)
             )),
             Cell::number(format::seconds(tree.trace_seconds), tree.trace_seconds),
+        ]);
+    }
+    t
+}
+
+/// How far the measured boxes per ray stray from the prediction across `scenes`.
+fn spread_sentence(scenes: &[&SceneResult]) -> Option<String> {
+    let ratios: Vec<(f64, &str)> = scenes
+        .iter()
+        .filter_map(|s| {
+            let t = s.bvh_quality.first()?;
+            let r = t.measured_nodes_per_ray / t.predicted_nodes_per_ray;
+            r.is_finite().then_some((r, s.name.as_str()))
+        })
+        .collect();
+    let low = ratios.iter().min_by(|a, b| a.0.total_cmp(&b.0))?;
+    let high = ratios.iter().max_by(|a, b| a.0.total_cmp(&b.0))?;
+    Some(format!(
+        "On {} scenes the bvh variant's own tree, counted at the scene's frame: the boxes a ray tested were {} ({}) to {} ({}) the number the SAH model predicts for random lines through the root box; eye rays that miss the scene test only the root, and rays that start on a surface or stop at a hit test fewer or more.",
+        ratios.len(),
+        format::speedup(low.0),
+        low.1,
+        format::speedup(high.0),
+        high.1
+    ))
+}
+
+/// One row per scene with one tree: its size, metrics, boxes per ray and time.
+fn single_table(scenes: &[&SceneResult]) -> Table {
+    let columns = vec![
+        Column::text("scene"),
+        Column::text("frame"),
+        Column::number("nodes"),
+        Column::number("bytes"),
+        Column::number("max depth"),
+        Column::number("SAH cost"),
+        Column::number("EPO"),
+        Column::number("nodes per ray").detail("predicted"),
+        Column::number("nodes per ray").detail("measured"),
+        Column::number("measured ÷ predicted"),
+        Column::number("trace time"),
+    ];
+    let mut t = Table::new(columns).sortable().dense();
+    for scene in scenes {
+        let Some(q) = scene.bvh_quality.first() else {
+            continue;
+        };
+        let ratio = q.measured_nodes_per_ray / q.predicted_nodes_per_ray;
+        t.rows.push(vec![
+            Cell::text(&scene.name),
+            Cell::text(format::size(q.width, q.height)),
+            Cell::count(q.nodes),
+            Cell::number(format::bytes(q.bytes), q.bytes as f64),
+            Cell::count(u64::from(q.max_depth)),
+            Cell::number(format::fixed(q.sah_cost, 2), q.sah_cost),
+            Cell::number(format::fixed(q.epo, 2), q.epo),
+            Cell::number(
+                format::fixed(q.predicted_nodes_per_ray, 1),
+                q.predicted_nodes_per_ray,
+            ),
+            Cell::number(
+                format::fixed(q.measured_nodes_per_ray, 1),
+                q.measured_nodes_per_ray,
+            ),
+            Cell::number(format::speedup(ratio), ratio),
+            Cell::number(format::seconds(q.trace_seconds), q.trace_seconds),
         ]);
     }
     t
