@@ -3,35 +3,13 @@
 //! data give (computed here again from the sample's fields), lays out what it should,
 //! and is left out of the report of a file without those fields.
 
-use std::path::{Path, PathBuf};
+use std::path::Path;
 
 use reports::Run;
 use reports::document::{self, Block, Document, ImageGrid, Inline, Section, Table, Visual};
 use reports::format;
 use reports::results::{Results, SceneResult, VariantResult};
-use testkit::{sample_results, write_sample_files};
-
-/// A fresh directory under the system temp dir, removed on drop.
-struct TempDir(PathBuf);
-
-impl TempDir {
-    fn new(tag: &str) -> Self {
-        let dir = std::env::temp_dir().join(format!("rtprof-machine-{tag}-{}", std::process::id()));
-        let _ = std::fs::remove_dir_all(&dir);
-        std::fs::create_dir_all(&dir).expect("create temp dir");
-        TempDir(dir)
-    }
-
-    fn path(&self) -> &Path {
-        &self.0
-    }
-}
-
-impl Drop for TempDir {
-    fn drop(&mut self) {
-        let _ = std::fs::remove_dir_all(&self.0);
-    }
-}
+use testkit::{TempDir, sample_results, write_sample_files};
 
 fn document_of(results: Results, dir: &Path) -> Document {
     write_sample_files(dir).expect("sample files");
@@ -107,7 +85,7 @@ fn variant<'a>(scene: &'a SceneResult, name: &str) -> &'a VariantResult {
 
 #[test]
 fn the_roofline_states_the_peak_and_the_fastest_variants_distance_to_its_roof() {
-    let dir = TempDir::new("roofline");
+    let dir = TempDir::new("machine-roofline");
     let r = sample_results();
     let doc = document_of(r.clone(), dir.path());
     let s = section(&doc, "roofline");
@@ -200,7 +178,7 @@ fn the_roofline_states_the_peak_and_the_fastest_variants_distance_to_its_roof() 
 
 #[test]
 fn without_the_peaks_the_roofline_has_no_roof() {
-    let dir = TempDir::new("no-peak");
+    let dir = TempDir::new("machine-no-peak");
     let mut r = sample_results();
     r.peak = None;
     let doc = document_of(r, dir.path());
@@ -222,7 +200,7 @@ fn without_the_peaks_the_roofline_has_no_roof() {
 
 #[test]
 fn the_rays_section_sets_the_lanes_in_use_against_the_speed_up() {
-    let dir = TempDir::new("rays");
+    let dir = TempDir::new("machine-rays");
     let r = sample_results();
     let doc = document_of(r.clone(), dir.path());
     let s = section(&doc, "ray-rates");
@@ -300,7 +278,7 @@ fn the_rays_section_sets_the_lanes_in_use_against_the_speed_up() {
 
 #[test]
 fn the_bvh_section_says_where_the_metrics_do_not_predict_the_measurement() {
-    let dir = TempDir::new("bvh");
+    let dir = TempDir::new("machine-bvh");
     let r = sample_results();
     let doc = document_of(r.clone(), dir.path());
     let s = section(&doc, "bvh-quality");
@@ -356,7 +334,7 @@ fn the_bvh_section_says_where_the_metrics_do_not_predict_the_measurement() {
 
 #[test]
 fn pixel_maps_stand_side_by_side_per_counter_and_missing_files_cost_their_tile() {
-    let dir = TempDir::new("maps");
+    let dir = TempDir::new("machine-maps");
     let r = sample_results();
     write_sample_files(dir.path()).expect("sample files");
     // The maps of rings are lost: each tile must say so.
@@ -453,7 +431,7 @@ fn pixel_maps_stand_side_by_side_per_counter_and_missing_files_cost_their_tile()
 
 #[test]
 fn pixel_map_files_are_embedded_when_they_are_there() {
-    let dir = TempDir::new("map-files");
+    let dir = TempDir::new("machine-map-files");
     let r = sample_results();
     let maps = &rings(&r).pixel_maps[0];
     let legend = reports::pixel_maps::Legend {
@@ -492,7 +470,7 @@ fn pixel_map_files_are_embedded_when_they_are_there() {
 
 #[test]
 fn a_file_without_the_new_fields_leaves_their_sections_out() {
-    let dir = TempDir::new("older");
+    let dir = TempDir::new("machine-older");
     let mut r = sample_results();
     r.peak = None;
     for scene in &mut r.scenes {
@@ -526,7 +504,7 @@ fn a_file_without_the_new_fields_leaves_their_sections_out() {
 
 #[test]
 fn scenes_with_one_tree_share_a_table_of_measured_against_predicted_boxes() {
-    let dir = TempDir::new("bvh-single");
+    let dir = TempDir::new("machine-bvh-single");
     let mut r = sample_results();
     // Rings keeps only the binned SAH tree, as a suite leaves a large frame.
     let scene = r

@@ -5,6 +5,8 @@
 
 pub mod files;
 pub mod sample;
+pub mod temp_dir;
 
 pub use files::{TINY_PNG, referenced_files, write_sample_files};
 pub use sample::{SAMPLE_VARIANTS, sample_results};
+pub use temp_dir::TempDir;
