@@ -19,7 +19,7 @@ fn sample_run(label: &str, dir: &Path) -> Run {
 
 #[test]
 fn every_section_is_present_and_nothing_reaches_the_network() {
-    let dir = TempDir::new("html-test-sections");
+    let dir = TempDir::new("html-test-sections").expect("temp dir");
     let html = render_html(&[sample_run("bench-1", dir.path())]).expect("render");
     assert!(html.starts_with("<!DOCTYPE html>"));
     for (id, _) in SECTIONS {
@@ -52,7 +52,7 @@ fn every_section_is_present_and_nothing_reaches_the_network() {
 
 #[test]
 fn images_are_embedded_as_data_uris() {
-    let dir = TempDir::new("html-test-images");
+    let dir = TempDir::new("html-test-images").expect("temp dir");
     let html = render_html(&[sample_run("bench-1", dir.path())]).expect("render");
     let tiny_png = "iVBORw0KGgoAAAANSUhEUgAAAAEAAAABCAAAAAA6fptVAAAACklEQVR4nGNoAAAAggCBd81ytgAAAABJRU5ErkJggg==";
     assert!(html.contains(&format!("src=\"data:image/png;base64,{tiny_png}\"")));
@@ -68,7 +68,7 @@ fn images_are_embedded_as_data_uris() {
 
 #[test]
 fn a_missing_image_gives_a_visible_note() {
-    let dir = TempDir::new("html-test-missing");
+    let dir = TempDir::new("html-test-missing").expect("temp dir");
     let run = sample_run("bench-1", dir.path());
     let gone = "images/balls4-ortho.png";
     std::fs::remove_file(dir.path().join(gone)).expect("remove");
@@ -79,7 +79,7 @@ fn a_missing_image_gives_a_visible_note() {
     );
 
     // A whole missing directory (texts, flamegraphs) still renders, with notes.
-    let empty = TempDir::new("html-test-empty");
+    let empty = TempDir::new("html-test-empty").expect("temp dir");
     let run = Run {
         label: "bare".into(),
         results: sample_results(),
@@ -92,7 +92,7 @@ fn a_missing_image_gives_a_visible_note() {
 
 #[test]
 fn two_runs_give_the_comparison_section() {
-    let dir = TempDir::new("html-test-two");
+    let dir = TempDir::new("html-test-two").expect("temp dir");
     let first = sample_run("bench-1", dir.path());
     let mut second = sample_run("bench-2", dir.path());
     second.results.machine.hostname = "bench-2".into();
@@ -126,7 +126,7 @@ fn two_runs_give_the_comparison_section() {
 
 #[test]
 fn scene_names_are_escaped() {
-    let dir = TempDir::new("html-test-escape");
+    let dir = TempDir::new("html-test-escape").expect("temp dir");
     let mut run = sample_run("bench-1", dir.path());
     run.results.scenes[0].name = "<script>alert(1)</script>".into();
     run.results.failures[0].message = "bad \"quote\" & <b>tag</b>".into();
@@ -143,7 +143,7 @@ fn scene_names_are_escaped() {
 
 #[test]
 fn an_empty_run_explains_its_empty_sections() {
-    let dir = TempDir::new("html-test-bare");
+    let dir = TempDir::new("html-test-bare").expect("temp dir");
     let mut results = sample_results();
     results.scenes.clear();
     results.profile = None;

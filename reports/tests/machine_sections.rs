@@ -85,7 +85,7 @@ fn variant<'a>(scene: &'a SceneResult, name: &str) -> &'a VariantResult {
 
 #[test]
 fn the_roofline_states_the_peak_and_the_fastest_variants_distance_to_its_roof() {
-    let dir = TempDir::new("machine-roofline");
+    let dir = TempDir::new("machine-roofline").expect("temp dir");
     let r = sample_results();
     let doc = document_of(r.clone(), dir.path());
     let s = section(&doc, "roofline");
@@ -178,7 +178,7 @@ fn the_roofline_states_the_peak_and_the_fastest_variants_distance_to_its_roof() 
 
 #[test]
 fn without_the_peaks_the_roofline_has_no_roof() {
-    let dir = TempDir::new("machine-no-peak");
+    let dir = TempDir::new("machine-no-peak").expect("temp dir");
     let mut r = sample_results();
     r.peak = None;
     let doc = document_of(r, dir.path());
@@ -200,7 +200,7 @@ fn without_the_peaks_the_roofline_has_no_roof() {
 
 #[test]
 fn the_rays_section_sets_the_lanes_in_use_against_the_speed_up() {
-    let dir = TempDir::new("machine-rays");
+    let dir = TempDir::new("machine-rays").expect("temp dir");
     let r = sample_results();
     let doc = document_of(r.clone(), dir.path());
     let s = section(&doc, "ray-rates");
@@ -278,7 +278,7 @@ fn the_rays_section_sets_the_lanes_in_use_against_the_speed_up() {
 
 #[test]
 fn the_bvh_section_says_where_the_metrics_do_not_predict_the_measurement() {
-    let dir = TempDir::new("machine-bvh");
+    let dir = TempDir::new("machine-bvh").expect("temp dir");
     let r = sample_results();
     let doc = document_of(r.clone(), dir.path());
     let s = section(&doc, "bvh-quality");
@@ -334,7 +334,7 @@ fn the_bvh_section_says_where_the_metrics_do_not_predict_the_measurement() {
 
 #[test]
 fn pixel_maps_stand_side_by_side_per_counter_and_missing_files_cost_their_tile() {
-    let dir = TempDir::new("machine-maps");
+    let dir = TempDir::new("machine-maps").expect("temp dir");
     let r = sample_results();
     write_sample_files(dir.path()).expect("sample files");
     // The maps of rings are lost: each tile must say so.
@@ -431,7 +431,7 @@ fn pixel_maps_stand_side_by_side_per_counter_and_missing_files_cost_their_tile()
 
 #[test]
 fn pixel_map_files_are_embedded_when_they_are_there() {
-    let dir = TempDir::new("machine-map-files");
+    let dir = TempDir::new("machine-map-files").expect("temp dir");
     let r = sample_results();
     let maps = &rings(&r).pixel_maps[0];
     let legend = reports::pixel_maps::Legend {
@@ -470,7 +470,7 @@ fn pixel_map_files_are_embedded_when_they_are_there() {
 
 #[test]
 fn a_file_without_the_new_fields_leaves_their_sections_out() {
-    let dir = TempDir::new("machine-older");
+    let dir = TempDir::new("machine-older").expect("temp dir");
     let mut r = sample_results();
     r.peak = None;
     for scene in &mut r.scenes {
@@ -504,7 +504,7 @@ fn a_file_without_the_new_fields_leaves_their_sections_out() {
 
 #[test]
 fn scenes_with_one_tree_share_a_table_of_measured_against_predicted_boxes() {
-    let dir = TempDir::new("machine-bvh-single");
+    let dir = TempDir::new("machine-bvh-single").expect("temp dir");
     let mut r = sample_results();
     // Rings keeps only the binned SAH tree, as a suite leaves a large frame.
     let scene = r

@@ -8,13 +8,11 @@ pub struct TempDir(PathBuf);
 
 impl TempDir {
     /// `rtprof-<tag>-<pid>` under the temp dir, emptied first.
-    pub fn new(tag: &str) -> Self {
+    pub fn new(tag: &str) -> std::io::Result<Self> {
         let dir = std::env::temp_dir().join(format!("rtprof-{tag}-{}", std::process::id()));
         let _ = std::fs::remove_dir_all(&dir);
-        if let Err(e) = std::fs::create_dir_all(&dir) {
-            panic!("create {}: {e}", dir.display());
-        }
-        TempDir(dir)
+        std::fs::create_dir_all(&dir)?;
+        Ok(TempDir(dir))
     }
 
     pub fn path(&self) -> &Path {
