@@ -14,18 +14,34 @@ use analysis::profile::flat::FlatProfile;
 use runner::profile_job::{ProfileJob, VariantProfile};
 use tracer::{RenderOptions, Sampling, Scene, ShadingMode, VariantSet, parse_nff};
 
-/// Samples per profile: a 95 % interval of about ±4 points on a 50 % share.
+/// Samples per profile of the differential graph: a 95 % interval of about ±4 points on
+/// a 50 % share.
 const MIN_SAMPLES: u64 = 500;
+/// Samples per profile of the known split. The sphere tests are about a tenth of the mixed
+/// scene's samples; at 500 samples their count (~55) alone has a 13 % relative error and
+/// the ratio check failed one run in ten. At 3,000 it is about 5 %.
+const SPLIT_SAMPLES: u64 = 3000;
 
-fn profile(scene: &Scene, name: &str, size: (u32, u32), variant: &str) -> VariantProfile {
+fn profile(
+    scene: &Scene,
+    name: &str,
+    size: (u32, u32),
+    variant: &str,
+    min_samples: u64,
+) -> VariantProfile {
     let pool = runner::pool::thread_pool(Some(2)).unwrap();
     let job = ProfileJob {
         scene,
         options: RenderOptions::new(size.0, size.1, Sampling::PixelCenters, ShadingMode::Color),
         pool: &pool,
-        frequency: 1000,
+        // Higher than the command's default so that the split's many samples come quickly.
+        frequency: if min_samples > MIN_SAMPLES {
+            4000
+        } else {
+            1000
+        },
         name,
-        min_samples: MIN_SAMPLES,
+        min_samples,
     };
     let set = VariantSet::parse(variant).unwrap();
     job.profile(&set, &runner::progress::Silent)
@@ -68,14 +84,14 @@ fn phase_attribution_follows_the_known_costs_and_the_bvh_diff() {
     let size = (64, 48);
 
     let sphere_cost = cost_per_test(
-        &profile(&spheres, "spheres", size, "baseline"),
+        &profile(&spheres, "spheres", size, "baseline", SPLIT_SAMPLES),
         "sphere test",
     );
     let cylinder_cost = cost_per_test(
-        &profile(&cylinders, "cylinders", size, "baseline"),
+        &profile(&cylinders, "cylinders", size, "baseline", SPLIT_SAMPLES),
         "cylinder test",
     );
-    let both = profile(&mixed, "lattice3", size, "baseline");
+    let both = profile(&mixed, "lattice3", size, "baseline", SPLIT_SAMPLES);
     let (sphere_s, sphere_tests) = phase(&both.phases.flat, "sphere test");
     let (cylinder_s, cylinder_tests) = phase(&both.phases.flat, "cylinder test");
     let measured = sphere_s / cylinder_s;
@@ -115,8 +131,8 @@ fn phase_attribution_follows_the_known_costs_and_the_bvh_diff() {
     // Baseline against bvh on SPD rings: the tests shrink, the traversal grows.
     let rings_path = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../shared/spd/rings.nff");
     let rings = tracer::load_nff(&rings_path).unwrap();
-    let base = profile(&rings, "rings", (48, 36), "baseline");
-    let bvh = profile(&rings, "rings", (48, 36), "bvh");
+    let base = profile(&rings, "rings", (48, 36), "baseline", MIN_SAMPLES);
+    let bvh = profile(&rings, "rings", (48, 36), "bvh", MIN_SAMPLES);
     let dir = std::env::temp_dir().join(format!("rtprof-attribution-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
     let (grown, shrunk) =
