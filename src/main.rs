@@ -4,6 +4,7 @@
 //! workspace crates (`tracer` for rendering and counting).
 
 mod cli;
+mod startup;
 
 use clap::{CommandFactory, FromArgMatches};
 use std::process::ExitCode;
@@ -14,6 +15,13 @@ const PROGRESS_HELP: &str = "Progress bars draw on stderr when it is a terminal 
     lines in a pipe or log (CI); RTPROF_PROGRESS=never turns them off; auto is the default.";
 
 fn main() -> ExitCode {
+    startup::start();
+    let code = run();
+    startup::finish();
+    code
+}
+
+fn run() -> ExitCode {
     // Output piped into `head` ends quietly, as other Unix tools do, not with a panic.
     // SAFETY: restoring the default action of SIGPIPE before any thread starts.
     unsafe { libc::signal(libc::SIGPIPE, libc::SIG_DFL) };
@@ -26,6 +34,7 @@ fn main() -> ExitCode {
         Ok(args) => args,
         Err(error) => return usage_error(&error),
     };
+    startup::mark("args");
     let Err(error) = cli::run(args) else {
         return ExitCode::SUCCESS;
     };

@@ -150,7 +150,7 @@ fn command_line_misuse_exits_2() {
             "render".into(),
             rings.clone(),
             "--variant".into(),
-            "simd,bvh".into(),
+            "bvh,embree".into(),
         ],
         vec![
             "count".into(),

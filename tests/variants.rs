@@ -51,6 +51,33 @@ fn bvh_simd_and_bounded_keep_the_baseline_picture_and_ray_counts() {
 }
 
 #[test]
+fn wide_bvh_keeps_the_baseline_picture_and_ray_counts_on_all_twelve_spd_scenes() {
+    let dir = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../shared/spd");
+    let mut names: Vec<String> = std::fs::read_dir(&dir)
+        .unwrap_or_else(|e| panic!("{}: {e}", dir.display()))
+        .filter_map(|e| {
+            let name = e.ok()?.file_name().to_string_lossy().into_owned();
+            Some(name.strip_suffix(".nff")?.to_string())
+        })
+        .collect();
+    names.sort();
+    assert_eq!(names.len(), 12, "{names:?}");
+    let options = RenderOptions::new(24, 20, Sampling::PixelCenters, ShadingMode::Color);
+    for name in &names {
+        let scene = spd(name);
+        let (base_frame, base) = render(&scene, "baseline", &options);
+        let (bvh_frame, _) = render(&scene, "bvh", &options);
+        let (frame, counts) = render(&scene, "bvh+simd", &options);
+        let m = compare(&image(&base_frame), &image(&frame)).unwrap_or_else(|e| panic!("{e}"));
+        assert!(m.rms <= 0.5, "{name}: RMS {}", m.rms);
+        assert_eq!(counts.rays, base.rays, "{name}");
+        // The same tests on the same leaves as the binary tree: the same floats.
+        assert_eq!(frame, bvh_frame, "{name}: bvh+simd differs from bvh");
+        assert!(counts.accel.nodes_visited > 0 && counts.accel.lanes_issued > 0);
+    }
+}
+
+#[test]
 fn bvh_moves_the_work_from_primitive_tests_to_node_visits() {
     let scene = spd("balls");
     let options = small(Sampling::PixelCenters, ShadingMode::Color);

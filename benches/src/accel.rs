@@ -1,7 +1,8 @@
 //! Group `accel`: closest-hit queries of the three intersection structures on
 //! sphereflakes of growing size, to show how each scales with the primitive count:
 //! `baseline` ([`BruteForce`]: every sphere per ray), `simd` ([`Simd`]: eight spheres
-//! per step) and `bvh` ([`Bvh`]: binned-SAH hierarchy).
+//! per step), `bvh` ([`Bvh`]: binned-SAH hierarchy) and `bvh+simd` ([`WideBvh`]: the
+//! hierarchy with 8-wide nodes and sphere packs).
 //!
 //! Each benchmark answers one batch of 256 eye rays (a 16x16 grid over the flake's SPD
 //! view narrowed to frame the flake, most of them hitting) and is named `accel/<structure>/<spheres>` for
@@ -12,7 +13,10 @@
 use criterion::{BenchmarkGroup, BenchmarkId, Criterion, Throughput, measurement::WallTime};
 use std::hint::black_box;
 use std::time::Duration;
-use tracer::{BruteForce, Bvh, Camera, Intersector, NoCount, Ray, Sampling, Scene, Simd, View};
+use tracer::{
+    BruteForce, Bvh, BvhBuilder, Camera, Intersector, NoCount, Ray, Sampling, Scene, Simd, View,
+    WideBvh,
+};
 
 /// Sphereflake depths the group runs.
 pub const DEPTHS: [u32; 5] = [1, 2, 3, 4, 5];
@@ -82,10 +86,11 @@ pub fn bench_accel(c: &mut Criterion) {
         let scene = sphereflake(depth);
         let rays = eye_rays(&scene);
         let spheres = scene.spheres.len();
-        let (brute_force, simd, bvh) = (
+        let (brute_force, simd, bvh, wide) = (
             BruteForce::new(&scene),
             Simd::new(&scene),
             Bvh::build(&scene),
+            WideBvh::build_with(&scene, BvhBuilder::BinnedSah),
         );
         if spheres > 5_000 {
             // Brute force at 66430 spheres takes ~50 ms per batch: 10 samples need
@@ -99,6 +104,7 @@ pub fn bench_accel(c: &mut Criterion) {
         bench_structure(&mut group, "baseline", spheres, &brute_force, &rays);
         bench_structure(&mut group, "simd", spheres, &simd, &rays);
         bench_structure(&mut group, "bvh", spheres, &bvh, &rays);
+        bench_structure(&mut group, "bvh+simd", spheres, &wide, &rays);
     }
     group.finish();
 }

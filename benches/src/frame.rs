@@ -20,10 +20,11 @@ pub const WIDTH: u32 = 160;
 pub const HEIGHT: u32 = 120;
 
 /// The variants rendered uncounted, by their command-line names.
-pub const VARIANTS: [&str; 8] = [
+pub const VARIANTS: [&str; 9] = [
     "baseline",
     "simd",
     "bvh",
+    "bvh+simd",
     "bounded",
     "fast-sqrt",
     "ortho",

@@ -111,7 +111,7 @@ mod tests {
         assert!(!VariantName::parse("bvh").is_ok_and(|n| n.is_reference()));
         let json: Result<VariantName, _> = serde_json::from_str("\"fast-sqrt\"");
         assert_eq!(json.ok().map(String::from).as_deref(), Some("fast-sqrt"));
-        let bad: Result<VariantName, _> = serde_json::from_str("\"simd+bvh\"");
+        let bad: Result<VariantName, _> = serde_json::from_str("\"simd+embree\"");
         assert!(bad.is_err());
     }
 }

@@ -169,6 +169,29 @@ impl SuiteDef {
         Ok(())
     }
 
+    /// The definition with `variant` (a peer such as `embree`) added to every run: the
+    /// suite's variants and the SPD's accelerated run, with or without `--quick`.
+    pub fn with_variant(mut self, variant: &str) -> Self {
+        let add = |list: &mut Vec<String>| {
+            if !list.iter().any(|v| v == variant) {
+                list.push(variant.to_string());
+            }
+        };
+        add(&mut self.variants);
+        if let Some(spd) = &mut self.spd {
+            add(&mut spd.full_variants);
+        }
+        if let Some(q) = &mut self.quick {
+            if let Some(list) = &mut q.variants {
+                add(list);
+            }
+            if let Some(spd) = &mut q.spd {
+                add(&mut spd.full_variants);
+            }
+        }
+        self
+    }
+
     /// The definition with the `[quick]` overrides applied.
     pub fn quick(mut self) -> Self {
         if let Some(q) = self.quick.take() {
@@ -218,6 +241,22 @@ mod tests {
         assert!(quick.scenes.len() < def.scenes.len());
         for s in &def.scenes {
             resolve_scene(s, (8, 8), Path::new(".")).unwrap();
+        }
+    }
+
+    #[test]
+    fn a_peer_variant_joins_every_run_with_and_without_quick() {
+        let def = SuiteDef::parse(DEFAULT_SUITE, "suite.toml")
+            .unwrap()
+            .with_variant("embree");
+        for d in [def.clone(), def.quick()] {
+            assert_eq!(d.variants.iter().filter(|v| *v == "embree").count(), 1);
+            assert_eq!(d.variants[0], "baseline");
+            let spd = d.spd.as_ref().unwrap();
+            assert_eq!(spd.full_variants.last().map(String::as_str), Some("embree"));
+            // Adding it twice changes nothing.
+            let again = d.clone().with_variant("embree");
+            assert_eq!(again.variants, d.variants);
         }
     }
 

@@ -6,7 +6,7 @@
 
 use std::time::Duration;
 
-use tracer::{Accelerator, NoCount, RenderOptions, Sampling, Scene, VariantSet, render_variant};
+use tracer::{NoCount, RenderOptions, Sampling, Scene, VariantSet, render_variant};
 
 use crate::error::RunError;
 use crate::pool::thread_pool;
@@ -76,7 +76,7 @@ pub fn brute_force(
     // A render the limits refuse gets no estimate: its error is the message.
     let refused = options.limits.check_size(w, h).is_err()
         || options.limits.check_ray_depth(options.max_depth).is_err();
-    if refused || variants.config().accel == Accelerator::Bvh || primitives < MANY_PRIMITIVES {
+    if refused || !variants.config().accel.tests_everything() || primitives < MANY_PRIMITIVES {
         return Ok(None);
     }
     let probe = RenderOptions {

@@ -11,7 +11,7 @@ use tracer::{
 };
 
 use crate::error::RunError;
-use crate::pool::thread_pool;
+use crate::pool::{thread_pool, workers_for};
 use crate::progress::Progress;
 use crate::scene_input::SceneInput;
 
@@ -102,8 +102,9 @@ pub fn render_scene<C: Counter>(
         .limits
         .check_size(u64::from(width), u64::from(height))
         .map_err(|e| refuse(e.to_string()))?;
-    let pool = thread_pool(req.settings.threads)?;
-    progress.begin("tracing", options.sample_rows());
+    let rows = options.sample_rows();
+    let pool = thread_pool(workers_for(req.settings.threads, rows))?;
+    progress.begin("tracing", rows);
     let out = pool
         .install(|| render_variant::<C>(&scene, &options, &req.variants, &|n| progress.advance(n)));
     progress.end();
@@ -192,7 +193,7 @@ impl<C> SceneRender<C> {
         }
         if counts.accel.lanes_issued > 0 {
             lines.push(format!(
-                "simd lanes: {} of {} issued held a primitive ({})",
+                "simd lanes: {} of {} issued held a primitive or a child box ({})",
                 count(counts.accel.lanes_active),
                 count(counts.accel.lanes_issued),
                 percent(

@@ -10,8 +10,8 @@ use std::sync::atomic::{AtomicBool, Ordering};
 use analysis::power_law::PowerLaw;
 use results::scaling::{SCALING_SCHEMA, ScalingFit, ScalingPoint, ScalingStudy};
 use tracer::{
-    Accelerator, Count, Counts, NoCount, RenderOptions, Sampling, Scene, ShadingMode, VariantSet,
-    parse_nff, render_variant,
+    Count, Counts, NoCount, RenderOptions, Sampling, Scene, ShadingMode, VariantSet, parse_nff,
+    render_variant,
 };
 
 use crate::error::RunError;
@@ -134,7 +134,7 @@ pub fn run_scaling(
                 // Brute force and SIMD grow linearly in the primitives: predict from
                 // the last measured render, and skip what would exceed the budget.
                 let predicted = last[a].map(|(p, s)| s * primitives as f64 / p as f64);
-                let skip = set.config().accel != Accelerator::Bvh
+                let skip = set.config().accel.tests_everything()
                     && predicted.is_some_and(|s| s > plan.budget_seconds);
                 if skip {
                     points.push(extrapolation_slot(

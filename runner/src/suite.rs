@@ -590,8 +590,12 @@ impl SceneRunner<'_> {
         let lanes = &m.counts.accel;
         let lane_utilization =
             (lanes.lanes_issued > 0).then(|| lanes.lanes_active as f64 / lanes.lanes_issued as f64);
-        let simd = m.variants.config().accel == tracer::Accelerator::Simd;
-        let efficiency = efficiency(&m.counts, scene, simd, m.time.median, self.peak);
+        let accel = m.variants.config().accel;
+        let simd = accel == tracer::Accelerator::Simd;
+        // Embree's work is uncounted: its flops would be a few shading operations.
+        let efficiency = accel
+            .counts_its_work()
+            .then(|| efficiency(&m.counts, scene, simd, m.time.median, self.peak));
         let ray_rates = m
             .query_shares
             .map(|shares| ray_rates(&shares, &m.counts.rays, m.time.median));
@@ -612,7 +616,7 @@ impl SceneRunner<'_> {
                 quality,
                 histogram,
                 lane_utilization,
-                efficiency: Some(efficiency),
+                efficiency,
                 ray_rates,
             },
             m.image,

@@ -17,6 +17,8 @@ pub struct VariantInfo {
     pub description: &'static str,
     /// Whether the picture may differ from baseline's.
     pub changes_picture: bool,
+    /// Whether this build can run it (`embree` needs the `embree` feature).
+    pub available: bool,
     #[serde(skip_serializing_if = "Option::is_none")]
     pub sqrt_max_rel_error: Option<f64>,
     #[serde(skip_serializing_if = "Option::is_none")]
@@ -51,6 +53,7 @@ pub fn catalogue() -> Catalogue {
                 name: v.name(),
                 description: v.description(),
                 changes_picture: v.changes_picture(),
+                available: v.available(),
                 sqrt_max_rel_error: scan.map(|s| s.max_rel_error),
                 sqrt_mean_rel_error: scan.map(|s| s.mean_rel_error),
                 diffuse_errors: (v == Variant::NoRsqrtShading).then(|| diffuse_form_errors(400)),
@@ -70,7 +73,12 @@ impl Catalogue {
         let mut out = String::new();
         let width = infos.iter().map(|i| i.name.len()).max().unwrap_or(8);
         for info in infos {
-            out += &format!("{:<width$}  {}\n", info.name, info.description);
+            let absent = if info.available {
+                ""
+            } else {
+                " [not in this build]"
+            };
+            out += &format!("{:<width$}  {}{absent}\n", info.name, info.description);
             if let (Some(max), Some(mean)) = (info.sqrt_max_rel_error, info.sqrt_mean_rel_error) {
                 out += &format!(
                     "{:<width$}  relative error over every f32 in [1, 4): max {:.4} %, mean {:.4} %\n",

@@ -4,7 +4,7 @@
 
 use super::Format;
 use super::progress::Bars;
-use super::scene_args::RenderFlags;
+use super::scene_args::{RenderFlags, ShadingFlags};
 use anyhow::{Context, Result, bail};
 use runner::compare::compare_variants;
 use runner::pool::thread_pool;
@@ -31,6 +31,8 @@ pub struct CompareArgs {
     repeats: u32,
     #[command(flatten)]
     render: RenderFlags,
+    #[command(flatten)]
+    shading: ShadingFlags,
     /// Print the result as JSON (the same as --format json).
     #[arg(long)]
     json: bool,
@@ -77,7 +79,7 @@ fn side_by_side(args: &CompareArgs, scene_arg: &Path, list: &str) -> Result<()> 
             .with_context(|| format!("cannot create directory {}", dir.display()))?;
     }
     let scene = args.render.limits.load(&input)?;
-    let options = args.render.options(&scene);
+    let options = args.render.settings().options(&scene, args.shading.mode());
     let pool = thread_pool(args.render.threads)?;
     let name = input.to_string();
     let never = AtomicBool::new(false);

@@ -85,7 +85,10 @@ impl runner::Progress for Bars {
         if total == 0 {
             bar.enable_steady_tick(Duration::from_millis(120));
         }
-        if !self.delay.is_zero() {
+        // The late switch to a visible target, on its own thread: only where the bar
+        // could be seen at all (not in a pipe or a file by default, nor with `never`),
+        // so a short render into a log starts no thread for it.
+        if !self.delay.is_zero() && !draw_target().is_hidden() {
             let (late, delay) = (bar.clone(), self.delay);
             std::thread::spawn(move || {
                 std::thread::sleep(delay);

@@ -1,10 +1,12 @@
 //! `rtprof render`: uncounted render to an image file.
 
-use super::scene_args::{SceneArgs, named_after};
+use super::scene_args::{SceneArgs, ShadingFlags, named_after};
+use crate::startup;
 use anyhow::Result;
+use std::io::Write;
 use std::path::PathBuf;
+use tracer::NoCount;
 use tracer::image_io::{ImageFormat, write_image};
-use tracer::{NoCount, ShadingMode};
 
 #[derive(clap::Args, Debug)]
 pub struct RenderArgs {
@@ -13,13 +15,8 @@ pub struct RenderArgs {
     /// Output image, .png or .ppm (default: the scene's name with .png, here).
     #[arg(short, long, value_name = "IMG")]
     output: Option<PathBuf>,
-    /// Full shading converted to gray.
-    #[arg(long)]
-    gray: bool,
-    /// The thesis hardware's shading: Lambert term of the first light only, gray
-    /// (with or without --gray: it is gray either way).
-    #[arg(long)]
-    diffuse_only: bool,
+    #[command(flatten)]
+    shading: ShadingFlags,
 }
 
 pub fn run(args: &RenderArgs) -> Result<()> {
@@ -29,21 +26,22 @@ pub fn run(args: &RenderArgs) -> Result<()> {
     };
     // Refuse a bad output name before spending the render time.
     ImageFormat::from_path(&output)?;
-    let mode = if args.diffuse_only {
-        ShadingMode::DiffuseOnly
-    } else if args.gray {
-        ShadingMode::Gray
-    } else {
-        ShadingMode::Color
-    };
-    let run = args.scene.run::<NoCount>(mode)?;
+    let run = args.scene.run::<NoCount>(args.shading.mode())?;
+    startup::mark("render");
+    startup::took("render.preprocessing", run.preprocessing);
+    startup::took("render.tracing", run.tracing);
     write_image(&output, &run.rendered.frame)?;
-    eprintln!("{}", run.timing_report(&args.scene.scene));
-    eprintln!(
-        "wrote {} ({}x{})",
+    startup::mark("image");
+    // One write for the report: stderr is unbuffered, and each piece of a formatted
+    // line would otherwise be its own write.
+    let report = format!(
+        "{}\nwrote {} ({}x{})\n",
+        run.timing_report(&args.scene.scene),
         output.display(),
         run.rendered.frame.width,
         run.rendered.frame.height
     );
+    std::io::stderr().lock().write_all(report.as_bytes())?;
+    startup::mark("report");
     Ok(())
 }

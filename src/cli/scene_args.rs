@@ -6,7 +6,7 @@ use anyhow::Result;
 use runner::render_job::{RenderRequest, RenderSettings, SceneRender, render_scene};
 use runner::scene_input::SceneInput;
 use std::path::{Path, PathBuf};
-use tracer::{Accelerator, Counter, Limits, RenderOptions, Scene, ShadingMode, VariantSet};
+use tracer::{Counter, Limits, RenderOptions, Scene, ShadingMode, VariantSet};
 
 #[derive(clap::Args, Debug)]
 pub struct SceneArgs {
@@ -17,6 +17,31 @@ pub struct SceneArgs {
     pub variant: String,
     #[command(flatten)]
     pub render: RenderFlags,
+}
+
+/// How to shade: full colour unless one of these is given.
+#[derive(clap::Args, Debug, Default)]
+pub struct ShadingFlags {
+    /// Full shading converted to gray.
+    #[arg(long)]
+    pub gray: bool,
+    /// The thesis hardware's shading: Lambert term of the first light only, gray
+    /// (with or without --gray: it is gray either way).
+    #[arg(long)]
+    pub diffuse_only: bool,
+}
+
+impl ShadingFlags {
+    /// The shading mode the flags choose.
+    pub fn mode(&self) -> ShadingMode {
+        if self.diffuse_only {
+            ShadingMode::DiffuseOnly
+        } else if self.gray {
+            ShadingMode::Gray
+        } else {
+            ShadingMode::Color
+        }
+    }
 }
 
 /// How to render: the flags of every command that renders a scene.
@@ -164,11 +189,12 @@ impl SceneArgs {
             mode,
         };
         // Loaded twice only without an accelerator, where the render costs far more.
-        if request.variants.config().accel != Accelerator::Bvh {
+        if request.variants.config().accel.tests_everything() {
             let scene = self.render.limits.load(&self.scene)?;
             let options = request.settings.options(&scene, mode);
             note_if_slow(&scene, &options, &request.variants, self.render.threads)?;
         }
+        crate::startup::mark("estimate");
         Ok(render_scene(&request, &Bars::delayed())?)
     }
 }

@@ -31,6 +31,10 @@ pub struct SuiteArgs {
     /// Add every .nff file of this directory (e.g. ../shared/spd).
     #[arg(long, value_name = "DIR")]
     scenes: Option<PathBuf>,
+    /// Also run Intel Embree (the `embree` variant, the peer) on every scene: needs an
+    /// rtprof built with `--features embree`.
+    #[arg(long)]
+    embree: bool,
     /// Worker threads for the renders (default: one per core).
     #[arg(long, value_name = "N", value_parser = clap::value_parser!(u16).range(1..=1024))]
     threads: Option<u16>,
@@ -55,7 +59,15 @@ fn interrupted(output: &Path, done: usize, total: usize) -> anyhow::Error {
 
 pub fn run(args: &SuiteArgs) -> Result<()> {
     let started = Instant::now();
-    let def = SuiteDef::load(args.suite.as_deref())?;
+    let mut def = SuiteDef::load(args.suite.as_deref())?;
+    if args.embree {
+        anyhow::ensure!(
+            tracer::Variant::Embree.available(),
+            "--embree: this rtprof was built without Embree; install libembree-dev and build with \
+             `cargo build --release --features embree`"
+        );
+        def = def.with_variant(tracer::Variant::Embree.name());
+    }
     // Check the inputs first: a bad --baseline or --criterion should fail before the work.
     args.benchmarks.check()?;
     let old = match &args.baseline {

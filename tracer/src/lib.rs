@@ -52,7 +52,11 @@ pub mod variants;
 pub mod vec3;
 pub mod work_model;
 
-pub use accel::{BruteForce, Bvh, BvhBuilder, BvhShape, BvhStats, Intersector, Simd};
+pub use accel::{
+    BruteForce, Bvh, BvhBuilder, BvhShape, BvhStats, Intersector, Simd, WideBvh, WideBvhStats,
+};
+#[cfg(feature = "embree")]
+pub use accel::{Embree, EmbreeCode, EmbreeError, EmbreeMode};
 pub use camera::{Camera, Projection, Sampling};
 pub use color::Rgb;
 pub use counter::{

@@ -104,6 +104,9 @@ pub enum RenderError {
     Size(String),
     #[error("{0}")]
     Depth(String),
+    /// The intersection structure cannot be used (e.g. a variant this build lacks).
+    #[error("{0}")]
+    Accelerator(String),
 }
 
 /// A floating-point framebuffer, row 0 at the top.

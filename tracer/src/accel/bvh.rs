@@ -13,8 +13,10 @@
 //! `tests.*` and `accel.*` between `baseline` and `bvh`.
 
 mod quality;
+mod wide;
 
 pub use quality::BvhShape;
+pub use wide::{WIDTH, WideBvh, WideBvhStats};
 
 use super::{Intersector, intersect_primitive};
 use crate::counter::{Counter, Phase, Stat};
@@ -661,7 +663,7 @@ mod tests {
     use crate::counter::NoCount;
     use crate::nff::parse_nff;
 
-    fn mixed_scene() -> Scene {
+    pub(super) fn mixed_scene() -> Scene {
         let mut text = String::from(
             "v\nfrom 0 -12 3\nat 0 0 0\nup 0 0 1\nangle 50\nhither 0\nresolution 16 16\n\
              l 4 -6 8\nf 1 0.5 0.2 0.7 0.3 8 0 1\n",
@@ -682,7 +684,7 @@ mod tests {
         parse_nff(&text, "mixed.nff").unwrap_or_else(|e| panic!("{e}"))
     }
 
-    fn rays() -> Vec<Ray> {
+    pub(super) fn rays() -> Vec<Ray> {
         let mut out = Vec::new();
         let mut state = 12345u32;
         let mut next = || {

@@ -1,6 +1,6 @@
 //! Closest-hit and occlusion queries over a scene. Brute force is the thesis's software
-//! reference; the SIMD batches ([`Simd`]) and the BVH ([`Bvh`]) answer the same
-//! queries faster.
+//! reference; the SIMD batches ([`Simd`]), the BVH ([`Bvh`]) and the wide BVH with SIMD
+//! lanes ([`WideBvh`]) answer the same queries faster.
 //!
 //! Phases: the intersectors mark the node work of the BVH as `traversal` and each
 //! primitive test (or SIMD chunk of tests) as its kind's test phase; the queries
@@ -8,11 +8,15 @@
 
 mod brute_force;
 mod bvh;
+#[cfg(feature = "embree")]
+mod embree;
 mod simd;
 
 pub use brute_force::BruteForce;
 use brute_force::occluded_by_cones_and_planars;
-pub use bvh::{Bvh, BvhBuilder, BvhShape, BvhStats};
+pub use bvh::{Bvh, BvhBuilder, BvhShape, BvhStats, WIDTH as BVH_WIDTH, WideBvh, WideBvhStats};
+#[cfg(feature = "embree")]
+pub use embree::{Embree, EmbreeCode, EmbreeError, EmbreeMode};
 pub use simd::Simd;
 
 use crate::counter::{Counter, Phase};

@@ -100,10 +100,11 @@ impl TestCounts {
 pub struct AccelCounts {
     pub nodes_visited: u64,
     pub leaves_visited: u64,
-    /// SIMD lanes issued: 8 per chunk of primitives tested (variant `simd`).
+    /// SIMD lanes issued: 8 per chunk of primitives (variant `simd`, and sphere packs of
+    /// the wide BVH) or wide node (`bvh` + `simd`) tested.
     #[serde(default)]
     pub lanes_issued: u64,
-    /// Lanes issued that held a primitive (the rest are padding of a last chunk).
+    /// Lanes issued that held a primitive or a child box (the rest are padding).
     #[serde(default)]
     pub lanes_active: u64,
 }

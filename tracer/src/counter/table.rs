@@ -172,8 +172,8 @@ counter_table! {
     // accel.*: the BVH's traversal and the SIMD lanes (zero for the other structures).
     NodesVisited => accel.nodes_visited: "BVH nodes visited" [];
     LeavesVisited => accel.leaves_visited: "BVH leaves visited" [];
-    LanesIssued => accel.lanes_issued: "SIMD lanes issued (8 per chunk tested)" [];
-    LanesActive => accel.lanes_active: "SIMD lanes issued that held a primitive" [];
+    LanesIssued => accel.lanes_issued: "SIMD lanes issued (8 per chunk of primitives or wide node tested)" [];
+    LanesActive => accel.lanes_active: "SIMD lanes issued that held a primitive or a child box" [];
 }
 
 /// Profiled functions whose calls combine counters.

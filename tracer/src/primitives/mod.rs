@@ -7,6 +7,7 @@
 
 mod cone;
 mod cylinder;
+mod edge_slabs;
 mod patch;
 mod plane;
 mod polygon;

@@ -3,6 +3,7 @@
 //! largest component is dropped (thesis ch. 1.3; Haines's crossings test).
 
 use super::GeometryError;
+use super::edge_slabs::EdgeSlabs;
 use crate::counter::{Counter, NoCount, Stat};
 use crate::ray::Ray;
 use crate::vec3::Vec3;
@@ -18,6 +19,8 @@ pub struct PlanarOutline {
     axes: [usize; 2],
     /// The vertices projected onto `axes`.
     projected: Vec<[f32; 2]>,
+    /// The edges by slab of the second axis, for outlines of many vertices.
+    slabs: Option<EdgeSlabs>,
     /// `eye - vertices[0]`, set by [`crate::variants::eye_space`] for the `bounded` variant.
     pub eye_offset: Vec3,
 }
@@ -27,6 +30,7 @@ impl PlanarOutline {
     pub fn heap_bytes(&self) -> usize {
         self.vertices.capacity() * std::mem::size_of::<Vec3>()
             + self.projected.capacity() * std::mem::size_of::<[f32; 2]>()
+            + self.slabs.as_ref().map_or(0, EdgeSlabs::heap_bytes)
     }
 
     /// Builds the outline; fails with fewer than three vertices or when the first three
@@ -52,7 +56,7 @@ impl PlanarOutline {
             1 => [2, 0],
             _ => [0, 1],
         };
-        let projected = vertices
+        let projected: Vec<[f32; 2]> = vertices
             .iter()
             .map(|v| [v.axis(axes[0]), v.axis(axes[1])])
             .collect();
@@ -60,6 +64,7 @@ impl PlanarOutline {
             vertices,
             normal,
             axes,
+            slabs: EdgeSlabs::new(&projected),
             projected,
             eye_offset: Vec3::ZERO,
         })
@@ -125,28 +130,36 @@ impl PlanarOutline {
     ///
     /// A ray from the point along +u toggles `inside` at each edge it crosses. Vertices
     /// with v ≥ 0 count as above the ray (a half-open rule), so a ray through a vertex
-    /// counts exactly one crossing or none, never two.
+    /// counts exactly one crossing or none, never two. Outlines of many vertices walk
+    /// only the edges near the point ([`EdgeSlabs`]), with the same result.
+    #[inline]
     pub fn contains(&self, q: [f32; 2]) -> bool {
-        let mut inside = false;
+        match &self.slabs {
+            Some(slabs) => {
+                let n = self.projected.len();
+                let mut inside = false;
+                for &i in slabs.edges_near(q[1]) {
+                    let i = i as usize;
+                    let (a, b) = (self.projected[(i + n - 1) % n], self.projected[i]);
+                    inside ^= crosses((a[0] - q[0], a[1] - q[1]), (b[0] - q[0], b[1] - q[1]));
+                }
+                inside
+            }
+            None => self.contains_by_every_edge(q),
+        }
+    }
+
+    /// The crossing test walking every edge.
+    pub fn contains_by_every_edge(&self, q: [f32; 2]) -> bool {
         let Some(&last) = self.projected.last() else {
             return false;
         };
-        let (mut u0, mut v0) = (last[0] - q[0], last[1] - q[1]);
-        let mut above0 = v0 >= 0.0;
+        let mut inside = false;
+        let mut a = (last[0] - q[0], last[1] - q[1]);
         for p in &self.projected {
-            let (u1, v1) = (p[0] - q[0], p[1] - q[1]);
-            let above1 = v1 >= 0.0;
-            if above0 != above1 {
-                let right0 = u0 >= 0.0;
-                if right0 == (u1 >= 0.0) {
-                    if right0 {
-                        inside = !inside;
-                    }
-                } else if u1 - v1 * (u0 - u1) / (v0 - v1) >= 0.0 {
-                    inside = !inside;
-                }
-            }
-            (u0, v0, above0) = (u1, v1, above1);
+            let b = (p[0] - q[0], p[1] - q[1]);
+            inside ^= crosses(a, b);
+            a = b;
         }
         inside
     }
@@ -173,6 +186,22 @@ impl PlanarOutline {
             }
         }
         None
+    }
+}
+
+/// Whether the edge from `a` to `b` (relative to the query point, as `(u, v)`) crosses
+/// the ray from the point along +u. End points with v ≥ 0 count as above the ray (a
+/// half-open rule), so a ray through a vertex counts exactly one crossing or none.
+#[inline(always)]
+fn crosses((u0, v0): (f32, f32), (u1, v1): (f32, f32)) -> bool {
+    if (v0 >= 0.0) == (v1 >= 0.0) {
+        return false;
+    }
+    let right0 = u0 >= 0.0;
+    if right0 == (u1 >= 0.0) {
+        right0
+    } else {
+        u1 - v1 * (u0 - u1) / (v0 - v1) >= 0.0
     }
 }
 

@@ -4,7 +4,7 @@
 //! type) and [`RenderMethod`] (projection, diffuse form, checkerboard). Everything the
 //! command line, the suite and the benchmarks render goes through [`render_variant`].
 
-use crate::accel::{BruteForce, Bvh, BvhStats, Intersector, Simd};
+use crate::accel::{BruteForce, Bvh, BvhStats, Intersector, Simd, WideBvh};
 use crate::camera::Projection;
 use crate::counter::{Counter, NoCount};
 use crate::render::{RenderError, RenderMethod, RenderOptions, Rendered, render};
@@ -78,6 +78,14 @@ pub fn render_variant<C: Counter>(
             out.accelerator_bytes = stats.bytes;
             Ok(out)
         }
+        Accelerator::WideBvh => {
+            let wide = WideBvh::build_with(scene, options.bvh_builder);
+            let mut out = job.with_sqrt(&wide, config.sqrt, None)?;
+            out.accelerator_bytes = wide.stats().bytes;
+            Ok(out)
+        }
+        Accelerator::Embree => job.embree(config.sqrt, false),
+        Accelerator::EmbreeNative => job.embree(config.sqrt, true),
     }
 }
 
@@ -135,6 +143,40 @@ struct Job<'a> {
 }
 
 impl Job<'_> {
+    /// The `embree` variant: Embree builds its tree (preprocessing) and answers the
+    /// queries; camera and shading are rtprof's.
+    #[cfg(feature = "embree")]
+    fn embree<C: Counter>(
+        &self,
+        sqrt: SqrtMethod,
+        native: bool,
+    ) -> Result<VariantRender<C>, RenderError> {
+        use crate::accel::{Embree, EmbreeMode};
+        let mode = if native {
+            EmbreeMode::Native
+        } else {
+            EmbreeMode::Exact
+        };
+        let embree = Embree::with_mode(self.scene, mode)
+            .map_err(|e| RenderError::Accelerator(format!("Embree: {e}")))?;
+        let mut out = self.with_sqrt(&embree, sqrt, None)?;
+        out.accelerator_bytes = embree.memory_bytes();
+        Ok(out)
+    }
+
+    #[cfg(not(feature = "embree"))]
+    fn embree<C: Counter>(
+        &self,
+        _sqrt: SqrtMethod,
+        _native: bool,
+    ) -> Result<VariantRender<C>, RenderError> {
+        Err(RenderError::Accelerator(
+            "this rtprof was built without Embree: install libembree-dev and build with \
+             `cargo build --release --features embree` to run the embree variant"
+                .into(),
+        ))
+    }
+
     fn with_sqrt<C: Counter, I: Intersector>(
         &self,
         accel: &I,

@@ -21,6 +21,8 @@ pub enum Variant {
     PixelAvg,
     Simd,
     Bvh,
+    Embree,
+    EmbreeNative,
 }
 
 /// The square root every `sqrt` and `normalize` uses.
@@ -40,6 +42,33 @@ pub enum Accelerator {
     BruteForce,
     Simd,
     Bvh,
+    /// `bvh` + `simd`: the wide BVH with its boxes and spheres in lanes.
+    WideBvh,
+    /// Intel Embree 3, the peer (needs the `embree` build feature), with rtprof's own
+    /// quadric tests as user geometry: the baseline's picture.
+    Embree,
+    /// Embree with its own sphere kernel (sphere points).
+    EmbreeNative,
+}
+
+impl Accelerator {
+    /// Whether the structure is a bounding volume hierarchy of rtprof's own (whose tree
+    /// figures and `accel.*` node counts exist).
+    pub fn is_bvh(self) -> bool {
+        matches!(self, Accelerator::Bvh | Accelerator::WideBvh)
+    }
+
+    /// Whether the work inside a query is counted (`tests.*`, `ops.*`, `accel.*`): not
+    /// inside Embree, so no flops or roofline point can be derived for it.
+    pub fn counts_its_work(self) -> bool {
+        !matches!(self, Accelerator::Embree | Accelerator::EmbreeNative)
+    }
+
+    /// Whether every query tests every primitive (brute force, with or without lanes):
+    /// the time grows linearly in the primitives.
+    pub fn tests_everything(self) -> bool {
+        matches!(self, Accelerator::BruteForce | Accelerator::Simd)
+    }
 }
 
 /// The choices a set of variants makes.
@@ -65,7 +94,7 @@ enum Choice {
 
 impl Variant {
     /// Every variant, in the order reports list them.
-    pub const ALL: [Variant; 10] = [
+    pub const ALL: [Variant; 12] = [
         Variant::Baseline,
         Variant::FastSqrt,
         Variant::FastSqrtTuned,
@@ -76,6 +105,8 @@ impl Variant {
         Variant::PixelAvg,
         Variant::Simd,
         Variant::Bvh,
+        Variant::Embree,
+        Variant::EmbreeNative,
     ];
 
     /// The command-line name.
@@ -91,6 +122,8 @@ impl Variant {
             Variant::PixelAvg => "pixel-avg",
             Variant::Simd => "simd",
             Variant::Bvh => "bvh",
+            Variant::Embree => "embree",
+            Variant::EmbreeNative => "embree-native",
         }
     }
 
@@ -120,12 +153,23 @@ impl Variant {
                 "trace a checkerboard of samples, fill the rest with the mean of traced neighbours (8.3.5)"
             }
             Variant::Simd => {
-                "spheres and cylinders tested 8 at a time in SIMD lanes, then one minimum (8.3.3)"
+                "spheres and cylinders tested 8 at a time in SIMD lanes, then one minimum (8.3.3); with bvh: 8-wide nodes whose boxes and leaf spheres are tested in lanes"
             }
             Variant::Bvh => {
                 "bounding volume hierarchy (binned SAH) over all primitives, front-to-back traversal"
             }
+            Variant::Embree => {
+                "Intel Embree 3's single-ray queries (build quality high), the peer: triangles Embree's, quadrics rtprof's tests as user geometry (the baseline's picture); needs --features embree"
+            }
+            Variant::EmbreeNative => {
+                "embree with Embree's own sphere kernel (sphere points): its real speed on spheres; its more accurate test can change pixels"
+            }
         }
+    }
+
+    /// Whether this build can run the variant (`embree` needs the `embree` feature).
+    pub fn available(self) -> bool {
+        !matches!(self, Variant::Embree | Variant::EmbreeNative) || cfg!(feature = "embree")
     }
 
     /// Whether the variant may change the picture (all others must match baseline).
@@ -138,6 +182,7 @@ impl Variant {
                 | Variant::Ortho
                 | Variant::NoRsqrtShading
                 | Variant::PixelAvg
+                | Variant::EmbreeNative
         )
     }
 
@@ -148,7 +193,7 @@ impl Variant {
             Variant::Bounded | Variant::Ortho => Choice::Projection,
             Variant::NoRsqrtShading => Choice::Diffuse,
             Variant::PixelAvg => Choice::Sampling,
-            Variant::Simd | Variant::Bvh => Choice::Accel,
+            Variant::Simd | Variant::Bvh | Variant::Embree | Variant::EmbreeNative => Choice::Accel,
         }
     }
 
@@ -162,8 +207,16 @@ impl Variant {
             Variant::Ortho => config.projection = Projection::Orthographic,
             Variant::NoRsqrtShading => config.diffuse = DiffuseForm::Squared,
             Variant::PixelAvg => config.checkerboard = true,
+            // `simd` and `bvh` together are the wide BVH, in either order.
+            Variant::Simd | Variant::Bvh
+                if config.accel.is_bvh() || config.accel == Accelerator::Simd =>
+            {
+                config.accel = Accelerator::WideBvh
+            }
             Variant::Simd => config.accel = Accelerator::Simd,
             Variant::Bvh => config.accel = Accelerator::Bvh,
+            Variant::Embree => config.accel = Accelerator::Embree,
+            Variant::EmbreeNative => config.accel = Accelerator::EmbreeNative,
         }
     }
 }
@@ -241,7 +294,7 @@ impl VariantSet {
                     };
                     return Err(VariantError::BaselineCombined(other.name()));
                 }
-                if earlier.choice() == variant.choice() {
+                if earlier.choice() == variant.choice() && !Self::combine(earlier, variant) {
                     let what = match variant.choice() {
                         Choice::Sqrt => "square-root method",
                         Choice::Accel => "intersection structure",
@@ -259,6 +312,15 @@ impl VariantSet {
             out.push(Variant::Baseline);
         }
         Ok(Self(out))
+    }
+
+    /// Whether two variants that make the same choice still combine: `simd` inside
+    /// `bvh` is the wide BVH.
+    fn combine(a: Variant, b: Variant) -> bool {
+        matches!(
+            (a, b),
+            (Variant::Simd, Variant::Bvh) | (Variant::Bvh, Variant::Simd)
+        )
     }
 
     /// The variants in the set.
@@ -330,13 +392,17 @@ mod tests {
     fn variants_choosing_the_same_thing_conflict() {
         let conflict = |list: &str| VariantSet::parse(list).err();
         assert_eq!(
-            conflict("simd,bvh"),
+            conflict("simd,embree"),
             Some(VariantError::Conflict(
                 "simd",
-                "bvh",
+                "embree",
                 "intersection structure"
             ))
         );
+        assert!(matches!(
+            conflict("bvh+simd+embree"),
+            Some(VariantError::Conflict("bvh", "embree", _))
+        ));
         assert!(matches!(
             conflict("fast-sqrt+fast-sqrt-newton"),
             Some(VariantError::Conflict(..))
@@ -363,5 +429,9 @@ mod tests {
         assert!(config.checkerboard && set.changes_picture());
         assert_eq!(VariantSet::default().config(), VariantConfig::default());
         assert!(!VariantSet::parse("bvh,simd").is_ok_and(|s| s.changes_picture()));
+        for wide in ["bvh+simd", "simd+bvh", "simd,bvh,simd"] {
+            let accel = VariantSet::parse(wide).map(|s| s.config().accel);
+            assert_eq!(accel, Ok(Accelerator::WideBvh), "{wide}");
+        }
     }
 }

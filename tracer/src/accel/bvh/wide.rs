@@ -1,0 +1,845 @@
+//! The wide BVH (variants `bvh` + `simd`): the thesis's parallel intersection units
+//! (8.3.3) inside the hierarchy. The binned-SAH binary tree is collapsed into nodes of
+//! up to [`WIDTH`] children whose boxes sit in structure-of-arrays lanes, so one step
+//! tests all the children's boxes at once; the children hit are visited nearest first,
+//! and a shadow ray stops at its first blocker.
+//!
+//! Leaves are the binary tree's leaves. Their spheres are packed into lanes too (a
+//! leaf's spheres are tested together, the thesis's units on one leaf); the other
+//! kinds are tested one by one with the same tests as brute force, so the picture is
+//! the baseline's.
+//!
+//! The box and sphere lanes are compiled twice: for the build's target (SSE2 on any
+//! x86-64) and with AVX2 + FMA, chosen at run time when the CPU has them. Neither path
+//! fuses multiplies and adds that the scalar tests keep apart, so both give the same
+//! distances bit for bit.
+//!
+//! Counting: every child box tested adds one `accel.nodes_visited` (the root has no box
+//! of its own: its children's cover it), every leaf entered one `accel.leaves_visited`; each node step issues
+//! [`WIDTH`] lanes (`accel.lanes_issued`), as many active as the node has children, and
+//! each sphere pack as many as its leaf has spheres. The primitive tests count
+//! themselves with the operations of the scalar test.
+
+use super::{Aabb, Bvh, BvhBuilder, Node};
+use crate::accel::{Intersector, intersect_primitive};
+use crate::counter::{Counter, Phase, Stat};
+use crate::huge_pages;
+use crate::ray::{Hit, PrimKind, PrimRef, Ray};
+use crate::scene::Scene;
+use glam::Vec3A;
+use std::mem::MaybeUninit;
+
+/// Children per node: one AVX register of f32.
+pub const WIDTH: usize = 8;
+
+/// Marks an unused child slot.
+const EMPTY: u32 = u32::MAX;
+
+/// One node: its children's boxes as lanes, and what each child is.
+#[derive(Clone, Copy, Debug)]
+#[repr(C, align(64))]
+struct WideNode {
+    /// `min_x, min_y, min_z, max_x, max_y, max_z` of each child's box; unused slots hold
+    /// an empty box (min +inf, max -inf) that no ray enters.
+    bounds: [[f32; WIDTH]; 6],
+    /// An interior child's node index, a leaf child's index in `leaves` with [`LEAF`]
+    /// set, or [`EMPTY`].
+    child: [u32; WIDTH],
+    /// Bit per used slot: an empty box can still give a slab interval (a negative
+    /// direction turns +inf..-inf into -inf..+inf), so unused slots are masked out.
+    used: u32,
+}
+
+impl WideNode {
+    const UNUSED: WideNode = WideNode {
+        bounds: [
+            [f32::INFINITY; WIDTH],
+            [f32::INFINITY; WIDTH],
+            [f32::INFINITY; WIDTH],
+            [f32::NEG_INFINITY; WIDTH],
+            [f32::NEG_INFINITY; WIDTH],
+            [f32::NEG_INFINITY; WIDTH],
+        ],
+        child: [EMPTY; WIDTH],
+        used: 0,
+    };
+
+    fn set(&mut self, lane: usize, bounds: Aabb, child: u32, leaf: bool) {
+        let (lo, hi) = (bounds.min.to_array(), bounds.max.to_array());
+        for axis in 0..3 {
+            self.bounds[axis][lane] = lo[axis];
+            self.bounds[3 + axis][lane] = hi[axis];
+        }
+        self.child[lane] = if leaf { child | LEAF } else { child };
+        self.used |= 1 << lane;
+    }
+
+    fn children(&self) -> usize {
+        self.used.count_ones() as usize
+    }
+}
+
+/// A leaf: its spheres packed in lanes (at most one pack: binary leaves hold at most 8
+/// primitives) and its other primitives as references.
+#[derive(Clone, Copy, Debug)]
+struct Leaf {
+    /// Index into `packs`, or [`EMPTY`] when the leaf has no sphere.
+    pack: u32,
+    /// Spheres in the pack.
+    spheres: u32,
+    /// The leaf's other primitives: `others` entries from `first`.
+    first: u32,
+    others: u32,
+}
+
+/// A leaf's spheres in structure-of-arrays form (unused lanes: radius² -inf, never hit).
+#[derive(Clone, Copy, Debug)]
+#[repr(C, align(32))]
+struct SpherePack {
+    cx: [f32; WIDTH],
+    cy: [f32; WIDTH],
+    cz: [f32; WIDTH],
+    radius_sq: [f32; WIDTH],
+    /// 1.0 where only the inside is visible.
+    inside: [f32; WIDTH],
+    /// The spheres' indices in the scene.
+    index: [u32; WIDTH],
+}
+
+/// Figures about a built wide tree.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct WideBvhStats {
+    /// The binary tree's builder.
+    pub builder: BvhBuilder,
+    pub nodes: usize,
+    pub leaves: usize,
+    /// Children per node over all nodes (at most [`WIDTH`]).
+    pub mean_children: f64,
+    pub max_depth: usize,
+    /// Bytes of the nodes, leaves, sphere packs and primitive references.
+    pub bytes: usize,
+}
+
+/// A wide BVH over a scene.
+#[derive(Clone, Debug)]
+pub struct WideBvh<'s> {
+    scene: &'s Scene,
+    nodes: Vec<WideNode>,
+    leaves: Vec<Leaf>,
+    packs: Vec<SpherePack>,
+    others: Vec<PrimRef>,
+    stats: WideBvhStats,
+    avx2: bool,
+}
+
+/// Entries a traversal stack can hold: each node step pops one entry and pushes at most
+/// [`WIDTH`], and a wide tree is no deeper than its binary tree.
+const STACK: usize = (WIDTH - 1) * (super::MAX_DEPTH + 20) + 1;
+
+/// A node or leaf waiting to be visited (a child reference: [`LEAF`] set for leaves),
+/// with the distance at which the ray enters it.
+#[derive(Clone, Copy, Debug)]
+struct Entry {
+    child: u32,
+    t: f32,
+}
+
+/// The bit of a child reference that marks a leaf (the rest is its index in `leaves`).
+const LEAF: u32 = 1 << 31;
+
+impl<'s> WideBvh<'s> {
+    /// Builds the binary tree with `builder` and collapses it.
+    pub fn build_with(scene: &'s Scene, builder: BvhBuilder) -> Self {
+        Self::collapse(&Bvh::build_with(scene, builder))
+    }
+
+    /// Collapses a binary tree: each wide node takes the two children of a binary node
+    /// and keeps opening its largest interior child (by surface area) until it has
+    /// [`WIDTH`] children or only leaves.
+    pub fn collapse(binary: &Bvh<'s>) -> Self {
+        let mut wide = Self {
+            scene: binary.scene,
+            nodes: huge_pages::vec_with_capacity(binary.nodes.len().max(1)),
+            leaves: Vec::with_capacity(binary.stats.leaves),
+            packs: Vec::new(),
+            others: Vec::with_capacity(binary.prims.len()),
+            stats: WideBvhStats {
+                builder: binary.stats.builder,
+                ..WideBvhStats::default()
+            },
+            avx2: cpu_has_avx2_fma(),
+        };
+        if !binary.prims.is_empty() {
+            let root = binary.nodes[0].0[0];
+            wide.nodes.push(WideNode::UNUSED);
+            if root.count > 0 {
+                // A one-leaf tree: a root node with that leaf as its only child.
+                let leaf = wide.push_leaf(binary, &root);
+                wide.nodes[0].set(0, root.bounds(), leaf, true);
+            } else {
+                wide.fill(binary, 0, &root, 1);
+            }
+        }
+        wide.nodes.shrink_to_fit();
+        let children: usize = wide.nodes.iter().map(WideNode::children).sum();
+        wide.stats.nodes = wide.nodes.len();
+        wide.stats.leaves = wide.leaves.len();
+        wide.stats.mean_children = children as f64 / wide.nodes.len().max(1) as f64;
+        wide.stats.bytes = wide.nodes.capacity() * size_of::<WideNode>()
+            + wide.leaves.capacity() * size_of::<Leaf>()
+            + wide.packs.capacity() * size_of::<SpherePack>()
+            + wide.others.capacity() * size_of::<PrimRef>();
+        wide
+    }
+
+    /// Fills wide node `at` with the collapsed children of binary interior node `node`.
+    fn fill(&mut self, binary: &Bvh, at: usize, node: &Node, depth: usize) {
+        self.stats.max_depth = self.stats.max_depth.max(depth);
+        let mut open: Vec<Node> = binary.nodes[node.offset as usize].0.to_vec();
+        while open.len() < WIDTH {
+            let largest = open
+                .iter()
+                .enumerate()
+                .filter(|(_, n)| n.count == 0)
+                .max_by(|a, b| {
+                    let area = |n: &Node| n.bounds().surface_area();
+                    area(a.1).total_cmp(&area(b.1))
+                })
+                .map(|(i, _)| i);
+            let Some(i) = largest else { break };
+            let opened = open.remove(i);
+            let [a, b] = binary.nodes[opened.offset as usize].0;
+            // Keep the children where the parent was: the lane order stays spatial.
+            open.insert(i, b);
+            open.insert(i, a);
+        }
+        for (lane, child) in open.iter().enumerate() {
+            if child.count > 0 {
+                let leaf = self.push_leaf(binary, child);
+                self.nodes[at].set(lane, child.bounds(), leaf, true);
+            } else {
+                let index = self.nodes.len();
+                self.nodes.push(WideNode::UNUSED);
+                self.nodes[at].set(lane, child.bounds(), index as u32, false);
+                self.fill(binary, index, child, depth + 1);
+            }
+        }
+    }
+
+    /// Stores a binary leaf: its spheres in a pack, the rest as references.
+    fn push_leaf(&mut self, binary: &Bvh, node: &Node) -> u32 {
+        let first = node.offset as usize;
+        let prims = &binary.prims[first..first + node.count as usize];
+        let spheres: Vec<u32> = prims
+            .iter()
+            .filter(|p| p.kind == PrimKind::Sphere)
+            .map(|p| p.index)
+            .collect();
+        let mut leaf = Leaf {
+            pack: EMPTY,
+            spheres: 0,
+            first: self.others.len() as u32,
+            others: 0,
+        };
+        // Binary leaves hold at most 8 primitives unless they could not be split (many
+        // coincident centroids); spheres beyond one pack are tested one by one.
+        let packed = if spheres.len() > 1 {
+            spheres.len().min(WIDTH)
+        } else {
+            0
+        };
+        if packed > 0 {
+            let mut pack = SpherePack {
+                cx: [0.0; WIDTH],
+                cy: [0.0; WIDTH],
+                cz: [0.0; WIDTH],
+                radius_sq: [f32::NEG_INFINITY; WIDTH],
+                inside: [0.0; WIDTH],
+                index: [EMPTY; WIDTH],
+            };
+            for (lane, &index) in spheres[..packed].iter().enumerate() {
+                let s = &self.scene.spheres[index as usize];
+                let [x, y, z] = s.center.to_array();
+                (pack.cx[lane], pack.cy[lane], pack.cz[lane]) = (x, y, z);
+                pack.radius_sq[lane] = s.radius_sq();
+                pack.inside[lane] = f32::from(u8::from(s.inside_visible()));
+                pack.index[lane] = index;
+            }
+            leaf.pack = self.packs.len() as u32;
+            leaf.spheres = packed as u32;
+            self.packs.push(pack);
+        }
+        let in_pack =
+            |p: &PrimRef| p.kind == PrimKind::Sphere && spheres[..packed].contains(&p.index);
+        for p in prims.iter().filter(|p| !in_pack(p)) {
+            self.others.push(*p);
+            leaf.others += 1;
+        }
+        self.leaves.push(leaf);
+        (self.leaves.len() - 1) as u32
+    }
+
+    /// Figures about the tree.
+    pub fn stats(&self) -> WideBvhStats {
+        self.stats
+    }
+
+    /// Whether the AVX2 + FMA code path runs on this CPU.
+    pub fn uses_avx2(&self) -> bool {
+        self.avx2
+    }
+
+    #[inline(always)]
+    fn closest<C: Counter, const FROM_EYE: bool>(
+        &self,
+        ray: &Ray<FROM_EYE>,
+        t_min: f32,
+        c: &mut C,
+    ) -> Option<Hit> {
+        c.tally(Stat::Intersect);
+        #[cfg(target_arch = "x86_64")]
+        if self.avx2 {
+            // SAFETY: `avx2` is true only when the CPU reported AVX2 and FMA.
+            return unsafe {
+                search_avx2::<C, FROM_EYE, false>(self, ray, t_min, f32::INFINITY, c)
+            };
+        }
+        search::<C, FROM_EYE, false, false>(self, ray, t_min, f32::INFINITY, c)
+    }
+}
+
+#[cfg(target_arch = "x86_64")]
+fn cpu_has_avx2_fma() -> bool {
+    std::is_x86_feature_detected!("avx2") && std::is_x86_feature_detected!("fma")
+}
+
+#[cfg(not(target_arch = "x86_64"))]
+fn cpu_has_avx2_fma() -> bool {
+    false
+}
+
+/// [`search`] compiled with AVX2 + FMA (the caller checks the CPU has them).
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx2,fma")]
+fn search_avx2<C: Counter, const FROM_EYE: bool, const ANY: bool>(
+    bvh: &WideBvh,
+    ray: &Ray<FROM_EYE>,
+    t_min: f32,
+    t_max: f32,
+    c: &mut C,
+) -> Option<Hit> {
+    search::<C, FROM_EYE, ANY, true>(bvh, ray, t_min, t_max, c)
+}
+
+/// Nearest-first traversal (phase `traversal`, the leaves' tests inside it): the
+/// closest hit in `(t_min, t_max)`, or with `ANY` the first found (a shadow ray). The
+/// interval shrinks as hits are found, so waiting entries beyond it are dropped when
+/// they come up. `AVX2`: the box test uses AVX instructions (only inside
+/// [`search_avx2`]).
+#[inline(always)]
+fn search<C: Counter, const FROM_EYE: bool, const ANY: bool, const AVX2: bool>(
+    bvh: &WideBvh,
+    ray: &Ray<FROM_EYE>,
+    t_min: f32,
+    mut t_max: f32,
+    c: &mut C,
+) -> Option<Hit> {
+    let _phase = C::enter_phase(Phase::Traversal);
+    if bvh.nodes.is_empty() {
+        return None;
+    }
+    let inv_dir = Vec3A::ONE / ray.dir.0;
+    let slab = Slab {
+        origin: ray.origin.0.to_array(),
+        inv_dir: inv_dir.to_array(),
+    };
+    let mut best: Option<Hit> = None;
+    // Uninitialised: a node step may push up to 7 entries, so the bound is large (kB),
+    // and clearing it would cost more than a short query. Only entries below `top` are
+    // read, and each was written first.
+    let mut stack = [const { MaybeUninit::<Entry>::uninit() }; STACK];
+    let mut top = 0usize;
+    let mut current = Entry { child: 0, t: 0.0 };
+    loop {
+        if current.child & LEAF != 0 {
+            c.tally(Stat::LeavesVisited);
+            let leaf = &bvh.leaves[(current.child & !LEAF) as usize];
+            if let Some(hit) = search_leaf::<C, FROM_EYE, ANY>(bvh, leaf, ray, t_min, t_max, c) {
+                if ANY {
+                    return Some(hit);
+                }
+                t_max = hit.t;
+                best = Some(hit);
+            }
+        } else {
+            let node = &bvh.nodes[current.child as usize];
+            #[cfg(target_arch = "x86_64")]
+            let (mask, t_near) = if AVX2 {
+                // SAFETY: `AVX2` is set only inside `search_avx2`, which runs only on
+                // CPUs with AVX2 and FMA.
+                unsafe { slab.test_avx2(node, t_min, t_max) }
+            } else {
+                slab.test(node, t_min, t_max)
+            };
+            #[cfg(not(target_arch = "x86_64"))]
+            let (mask, t_near) = slab.test(node, t_min, t_max);
+            if C::ENABLED {
+                let live = u64::from(node.used.count_ones());
+                c.tally_n(Stat::NodesVisited, live);
+                c.tally_n(Stat::LanesIssued, WIDTH as u64);
+                c.tally_n(Stat::LanesActive, live);
+            }
+            let entry = |lane: u32| Entry {
+                child: node.child[lane as usize],
+                t: t_near[lane as usize],
+            };
+            if mask != 0 {
+                let a = entry(mask.trailing_zeros());
+                let rest = mask & (mask - 1);
+                if rest == 0 {
+                    // One child hit (the common case): straight into it.
+                    current = a;
+                    continue;
+                }
+                let b = entry(rest.trailing_zeros());
+                if rest & (rest - 1) == 0 {
+                    // Two: the far one waits.
+                    let (near, far) = if b.t < a.t { (b, a) } else { (a, b) };
+                    stack[top].write(far);
+                    top += 1;
+                    current = near;
+                    continue;
+                }
+                // More: all wait, sorted (farthest at the bottom), and the nearest
+                // comes up next.
+                let first = top;
+                let mut bits = mask;
+                while bits != 0 {
+                    let new = entry(bits.trailing_zeros());
+                    bits &= bits - 1;
+                    let mut at = top;
+                    // SAFETY: `first <= at - 1 < top`: a written entry.
+                    while at > first && unsafe { stack[at - 1].assume_init() }.t < new.t {
+                        stack[at] = stack[at - 1];
+                        at -= 1;
+                    }
+                    stack[at].write(new);
+                    top += 1;
+                }
+            }
+        }
+        // The nearest waiting entry still in reach.
+        loop {
+            if top == 0 {
+                return best;
+            }
+            top -= 1;
+            // SAFETY: entries below `top` were written (see above).
+            let waiting = unsafe { stack[top].assume_init() };
+            if waiting.t <= t_max {
+                current = waiting;
+                break;
+            }
+        }
+    }
+}
+
+/// The closest hit in a leaf (with `ANY`: the first): its sphere pack, then its other
+/// primitives one by one.
+#[inline(always)]
+fn search_leaf<C: Counter, const FROM_EYE: bool, const ANY: bool>(
+    bvh: &WideBvh,
+    leaf: &Leaf,
+    ray: &Ray<FROM_EYE>,
+    t_min: f32,
+    mut t_max: f32,
+    c: &mut C,
+) -> Option<Hit> {
+    let mut best = None;
+    if leaf.spheres > 0 {
+        let pack = &bvh.packs[leaf.pack as usize];
+        if let Some((t, lane)) = sphere_pack(pack, leaf.spheres, ray, t_min, t_max, ANY, c) {
+            let prim = PrimRef {
+                kind: PrimKind::Sphere,
+                index: pack.index[lane],
+            };
+            let hit = Hit { t, prim, aux: 0.0 };
+            if ANY {
+                return Some(hit);
+            }
+            t_max = t;
+            best = Some(hit);
+        }
+    }
+    let first = leaf.first as usize;
+    for &prim in &bvh.others[first..first + leaf.others as usize] {
+        if let Some((t, aux)) = intersect_primitive(bvh.scene, prim, ray, t_min, t_max, c) {
+            let hit = Hit { t, prim, aux };
+            if ANY {
+                return Some(hit);
+            }
+            t_max = t;
+            best = Some(hit);
+        }
+    }
+    best
+}
+
+/// A ray's slab-test constants.
+struct Slab {
+    origin: [f32; 3],
+    inv_dir: [f32; 3],
+}
+
+impl Slab {
+    /// Which children's boxes the ray enters inside `(t_min, t_max)` (bit per lane)
+    /// and where. The same arithmetic as the binary tree's slab test, lane by lane;
+    /// written so that a NaN (origin on a slab of a flat box: 0 × inf) drops out of
+    /// `min`/`max` as there.
+    #[inline(always)]
+    fn test(&self, node: &WideNode, t_min: f32, t_max: f32) -> (u32, [f32; WIDTH]) {
+        let mut near = [t_min; WIDTH];
+        let mut far = [t_max; WIDTH];
+        for axis in 0..3 {
+            let (o, inv) = (self.origin[axis], self.inv_dir[axis]);
+            let lo = &node.bounds[axis];
+            let hi = &node.bounds[3 + axis];
+            for i in 0..WIDTH {
+                let t0 = (lo[i] - o) * inv;
+                let t1 = (hi[i] - o) * inv;
+                near[i] = max_or_second(min_or_second(t0, t1), near[i]);
+                far[i] = min_or_second(max_or_second(t0, t1), far[i]);
+            }
+        }
+        let mut mask = 0u32;
+        for i in 0..WIDTH {
+            mask |= u32::from(near[i] <= far[i]) << i;
+        }
+        (mask & node.used, near)
+    }
+
+    /// [`Slab::test`] in AVX instructions: `vminps`/`vmaxps` follow the same rule as
+    /// [`min_or_second`]/[`max_or_second`], so the results are the same.
+    ///
+    /// # Safety
+    /// The CPU must have AVX.
+    #[cfg(target_arch = "x86_64")]
+    #[inline(always)]
+    unsafe fn test_avx2(&self, node: &WideNode, t_min: f32, t_max: f32) -> (u32, [f32; WIDTH]) {
+        use std::arch::x86_64::{
+            _CMP_LE_OQ, _mm256_cmp_ps, _mm256_load_ps, _mm256_max_ps, _mm256_min_ps,
+            _mm256_movemask_ps, _mm256_mul_ps, _mm256_set1_ps, _mm256_storeu_ps, _mm256_sub_ps,
+        };
+        // SAFETY: the caller guarantees AVX; the rows are 32-byte aligned (a 64-byte
+        // aligned node of 32-byte rows) and 8 floats long.
+        unsafe {
+            let mut near = _mm256_set1_ps(t_min);
+            let mut far = _mm256_set1_ps(t_max);
+            for axis in 0..3 {
+                let o = _mm256_set1_ps(self.origin[axis]);
+                let inv = _mm256_set1_ps(self.inv_dir[axis]);
+                let lo = _mm256_load_ps(node.bounds[axis].as_ptr());
+                let hi = _mm256_load_ps(node.bounds[3 + axis].as_ptr());
+                let t0 = _mm256_mul_ps(_mm256_sub_ps(lo, o), inv);
+                let t1 = _mm256_mul_ps(_mm256_sub_ps(hi, o), inv);
+                near = _mm256_max_ps(_mm256_min_ps(t0, t1), near);
+                far = _mm256_min_ps(_mm256_max_ps(t0, t1), far);
+            }
+            let inside = _mm256_cmp_ps::<_CMP_LE_OQ>(near, far);
+            let mask = _mm256_movemask_ps(inside) as u32;
+            let mut t = [0.0f32; WIDTH];
+            _mm256_storeu_ps(t.as_mut_ptr(), near);
+            (mask & node.used, t)
+        }
+    }
+}
+
+/// `a` if it is the larger, else `b` (a NaN `a` gives `b`: the x86 `maxps` rule).
+#[inline(always)]
+fn max_or_second(a: f32, b: f32) -> f32 {
+    if a > b { a } else { b }
+}
+
+/// `a` if it is the smaller, else `b` (a NaN `a` gives `b`: the x86 `minps` rule).
+#[inline(always)]
+fn min_or_second(a: f32, b: f32) -> f32 {
+    if a < b { a } else { b }
+}
+
+/// The closest sphere of a pack in `(t_min, t_max)` as `(t, lane)` (with `any`: the
+/// first lane found), testing `live` lanes. The arithmetic is the scalar sphere test's,
+/// in the same order, so the distances are the same bit for bit; on equal distances the
+/// lowest lane wins, as the scalar loop keeps the first of equal hits.
+#[inline(always)]
+fn sphere_pack<C: Counter, const FROM_EYE: bool>(
+    pack: &SpherePack,
+    live: u32,
+    ray: &Ray<FROM_EYE>,
+    t_min: f32,
+    t_max: f32,
+    any: bool,
+    c: &mut C,
+) -> Option<(f32, usize)> {
+    let _phase = C::enter_phase(Phase::SphereTest);
+    let [ox, oy, oz] = ray.origin.to_array();
+    let [dx, dy, dz] = ray.dir.to_array();
+    let mut t = [f32::INFINITY; WIDTH];
+    let mut disc_positive = [false; WIDTH];
+    for i in 0..WIDTH {
+        let (vx, vy, vz) = (ox - pack.cx[i], oy - pack.cy[i], oz - pack.cz[i]);
+        let half_b = dx * vx + dy * vy + dz * vz;
+        let cc = (vx * vx + vy * vy + vz * vz) - pack.radius_sq[i];
+        let disc = half_b * half_b - cc;
+        disc_positive[i] = disc > 0.0;
+        let root = C::sqrt_kernel(disc.max(0.0));
+        let near = -half_b - root;
+        let far = -half_b + root;
+        let near_ok = pack.inside[i] == 0.0 && near > t_min && near < t_max;
+        let far_ok = far > t_min && far < t_max;
+        let chosen = if near_ok { near } else { far };
+        t[i] = if disc_positive[i] && (near_ok || far_ok) {
+            chosen
+        } else {
+            f32::INFINITY
+        };
+    }
+    if C::ENABLED {
+        let n = u64::from(live);
+        c.tally_n(Stat::LanesIssued, WIDTH as u64);
+        c.tally_n(Stat::LanesActive, n);
+        c.tally_n(Stat::SphereTest, n);
+        if !FROM_EYE {
+            // Eye rays of the `bounded` variant use the precomputed offsets instead.
+            c.tally_n(Stat::Sub, n);
+        }
+        c.tally_n(Stat::Dot, 2 * n);
+        let live = live as usize;
+        c.tally_n(
+            Stat::Sqrt,
+            disc_positive[..live].iter().filter(|&&p| p).count() as u64,
+        );
+        let hits = t[..live].iter().filter(|x| x.is_finite()).count();
+        c.tally_n(Stat::SphereHit, hits as u64);
+    }
+    let mut best: Option<(f32, usize)> = None;
+    for (lane, &tl) in t.iter().enumerate() {
+        if tl < best.map_or(f32::INFINITY, |b| b.0) {
+            best = Some((tl, lane));
+            if any {
+                break;
+            }
+        }
+    }
+    best
+}
+
+impl Intersector for WideBvh<'_> {
+    fn closest_hit<C: Counter>(&self, ray: &Ray, t_min: f32, c: &mut C) -> Option<Hit> {
+        self.closest(ray, t_min, c)
+    }
+
+    fn closest_hit_from_eye<C: Counter>(&self, ray: &Ray<true>, c: &mut C) -> Option<Hit> {
+        self.closest(ray, 0.0, c)
+    }
+
+    fn occluded<C: Counter>(&self, ray: &Ray, t_min: f32, t_max: f32, c: &mut C) -> bool {
+        c.tally(Stat::Intersect);
+        #[cfg(target_arch = "x86_64")]
+        if self.avx2 {
+            // SAFETY: `avx2` is true only when the CPU reported AVX2 and FMA.
+            return unsafe { search_avx2::<C, false, true>(self, ray, t_min, t_max, c) }.is_some();
+        }
+        search::<C, false, true, false>(self, ray, t_min, t_max, c).is_some()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::super::tests::{mixed_scene, rays};
+    use super::*;
+    use crate::accel::BruteForce;
+    use crate::counter::{Count, NoCount};
+    use crate::nff::parse_nff;
+    use crate::vec3::Vec3;
+
+    /// Both code paths of a tree: the one this CPU runs and the portable one.
+    fn both_paths(scene: &Scene) -> [WideBvh<'_>; 2] {
+        let wide = WideBvh::build_with(scene, BvhBuilder::BinnedSah);
+        let mut portable = wide.clone();
+        portable.avx2 = false;
+        [wide, portable]
+    }
+
+    /// A cluster of overlapping spheres (leaves of several spheres: packs) around
+    /// cylinders and polygons.
+    fn cluster_scene() -> Scene {
+        let mut text = String::from(
+            "v\nfrom 0 -12 3\nat 0 0 0\nup 0 0 1\nangle 50\nhither 0\nresolution 8 8\n\
+             l 4 -6 8\nf 1 1 1 1 0 1 0 1\ns 0 0 0 -20\n",
+        );
+        let mut state = 99u32;
+        let mut next = || {
+            state = state.wrapping_mul(1_664_525).wrapping_add(1_013_904_223);
+            (state >> 8) as f32 / (1u32 << 24) as f32 * 2.0 - 1.0
+        };
+        for _ in 0..300 {
+            let (x, y, z) = (next() * 5.0, next() * 5.0, next() * 2.0);
+            text += &format!("s {x} {y} {z} {}\n", 0.2 + 0.3 * next().abs());
+        }
+        for i in 0..12 {
+            let x = i as f32 - 6.0;
+            text += &format!(
+                "c\n{x} 3 -1 0.2\n{x} 3.5 1 0.2\np 3\n{x} -3 -1\n{} -3 -1\n{x} -3 0\n",
+                x + 0.8
+            );
+        }
+        parse_nff(&text, "cluster.nff").unwrap_or_else(|e| panic!("{e}"))
+    }
+
+    #[test]
+    fn wide_tree_finds_the_same_hits_and_blockers_as_brute_force_bit_for_bit() {
+        for scene in [mixed_scene(), cluster_scene()] {
+            let brute = BruteForce::new(&scene);
+            let mut hits = 0;
+            for wide in both_paths(&scene) {
+                for ray in rays() {
+                    let a = brute.closest_hit(&ray, 0.0, &mut NoCount);
+                    let b = wide.closest_hit(&ray, 0.0, &mut NoCount);
+                    assert_eq!(
+                        a.map(|h| (h.prim, h.t, h.aux)),
+                        b.map(|h| (h.prim, h.t, h.aux)),
+                        "{ray:?}"
+                    );
+                    hits += usize::from(a.is_some());
+                    for limit in [1.0, 5.0, f32::INFINITY] {
+                        assert_eq!(
+                            brute.occluded(&ray, 0.0, limit, &mut NoCount),
+                            wide.occluded(&ray, 0.0, limit, &mut NoCount),
+                            "{ray:?} {limit}"
+                        );
+                    }
+                }
+            }
+            assert!(hits > 600, "the test rays must hit something: {hits}");
+        }
+    }
+
+    #[test]
+    fn every_primitive_is_in_exactly_one_leaf_and_nodes_are_wide() {
+        let scene = cluster_scene();
+        let wide = WideBvh::build_with(&scene, BvhBuilder::BinnedSah);
+        let mut seen: Vec<PrimRef> = wide.others.clone();
+        for leaf in &wide.leaves {
+            if leaf.spheres > 0 {
+                let pack = &wide.packs[leaf.pack as usize];
+                seen.extend(
+                    pack.index[..leaf.spheres as usize]
+                        .iter()
+                        .map(|&index| PrimRef {
+                            kind: PrimKind::Sphere,
+                            index,
+                        }),
+                );
+                // Unused lanes are never hit.
+                assert!(
+                    pack.radius_sq[leaf.spheres as usize..]
+                        .iter()
+                        .all(|r| *r == f32::NEG_INFINITY)
+                );
+            }
+        }
+        assert_eq!(seen.len(), scene.primitive_count());
+        let mut keys: Vec<(u8, u32)> = seen.iter().map(|p| (p.kind as u8, p.index)).collect();
+        keys.sort_unstable();
+        keys.dedup();
+        assert_eq!(keys.len(), scene.primitive_count());
+        let stats = wide.stats();
+        let binary = Bvh::build(&scene).stats();
+        assert_eq!(stats.leaves, binary.leaves);
+        // Collapsing removes interior nodes: n binary interior nodes in about n / 7 wide ones.
+        assert!(
+            stats.nodes * 3 < binary.nodes - binary.leaves,
+            "{stats:?} {binary:?}"
+        );
+        assert!(stats.mean_children > 4.0, "{stats:?}");
+        assert!(!wide.packs.is_empty());
+    }
+
+    #[test]
+    fn counts_of_a_two_leaf_tree_are_the_hand_computed_ones() {
+        // Two unit spheres 10 apart: one wide node with two leaf children (one sphere
+        // each, tested by the scalar test: a pack needs two).
+        let scene = parse_nff(
+            "v\nfrom 0 -20 0\nat 0 0 0\nup 0 0 1\nangle 40\nhither 0\nresolution 4 4\n\
+             f 1 1 1 1 0 1 0 1\ns -5 0 0 1\ns 5 0 0 1\n",
+            "two.nff",
+        )
+        .unwrap_or_else(|e| panic!("{e}"));
+        let wide = WideBvh::build_with(&scene, BvhBuilder::BinnedSah);
+        assert_eq!((wide.stats().nodes, wide.stats().leaves), (1, 2));
+        let ray: Ray = Ray {
+            origin: Vec3::new(-20.0, 0.0, 0.0),
+            dir: Vec3::new(1.0, 0.0, 0.0),
+        };
+        // Closest hit: both boxes tested (2 of 8 lanes), the near leaf entered and hit at
+        // t = 14, the far one dropped (it starts at 24 > 14).
+        let mut c = Count::default();
+        let hit = wide.closest_hit(&ray, 0.0, &mut c);
+        assert_eq!(hit.map(|h| (h.prim.index, h.t)), Some((0, 14.0)));
+        assert_eq!(c.get(Stat::NodesVisited), 2);
+        assert_eq!(c.get(Stat::LeavesVisited), 1);
+        assert_eq!((c.get(Stat::LanesIssued), c.get(Stat::LanesActive)), (8, 2));
+        assert_eq!((c.get(Stat::SphereTest), c.get(Stat::Intersect)), (1, 1));
+        // A shadow ray stops at the first leaf too.
+        let mut c = Count::default();
+        assert!(wide.occluded(&ray, 0.0, f32::INFINITY, &mut c));
+        assert_eq!(
+            (c.get(Stat::NodesVisited), c.get(Stat::LeavesVisited)),
+            (2, 1)
+        );
+        // Between the spheres, looking at neither: boxes tested, nothing entered.
+        let up: Ray = Ray {
+            origin: Vec3::ZERO,
+            dir: Vec3::new(0.0, 0.0, 1.0),
+        };
+        let mut c = Count::default();
+        assert!(wide.closest_hit(&up, 0.0, &mut c).is_none());
+        assert_eq!(
+            (c.get(Stat::NodesVisited), c.get(Stat::LeavesVisited)),
+            (2, 0)
+        );
+    }
+
+    #[test]
+    fn sphere_packs_count_their_live_lanes() {
+        // Three nearly coincident spheres: splitting them cannot pay, so one leaf and one
+        // pack of 3.
+        let scene = parse_nff(
+            "v\nfrom 0 -20 0\nat 0 0 0\nup 0 0 1\nangle 40\nhither 0\nresolution 4 4\n\
+             f 1 1 1 1 0 1 0 1\ns 0 0 0 1\ns 0.01 0 0 1\ns 0 0 0.01 1\n",
+            "three.nff",
+        )
+        .unwrap_or_else(|e| panic!("{e}"));
+        let wide = WideBvh::build_with(&scene, BvhBuilder::BinnedSah);
+        assert_eq!((wide.stats().leaves, wide.packs.len()), (1, 1));
+        let ray: Ray = Ray {
+            origin: Vec3::new(0.0, -20.0, 0.0),
+            dir: Vec3::new(0.0, 1.0, 0.0),
+        };
+        let mut c = Count::default();
+        let hit = wide.closest_hit(&ray, 0.0, &mut c);
+        let brute = BruteForce::new(&scene).closest_hit(&ray, 0.0, &mut NoCount);
+        assert_eq!(hit, brute);
+        // One node lane (the leaf) and one pack of 3 live lanes.
+        assert_eq!(
+            (c.get(Stat::LanesIssued), c.get(Stat::LanesActive)),
+            (16, 4)
+        );
+        assert_eq!(
+            (c.get(Stat::SphereTest), c.get(Stat::Sub), c.get(Stat::Dot)),
+            (3, 3, 6)
+        );
+        // Every sphere meets the ray (disc > 0): three square roots.
+        assert_eq!(c.get(Stat::Sqrt), 3);
+    }
+}
