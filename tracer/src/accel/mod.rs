@@ -39,6 +39,18 @@ pub trait Intersector: Sync {
     fn occluded<C: Counter>(&self, ray: &Ray, t_min: f32, t_max: f32, c: &mut C) -> bool;
 }
 
+/// Whether the CPU runs the AVX2 + FMA paths of the lane code (SIMD batches, wide BVH);
+/// detected at run time, so the binary still runs on any x86-64.
+#[cfg(target_arch = "x86_64")]
+pub(crate) fn cpu_has_avx2_fma() -> bool {
+    std::is_x86_feature_detected!("avx2") && std::is_x86_feature_detected!("fma")
+}
+
+#[cfg(not(target_arch = "x86_64"))]
+pub(crate) fn cpu_has_avx2_fma() -> bool {
+    false
+}
+
 /// Tests one primitive of `scene` against `ray` in `(t_min, t_max)`: the distance and
 /// the hit's `aux` value, in the kind's test phase. The one dispatch on primitive kind
 /// that the BVH leaves use.

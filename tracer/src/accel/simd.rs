@@ -17,7 +17,7 @@
 //! force shrinks the interval after every primitive, so `hits` may differ slightly;
 //! `rays.*` and the picture do not).
 
-use super::{Intersector, intersect_primitive, occluded_by_cones_and_planars};
+use super::{Intersector, cpu_has_avx2_fma, intersect_primitive, occluded_by_cones_and_planars};
 use crate::counter::{Counter, Phase, Stat};
 use crate::ray::{Hit, PrimKind, PrimRef, Ray};
 use crate::scene::Scene;
@@ -150,16 +150,6 @@ impl<'s> Simd<'s> {
         }
         quadric_pass_body(self, ray, t_min, t_max, any, c)
     }
-}
-
-#[cfg(target_arch = "x86_64")]
-fn cpu_has_avx2_fma() -> bool {
-    std::is_x86_feature_detected!("avx2") && std::is_x86_feature_detected!("fma")
-}
-
-#[cfg(not(target_arch = "x86_64"))]
-fn cpu_has_avx2_fma() -> bool {
-    false
 }
 
 /// The quadric pass compiled with AVX2 + FMA (the caller checks the CPU has them).

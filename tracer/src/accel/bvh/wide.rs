@@ -21,7 +21,7 @@
 //! themselves with the operations of the scalar test.
 
 use super::{Aabb, Bvh, BvhBuilder, Node};
-use crate::accel::{Intersector, intersect_primitive};
+use crate::accel::{Intersector, cpu_has_avx2_fma, intersect_primitive};
 use crate::counter::{Counter, Phase, Stat};
 use crate::huge_pages;
 use crate::ray::{Hit, PrimKind, PrimRef, Ray};
@@ -306,16 +306,6 @@ impl<'s> WideBvh<'s> {
         }
         search::<C, FROM_EYE, false, false>(self, ray, t_min, f32::INFINITY, c)
     }
-}
-
-#[cfg(target_arch = "x86_64")]
-fn cpu_has_avx2_fma() -> bool {
-    std::is_x86_feature_detected!("avx2") && std::is_x86_feature_detected!("fma")
-}
-
-#[cfg(not(target_arch = "x86_64"))]
-fn cpu_has_avx2_fma() -> bool {
-    false
 }
 
 /// [`search`] compiled with AVX2 + FMA (the caller checks the CPU has them).
