@@ -44,6 +44,13 @@ impl VariantName {
         VariantSet::parse(&self.0)
     }
 
+    /// Whether the variant counts the work inside its queries (Embree does not: its
+    /// `tests.*` are absent, not zero).
+    pub fn counts_its_work(&self) -> bool {
+        self.set()
+            .map_or(true, |s| s.config().accel.counts_its_work())
+    }
+
     pub fn as_str(&self) -> &str {
         &self.0
     }
@@ -113,5 +120,9 @@ mod tests {
         assert_eq!(json.ok().map(String::from).as_deref(), Some("fast-sqrt"));
         let bad: Result<VariantName, _> = serde_json::from_str("\"simd+embree\"");
         assert!(bad.is_err());
+        // Embree's queries are not counted inside; rtprof's own structures are.
+        let counts = |s: &str| VariantName::parse(s).is_ok_and(|n| n.counts_its_work());
+        assert!(counts("bvh+simd") && counts("baseline") && counts("simd"));
+        assert!(!counts("embree") && !counts("embree-native"));
     }
 }

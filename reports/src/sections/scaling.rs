@@ -218,8 +218,14 @@ fn spd_row(v: &VariantResult, pixels: u64) -> Vec<Cell> {
     let mut row = vec![Cell::text(v.variant.as_str())];
     row.extend(RAY_KINDS.iter().map(|(key, _)| Cell::count(get(key))));
     row.push(ratio(rays, pixels, 2));
-    row.push(Cell::count(tests));
-    row.push(ratio(tests, rays, 1));
+    if v.variant.counts_its_work() {
+        row.push(Cell::count(tests));
+        row.push(ratio(tests, rays, 1));
+    } else {
+        // Embree's tests happen inside the library, uncounted: not zero.
+        row.push(Cell::text("not counted").tone(Tone::Muted));
+        row.push(Cell::dash().tone(Tone::Muted));
+    }
     row.push(match v.counts.get("accel.nodes_visited") {
         Some(n) if *n > 0 => Cell::count(*n),
         _ => Cell::dash().tone(Tone::Muted),

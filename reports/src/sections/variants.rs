@@ -161,6 +161,16 @@ fn quality(q: &Quality) -> Vec<Cell> {
 fn counter_cell(v: &VariantResult, base: Option<&VariantResult>, key: &str) -> Cell {
     let value = v.counts.get(key).copied();
     let reference = base.and_then(|b| b.counts.get(key).copied());
+    let inside_queries = ["ops.", "tests.", "accel."]
+        .iter()
+        .any(|p| key.starts_with(p));
+    if inside_queries && !v.variant.counts_its_work() {
+        // Embree: the work inside a query is uncounted, so a drop would be a lie.
+        return Cell::text("not counted").tone(Tone::Muted).hover(format!(
+            "{} counted outside Embree's queries (shading); the queries' own work is not counted",
+            format::count(value.unwrap_or(0))
+        ));
+    }
     match (value, reference) {
         (Some(n), _) if v.variant.is_reference() => Cell::count(n),
         (Some(n), Some(b)) if n == b => Cell::number("=", 0.0)
