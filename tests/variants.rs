@@ -74,6 +74,14 @@ fn wide_bvh_keeps_the_baseline_picture_and_ray_counts_on_all_twelve_spd_scenes()
         // The same tests on the same leaves as the binary tree: the same floats.
         assert_eq!(frame, bvh_frame, "{name}: bvh+simd differs from bvh");
         assert!(counts.accel.nodes_visited > 0 && counts.accel.lanes_issued > 0);
+        // Packets of eye rays (and of their shadow rays) find each ray's own closest hit
+        // and blockers: the same frame and rays. Their box and leaf work differs (a
+        // packet's order is not each ray's own), so only its presence is checked here;
+        // the per-ray counts are checked in `tracer::accel::bvh::packet`.
+        let (packet_frame, packets) = render(&scene, "bvh+simd+packets", &options);
+        assert_eq!(packet_frame, frame, "{name}: packets differ from bvh+simd");
+        assert_eq!(packets.rays, counts.rays, "{name}");
+        assert!(packets.accel.nodes_visited > 0 && packets.accel.lanes_issued > 0);
     }
 }
 

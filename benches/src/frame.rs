@@ -20,11 +20,12 @@ pub const WIDTH: u32 = 160;
 pub const HEIGHT: u32 = 120;
 
 /// The variants rendered uncounted, by their command-line names.
-pub const VARIANTS: [&str; 9] = [
+pub const VARIANTS: [&str; 10] = [
     "baseline",
     "simd",
     "bvh",
     "bvh+simd",
+    "bvh+simd+packets",
     "bounded",
     "fast-sqrt",
     "ortho",

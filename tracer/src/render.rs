@@ -11,18 +11,19 @@
 //! wherever the picture is smooth; we read it as the neighbours' mean it describes in
 //! words, and use all traced 4-neighbours rather than only the two vertical ones.
 
-use crate::accel::BvhBuilder;
-use crate::accel::Intersector;
+use crate::accel::{BvhBuilder, Intersector, PACKET};
 use crate::camera::{Camera, Projection, Sampling};
 use crate::color::Rgb;
 use crate::counter::{Counter, Counts, Phase, RayCounts};
 use crate::nff::Limits;
 use crate::pixel_stats::{SampleRows, SampleStats};
+use crate::ray::Ray;
 use crate::scene::Scene;
 use crate::shading::{MAX_DEPTH, RayLog, Shader, ShadingMode};
 use crate::variants::diffuse::DiffuseForm;
+use crate::vec3::Vec3;
 use rayon::prelude::*;
-use std::time::Instant;
+use std::time::{Duration, Instant};
 
 /// What to render: the choices of whoever asks for the picture.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -58,6 +59,8 @@ pub struct RenderMethod {
     /// Distance at which the orthographic grid spans the perspective view (`ortho`;
     /// default `|at - from|`).
     pub ortho_focus: Option<f32>,
+    /// Trace neighbouring eye rays of a row together, [`PACKET`] at a time (`packets`).
+    pub packets: bool,
 }
 
 impl RenderOptions {
@@ -217,28 +220,40 @@ pub fn render<C: Counter, I: Intersector>(
             let mut records = options
                 .per_sample
                 .then(|| SampleRows::with_capacity(columns as usize, C::ENABLED));
-            let samples = (0..columns)
-                .map(|column| {
-                    if method.checkerboard && (column + row) % 2 == 1 {
-                        // Filled from the neighbours after the loop.
-                        if let Some(records) = &mut records {
-                            records.push_untraced();
+            let samples = if method.packets {
+                let packets = PacketRow {
+                    camera: &camera,
+                    shader: &shader,
+                    row,
+                    row_base,
+                    columns,
+                    checkerboard: method.checkerboard,
+                };
+                packets.trace(&mut c, &mut rays, records.as_mut())
+            } else {
+                (0..columns)
+                    .map(|column| {
+                        if method.checkerboard && (column + row) % 2 == 1 {
+                            // Filled from the neighbours after the loop.
+                            if let Some(records) = &mut records {
+                                records.push_untraced();
+                            }
+                            Rgb::BLACK
+                        } else if let Some(records) = &mut records {
+                            // Each sample on its own counter, then added to the row's.
+                            let (mut own, mut own_rays) = (C::default(), RayLog::default());
+                            let start = Instant::now();
+                            let colour = trace(column, &mut own, &mut own_rays);
+                            records.push(start.elapsed(), &own, &own_rays);
+                            c.merge(&own);
+                            rays.merge(&own_rays);
+                            colour
+                        } else {
+                            trace(column, &mut c, &mut rays)
                         }
-                        Rgb::BLACK
-                    } else if let Some(records) = &mut records {
-                        // Each sample on its own counter, then added to the row's.
-                        let (mut own, mut own_rays) = (C::default(), RayLog::default());
-                        let start = Instant::now();
-                        let colour = trace(column, &mut own, &mut own_rays);
-                        records.push(start.elapsed(), &own, &own_rays);
-                        c.merge(&own);
-                        rays.merge(&own_rays);
-                        colour
-                    } else {
-                        trace(column, &mut c, &mut rays)
-                    }
-                })
-                .collect();
+                    })
+                    .collect()
+            };
             progress(1);
             TracedRow {
                 samples,
@@ -281,6 +296,94 @@ pub fn render<C: Counter, I: Intersector>(
         rays: ray_counts,
         samples: records,
     })
+}
+
+/// A sample row traced in packets of [`PACKET`] neighbouring eye rays (`packets`).
+struct PacketRow<'a, 's, I> {
+    camera: &'a Camera,
+    shader: &'a Shader<'s, I>,
+    row: u32,
+    /// The bounded walk's row direction, when the eye rays start at the origin.
+    row_base: Option<Vec3>,
+    columns: u32,
+    checkerboard: bool,
+}
+
+impl<I: Intersector> PacketRow<'_, '_, I> {
+    /// The row's samples; each ray's work is counted on its own counter, then added to
+    /// `c` and `rays`, and recorded per sample in `records` when asked (a packet's time
+    /// shared equally among its rays, in column order).
+    fn trace<C: Counter>(
+        &self,
+        c: &mut C,
+        rays: &mut RayLog,
+        records: Option<&mut SampleRows>,
+    ) -> Vec<Rgb> {
+        let columns = self.columns as usize;
+        let mut samples = vec![Rgb::BLACK; columns];
+        let keep = records.is_some();
+        let mut kept: Vec<Option<(Duration, C, RayLog)>> = if keep {
+            (0..columns).map(|_| None).collect()
+        } else {
+            Vec::new()
+        };
+        let traced: Vec<u32> = (0..self.columns)
+            .filter(|column| !(self.checkerboard && (column + self.row) % 2 == 1))
+            .collect();
+        for chunk in traced.chunks(PACKET) {
+            let n = chunk.len();
+            let start = keep.then(Instant::now);
+            let mut counters: [C; PACKET] = Default::default();
+            let mut logs = [RayLog::default(); PACKET];
+            let mut colours = [Rgb::BLACK; PACKET];
+            let (cs, ls, out) = (&mut counters[..n], &mut logs[..n], &mut colours[..n]);
+            let unused = Vec3::new(0.0, 0.0, 0.0);
+            if let Some(base) = self.row_base {
+                let eye: [Ray<true>; PACKET] = std::array::from_fn(|i| match chunk.get(i) {
+                    Some(&column) => {
+                        let _phase = C::enter_phase(Phase::CameraRay);
+                        self.camera.ray_from_eye(column, base, &mut cs[i])
+                    }
+                    None => Ray {
+                        origin: unused,
+                        dir: unused,
+                    },
+                });
+                self.shader.primaries_from_eye(&eye[..n], cs, ls, out);
+            } else {
+                let plain: [Ray; PACKET] = std::array::from_fn(|i| match chunk.get(i) {
+                    Some(&column) => {
+                        let _phase = C::enter_phase(Phase::CameraRay);
+                        self.camera.ray(column, self.row, &mut cs[i])
+                    }
+                    None => Ray {
+                        origin: unused,
+                        dir: unused,
+                    },
+                });
+                self.shader.primaries(&plain[..n], cs, ls, out);
+            }
+            let share = start.map(|s| s.elapsed() / n as u32);
+            for (i, &column) in chunk.iter().enumerate() {
+                samples[column as usize] = colours[i];
+                c.merge(&counters[i]);
+                rays.merge(&logs[i]);
+                if let Some(share) = share {
+                    kept[column as usize] =
+                        Some((share, std::mem::take(&mut counters[i]), logs[i]));
+                }
+            }
+        }
+        if let Some(records) = records {
+            for sample in kept {
+                match sample {
+                    Some((time, counter, log)) => records.push(time, &counter, &log),
+                    None => records.push_untraced(),
+                }
+            }
+        }
+        samples
+    }
 }
 
 /// One sample row's result, merged in row order after the parallel loop.

@@ -26,7 +26,7 @@
 //! With [`DiffuseForm::Squared`] (variant `no-rsqrt-shading`) the Lambert term of
 //! spheres is the sqrt-free form of [`crate::variants::diffuse`].
 
-use crate::accel::Intersector;
+use crate::accel::{Intersector, PACKET};
 use crate::color::Rgb;
 use crate::counter::{Counter, Phase, RayCounts, Stat};
 use crate::ray::{Hit, PrimKind, Ray};
@@ -87,6 +87,57 @@ struct Surface {
     /// Whether the ray hit the front (visible-side) face: entering a transmitter.
     front: bool,
     material: Material,
+}
+
+/// A hit being shaded: its surface, the colour so far, and where its shadow and
+/// secondary rays start.
+struct LitPoint {
+    s: Surface,
+    color: Rgb,
+    /// The offset off the surface, toward the incoming ray.
+    lift: Vec3,
+    /// The point lifted off the surface: where reflection and shadow rays start.
+    above: Vec3,
+    reflective: bool,
+    mirror: Option<Vec3>,
+}
+
+/// A shadow ray toward one light, with what the light's diffuse term needs.
+struct ShadowRay {
+    ray: Ray,
+    /// Distance to the light: the ray's reach.
+    distance: f32,
+    /// `N · (light - point)`, unnormalized.
+    n_dot: f32,
+}
+
+impl LitPoint {
+    /// The shadow ray toward `light` (counted in `rays.shadow`), or `None` when the
+    /// normal faces away from it (no ray, no light).
+    fn shadow_ray<C: Counter>(
+        &self,
+        light: &Light,
+        c: &mut C,
+        rays: &mut RayLog,
+    ) -> Option<ShadowRay> {
+        let to_light = c.sub(light.position, self.s.point);
+        let n_dot = c.dot(self.s.normal, to_light);
+        if n_dot <= 0.0 {
+            return None;
+        }
+        let distance_sq = c.dot(to_light, to_light);
+        let distance = c.sqrt(distance_sq);
+        let l = c.scale(to_light, 1.0 / distance);
+        rays.counts.shadow += 1;
+        Some(ShadowRay {
+            ray: Ray {
+                origin: self.above,
+                dir: l,
+            },
+            distance,
+            n_dot,
+        })
+    }
 }
 
 /// Traces rays through a scene with one intersector.
@@ -160,6 +211,155 @@ impl<'s, I: Intersector> Shader<'s, I> {
         self.primary_after(&ray.plain(), hit, c, rays)
     }
 
+    /// The sample values of a packet of eye rays traced together (variant `packets`):
+    /// `out[i]` for `rays[i]`, each ray's work counted on `counters[i]` and `logs[i]`
+    /// as [`Shader::primary`] counts it.
+    pub fn primaries<C: Counter>(
+        &self,
+        rays: &[Ray],
+        counters: &mut [C],
+        logs: &mut [RayLog],
+        out: &mut [Rgb],
+    ) {
+        self.packet(rays, counters, logs, out, |hits, cs| {
+            self.accel.closest_hits(rays, hits, cs)
+        });
+    }
+
+    /// [`Shader::primaries`] for eye rays that start at the origin (`bounded`).
+    pub fn primaries_from_eye<C: Counter>(
+        &self,
+        rays: &[Ray<true>],
+        counters: &mut [C],
+        logs: &mut [RayLog],
+        out: &mut [Rgb],
+    ) {
+        self.packet(rays, counters, logs, out, |hits, cs| {
+            self.accel.closest_hits_from_eye(rays, hits, cs)
+        });
+    }
+
+    fn packet<C: Counter, const FROM_EYE: bool>(
+        &self,
+        rays: &[Ray<FROM_EYE>],
+        counters: &mut [C],
+        logs: &mut [RayLog],
+        out: &mut [Rgb],
+        query: impl FnOnce(&mut [Option<Hit>], &mut [C]),
+    ) {
+        let n = rays.len().min(PACKET);
+        for (c, log) in counters.iter_mut().zip(logs.iter_mut()).take(n) {
+            log.counts.primary += 1;
+            log.reached(1);
+            c.tally(Stat::Trace);
+        }
+        let mut hits = [None; PACKET];
+        {
+            let _phase = C::enter_phase(Phase::ClosestHit);
+            query(&mut hits[..n], &mut counters[..n]);
+        }
+        if self.mode == ShadingMode::DiffuseOnly {
+            for (i, hit) in hits.into_iter().enumerate().take(n) {
+                out[i] = self.primary_after(&rays[i].plain(), hit, &mut counters[i], &mut logs[i]);
+            }
+        } else {
+            self.shade_packet(rays, &hits[..n], counters, logs, out);
+        }
+    }
+
+    /// [`Shader::shade`] for a packet of eye-ray hits: each light's shadow rays go to
+    /// the intersector as one packet (they leave neighbouring points for one light);
+    /// the reflected and refracted rays are traced one by one.
+    fn shade_packet<C: Counter, const FROM_EYE: bool>(
+        &self,
+        rays: &[Ray<FROM_EYE>],
+        hits: &[Option<Hit>],
+        counters: &mut [C],
+        logs: &mut [RayLog],
+        out: &mut [Rgb],
+    ) {
+        let n = hits.len().min(rays.len());
+        if n == 0 {
+            return;
+        }
+        let _phase = C::enter_phase(Phase::Shading);
+        let plain: [Ray; PACKET] = std::array::from_fn(|i| rays[i.min(n - 1)].plain());
+        let mut lit: [Option<LitPoint>; PACKET] = std::array::from_fn(|_| None);
+        for i in 0..n {
+            match &hits[i] {
+                None => out[i] = self.background(),
+                Some(hit) => {
+                    logs[i].counts.primary_hit += 1;
+                    lit[i] = Some(self.lit_point(&plain[i], hit, &mut counters[i]));
+                }
+            }
+        }
+        for (light_index, light) in self.scene.lights.iter().enumerate() {
+            // The packet's shadow rays toward this light, gathered with their counters.
+            let mut shadows: [Option<ShadowRay>; PACKET] = std::array::from_fn(|_| None);
+            let mut from = [0usize; PACKET];
+            let mut shadow_rays = plain;
+            let mut reach = [0.0f32; PACKET];
+            let mut shadow_counters: [C; PACKET] = Default::default();
+            let mut k = 0;
+            for i in 0..n {
+                let Some(point) = &lit[i] else { continue };
+                let Some(shadow) = point.shadow_ray(light, &mut counters[i], &mut logs[i]) else {
+                    continue;
+                };
+                shadow_rays[k] = shadow.ray;
+                reach[k] = shadow.distance;
+                from[k] = i;
+                shadow_counters[k] = std::mem::take(&mut counters[i]);
+                shadows[i] = Some(shadow);
+                k += 1;
+            }
+            if k == 0 {
+                continue;
+            }
+            let mut blocked = [false; PACKET];
+            {
+                let _phase = C::enter_phase(Phase::ShadowQuery);
+                self.accel.occluded_packet(
+                    &shadow_rays[..k],
+                    &reach[..k],
+                    &mut blocked[..k],
+                    &mut shadow_counters[..k],
+                );
+            }
+            for j in 0..k {
+                let i = from[j];
+                counters[i] = std::mem::take(&mut shadow_counters[j]);
+                if blocked[j] {
+                    logs[i].counts.shadow_blocked += 1;
+                } else if let (Some(point), Some(shadow), Some(hit)) =
+                    (&mut lit[i], &shadows[i], &hits[i])
+                {
+                    self.add_light(point, hit, light_index, shadow, &mut counters[i]);
+                }
+            }
+        }
+        for i in 0..n {
+            if let Some(point) = lit[i].take() {
+                let color = self.add_secondary(point, &plain[i], 1, &mut counters[i], &mut logs[i]);
+                out[i] = match self.mode {
+                    ShadingMode::Gray => Rgb::gray(color.luminance()),
+                    _ => color,
+                };
+            }
+        }
+    }
+
+    /// What a ray that hits nothing shows, in the shading mode's colours.
+    fn background(&self) -> Rgb {
+        match self.mode {
+            ShadingMode::Color => self.scene.background,
+            ShadingMode::Gray | ShadingMode::DiffuseOnly => {
+                Rgb::gray(self.scene.background.luminance())
+            }
+        }
+    }
+
     fn primary_after<C: Counter>(
         &self,
         ray: &Ray,
@@ -167,12 +367,7 @@ impl<'s, I: Intersector> Shader<'s, I> {
         c: &mut C,
         rays: &mut RayLog,
     ) -> Rgb {
-        let background = match self.mode {
-            ShadingMode::Color => self.scene.background,
-            ShadingMode::Gray | ShadingMode::DiffuseOnly => {
-                Rgb::gray(self.scene.background.luminance())
-            }
-        };
+        let background = self.background();
         let Some(hit) = hit else {
             return background;
         };
@@ -222,50 +417,93 @@ impl<'s, I: Intersector> Shader<'s, I> {
         rays: &mut RayLog,
     ) -> Rgb {
         let _phase = C::enter_phase(Phase::Shading);
+        let mut lit = self.lit_point(ray, hit, c);
+        for (light_index, light) in self.scene.lights.iter().enumerate() {
+            let Some(shadow) = lit.shadow_ray(light, c, rays) else {
+                continue;
+            };
+            let blocked = {
+                let _phase = C::enter_phase(Phase::ShadowQuery);
+                self.accel.occluded(&shadow.ray, 0.0, shadow.distance, c)
+            };
+            if blocked {
+                rays.counts.shadow_blocked += 1;
+            } else {
+                self.add_light(&mut lit, hit, light_index, &shadow, c);
+            }
+        }
+        self.add_secondary(lit, ray, depth, c, rays)
+    }
+
+    /// The start of a hit's shading: the surface, the ambient term, the lifted point
+    /// that secondary and shadow rays leave from, and the mirror direction.
+    fn lit_point<C: Counter>(&self, ray: &Ray, hit: &Hit, c: &mut C) -> LitPoint {
         c.tally(Stat::Shade);
         let s = self.surface(ray, hit, c);
         let m = s.material;
-        let mut color = m.color * (AMBIENT * m.kd);
+        let color = m.color * (AMBIENT * m.kd);
         let offset = OFFSET_SCALE * (1.0 + s.point.max_abs());
         let lift = c.scale(s.facing, offset);
         let above = c.add(s.point, lift);
-
         let reflective = m.ks > 0.0 || m.t > 0.0;
         // The mirror direction serves both the highlight and the reflection ray.
         let mirror = reflective.then(|| {
             let _phase = C::enter_phase(Phase::SecondaryRays);
             reflect(ray.dir, s.normal, c)
         });
-
-        for (light_index, light) in self.scene.lights.iter().enumerate() {
-            let to_light = c.sub(light.position, s.point);
-            let n_dot = c.dot(s.normal, to_light);
-            if n_dot <= 0.0 {
-                continue;
-            }
-            let distance_sq = c.dot(to_light, to_light);
-            let distance = c.sqrt(distance_sq);
-            let l = c.scale(to_light, 1.0 / distance);
-            rays.counts.shadow += 1;
-            let shadow = Ray {
-                origin: above,
-                dir: l,
-            };
-            let blocked = {
-                let _phase = C::enter_phase(Phase::ShadowQuery);
-                self.accel.occluded(&shadow, 0.0, distance, c)
-            };
-            if blocked {
-                rays.counts.shadow_blocked += 1;
-                continue;
-            }
-            let cos_theta = match self.sphere_diffuse(hit, s.point, light_index, c) {
-                Some(cos_theta) => cos_theta.max(0.0),
-                None => n_dot / distance,
-            };
-            color += color_contribution(&m, light, cos_theta, mirror, l, c);
+        LitPoint {
+            s,
+            color,
+            lift,
+            above,
+            reflective,
+            mirror,
         }
+    }
 
+    /// Adds the diffuse and highlight terms of an unblocked light.
+    fn add_light<C: Counter>(
+        &self,
+        lit: &mut LitPoint,
+        hit: &Hit,
+        light_index: usize,
+        shadow: &ShadowRay,
+        c: &mut C,
+    ) {
+        let light = &self.scene.lights[light_index];
+        let cos_theta = match self.sphere_diffuse(hit, lit.s.point, light_index, c) {
+            Some(cos_theta) => cos_theta.max(0.0),
+            None => shadow.n_dot / shadow.distance,
+        };
+        lit.color += color_contribution(
+            &lit.s.material,
+            light,
+            cos_theta,
+            lit.mirror,
+            shadow.ray.dir,
+            c,
+        );
+    }
+
+    /// The end of a hit's shading: the reflected and refracted rays below the maximum
+    /// depth, added to the colour.
+    fn add_secondary<C: Counter>(
+        &self,
+        lit: LitPoint,
+        ray: &Ray,
+        depth: u32,
+        c: &mut C,
+        rays: &mut RayLog,
+    ) -> Rgb {
+        let LitPoint {
+            s,
+            mut color,
+            lift,
+            above,
+            reflective,
+            mirror,
+        } = lit;
+        let m = s.material;
         if depth < self.max_depth && reflective {
             // The secondary rays' set-up; the rays they trace nest inside.
             let _phase = C::enter_phase(Phase::SecondaryRays);

@@ -1,5 +1,5 @@
 //! Per-sample records (`RenderOptions::per_sample`): on every SPD scene and for
-//! baseline, simd and bvh, the maps summed over the samples equal the render's own
+//! baseline, simd, bvh and packets of eye rays in the wide BVH, the maps summed over the samples equal the render's own
 //! counters exactly, the work outside every sample is exactly the camera's set-up, and
 //! the records are the same for one and two threads.
 
@@ -55,7 +55,7 @@ fn maps_sum_to_the_global_counters_on_every_spd_scene_and_accelerator() {
         )
         .unwrap_or_else(|e| panic!("{e}"));
         let camera = camera.totals().unwrap_or_else(|| panic!("uncounted"));
-        for variant in ["baseline", "simd", "bvh"] {
+        for variant in ["baseline", "simd", "bvh", "bvh+simd+packets"] {
             let (counter, samples) = render(&scene, &o, variant, 2);
             let totals = counter.totals().unwrap_or_else(|| panic!("uncounted"));
             assert_eq!((samples.columns, samples.rows), (9, 9), "{name}");
@@ -121,7 +121,7 @@ fn records_are_the_same_for_one_and_two_threads() {
     for name in ["balls", "gears", "teapot"] {
         let scene = load_spd(name);
         let o = per_sample(12, 12);
-        for variant in ["baseline", "simd", "bvh"] {
+        for variant in ["baseline", "simd", "bvh", "bvh+simd+packets"] {
             let (one_counter, one) = render(&scene, &o, variant, 1);
             let (two_counter, two) = render(&scene, &o, variant, 2);
             assert_eq!(one_counter, two_counter);
@@ -165,17 +165,25 @@ fn uncounted_renders_keep_rays_depth_and_time_but_no_operation_maps() {
 #[test]
 fn pixel_averaging_leaves_the_filled_samples_empty() {
     let scene = load_spd("balls");
-    let set = VariantSet::parse("pixel-avg").unwrap_or_else(|e| panic!("{e}"));
-    let mut o = options(6, 4, Sampling::PixelCenters);
-    o.per_sample = true;
-    let out = render_variant::<Count>(&scene, &o, &set, &|_| {}).unwrap_or_else(|e| panic!("{e}"));
-    let samples = out.rendered.samples.unwrap_or_else(|| panic!("no samples"));
-    for row in 0..4usize {
-        for column in 0..6usize {
-            let i = row * 6 + column;
-            let traced = (row + column) % 2 == 0;
-            assert_eq!(samples.rays[i].primary, u64::from(traced), "{row},{column}");
-            assert_eq!(samples.depth[i] > 0, traced);
+    // Packets gather the traced samples of a row; the records stay in column order.
+    for variant in ["pixel-avg", "pixel-avg+bvh+simd+packets"] {
+        let set = VariantSet::parse(variant).unwrap_or_else(|e| panic!("{e}"));
+        let mut o = options(19, 4, Sampling::PixelCenters);
+        o.per_sample = true;
+        let out =
+            render_variant::<Count>(&scene, &o, &set, &|_| {}).unwrap_or_else(|e| panic!("{e}"));
+        let samples = out.rendered.samples.unwrap_or_else(|| panic!("no samples"));
+        for row in 0..4usize {
+            for column in 0..19usize {
+                let i = row * 19 + column;
+                let traced = (row + column) % 2 == 0;
+                assert_eq!(
+                    samples.rays[i].primary,
+                    u64::from(traced),
+                    "{variant} {row},{column}"
+                );
+                assert_eq!(samples.depth[i] > 0, traced);
+            }
         }
     }
 }

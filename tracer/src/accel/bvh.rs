@@ -12,9 +12,11 @@
 //! BVH the bottleneck moves from the primitive tests to this traversal: compare
 //! `tests.*` and `accel.*` between `baseline` and `bvh`.
 
+mod packet;
 mod quality;
 mod wide;
 
+pub use packet::PACKET;
 pub use quality::BvhShape;
 pub use wide::{WIDTH, WideBvh, WideBvhStats};
 

@@ -14,7 +14,9 @@ mod simd;
 
 pub use brute_force::BruteForce;
 use brute_force::occluded_by_cones_and_planars;
-pub use bvh::{Bvh, BvhBuilder, BvhShape, BvhStats, WIDTH as BVH_WIDTH, WideBvh, WideBvhStats};
+pub use bvh::{
+    Bvh, BvhBuilder, BvhShape, BvhStats, PACKET, WIDTH as BVH_WIDTH, WideBvh, WideBvhStats,
+};
 #[cfg(feature = "embree")]
 pub use embree::{Embree, EmbreeCode, EmbreeError, EmbreeMode};
 pub use simd::Simd;
@@ -37,6 +39,42 @@ pub trait Intersector: Sync {
     /// Whether anything lies in `(t_min, t_max)` (a shadow ray; counts one
     /// `calls.intersect`). May stop at the first blocker.
     fn occluded<C: Counter>(&self, ray: &Ray, t_min: f32, t_max: f32, c: &mut C) -> bool;
+
+    /// The closest hits of a packet of eye rays (variant `packets`): `hits[i]` for
+    /// `rays[i]`, its work counted on `counters[i]`. The default asks one ray at a time;
+    /// the wide BVH traverses the packet together.
+    fn closest_hits<C: Counter>(&self, rays: &[Ray], hits: &mut [Option<Hit>], counters: &mut [C]) {
+        for ((ray, hit), c) in rays.iter().zip(hits).zip(counters) {
+            *hit = self.closest_hit(ray, 0.0, c);
+        }
+    }
+
+    /// Whether anything lies in `(0, t_max[i])` along `rays[i]`, for a packet of shadow
+    /// rays (variant `packets`): `blocked[i]`, its work counted on `counters[i]`. The
+    /// default asks one ray at a time.
+    fn occluded_packet<C: Counter>(
+        &self,
+        rays: &[Ray],
+        t_max: &[f32],
+        blocked: &mut [bool],
+        counters: &mut [C],
+    ) {
+        for (((ray, &t_max), blocked), c) in rays.iter().zip(t_max).zip(blocked).zip(counters) {
+            *blocked = self.occluded(ray, 0.0, t_max, c);
+        }
+    }
+
+    /// [`Intersector::closest_hits`] for eye rays that start at the origin (`bounded`).
+    fn closest_hits_from_eye<C: Counter>(
+        &self,
+        rays: &[Ray<true>],
+        hits: &mut [Option<Hit>],
+        counters: &mut [C],
+    ) {
+        for ((ray, hit), c) in rays.iter().zip(hits).zip(counters) {
+            *hit = self.closest_hit_from_eye(ray, c);
+        }
+    }
 }
 
 /// Whether the CPU runs the AVX2 + FMA paths of the lane code (SIMD batches, wide BVH);

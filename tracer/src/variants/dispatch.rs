@@ -52,6 +52,7 @@ pub fn render_variant<C: Counter>(
         projection: config.projection,
         diffuse: config.diffuse,
         checkerboard: config.checkerboard,
+        packets: config.packets,
         ortho_focus: (config.projection == Projection::Orthographic)
             .then(|| scene_depth(scene))
             .flatten(),

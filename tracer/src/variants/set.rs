@@ -23,6 +23,7 @@ pub enum Variant {
     Bvh,
     Embree,
     EmbreeNative,
+    Packets,
 }
 
 /// The square root every `sqrt` and `normalize` uses.
@@ -79,6 +80,8 @@ pub struct VariantConfig {
     pub projection: Projection,
     pub diffuse: DiffuseForm,
     pub checkerboard: bool,
+    /// Eye rays traced in packets (`packets`, with the wide BVH).
+    pub packets: bool,
 }
 
 /// Which choice a variant makes (variants with the same choice conflict).
@@ -90,11 +93,12 @@ enum Choice {
     Projection,
     Diffuse,
     Sampling,
+    EyeRays,
 }
 
 impl Variant {
     /// Every variant, in the order reports list them.
-    pub const ALL: [Variant; 12] = [
+    pub const ALL: [Variant; 13] = [
         Variant::Baseline,
         Variant::FastSqrt,
         Variant::FastSqrtTuned,
@@ -107,6 +111,7 @@ impl Variant {
         Variant::Bvh,
         Variant::Embree,
         Variant::EmbreeNative,
+        Variant::Packets,
     ];
 
     /// The command-line name.
@@ -124,6 +129,7 @@ impl Variant {
             Variant::Bvh => "bvh",
             Variant::Embree => "embree",
             Variant::EmbreeNative => "embree-native",
+            Variant::Packets => "packets",
         }
     }
 
@@ -164,6 +170,9 @@ impl Variant {
             Variant::EmbreeNative => {
                 "embree with Embree's own sphere kernel (sphere points): its real speed on spheres; its more accurate test can change pixels"
             }
+            Variant::Packets => {
+                "with bvh+simd: eye rays, and their shadow rays light by light, traced 8 neighbours at a time: one walk of the wide tree per packet, each ray testing the boxes and primitives it reaches (counted per ray)"
+            }
         }
     }
 
@@ -194,6 +203,7 @@ impl Variant {
             Variant::NoRsqrtShading => Choice::Diffuse,
             Variant::PixelAvg => Choice::Sampling,
             Variant::Simd | Variant::Bvh | Variant::Embree | Variant::EmbreeNative => Choice::Accel,
+            Variant::Packets => Choice::EyeRays,
         }
     }
 
@@ -217,6 +227,7 @@ impl Variant {
             Variant::Bvh => config.accel = Accelerator::Bvh,
             Variant::Embree => config.accel = Accelerator::Embree,
             Variant::EmbreeNative => config.accel = Accelerator::EmbreeNative,
+            Variant::Packets => config.packets = true,
         }
     }
 }
@@ -238,6 +249,8 @@ pub enum VariantError {
     BaselineCombined(&'static str),
     #[error("the list of variants is empty: name at least one (e.g. baseline,bvh)")]
     EmptyList,
+    #[error("'{0}' needs {1} (e.g. {2})")]
+    Needs(&'static str, &'static str, &'static str),
 }
 
 /// A combination of variants, parsed from a list separated by `,` or `+`.
@@ -301,6 +314,7 @@ impl VariantSet {
                         Choice::Projection => "camera projection",
                         Choice::Diffuse => "diffuse term",
                         Choice::Sampling => "sampling",
+                        Choice::EyeRays => "eye-ray grouping",
                         Choice::Nothing => "nothing",
                     };
                     return Err(VariantError::Conflict(earlier.name(), variant.name(), what));
@@ -311,7 +325,17 @@ impl VariantSet {
         if out.is_empty() {
             out.push(Variant::Baseline);
         }
-        Ok(Self(out))
+        let set = Self(out);
+        let config = set.config();
+        if config.packets && config.accel != Accelerator::WideBvh {
+            // Only the wide BVH walks packets; elsewhere the flag would change nothing.
+            return Err(VariantError::Needs(
+                "packets",
+                "the wide BVH, bvh and simd together",
+                "bvh+simd+packets",
+            ));
+        }
+        Ok(set)
     }
 
     /// Whether two variants that make the same choice still combine: `simd` inside
@@ -415,6 +439,30 @@ mod tests {
             conflict("baseline,bvh"),
             Some(VariantError::BaselineCombined("bvh"))
         );
+    }
+
+    #[test]
+    fn packets_go_with_the_wide_bvh_only() {
+        let config = VariantSet::parse("bvh+simd+packets").map(|s| s.config());
+        assert!(matches!(
+            config,
+            Ok(VariantConfig {
+                accel: Accelerator::WideBvh,
+                packets: true,
+                ..
+            })
+        ));
+        for alone in ["packets", "bvh+packets", "simd+packets", "packets+embree"] {
+            let err = VariantSet::parse(alone).err();
+            assert!(
+                matches!(err, Some(VariantError::Needs("packets", ..))),
+                "{alone}: {err:?}"
+            );
+        }
+        assert!(matches!(
+            VariantSet::parse("baseline+packets"),
+            Err(VariantError::BaselineCombined("packets"))
+        ));
     }
 
     #[test]

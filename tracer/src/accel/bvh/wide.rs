@@ -38,16 +38,16 @@ const EMPTY: u32 = u32::MAX;
 /// One node: its children's boxes as lanes, and what each child is.
 #[derive(Clone, Copy, Debug)]
 #[repr(C, align(64))]
-struct WideNode {
+pub(super) struct WideNode {
     /// `min_x, min_y, min_z, max_x, max_y, max_z` of each child's box; unused slots hold
     /// an empty box (min +inf, max -inf) that no ray enters.
-    bounds: [[f32; WIDTH]; 6],
+    pub(super) bounds: [[f32; WIDTH]; 6],
     /// An interior child's node index, a leaf child's index in `leaves` with [`LEAF`]
     /// set, or [`EMPTY`].
-    child: [u32; WIDTH],
+    pub(super) child: [u32; WIDTH],
     /// Bit per used slot: an empty box can still give a slab interval (a negative
     /// direction turns +inf..-inf into -inf..+inf), so unused slots are masked out.
-    used: u32,
+    pub(super) used: u32,
 }
 
 impl WideNode {
@@ -82,7 +82,7 @@ impl WideNode {
 /// A leaf: its spheres packed in lanes (at most one pack: binary leaves hold at most 8
 /// primitives) and its other primitives as references.
 #[derive(Clone, Copy, Debug)]
-struct Leaf {
+pub(super) struct Leaf {
     /// Index into `packs`, or [`EMPTY`] when the leaf has no sphere.
     pack: u32,
     /// Spheres in the pack.
@@ -124,17 +124,17 @@ pub struct WideBvhStats {
 #[derive(Clone, Debug)]
 pub struct WideBvh<'s> {
     scene: &'s Scene,
-    nodes: Vec<WideNode>,
-    leaves: Vec<Leaf>,
+    pub(super) nodes: Vec<WideNode>,
+    pub(super) leaves: Vec<Leaf>,
     packs: Vec<SpherePack>,
     others: Vec<PrimRef>,
     stats: WideBvhStats,
-    avx2: bool,
+    pub(super) avx2: bool,
 }
 
 /// Entries a traversal stack can hold: each node step pops one entry and pushes at most
 /// [`WIDTH`], and a wide tree is no deeper than its binary tree.
-const STACK: usize = (WIDTH - 1) * (super::MAX_DEPTH + 20) + 1;
+pub(super) const STACK: usize = (WIDTH - 1) * (super::MAX_DEPTH + 20) + 1;
 
 /// A node or leaf waiting to be visited (a child reference: [`LEAF`] set for leaves),
 /// with the distance at which the ray enters it.
@@ -145,7 +145,7 @@ struct Entry {
 }
 
 /// The bit of a child reference that marks a leaf (the rest is its index in `leaves`).
-const LEAF: u32 = 1 << 31;
+pub(super) const LEAF: u32 = 1 << 31;
 
 impl<'s> WideBvh<'s> {
     /// Builds the binary tree with `builder` and collapses it.
@@ -338,11 +338,7 @@ fn search<C: Counter, const FROM_EYE: bool, const ANY: bool, const AVX2: bool>(
     if bvh.nodes.is_empty() {
         return None;
     }
-    let inv_dir = Vec3A::ONE / ray.dir.0;
-    let slab = Slab {
-        origin: ray.origin.0.to_array(),
-        inv_dir: inv_dir.to_array(),
-    };
+    let slab = Slab::new(ray);
     let mut best: Option<Hit> = None;
     // Uninitialised: a node step may push up to 7 entries, so the bound is large (kB),
     // and clearing it would cost more than a short query. Only entries below `top` are
@@ -437,7 +433,7 @@ fn search<C: Counter, const FROM_EYE: bool, const ANY: bool, const AVX2: bool>(
 /// The closest hit in a leaf (with `ANY`: the first): its sphere pack, then its other
 /// primitives one by one.
 #[inline(always)]
-fn search_leaf<C: Counter, const FROM_EYE: bool, const ANY: bool>(
+pub(super) fn search_leaf<C: Counter, const FROM_EYE: bool, const ANY: bool>(
     bvh: &WideBvh,
     leaf: &Leaf,
     ray: &Ray<FROM_EYE>,
@@ -476,18 +472,29 @@ fn search_leaf<C: Counter, const FROM_EYE: bool, const ANY: bool>(
 }
 
 /// A ray's slab-test constants.
-struct Slab {
+#[derive(Clone, Copy, Debug)]
+pub(super) struct Slab {
     origin: [f32; 3],
     inv_dir: [f32; 3],
 }
 
 impl Slab {
+    /// The constants of `ray`.
+    #[inline(always)]
+    pub(super) fn new<const FROM_EYE: bool>(ray: &Ray<FROM_EYE>) -> Self {
+        let inv_dir = Vec3A::ONE / ray.dir.0;
+        Slab {
+            origin: ray.origin.0.to_array(),
+            inv_dir: inv_dir.to_array(),
+        }
+    }
+
     /// Which children's boxes the ray enters inside `(t_min, t_max)` (bit per lane)
     /// and where. The same arithmetic as the binary tree's slab test, lane by lane;
     /// written so that a NaN (origin on a slab of a flat box: 0 × inf) drops out of
     /// `min`/`max` as there.
     #[inline(always)]
-    fn test(&self, node: &WideNode, t_min: f32, t_max: f32) -> (u32, [f32; WIDTH]) {
+    pub(super) fn test(&self, node: &WideNode, t_min: f32, t_max: f32) -> (u32, [f32; WIDTH]) {
         let mut near = [t_min; WIDTH];
         let mut far = [t_max; WIDTH];
         for axis in 0..3 {
@@ -516,9 +523,33 @@ impl Slab {
     #[cfg(target_arch = "x86_64")]
     #[inline(always)]
     unsafe fn test_avx2(&self, node: &WideNode, t_min: f32, t_max: f32) -> (u32, [f32; WIDTH]) {
+        use std::arch::x86_64::{_mm256_movemask_ps, _mm256_storeu_ps};
+        // SAFETY: the caller guarantees AVX.
+        unsafe {
+            let (near, inside) = self.near_inside_avx2(node, t_min, t_max);
+            let mask = _mm256_movemask_ps(inside) as u32;
+            let mut t = [0.0f32; WIDTH];
+            _mm256_storeu_ps(t.as_mut_ptr(), near);
+            (mask & node.used, t)
+        }
+    }
+
+    /// The slab test's entry distances and its lane mask (all bits set where the ray
+    /// enters the box; unused slots not yet masked out), in AVX registers.
+    ///
+    /// # Safety
+    /// The CPU must have AVX.
+    #[cfg(target_arch = "x86_64")]
+    #[inline(always)]
+    pub(super) unsafe fn near_inside_avx2(
+        &self,
+        node: &WideNode,
+        t_min: f32,
+        t_max: f32,
+    ) -> (std::arch::x86_64::__m256, std::arch::x86_64::__m256) {
         use std::arch::x86_64::{
-            _CMP_LE_OQ, _mm256_cmp_ps, _mm256_load_ps, _mm256_max_ps, _mm256_min_ps,
-            _mm256_movemask_ps, _mm256_mul_ps, _mm256_set1_ps, _mm256_storeu_ps, _mm256_sub_ps,
+            _CMP_LE_OQ, _mm256_cmp_ps, _mm256_load_ps, _mm256_max_ps, _mm256_min_ps, _mm256_mul_ps,
+            _mm256_set1_ps, _mm256_sub_ps,
         };
         // SAFETY: the caller guarantees AVX; the rows are 32-byte aligned (a 64-byte
         // aligned node of 32-byte rows) and 8 floats long.
@@ -535,11 +566,7 @@ impl Slab {
                 near = _mm256_max_ps(_mm256_min_ps(t0, t1), near);
                 far = _mm256_min_ps(_mm256_max_ps(t0, t1), far);
             }
-            let inside = _mm256_cmp_ps::<_CMP_LE_OQ>(near, far);
-            let mask = _mm256_movemask_ps(inside) as u32;
-            let mut t = [0.0f32; WIDTH];
-            _mm256_storeu_ps(t.as_mut_ptr(), near);
-            (mask & node.used, t)
+            (near, _mm256_cmp_ps::<_CMP_LE_OQ>(near, far))
         }
     }
 }
@@ -640,6 +667,29 @@ impl Intersector for WideBvh<'_> {
             return unsafe { search_avx2::<C, false, true>(self, ray, t_min, t_max, c) }.is_some();
         }
         search::<C, false, true, false>(self, ray, t_min, t_max, c).is_some()
+    }
+
+    fn closest_hits<C: Counter>(&self, rays: &[Ray], hits: &mut [Option<Hit>], counters: &mut [C]) {
+        self.packet_closest(rays, 0.0, hits, counters);
+    }
+
+    fn occluded_packet<C: Counter>(
+        &self,
+        rays: &[Ray],
+        t_max: &[f32],
+        blocked: &mut [bool],
+        counters: &mut [C],
+    ) {
+        self.packet_occluded(rays, 0.0, t_max, blocked, counters);
+    }
+
+    fn closest_hits_from_eye<C: Counter>(
+        &self,
+        rays: &[Ray<true>],
+        hits: &mut [Option<Hit>],
+        counters: &mut [C],
+    ) {
+        self.packet_closest(rays, 0.0, hits, counters);
     }
 }
 

@@ -1,0 +1,498 @@
+//! Packets of eye rays through the wide BVH (variant `packets`, with `bvh` + `simd`).
+//!
+//! Neighbouring eye rays meet the same boxes, so up to [`PACKET`] of them walk the tree
+//! together: at each node every ray still in the packet tests the node's child boxes
+//! (one lane step per ray, with its own reach), the children any ray enters are visited
+//! nearest first by the packet's nearest entry, and each child carries the set of rays
+//! that entered it. A leaf tests only those rays, each with its own closest hit so far.
+//! One traversal decision, one stack and one fetch of each node serve the whole packet.
+//!
+//! Every ray gets the closest hit it gets alone (the same leaves' tests, each with the
+//! ray's own distance limit), so the picture is the wide BVH's. The work differs a
+//! little from one ray alone: a ray may still test a node the packet reaches before the
+//! ray's own nearer hit is found. Counting follows the work, ray by ray: each ray's box
+//! steps (`accel.nodes_visited` per live child, [`WIDTH`] `accel.lanes_issued`), leaves
+//! and primitive tests are added to that ray's own counter.
+
+use super::wide::{LEAF, STACK, Slab, WideBvh, WideNode, search_leaf};
+use crate::accel::BVH_WIDTH as WIDTH;
+use crate::counter::{Counter, Phase, Stat};
+use crate::ray::{Hit, Ray};
+use std::mem::MaybeUninit;
+
+/// Rays traced together: one bit each in a `u32` ray set.
+pub const PACKET: usize = 8;
+
+/// A node or leaf waiting to be visited by the rays in `rays` (bit per ray), with the
+/// nearest distance at which one of them enters it.
+#[derive(Clone, Copy, Debug)]
+struct Waiting {
+    child: u32,
+    rays: u32,
+    t: f32,
+}
+
+/// The children of one node step: which children any ray enters (bit per lane), the
+/// rays that enter each, and the nearest entry distance per child.
+struct Step {
+    entered: u32,
+    rays: [u32; WIDTH],
+    t: [f32; WIDTH],
+}
+
+impl WideBvh<'_> {
+    /// The closest hits of `rays` in `(t_min, ∞)`, [`PACKET`] at a time; `hits` and
+    /// `counters` are as long as `rays`.
+    pub(super) fn packet_closest<C: Counter, const FROM_EYE: bool>(
+        &self,
+        rays: &[Ray<FROM_EYE>],
+        t_min: f32,
+        hits: &mut [Option<Hit>],
+        counters: &mut [C],
+    ) {
+        let reach = [f32::INFINITY; PACKET];
+        for ((rays, hits), counters) in rays
+            .chunks(PACKET)
+            .zip(hits.chunks_mut(PACKET))
+            .zip(counters.chunks_mut(PACKET))
+        {
+            self.packet::<C, FROM_EYE, false>(rays, t_min, &reach, hits, counters);
+        }
+    }
+
+    /// Whether anything lies in `(t_min, t_max[i])` along `rays[i]` (shadow rays),
+    /// [`PACKET`] at a time; each ray stops at its first blocker.
+    pub(super) fn packet_occluded<C: Counter>(
+        &self,
+        rays: &[Ray],
+        t_min: f32,
+        t_max: &[f32],
+        blocked: &mut [bool],
+        counters: &mut [C],
+    ) {
+        let mut hits = [None; PACKET];
+        for (((rays, t_max), blocked), counters) in rays
+            .chunks(PACKET)
+            .zip(t_max.chunks(PACKET))
+            .zip(blocked.chunks_mut(PACKET))
+            .zip(counters.chunks_mut(PACKET))
+        {
+            let mut reach = [f32::INFINITY; PACKET];
+            reach[..t_max.len()].copy_from_slice(t_max);
+            let n = rays.len();
+            self.packet::<C, false, true>(rays, t_min, &reach, &mut hits[..n], counters);
+            for (b, hit) in blocked.iter_mut().zip(&hits) {
+                *b = hit.is_some();
+            }
+        }
+    }
+
+    /// One packet of at most [`PACKET`] rays, on the code path this CPU runs.
+    fn packet<C: Counter, const FROM_EYE: bool, const ANY: bool>(
+        &self,
+        rays: &[Ray<FROM_EYE>],
+        t_min: f32,
+        t_max: &[f32; PACKET],
+        hits: &mut [Option<Hit>],
+        counters: &mut [C],
+    ) {
+        for c in counters.iter_mut() {
+            c.tally(Stat::Intersect);
+        }
+        #[cfg(target_arch = "x86_64")]
+        if self.avx2 {
+            // SAFETY: `avx2` is true only when the CPU reported AVX2 and FMA.
+            unsafe {
+                packet_search_avx2::<C, FROM_EYE, ANY>(self, rays, t_min, t_max, hits, counters)
+            };
+            return;
+        }
+        packet_search::<C, FROM_EYE, ANY, false>(self, rays, t_min, t_max, hits, counters);
+    }
+}
+
+/// [`packet_search`] compiled with AVX2 + FMA (the caller checks the CPU has them).
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx2,fma")]
+fn packet_search_avx2<C: Counter, const FROM_EYE: bool, const ANY: bool>(
+    bvh: &WideBvh,
+    rays: &[Ray<FROM_EYE>],
+    t_min: f32,
+    t_max: &[f32; PACKET],
+    hits: &mut [Option<Hit>],
+    counters: &mut [C],
+) {
+    packet_search::<C, FROM_EYE, ANY, true>(bvh, rays, t_min, t_max, hits, counters);
+}
+
+/// The packet's nearest-first traversal (phase `traversal`) of at most [`PACKET`]
+/// rays, ray `i` within `(t_min, t_max[i])`: each ray's closest hit, or with `ANY` the
+/// first found (a shadow ray, which then leaves the packet).
+#[inline(always)]
+fn packet_search<C: Counter, const FROM_EYE: bool, const ANY: bool, const AVX2: bool>(
+    bvh: &WideBvh,
+    rays: &[Ray<FROM_EYE>],
+    t_min: f32,
+    t_max: &[f32; PACKET],
+    hits: &mut [Option<Hit>],
+    counters: &mut [C],
+) {
+    let _phase = C::enter_phase(Phase::Traversal);
+    let n = rays.len().min(PACKET).min(hits.len()).min(counters.len());
+    hits.iter_mut().for_each(|h| *h = None);
+    if bvh.nodes.is_empty() || n == 0 {
+        return;
+    }
+    let mut slabs = [Slab::new(&rays[0]); PACKET];
+    for (slab, ray) in slabs.iter_mut().zip(rays).skip(1) {
+        *slab = Slab::new(ray);
+    }
+    let mut t_max = *t_max;
+    let mut searching = (1u32 << n) - 1;
+    // Uninitialised for the same reason as the single-ray stack: only entries below
+    // `top` are read, and each was written first.
+    let mut stack = [const { MaybeUninit::<Waiting>::uninit() }; STACK];
+    let mut top = 0usize;
+    let mut current = Waiting {
+        child: 0,
+        rays: searching,
+        t: t_min,
+    };
+    loop {
+        if current.child & LEAF != 0 {
+            let leaf = &bvh.leaves[(current.child & !LEAF) as usize];
+            let mut bits = current.rays;
+            while bits != 0 {
+                let r = bits.trailing_zeros() as usize;
+                bits &= bits - 1;
+                let c = &mut counters[r];
+                c.tally(Stat::LeavesVisited);
+                if let Some(hit) =
+                    search_leaf::<C, FROM_EYE, ANY>(bvh, leaf, &rays[r], t_min, t_max[r], c)
+                {
+                    hits[r] = Some(hit);
+                    if ANY {
+                        // Blocked: out of the packet (no box is entered below -inf).
+                        t_max[r] = f32::NEG_INFINITY;
+                        searching &= !(1 << r);
+                        if searching == 0 {
+                            return;
+                        }
+                    } else {
+                        t_max[r] = hit.t;
+                    }
+                }
+            }
+        } else {
+            let node = &bvh.nodes[current.child as usize];
+            #[cfg(target_arch = "x86_64")]
+            let step = if AVX2 {
+                // SAFETY: `AVX2` is set only inside `packet_search_avx2`, which runs
+                // only on CPUs with AVX2 and FMA.
+                unsafe { step_avx2(node, &slabs, current.rays, t_min, &t_max) }
+            } else {
+                step(node, &slabs, current.rays, t_min, &t_max)
+            };
+            #[cfg(not(target_arch = "x86_64"))]
+            let step = step(node, &slabs, current.rays, t_min, &t_max);
+            if C::ENABLED {
+                let live = u64::from(node.used.count_ones());
+                let mut bits = current.rays;
+                while bits != 0 {
+                    let c = &mut counters[bits.trailing_zeros() as usize];
+                    bits &= bits - 1;
+                    c.tally_n(Stat::NodesVisited, live);
+                    c.tally_n(Stat::LanesIssued, WIDTH as u64);
+                    c.tally_n(Stat::LanesActive, live);
+                }
+            }
+            let entry = |lane: u32| Waiting {
+                child: node.child[lane as usize],
+                rays: step.rays[lane as usize],
+                t: step.t[lane as usize],
+            };
+            let mask = step.entered;
+            if mask != 0 {
+                let a = entry(mask.trailing_zeros());
+                let rest = mask & (mask - 1);
+                if rest == 0 {
+                    current = a;
+                    continue;
+                }
+                let b = entry(rest.trailing_zeros());
+                if rest & (rest - 1) == 0 {
+                    let (near, far) = if b.t < a.t { (b, a) } else { (a, b) };
+                    stack[top].write(far);
+                    top += 1;
+                    current = near;
+                    continue;
+                }
+                let first = top;
+                let mut bits = mask;
+                while bits != 0 {
+                    let new = entry(bits.trailing_zeros());
+                    bits &= bits - 1;
+                    let mut at = top;
+                    // SAFETY: `first <= at - 1 < top`: a written entry.
+                    while at > first && unsafe { stack[at - 1].assume_init() }.t < new.t {
+                        stack[at] = stack[at - 1];
+                        at -= 1;
+                    }
+                    stack[at].write(new);
+                    top += 1;
+                }
+            }
+        }
+        // The nearest waiting entry with a ray that can still reach it.
+        loop {
+            if top == 0 {
+                return;
+            }
+            top -= 1;
+            // SAFETY: entries below `top` were written (see above).
+            let waiting = unsafe { stack[top].assume_init() };
+            let mut reach = 0;
+            let mut bits = waiting.rays;
+            while bits != 0 {
+                let r = bits.trailing_zeros();
+                bits &= bits - 1;
+                reach |= u32::from(waiting.t <= t_max[r as usize]) << r;
+            }
+            if reach != 0 {
+                current = Waiting {
+                    rays: reach,
+                    ..waiting
+                };
+                break;
+            }
+        }
+    }
+}
+
+/// One node step of the packet, lane by lane: each ray in `rays` runs the single-ray
+/// slab test with its own reach.
+#[inline(always)]
+fn step(
+    node: &WideNode,
+    slabs: &[Slab; PACKET],
+    rays: u32,
+    t_min: f32,
+    t_max: &[f32; PACKET],
+) -> Step {
+    let mut out = Step {
+        entered: 0,
+        rays: [0; WIDTH],
+        t: [f32::INFINITY; WIDTH],
+    };
+    let mut bits = rays;
+    while bits != 0 {
+        let r = bits.trailing_zeros() as usize;
+        bits &= bits - 1;
+        let (mask, near) = slabs[r].test(node, t_min, t_max[r]);
+        for (lane, (set, t)) in out.rays.iter_mut().zip(&mut out.t).enumerate() {
+            if mask & (1 << lane) != 0 {
+                *set |= 1 << r;
+                *t = t.min(near[lane]);
+            }
+        }
+        out.entered |= mask;
+    }
+    out
+}
+
+/// [`step`] in AVX2 instructions: the rays' sets and nearest distances are gathered in
+/// lanes, without a branch per child.
+///
+/// # Safety
+/// The CPU must have AVX2.
+#[cfg(target_arch = "x86_64")]
+#[inline(always)]
+unsafe fn step_avx2(
+    node: &WideNode,
+    slabs: &[Slab; PACKET],
+    rays: u32,
+    t_min: f32,
+    t_max: &[f32; PACKET],
+) -> Step {
+    use std::arch::x86_64::{
+        _mm256_and_si256, _mm256_blendv_ps, _mm256_castps_si256, _mm256_castsi256_ps,
+        _mm256_cmpeq_epi32, _mm256_min_ps, _mm256_movemask_ps, _mm256_or_si256, _mm256_set1_epi32,
+        _mm256_set1_ps, _mm256_setzero_si256, _mm256_storeu_ps, _mm256_storeu_si256,
+    };
+    // SAFETY: the caller guarantees AVX2; the stores write 8 lanes into 8-lane arrays.
+    unsafe {
+        let mut sets = _mm256_setzero_si256();
+        let far = _mm256_set1_ps(f32::INFINITY);
+        let mut nearest = far;
+        let mut bits = rays;
+        while bits != 0 {
+            let r = bits.trailing_zeros() as usize;
+            bits &= bits - 1;
+            let (near, inside) = slabs[r].near_inside_avx2(node, t_min, t_max[r]);
+            let bit = _mm256_set1_epi32(1 << r);
+            sets = _mm256_or_si256(sets, _mm256_and_si256(_mm256_castps_si256(inside), bit));
+            nearest = _mm256_min_ps(nearest, _mm256_blendv_ps(far, near, inside));
+        }
+        let none = _mm256_cmpeq_epi32(sets, _mm256_setzero_si256());
+        let entered = !(_mm256_movemask_ps(_mm256_castsi256_ps(none)) as u32) & 0xFF;
+        let mut out = Step {
+            entered: entered & node.used,
+            rays: [0; WIDTH],
+            t: [0.0; WIDTH],
+        };
+        _mm256_storeu_si256(out.rays.as_mut_ptr().cast(), sets);
+        _mm256_storeu_ps(out.t.as_mut_ptr(), nearest);
+        out
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::super::tests::{mixed_scene, rays};
+    use super::*;
+    use crate::accel::{BvhBuilder, Intersector};
+    use crate::counter::{Count, NoCount};
+    use crate::nff::parse_nff;
+    use crate::ray::Ray;
+    use crate::vec3::Vec3;
+
+    /// The tree this CPU runs and its portable twin.
+    fn both_paths(scene: &crate::scene::Scene) -> [WideBvh<'_>; 2] {
+        let wide = WideBvh::build_with(scene, BvhBuilder::BinnedSah);
+        let mut portable = wide.clone();
+        portable.avx2 = false;
+        [wide, portable]
+    }
+
+    #[test]
+    fn packets_find_each_rays_own_closest_hit_bit_for_bit() {
+        let scene = mixed_scene();
+        let rays = rays();
+        for wide in both_paths(&scene) {
+            // Packets of every size, and a slice longer than one packet.
+            for size in [1, 2, 3, 5, 8, 11] {
+                for group in rays.chunks(size) {
+                    let mut hits = vec![None; group.len()];
+                    let mut counters = vec![NoCount; group.len()];
+                    wide.closest_hits(group, &mut hits, &mut counters);
+                    for (ray, hit) in group.iter().zip(&hits) {
+                        let alone = wide.closest_hit(ray, 0.0, &mut NoCount);
+                        assert_eq!(
+                            hit.map(|h| (h.prim, h.t, h.aux)),
+                            alone.map(|h| (h.prim, h.t, h.aux)),
+                            "packet of {size}: {ray:?}"
+                        );
+                    }
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn shadow_packets_find_the_same_blockers_as_rays_alone() {
+        let scene = mixed_scene();
+        let rays = rays();
+        for wide in both_paths(&scene) {
+            for size in [1, 3, 8, 13] {
+                for (g, group) in rays.chunks(size).enumerate() {
+                    // Reaches from short to unbounded, so some rays stop before a blocker.
+                    let reach: Vec<f32> = (0..group.len())
+                        .map(|i| [2.0, 6.0, 15.0, f32::INFINITY][(g + i) % 4])
+                        .collect();
+                    let mut blocked = vec![false; group.len()];
+                    let mut counters = vec![NoCount; group.len()];
+                    wide.occluded_packet(group, &reach, &mut blocked, &mut counters);
+                    for ((ray, &reach), &blocked) in group.iter().zip(&reach).zip(&blocked) {
+                        let alone = wide.occluded(ray, 0.0, reach, &mut NoCount);
+                        assert_eq!(blocked, alone, "packet of {size}: {ray:?} to {reach}");
+                    }
+                }
+            }
+            // A packet of one shadow ray does exactly the work of the ray alone.
+            for ray in rays.iter().take(50) {
+                let mut alone = Count::default();
+                wide.occluded(ray, 0.0, 10.0, &mut alone);
+                let mut counters = [Count::default()];
+                wide.occluded_packet(&[*ray], &[10.0], &mut [false], &mut counters);
+                assert_eq!(counters[0], alone, "{ray:?}");
+            }
+        }
+    }
+
+    #[test]
+    fn a_packet_of_one_ray_does_the_work_of_the_ray_alone() {
+        let scene = mixed_scene();
+        for wide in both_paths(&scene) {
+            for ray in rays() {
+                let mut alone = Count::default();
+                wide.closest_hit(&ray, 0.0, &mut alone);
+                let mut counters = [Count::default()];
+                wide.closest_hits(&[ray], &mut [None], &mut counters);
+                assert_eq!(counters[0], alone, "{ray:?}");
+            }
+        }
+    }
+
+    #[test]
+    fn each_ray_of_a_packet_counts_its_own_work_hand_computed() {
+        // Two unit spheres 10 apart: one wide node with two one-sphere leaves.
+        let scene = parse_nff(
+            "v\nfrom 0 -20 0\nat 0 0 0\nup 0 0 1\nangle 40\nhither 0\nresolution 4 4\n\
+             f 1 1 1 1 0 1 0 1\ns -5 0 0 1\ns 5 0 0 1\n",
+            "two.nff",
+        )
+        .unwrap_or_else(|e| panic!("{e}"));
+        let along_x = |x: f32, dir: f32| Ray {
+            origin: Vec3::new(x, 0.0, 0.0),
+            dir: Vec3::new(dir, 0.0, 0.0),
+        };
+        let along_y = |x: f32| Ray {
+            origin: Vec3::new(x, -20.0, 0.0),
+            dir: Vec3::new(0.0, 1.0, 0.0),
+        };
+        let get = |c: &Count| {
+            [
+                Stat::NodesVisited,
+                Stat::LanesIssued,
+                Stat::LanesActive,
+                Stat::LeavesVisited,
+                Stat::SphereTest,
+                Stat::Intersect,
+            ]
+            .map(|s| c.get(s))
+        };
+        for wide in both_paths(&scene) {
+            // Rays parallel to y, one through each sphere: each enters one box of the
+            // two it tests (2 of 8 lanes) and tests one sphere, at t = 19.
+            let packet = [along_y(-5.0), along_y(5.0)];
+            let mut hits = [None; 2];
+            let mut counters = [Count::default(), Count::default()];
+            wide.closest_hits(&packet, &mut hits, &mut counters);
+            assert_eq!(
+                hits.map(|h| h.map(|h| (h.prim.index, h.t))),
+                [Some((0, 19.0)), Some((1, 19.0))]
+            );
+            for c in &counters {
+                assert_eq!(get(c), [2, 8, 2, 1, 1, 1]);
+            }
+            // Rays along x from either side: each enters both boxes, the near one at
+            // t = 14 and the far one at 24. Alone, a ray drops its far box (24 > 14);
+            // in the packet, the other ray's near box is entered at 14, so both rays
+            // test both leaves (2 leaves, 2 sphere tests each), and still hit their
+            // own near sphere at t = 14.
+            let packet = [along_x(-20.0, 1.0), along_x(20.0, -1.0)];
+            let mut counters = [Count::default(), Count::default()];
+            wide.closest_hits(&packet, &mut hits, &mut counters);
+            assert_eq!(
+                hits.map(|h| h.map(|h| (h.prim.index, h.t))),
+                [Some((0, 14.0)), Some((1, 14.0))]
+            );
+            for c in &counters {
+                assert_eq!(get(c), [2, 8, 2, 2, 2, 1]);
+            }
+            let mut alone = Count::default();
+            wide.closest_hit(&packet[0], 0.0, &mut alone);
+            assert_eq!(get(&alone), [2, 8, 2, 1, 1, 1]);
+        }
+    }
+}
