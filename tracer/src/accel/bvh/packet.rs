@@ -14,7 +14,7 @@
 //! steps (`accel.nodes_visited` per live child, [`WIDTH`] `accel.lanes_issued`), leaves
 //! and primitive tests are added to that ray's own counter.
 
-use super::wide::{LEAF, STACK, Slab, WideBvh, WideNode, search_leaf};
+use super::wide::{LEAF, STACK, Slab, WideBvh, WideNode, search_leaf, visit_order};
 use crate::accel::BVH_WIDTH as WIDTH;
 use crate::counter::{Counter, Phase, Stat};
 use crate::ray::{Hit, Ray};
@@ -26,10 +26,17 @@ pub const PACKET: usize = 8;
 /// A node or leaf waiting to be visited by the rays in `rays` (bit per ray), with the
 /// nearest distance at which one of them enters it.
 #[derive(Clone, Copy, Debug)]
-struct Waiting {
+struct Pending {
     child: u32,
     rays: u32,
     t: f32,
+}
+
+impl super::wide::Waiting for Pending {
+    #[inline(always)]
+    fn entered_at(&self) -> f32 {
+        self.t
+    }
 }
 
 /// The children of one node step: which children any ray enters (bit per lane), the
@@ -151,9 +158,9 @@ fn packet_search<C: Counter, const FROM_EYE: bool, const ANY: bool, const AVX2: 
     let mut searching = (1u32 << n) - 1;
     // Uninitialised for the same reason as the single-ray stack: only entries below
     // `top` are read, and each was written first.
-    let mut stack = [const { MaybeUninit::<Waiting>::uninit() }; STACK];
+    let mut stack = [const { MaybeUninit::<Pending>::uninit() }; STACK];
     let mut top = 0usize;
-    let mut current = Waiting {
+    let mut current = Pending {
         child: 0,
         rays: searching,
         t: t_min,
@@ -206,41 +213,14 @@ fn packet_search<C: Counter, const FROM_EYE: bool, const ANY: bool, const AVX2: 
                     c.tally_n(Stat::LanesActive, live);
                 }
             }
-            let entry = |lane: u32| Waiting {
+            let entry = |lane: u32| Pending {
                 child: node.child[lane as usize],
                 rays: step.rays[lane as usize],
                 t: step.t[lane as usize],
             };
-            let mask = step.entered;
-            if mask != 0 {
-                let a = entry(mask.trailing_zeros());
-                let rest = mask & (mask - 1);
-                if rest == 0 {
-                    current = a;
-                    continue;
-                }
-                let b = entry(rest.trailing_zeros());
-                if rest & (rest - 1) == 0 {
-                    let (near, far) = if b.t < a.t { (b, a) } else { (a, b) };
-                    stack[top].write(far);
-                    top += 1;
-                    current = near;
-                    continue;
-                }
-                let first = top;
-                let mut bits = mask;
-                while bits != 0 {
-                    let new = entry(bits.trailing_zeros());
-                    bits &= bits - 1;
-                    let mut at = top;
-                    // SAFETY: `first <= at - 1 < top`: a written entry.
-                    while at > first && unsafe { stack[at - 1].assume_init() }.t < new.t {
-                        stack[at] = stack[at - 1];
-                        at -= 1;
-                    }
-                    stack[at].write(new);
-                    top += 1;
-                }
+            if let Some(next) = visit_order(step.entered, entry, &mut stack, &mut top) {
+                current = next;
+                continue;
             }
         }
         // The nearest waiting entry with a ray that can still reach it.
@@ -259,7 +239,7 @@ fn packet_search<C: Counter, const FROM_EYE: bool, const ANY: bool, const AVX2: 
                 reach |= u32::from(waiting.t <= t_max[r as usize]) << r;
             }
             if reach != 0 {
-                current = Waiting {
+                current = Pending {
                     rays: reach,
                     ..waiting
                 };
@@ -462,34 +442,30 @@ mod tests {
             .map(|s| c.get(s))
         };
         for wide in both_paths(&scene) {
+            // Each ray's hit (primitive, distance) and counts, traced as one packet.
+            let trace = |packet: &[Ray; 2]| {
+                let mut hits = [None; 2];
+                let mut counters = [Count::default(), Count::default()];
+                wide.closest_hits(packet, &mut hits, &mut counters);
+                (
+                    hits.map(|h| h.map(|h| (h.prim.index, h.t))),
+                    counters.map(|c| get(&c)),
+                )
+            };
             // Rays parallel to y, one through each sphere: each enters one box of the
             // two it tests (2 of 8 lanes) and tests one sphere, at t = 19.
-            let packet = [along_y(-5.0), along_y(5.0)];
-            let mut hits = [None; 2];
-            let mut counters = [Count::default(), Count::default()];
-            wide.closest_hits(&packet, &mut hits, &mut counters);
-            assert_eq!(
-                hits.map(|h| h.map(|h| (h.prim.index, h.t))),
-                [Some((0, 19.0)), Some((1, 19.0))]
-            );
-            for c in &counters {
-                assert_eq!(get(c), [2, 8, 2, 1, 1, 1]);
-            }
+            let (hits, counts) = trace(&[along_y(-5.0), along_y(5.0)]);
+            assert_eq!(hits, [Some((0, 19.0)), Some((1, 19.0))]);
+            assert_eq!(counts, [[2, 8, 2, 1, 1, 1]; 2]);
             // Rays along x from either side: each enters both boxes, the near one at
             // t = 14 and the far one at 24. Alone, a ray drops its far box (24 > 14);
             // in the packet, the other ray's near box is entered at 14, so both rays
             // test both leaves (2 leaves, 2 sphere tests each), and still hit their
             // own near sphere at t = 14.
             let packet = [along_x(-20.0, 1.0), along_x(20.0, -1.0)];
-            let mut counters = [Count::default(), Count::default()];
-            wide.closest_hits(&packet, &mut hits, &mut counters);
-            assert_eq!(
-                hits.map(|h| h.map(|h| (h.prim.index, h.t))),
-                [Some((0, 14.0)), Some((1, 14.0))]
-            );
-            for c in &counters {
-                assert_eq!(get(c), [2, 8, 2, 2, 2, 1]);
-            }
+            let (hits, counts) = trace(&packet);
+            assert_eq!(hits, [Some((0, 14.0)), Some((1, 14.0))]);
+            assert_eq!(counts, [[2, 8, 2, 2, 2, 1]; 2]);
             let mut alone = Count::default();
             wide.closest_hit(&packet[0], 0.0, &mut alone);
             assert_eq!(get(&alone), [2, 8, 2, 1, 1, 1]);

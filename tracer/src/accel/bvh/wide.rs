@@ -379,39 +379,9 @@ fn search<C: Counter, const FROM_EYE: bool, const ANY: bool, const AVX2: bool>(
                 child: node.child[lane as usize],
                 t: t_near[lane as usize],
             };
-            if mask != 0 {
-                let a = entry(mask.trailing_zeros());
-                let rest = mask & (mask - 1);
-                if rest == 0 {
-                    // One child hit (the common case): straight into it.
-                    current = a;
-                    continue;
-                }
-                let b = entry(rest.trailing_zeros());
-                if rest & (rest - 1) == 0 {
-                    // Two: the far one waits.
-                    let (near, far) = if b.t < a.t { (b, a) } else { (a, b) };
-                    stack[top].write(far);
-                    top += 1;
-                    current = near;
-                    continue;
-                }
-                // More: all wait, sorted (farthest at the bottom), and the nearest
-                // comes up next.
-                let first = top;
-                let mut bits = mask;
-                while bits != 0 {
-                    let new = entry(bits.trailing_zeros());
-                    bits &= bits - 1;
-                    let mut at = top;
-                    // SAFETY: `first <= at - 1 < top`: a written entry.
-                    while at > first && unsafe { stack[at - 1].assume_init() }.t < new.t {
-                        stack[at] = stack[at - 1];
-                        at -= 1;
-                    }
-                    stack[at].write(new);
-                    top += 1;
-                }
+            if let Some(next) = visit_order(mask, entry, &mut stack, &mut top) {
+                current = next;
+                continue;
             }
         }
         // The nearest waiting entry still in reach.
@@ -428,6 +398,67 @@ fn search<C: Counter, const FROM_EYE: bool, const ANY: bool, const AVX2: bool>(
             }
         }
     }
+}
+
+/// A child waiting on a traversal stack, with the distance at which it is entered.
+pub(super) trait Waiting: Copy {
+    fn entered_at(&self) -> f32;
+}
+
+impl Waiting for Entry {
+    #[inline(always)]
+    fn entered_at(&self) -> f32 {
+        self.t
+    }
+}
+
+/// The order in which a node step's entered children (bit per lane in `mask`, made
+/// by `entry`) are visited, nearest first: with one, straight into it (returned); with
+/// two, the far one waits on the stack and the near one is returned; with more, all
+/// wait, sorted with the farthest at the bottom, and `None` says to take the nearest
+/// from the stack (as with none).
+#[inline(always)]
+pub(super) fn visit_order<E: Waiting>(
+    mask: u32,
+    entry: impl Fn(u32) -> E,
+    stack: &mut [MaybeUninit<E>],
+    top: &mut usize,
+) -> Option<E> {
+    if mask == 0 {
+        return None;
+    }
+    let a = entry(mask.trailing_zeros());
+    let rest = mask & (mask - 1);
+    if rest == 0 {
+        // One child entered (the common case).
+        return Some(a);
+    }
+    let b = entry(rest.trailing_zeros());
+    if rest & (rest - 1) == 0 {
+        let (near, far) = if b.entered_at() < a.entered_at() {
+            (b, a)
+        } else {
+            (a, b)
+        };
+        stack[*top].write(far);
+        *top += 1;
+        return Some(near);
+    }
+    let first = *top;
+    let mut bits = mask;
+    while bits != 0 {
+        let new = entry(bits.trailing_zeros());
+        bits &= bits - 1;
+        let mut at = *top;
+        // SAFETY: `first <= at - 1 < top`: a written entry.
+        while at > first && unsafe { stack[at - 1].assume_init() }.entered_at() < new.entered_at() {
+            stack[at] = stack[at - 1];
+            at -= 1;
+        }
+        stack[at].write(new);
+        *top += 1;
+    }
+    None
 }
 
 /// The closest hit in a leaf (with `ANY`: the first): its sphere pack, then its other
