@@ -12,8 +12,10 @@ pub(super) const AXIS_TITLE_PX: f64 = 13.0;
 pub(super) const TICK_PX: f64 = 12.0;
 pub(super) const VALUE_PX: f64 = 11.0;
 
-/// Colour-blind-safe palette (Okabe-Ito, without the yellow that vanishes on white).
-pub(super) const PALETTE: [RGBColor; 7] = [
+/// Series colours: first the colour-blind-safe Okabe-Ito set (without the yellow that
+/// vanishes on white), then darker, distinct hues, so that a suite's dozen variants
+/// (the default runs ten) never share a colour in one chart.
+pub(super) const PALETTE: [RGBColor; 12] = [
     RGBColor(0, 114, 178),
     RGBColor(230, 159, 0),
     RGBColor(0, 158, 115),
@@ -21,6 +23,11 @@ pub(super) const PALETTE: [RGBColor; 7] = [
     RGBColor(204, 121, 167),
     RGBColor(86, 180, 233),
     RGBColor(120, 120, 120),
+    RGBColor(102, 61, 170),
+    RGBColor(140, 140, 0),
+    RGBColor(0, 90, 90),
+    RGBColor(160, 40, 70),
+    RGBColor(110, 70, 20),
 ];
 pub(super) const INK: RGBColor = RGBColor(40, 40, 40);
 pub(super) const BASELINE_INK: RGBColor = RGBColor(30, 30, 30);
@@ -63,5 +70,23 @@ pub(super) fn variant_colour(place: Option<usize>) -> RGBColor {
     match place {
         None => BASELINE_INK,
         Some(i) => PALETTE[i % PALETTE.len()],
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn palette_colours_are_distinct_and_none_is_the_reference_ink() {
+        for (i, a) in PALETTE.iter().enumerate() {
+            assert_ne!(*a, BASELINE_INK);
+            for b in &PALETTE[i + 1..] {
+                // At least 60 apart in the sum of channel differences: tellable apart.
+                let d =
+                    a.0.abs_diff(b.0) as u32 + a.1.abs_diff(b.1) as u32 + a.2.abs_diff(b.2) as u32;
+                assert!(d >= 60, "{a:?} and {b:?}");
+            }
+        }
     }
 }
