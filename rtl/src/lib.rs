@@ -1,0 +1,43 @@
+//! The RTL of the thesis's FPGA ray-casting pipeline.
+//!
+//! This first step is the floating-point operator library the pipeline is built from:
+//! IEEE-754 single-precision operators written in Verilog-2005 by this project
+//! (`rtl/verilog/*.v`, embedded here; [`operators`]), each with the latency of its row
+//! in hwmodel's operator library, and their Rust reference ([`float_policy`]): the
+//! exact rounding, denormal and NaN rules the operators follow, which the tests check
+//! bit for bit through Verilator (`tests/operators.rs`, `cargo test -p rtl --
+//! --ignored`; `scripts/install-rtl-tools.sh` installs Verilator and g++).
+
+pub mod float_policy;
+pub mod operators;
+
+use std::path::PathBuf;
+
+use thiserror::Error;
+
+pub use operators::{Operator, SOURCES, SourceFile, write_sources};
+
+/// What can go wrong producing RTL.
+#[derive(Debug, Error)]
+pub enum RtlError {
+    /// A file or directory could not be written.
+    #[error("{}: {source}", path.display())]
+    Io {
+        path: PathBuf,
+        #[source]
+        source: std::io::Error,
+    },
+    /// An instance does not connect a module's ports correctly.
+    #[error("{module}: port `{port}` {problem}")]
+    Port {
+        module: &'static str,
+        port: String,
+        problem: &'static str,
+    },
+    /// A module asked to stand in for an operator it does not implement.
+    #[error("{module} does not implement the library operator `{op}`")]
+    NotImplemented {
+        module: &'static str,
+        op: &'static str,
+    },
+}
