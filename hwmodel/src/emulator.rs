@@ -1,5 +1,8 @@
 //! Functional emulator of the thesis hardware (ch. 6): the 8-bit gray image the FPGA
-//! would show, computed in plain `f32` block by block.
+//! would show, computed block by block in the arithmetic of the RTL's operators
+//! ([`crate::float_policy`]: IEEE single precision, round to nearest even, subnormals
+//! flushed like the Altera cores), so the emulator and the generated RTL can check
+//! each other.
 //!
 //! - Primary ray (6.1.3): the scene block precomputes `ScanLine` (the direction to the
 //!   top-left pixel centre), `PixelWidth` and `PixelHeight` (one pixel's step to the
@@ -41,9 +44,7 @@
 //!   the last bits, which moves a gray level by one now and then, or flips a grazing
 //!   silhouette pixel (discriminant near 0, or m near 0 or m max) between hit and miss.
 
-// The emulator computes in plain f32 like the hardware, not through the counting layer.
-#![allow(clippy::disallowed_methods)]
-
+use crate::float_policy as fp;
 use crate::hw_scene::{HwKind, HwPrimitive, HwScene};
 use std::path::Path;
 use tracer::image_io::{ImageError, write_rgb8};
@@ -51,38 +52,45 @@ use tracer::image_io::{ImageError, write_rgb8};
 type V3 = [f32; 3];
 
 fn add(a: V3, b: V3) -> V3 {
-    [a[0] + b[0], a[1] + b[1], a[2] + b[2]]
+    [
+        fp::add(a[0], b[0]),
+        fp::add(a[1], b[1]),
+        fp::add(a[2], b[2]),
+    ]
 }
 
 fn sub(a: V3, b: V3) -> V3 {
-    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
+    [
+        fp::sub(a[0], b[0]),
+        fp::sub(a[1], b[1]),
+        fp::sub(a[2], b[2]),
+    ]
 }
 
 fn scale(a: V3, s: f32) -> V3 {
-    [a[0] * s, a[1] * s, a[2] * s]
+    [fp::mul(a[0], s), fp::mul(a[1], s), fp::mul(a[2], s)]
 }
 
 /// `(x·x + y·y) + z·z`: the order glam's SSE dot product sums in, so the emulator and
 /// the software round alike.
 fn dot(a: V3, b: V3) -> f32 {
-    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
+    let xy = fp::add(fp::mul(a[0], b[0]), fp::mul(a[1], b[1]));
+    fp::add(xy, fp::mul(a[2], b[2]))
 }
 
 fn cross(a: V3, b: V3) -> V3 {
-    [
-        a[1] * b[2] - b[1] * a[2],
-        a[2] * b[0] - b[2] * a[0],
-        a[0] * b[1] - b[0] * a[1],
-    ]
-}
-
-fn sqrt(x: f32) -> f32 {
-    x.sqrt()
+    let term = |i: usize, j: usize| fp::sub(fp::mul(a[i], b[j]), fp::mul(b[i], a[j]));
+    [term(1, 2), term(2, 0), term(0, 1)]
 }
 
 /// `a · (1/|a|)`, as the software's counter normalizes (a reciprocal, then a scale).
 fn normalize(a: V3) -> V3 {
-    scale(a, 1.0 / sqrt(dot(a, a)))
+    scale(a, fp::div(1.0, fp::sqrt(dot(a, a))))
+}
+
+/// A screen coordinate as the screen iterator's int-to-float converter gives it.
+fn coordinate(i: u32) -> f32 {
+    fp::from_int(i32::try_from(i).unwrap_or(i32::MAX))
 }
 
 /// The 0..1 → 0..255 conversion of the software's 8-bit output: clamp, scale, round.
@@ -159,30 +167,30 @@ impl PrimaryRays {
 
     /// The base direction of row `row` (row 0 at the top).
     pub fn row_base(&self, row: u32) -> V3 {
-        sub(self.scan_line, scale(self.pixel_height, row as f32))
+        sub(self.scan_line, scale(self.pixel_height, coordinate(row)))
     }
 
     /// The unit direction of pixel `column` of the row starting at `row_base`.
     pub fn direction(&self, row_base: V3, column: u32) -> V3 {
-        normalize(add(row_base, scale(self.pixel_width, column as f32)))
+        normalize(add(row_base, scale(self.pixel_width, coordinate(column))))
     }
 }
 
 /// The quadratic's coefficients `(a, b, c)` for `primitive`, as the selector outputs
 /// them (`voc = O − C`, `dir` of unit length).
 pub fn quadratic_coefficients(primitive: &HwPrimitive, voc: V3, dir: V3) -> (f32, f32, f32) {
-    let r_sq = primitive.radius * primitive.radius;
+    let r_sq = fp::mul(primitive.radius, primitive.radius);
     let r_voc = dot(dir, voc);
     let voc_voc = dot(voc, voc);
     match primitive.kind {
-        HwKind::Sphere => (1.0, 2.0 * r_voc, voc_voc - r_sq),
+        HwKind::Sphere => (1.0, fp::mul(2.0, r_voc), fp::sub(voc_voc, r_sq)),
         HwKind::Cylinder => {
             let r_v = dot(dir, primitive.axis);
             let voc_v = dot(voc, primitive.axis);
             (
-                1.0 - r_v * r_v,
-                2.0 * (r_voc - r_v * voc_v),
-                voc_voc - voc_v * voc_v - r_sq,
+                fp::sub(1.0, fp::mul(r_v, r_v)),
+                fp::mul(2.0, fp::sub(r_voc, fp::mul(r_v, voc_v))),
+                fp::sub(fp::sub(voc_voc, fp::mul(voc_v, voc_v)), r_sq),
             )
         }
     }
@@ -192,16 +200,18 @@ pub fn quadratic_coefficients(primitive: &HwPrimitive, voc: V3, dir: V3) -> (f32
 /// infinity when the discriminant is negative or neither root is positive. Roots that
 /// are NaN or infinite (`a = 0`) are not positive distances.
 pub fn smaller_positive_root(a: f32, b: f32, c: f32) -> f32 {
-    let discriminant = b * b - 4.0 * a * c;
-    if discriminant < 0.0 {
+    let discriminant = fp::sub(fp::mul(b, b), fp::mul(fp::mul(4.0, a), c));
+    if fp::lt(discriminant, 0.0) {
         return f32::INFINITY;
     }
-    let root = sqrt(discriminant);
-    let near = (-b - root) / (2.0 * a);
-    let far = (-b + root) / (2.0 * a);
-    let usable = |d: f32| d > 0.0 && d.is_finite();
+    let root = fp::sqrt(discriminant);
+    let two_a = fp::mul(2.0, a);
+    // `-b` is a sign flip, exact.
+    let near = fp::div(fp::sub(-b, root), two_a);
+    let far = fp::div(fp::add(-b, root), two_a);
+    let usable = |d: f32| fp::lt(0.0, d) && d.is_finite();
     match (usable(near), usable(far)) {
-        (true, true) => near.min(far),
+        (true, true) => fp::select(fp::lt(far, near), near, far),
         (true, false) => near,
         (false, true) => far,
         (false, false) => f32::INFINITY,
@@ -226,7 +236,7 @@ pub fn intersect(primitive: &HwPrimitive, origin: V3, dir: V3) -> BodyHit {
     let m = dot(sub(point, primitive.center), primitive.axis);
     // Only the selected root is bounded: a cylinder whose near wall lies beyond an end
     // is missed even if the ray would meet its inner wall (see the module doc).
-    let inside_body = m > 0.0 && m < primitive.m_max;
+    let inside_body = fp::lt(0.0, m) && fp::lt(m, primitive.m_max);
     let distance = match primitive.kind {
         HwKind::Sphere => root,
         HwKind::Cylinder if inside_body => root,
@@ -243,7 +253,7 @@ pub fn closest_hit(scene: &HwScene, origin: V3, dir: V3) -> Option<(&HwPrimitive
         let hit = intersect(primitive, origin, dir);
         let best_distance = best.map_or(f32::INFINITY, |(_, b)| b.distance);
         // Strictly smaller: the first primitive in memory wins ties.
-        if hit.distance < best_distance {
+        if fp::lt(hit.distance, best_distance) {
             best = Some((primitive, hit));
         }
     }
@@ -260,7 +270,8 @@ pub fn diffuse(primitive: &HwPrimitive, hit: &BodyHit, light: V3) -> Option<f32>
         HwKind::Cylinder => sub(radial, scale(primitive.axis, hit.m)),
     };
     let lambert = dot(normalize(normal), to_light);
-    (lambert >= 0.0).then_some(lambert)
+    // `N·L ≥ 0`: not below zero, and not NaN.
+    (!fp::lt(lambert, 0.0) && !lambert.is_nan()).then_some(lambert)
 }
 
 /// The gray value of the pixel whose ray leaves the observer along `dir`.

@@ -14,13 +14,16 @@
 //! - [`frame_timing`]: frame timing (one pixel every 3·⌈n/K⌉ cycles plus the fill);
 //! - [`table`]: the model next to the thesis's tables 7 and 8 with percentage errors;
 //! - [`hw_scene`], [`emulator`], [`mif`]: the scene as the hardware holds it, the image
-//!   it computes, and its Memory Initialization File.
+//!   it computes, and its Memory Initialization File;
+//! - [`float_policy`]: the arithmetic of the RTL's floating-point operators (rounding,
+//!   flushed subnormals, NaN), which the emulator computes in.
 
 pub mod blocks;
 pub mod composites;
 pub mod design;
 pub mod device;
 pub mod emulator;
+pub mod float_policy;
 pub mod frame_timing;
 pub mod graph;
 pub mod hw_scene;

@@ -8,7 +8,8 @@
 //! bit for bit through Verilator (`tests/operators.rs`, `cargo test -p rtl --
 //! --ignored`; `scripts/install-rtl-tools.sh` installs Verilator and g++).
 
-pub mod float_policy;
+/// The operators' arithmetic, kept in `hwmodel` so that its emulator computes in it.
+pub use hwmodel::float_policy;
 pub mod operators;
 
 use std::path::PathBuf;

@@ -32,7 +32,7 @@
 //! # How the reference computes it
 //!
 //! `flush` the inputs, compute with Rust's `f32` operation (IEEE, correctly rounded,
-//! with subnormals), then [`finish`] the result: NaN becomes canonical, a subnormal or
+//! with subnormals), then `finish` the result: NaN becomes canonical, a subnormal or
 //! zero result becomes a signed zero (rule 2: an exact value that IEEE rounds to a
 //! subnormal number is below `2⁻¹²⁶ - 2⁻¹⁵⁰`, so its 24-bit rounding is below 2⁻¹²⁶
 //! too), and a result of exactly ±2⁻¹²⁶ is kept only if the exact value is at least
