@@ -16,7 +16,8 @@ use crate::composites::{
     vector_output, vector_scale, vector_select,
 };
 use crate::design::Design;
-use crate::graph::{Graph, NodeId, Schedule};
+use crate::graph::{AddSubMode, FRAME_CONSTANT, Graph, NodeId, Schedule};
+use crate::hw_scene::HwPrimitive;
 use crate::library::{Library, OpKind, Resources};
 
 /// Address bits of the scene memory (the minimum-distance block keeps the nearest
@@ -25,6 +26,18 @@ pub const ADDRESS_BITS: u32 = 13;
 
 /// Cycles the minimum-distance block's inputs stay stable (the iterator's 3n pacing).
 pub const MIN_DISTANCE_HOLD: u32 = 3;
+
+/// Names of the scene-memory words the rsqrt-free shading adds after the primitive's
+/// nine (`HwPrimitive::WORD_NAMES`): brightest point M, 1/(2r²), 1/r.
+pub const SHADING_FIELDS: [&str; 5] = ["M.x", "M.y", "M.z", "1/(2r²)", "1/r"];
+
+/// The name of scene-memory word `field`.
+pub fn field_name(field: usize) -> &'static str {
+    match field.checked_sub(HwPrimitive::WORDS) {
+        None => HwPrimitive::WORD_NAMES[field],
+        Some(extra) => SHADING_FIELDS.get(extra).copied().unwrap_or("?"),
+    }
+}
 
 /// One block: its graph and schedule.
 #[derive(Clone, Debug)]
@@ -178,10 +191,22 @@ pub fn primary_ray(design: &Design) -> Graph {
     let i = g.constant("i");
     let j = g.input("j");
     let down = vector_scale(&mut g, row_step, i, "i·row_step");
-    let row = vector_add_sub(&mut g, scan_line, down, "scan_line−i·row_step");
+    let row = vector_add_sub(
+        &mut g,
+        AddSubMode::Sub,
+        scan_line,
+        down,
+        "scan_line−i·row_step",
+    );
     let row_base = row.map(|c| g.row_register(c, "row_base"));
     let across = vector_scale(&mut g, column_step, j, "j·column_step");
-    let point = vector_add_sub(&mut g, row_base, across, "row_base+j·column_step");
+    let point = vector_add_sub(
+        &mut g,
+        AddSubMode::Add,
+        row_base,
+        across,
+        "row_base+j·column_step",
+    );
     if design.ortho {
         // The origin is the moving point; the direction is the view direction.
         vector_output(&mut g, point);
@@ -221,13 +246,14 @@ pub fn intersection(design: &Design) -> Graph {
     let m_max = g.input("Mmax");
     let kind = g.input_held("type", 1, 0);
     let address = g.input_held("address", ADDRESS_BITS, 0);
-    let zero = g.constant("0");
-    let one = g.constant("1");
-    let two = g.constant("2");
-    let four = g.constant("4");
-    let infinity = g.constant("∞");
+    let zero = g.literal("0", 0.0);
+    let zero_bit = g.literal_bits("0 (bit)", 1, 0);
+    let one = g.literal("1", 1.0);
+    let two = g.literal("2", 2.0);
+    let four = g.literal("4", 4.0);
+    let infinity = g.literal("∞", f32::INFINITY);
 
-    let voc = vector_add_sub(&mut g, eye, centre, "Voc");
+    let voc = vector_add_sub(&mut g, AddSubMode::Sub, eye, centre, "Voc");
     let r_voc = dot(&mut g, ray, voc, "R·Voc");
     let voc_voc = dot(&mut g, voc, voc, "Voc·Voc");
     let r_v = dot(&mut g, ray, axis, "R·V");
@@ -236,27 +262,27 @@ pub fn intersection(design: &Design) -> Graph {
 
     // Sphere: a = 1 (|R| = 1), b = 2 R·Voc, c = Voc·Voc − r².
     let b_sphere = g.op(OpKind::Multiply, &[r_voc, two], "b sphere");
-    let c_sphere = g.op(OpKind::AddSub, &[voc_voc, r_sq], "c sphere");
+    let c_sphere = g.sub(voc_voc, r_sq, "c sphere");
     // Cylinder: a = 1 − (R·V)², b = 2(R·Voc − (R·V)(Voc·V)), c = Voc·Voc − (Voc·V)² − r².
     let rv_sq = g.op(OpKind::Multiply, &[r_v, r_v], "(R·V)²");
-    let a_cyl = g.op(OpKind::AddSub, &[one, rv_sq], "a cylinder");
+    let a_cyl = g.sub(one, rv_sq, "a cylinder");
     let rv_vocv = g.op(OpKind::Multiply, &[r_v, voc_v], "(R·V)(Voc·V)");
-    let b_half = g.op(OpKind::AddSub, &[r_voc, rv_vocv], "b/2 cylinder");
+    let b_half = g.sub(r_voc, rv_vocv, "b/2 cylinder");
     let b_cyl = g.op(OpKind::Multiply, &[b_half, two], "b cylinder");
     let vocv_sq = g.op(OpKind::Multiply, &[voc_v, voc_v], "(Voc·V)²");
-    let c_part = g.op(OpKind::AddSub, &[voc_voc, vocv_sq], "Voc·Voc−(Voc·V)²");
-    let c_cyl = g.op(OpKind::AddSub, &[c_part, r_sq], "c cylinder");
+    let c_part = g.sub(voc_voc, vocv_sq, "Voc·Voc−(Voc·V)²");
+    let c_cyl = g.sub(c_part, r_sq, "c cylinder");
 
-    // Selector.
-    let a = g.op(OpKind::Mux, &[kind, one, a_cyl], "a");
-    let b = g.op(OpKind::Mux, &[kind, b_sphere, b_cyl], "b");
-    let c = g.op(OpKind::Mux, &[kind, c_sphere, c_cyl], "c");
+    // Selector (type 1: cylinder).
+    let a = g.select(kind, one, a_cyl, "a");
+    let b = g.select(kind, b_sphere, b_cyl, "b");
+    let c = g.select(kind, c_sphere, c_cyl, "c");
 
     // Quadratic solver: roots (−b ∓ √disc) / 2a, the sign of −b is a wire.
     let b_sq = g.op(OpKind::Multiply, &[b, b], "b²");
     let ac = g.op(OpKind::Multiply, &[a, c], "ac");
     let ac4 = g.op(OpKind::Multiply, &[ac, four], "4ac");
-    let disc = g.op(OpKind::AddSub, &[b_sq, ac4], "b²−4ac");
+    let disc = g.sub(b_sq, ac4, "b²−4ac");
     let sqrt_op = if design.fast_sqrt {
         OpKind::FastSqrt
     } else {
@@ -264,25 +290,25 @@ pub fn intersection(design: &Design) -> Graph {
     };
     let root = g.op(sqrt_op, &[disc], "√disc");
     let two_a = g.op(OpKind::Multiply, &[a, two], "2a");
-    let near_num = g.op(OpKind::AddSub, &[b, root], "−b−√disc");
-    let far_num = g.op(OpKind::AddSub, &[root, b], "−b+√disc");
+    let near_num = g.add_sub(AddSubMode::NegSub, b, root, "−b−√disc");
+    let far_num = g.add_sub(AddSubMode::NegAdd, b, root, "−b+√disc");
     let near = g.op(OpKind::Divide, &[near_num, two_a], "t near");
     let far = g.op(OpKind::Divide, &[far_num, two_a], "t far");
-    let near_ok = g.op_bits(OpKind::Compare, &[near, zero], 1, "t near > 0");
-    let far_ok = g.op_bits(OpKind::Compare, &[far, zero], 1, "t far > 0");
-    let far_or_none = g.op(OpKind::Mux, &[far_ok, far, infinity], "t far or ∞");
-    let d = g.op(OpKind::Mux, &[near_ok, near, far_or_none], "d");
+    let near_ok = g.less(zero, near, "t near > 0");
+    let far_ok = g.less(zero, far, "t far > 0");
+    let far_or_none = g.select(far_ok, infinity, far, "t far or ∞");
+    let d = g.select(near_ok, far_or_none, near, "d");
 
     // Hit body.
     let along = vector_scale(&mut g, ray, d, "d·R");
-    let point = vector_add_sub(&mut g, eye, along, "P");
-    let from_base = vector_add_sub(&mut g, point, centre, "P−Cb");
+    let point = vector_add_sub(&mut g, AddSubMode::Add, eye, along, "P");
+    let from_base = vector_add_sub(&mut g, AddSubMode::Sub, point, centre, "P−Cb");
     let m = dot(&mut g, from_base, axis, "m");
-    let above = g.op_bits(OpKind::Compare, &[m, zero], 1, "m > 0");
-    let below = g.op_bits(OpKind::Compare, &[m, m_max], 1, "m < Mmax");
-    let inside = g.op_bits(OpKind::Mux, &[above, below, zero], 1, "0 < m < Mmax");
-    let body = g.op(OpKind::Mux, &[inside, d, infinity], "d in body");
-    let distance = g.op(OpKind::Mux, &[kind, d, body], "distance");
+    let above = g.less(zero, m, "m > 0");
+    let below = g.less(m, m_max, "m < Mmax");
+    let inside = g.select(above, zero_bit, below, "0 < m < Mmax");
+    let body = g.select(inside, infinity, d, "d in body");
+    let distance = g.select(kind, d, body, "distance");
 
     g.output(distance);
     vector_output(&mut g, point);
@@ -303,7 +329,7 @@ pub fn min_distance() -> Graph {
     let address = g.input_held("address", ADDRESS_BITS, MIN_DISTANCE_HOLD);
     // The kept distance is the register's own output: stable until it is replaced.
     let kept = g.constant("kept distance");
-    let closer = g.op_bits(OpKind::Compare, &[distance, kept], 1, "closer");
+    let closer = g.less(distance, kept, "closer");
     let keep = |g: &mut Graph, v: NodeId, bits: u32, label: &str| {
         g.op_bits(OpKind::Register, &[v, closer], bits, label)
     };
@@ -341,49 +367,51 @@ pub fn shading(design: &Design) -> Graph {
     let point = vector_input(&mut g, "P");
     let address = g.input_held("address", ADDRESS_BITS, 0);
     let light = vector_constant(&mut g, "light");
-    let zero = g.constant("0");
-    let one = g.constant("1");
-    let c255 = g.constant("255");
-    let infinity = g.constant("∞");
-    let background = g.constant("background");
+    let zero = g.literal("0", 0.0);
+    let zero_bit = g.literal_bits("0 (bit)", 1, 0);
+    let one = g.literal("1", 1.0);
+    let c255 = g.literal("255", 255.0);
+    let infinity = g.literal("∞", f32::INFINITY);
+    let background = g.input_held("background", 8, FRAME_CONSTANT);
 
-    let read =
-        |g: &mut Graph, label: &str, bits: u32| g.op_bits(OpKind::RamRead, &[address], bits, label);
-    let centre = ["x", "y", "z"].map(|c| read(&mut g, &format!("C.{c}"), 32));
-    let axis = ["x", "y", "z"].map(|c| read(&mut g, &format!("V.{c}"), 32));
-    let kind = read(&mut g, "type", 1);
+    let read = |g: &mut Graph, field: usize, bits: u32| {
+        g.ram_read(address, field as u32, bits, field_name(field))
+    };
+    let centre = [0, 1, 2].map(|f| read(&mut g, f, 32));
+    let axis = [4, 5, 6].map(|f| read(&mut g, f, 32));
+    let kind = read(&mut g, 8, 1);
 
-    let from_centre = vector_add_sub(&mut g, point, centre, "P−C");
+    let from_centre = vector_add_sub(&mut g, AddSubMode::Sub, point, centre, "P−C");
     let m = dot(&mut g, from_centre, axis, "(P−C)·V");
     let on_axis = vector_scale(&mut g, axis, m, "m·V");
-    let across = vector_add_sub(&mut g, from_centre, on_axis, "(P−C)−m·V");
+    let across = vector_add_sub(&mut g, AddSubMode::Sub, from_centre, on_axis, "(P−C)−m·V");
 
     let diffuse = if design.no_rsqrt_shading {
-        let brightest = ["x", "y", "z"].map(|c| read(&mut g, &format!("M.{c}"), 32));
-        let inv_two_r_sq = read(&mut g, "1/(2r²)", 32);
-        let inv_r = read(&mut g, "1/r", 32);
+        let brightest = [9, 10, 11].map(|f| read(&mut g, f, 32));
+        let inv_two_r_sq = read(&mut g, 12, 32);
+        let inv_r = read(&mut g, 13, 32);
         let light_dir = vector_constant(&mut g, "L̂");
-        let to_brightest = vector_add_sub(&mut g, point, brightest, "P−M");
+        let to_brightest = vector_add_sub(&mut g, AddSubMode::Sub, point, brightest, "P−M");
         let dist_sq = dot(&mut g, to_brightest, to_brightest, "|P−M|²");
         let scaled = g.op(OpKind::Multiply, &[dist_sq, inv_two_r_sq], "|P−M|²/(2r²)");
-        let sphere_cos = g.op(OpKind::AddSub, &[one, scaled], "cos sphere");
+        let sphere_cos = g.sub(one, scaled, "cos sphere");
         let unit_normal = vector_scale(&mut g, across, inv_r, "N/r");
         let cylinder_cos = dot(&mut g, unit_normal, light_dir, "N̂·L̂");
-        g.op(OpKind::Mux, &[kind, sphere_cos, cylinder_cos], "N·L")
+        g.select(kind, sphere_cos, cylinder_cos, "N·L")
     } else {
-        let to_light = vector_add_sub(&mut g, light, point, "L");
+        let to_light = vector_add_sub(&mut g, AddSubMode::Sub, light, point, "L");
         let normal = vector_select(&mut g, kind, from_centre, across, "N");
         let unit_light = normalize(&mut g, to_light, "normalize(L)");
         let unit_normal = normalize(&mut g, normal, "normalize(N)");
         dot(&mut g, unit_normal, unit_light, "N·L")
     };
 
-    let hit = g.op_bits(OpKind::Compare, &[distance, infinity], 1, "hit");
-    let lit = g.op_bits(OpKind::Compare, &[diffuse, zero], 1, "N·L > 0");
-    let visible = g.op_bits(OpKind::Mux, &[hit, lit, zero], 1, "hit and lit");
+    let hit = g.less(distance, infinity, "hit");
+    let lit = g.less(zero, diffuse, "N·L > 0");
+    let visible = g.select(hit, zero_bit, lit, "hit and lit");
     let scaled = g.op(OpKind::Multiply, &[diffuse, c255], "×255");
     let gray = g.op_bits(OpKind::Convert, &[scaled], 8, "gray");
-    let pixel = g.op_bits(OpKind::Mux, &[visible, gray, background], 8, "pixel");
+    let pixel = g.select(visible, background, gray, "pixel");
     g.output(pixel);
     g
 }
@@ -406,15 +434,18 @@ pub fn min_tree(units: u32) -> Graph {
         for pair in level.chunks(2) {
             match pair {
                 [a, b] => {
-                    let closer = g.op_bits(OpKind::Compare, &[a.0, b.0], 1, "closer");
-                    let pick = |g: &mut Graph, x: NodeId, y: NodeId, bits: u32| {
-                        let s = g.op_bits(OpKind::Mux, &[closer, x, y], bits, "pick");
+                    // b replaces a only when strictly closer: ties keep the lower unit,
+                    // whose primitives come first in memory.
+                    let closer = g.less(b.0, a.0, "closer");
+                    let pick = |g: &mut Graph, x: NodeId, y: NodeId| {
+                        let s = g.select(closer, x, y, "pick");
+                        let bits = g.nodes()[s].bits;
                         g.op_bits(OpKind::Register, &[s], bits, "pick reg")
                     };
-                    let d = pick(&mut g, a.0, b.0, 32);
-                    let p = [0, 1, 2].map(|i| pick(&mut g, a.1[i], b.1[i], 32));
-                    let m = pick(&mut g, a.2, b.2, 32);
-                    let addr = pick(&mut g, a.3, b.3, ADDRESS_BITS);
+                    let d = pick(&mut g, a.0, b.0);
+                    let p = [0, 1, 2].map(|i| pick(&mut g, a.1[i], b.1[i]));
+                    let m = pick(&mut g, a.2, b.2);
+                    let addr = pick(&mut g, a.3, b.3);
                     next.push((d, p, m, addr));
                 }
                 [a] => next.push(*a),

@@ -15,7 +15,7 @@
 //! are 34 (rsqrt) + 6 × 7, i.e. three multipliers in its dot product, not four.
 //! [`dot4`] builds the four-lane form so the difference can be shown.
 
-use crate::graph::{Graph, NodeId};
+use crate::graph::{AddSubMode, Graph, NodeId};
 use crate::library::OpKind;
 
 /// Three node ids: x, y, z.
@@ -46,17 +46,17 @@ pub fn vector_output(g: &mut Graph, v: Vec3Node) {
 /// `a · b`, three lanes: 19 cycles.
 pub fn dot(g: &mut Graph, a: Vec3Node, b: Vec3Node, label: &str) -> NodeId {
     let p = [0, 1, 2].map(|i| g.op(OpKind::Multiply, &[a[i], b[i]], &format!("{label}:prod{i}")));
-    let xy = g.op(OpKind::AddSub, &[p[0], p[1]], &format!("{label}:x+y"));
-    g.op(OpKind::AddSub, &[xy, p[2]], label)
+    let xy = g.add(p[0], p[1], &format!("{label}:x+y"));
+    g.add(xy, p[2], label)
 }
 
 /// `a · b` with four lanes and a balanced adder tree (table 7's standalone module).
 pub fn dot4(g: &mut Graph, a: [NodeId; 4], b: [NodeId; 4], label: &str) -> NodeId {
     let p =
         [0, 1, 2, 3].map(|i| g.op(OpKind::Multiply, &[a[i], b[i]], &format!("{label}:prod{i}")));
-    let lo = g.op(OpKind::AddSub, &[p[0], p[1]], &format!("{label}:x+y"));
-    let hi = g.op(OpKind::AddSub, &[p[2], p[3]], &format!("{label}:z+w"));
-    g.op(OpKind::AddSub, &[lo, hi], label)
+    let lo = g.add(p[0], p[1], &format!("{label}:x+y"));
+    let hi = g.add(p[2], p[3], &format!("{label}:z+w"));
+    g.add(lo, hi, label)
 }
 
 /// `v × s` (registered multipliers): 7 cycles.
@@ -70,15 +70,15 @@ pub fn vector_scale(g: &mut Graph, v: Vec3Node, s: NodeId, label: &str) -> Vec3N
     })
 }
 
-/// `a + b` or `a − b` (the same IP core): 7 cycles.
-pub fn vector_add_sub(g: &mut Graph, a: Vec3Node, b: Vec3Node, label: &str) -> Vec3Node {
-    [0, 1, 2].map(|i| {
-        g.op(
-            OpKind::AddSub,
-            &[a[i], b[i]],
-            &format!("{label}.{}", axis(i)),
-        )
-    })
+/// `a + b` or `a − b` per component (`mode`; the same IP core): 7 cycles.
+pub fn vector_add_sub(
+    g: &mut Graph,
+    mode: AddSubMode,
+    a: Vec3Node,
+    b: Vec3Node,
+    label: &str,
+) -> Vec3Node {
+    [0, 1, 2].map(|i| g.add_sub(mode, a[i], b[i], &format!("{label}.{}", axis(i))))
 }
 
 /// `v / |v|` by the inverse square root: 50 cycles.
@@ -94,7 +94,7 @@ pub fn normalize(g: &mut Graph, v: Vec3Node, label: &str) -> Vec3Node {
     })
 }
 
-/// Per-component select between two vectors by a flag (no latency).
+/// Per-component select between two vectors by a flag, `flag ? b : a` (no latency).
 pub fn vector_select(
     g: &mut Graph,
     flag: NodeId,
@@ -102,13 +102,7 @@ pub fn vector_select(
     b: Vec3Node,
     label: &str,
 ) -> Vec3Node {
-    [0, 1, 2].map(|i| {
-        g.op(
-            OpKind::Mux,
-            &[flag, a[i], b[i]],
-            &format!("{label}.{}", axis(i)),
-        )
-    })
+    [0, 1, 2].map(|i| g.select(flag, a[i], b[i], &format!("{label}.{}", axis(i))))
 }
 
 fn axis(i: usize) -> &'static str {
@@ -168,7 +162,7 @@ mod tests {
         let add = standalone(|g| {
             let a = vector_input(g, "a");
             let b = vector_input(g, "b");
-            let r = vector_add_sub(g, a, b, "a+b");
+            let r = vector_add_sub(g, AddSubMode::Add, a, b, "a+b");
             vector_output(g, r);
         });
         assert_eq!(add.latency, 7);

@@ -14,16 +14,21 @@
 //! - Intersection test (6.1.4): `Voc = O − C`; sphere `a = 1`, `b = 2 R·Voc`,
 //!   `c = Voc·Voc − r²`; cylinder `a = 1 − (R·V)²`, `b = 2(R·Voc − (R·V)(Voc·V))`,
 //!   `c = Voc·Voc − (Voc·V)² − r²`; the selector picks by type; the quadratic solver
-//!   gives the smaller positive root of `(−b ∓ √(b² − 4ac)) / 2a`, infinity when the
-//!   discriminant is negative or no root is positive.
+//!   gives the smaller positive root of `(−b ∓ √(b² − 4ac)) / 2a` (the near root if
+//!   positive, else the far one), infinity when the discriminant is negative or no root
+//!   is positive.
 //! - Hit body (6.1.6): `P = O + d·R`, `m = (P − Cb)·V`; a cylinder's distance becomes
 //!   infinity unless `0 < m < m max`.
 //! - Minimum distance (6.1.5): a strictly smaller distance replaces the stored one, so
 //!   the first primitive in memory wins ties.
 //! - Shading (6.1.7): `L = light − P`, `N = P − C` (sphere) or `(P − Cb) − m·V`
-//!   (cylinder), both normalized; gray = `N·L` × 255, the background where there is no
-//!   hit or `N·L < 0`. The 0..1 → 0..255 conversion clamps and rounds to nearest like
-//!   [`tracer::Rgb::to_rgb8`], so identical maths gives identical bytes.
+//!   (cylinder), both normalized; gray = `N·L × 255` converted to 8 bits (round half
+//!   away from zero, saturating: for `N·L` in (0, 1] the same bytes as
+//!   [`tracer::Rgb::to_rgb8`]), the background where there is no hit or `N·L ≤ 0`.
+//!
+//! Every operation, its operands' order and every selection is the blocks' dataflow
+//! graph's ([`crate::blocks`]), evaluated in [`crate::float_policy`]: the generated RTL
+//! computes the same bits.
 //!
 //! Differences from the software's `--diffuse-only` render ([`tracer::ShadingMode::DiffuseOnly`]):
 //! - Open cylinder ends. The hardware hands only the selected (smaller positive) root to
@@ -83,9 +88,10 @@ fn cross(a: V3, b: V3) -> V3 {
     [term(1, 2), term(2, 0), term(0, 1)]
 }
 
-/// `a · (1/|a|)`, as the software's counter normalizes (a reciprocal, then a scale).
+/// `a · (1/√(a·a))`: the dot product, the inverse square root core, a scale (as the
+/// software's counter normalizes: a reciprocal, then a scale).
 fn normalize(a: V3) -> V3 {
-    scale(a, fp::div(1.0, fp::sqrt(dot(a, a))))
+    scale(a, fp::inv_sqrt(dot(a, a)))
 }
 
 /// A screen coordinate as the screen iterator's int-to-float converter gives it.
@@ -196,26 +202,23 @@ pub fn quadratic_coefficients(primitive: &HwPrimitive, voc: V3, dir: V3) -> (f32
     }
 }
 
-/// The quadratic solver: the smaller positive root of `a d² + b d + c = 0`, or
-/// infinity when the discriminant is negative or neither root is positive. Roots that
-/// are NaN or infinite (`a = 0`) are not positive distances.
+/// The quadratic solver as the hardware wires it: the roots `(−b ∓ √(b² − 4ac)) / 2a`,
+/// then `near` if it is positive, else `far` if it is positive, else infinity. With
+/// `a > 0` (always, up to rounding: `a = 1` for a sphere, `1 − (R·V)²` for a cylinder)
+/// `near ≤ far`, so this is the smaller positive root. A negative discriminant needs no
+/// test: its square root is NaN, NaN is not positive, and the result is infinity; roots
+/// that are NaN (`a = 0`) are not positive either. The operations and their order are
+/// the intersection block's graph ([`crate::blocks::intersection`]), so the RTL gives
+/// the same bits.
 pub fn smaller_positive_root(a: f32, b: f32, c: f32) -> f32 {
-    let discriminant = fp::sub(fp::mul(b, b), fp::mul(fp::mul(4.0, a), c));
-    if fp::lt(discriminant, 0.0) {
-        return f32::INFINITY;
-    }
+    let discriminant = fp::sub(fp::mul(b, b), fp::mul(fp::mul(a, c), 4.0));
     let root = fp::sqrt(discriminant);
-    let two_a = fp::mul(2.0, a);
-    // `-b` is a sign flip, exact.
+    let two_a = fp::mul(a, 2.0);
+    // `-b` is a sign flip on the wire, exact.
     let near = fp::div(fp::sub(-b, root), two_a);
     let far = fp::div(fp::add(-b, root), two_a);
-    let usable = |d: f32| fp::lt(0.0, d) && d.is_finite();
-    match (usable(near), usable(far)) {
-        (true, true) => fp::select(fp::lt(far, near), near, far),
-        (true, false) => near,
-        (false, true) => far,
-        (false, false) => f32::INFINITY,
-    }
+    let far_or_none = fp::select(fp::lt(0.0, far), f32::INFINITY, far);
+    fp::select(fp::lt(0.0, near), far_or_none, near)
 }
 
 /// What the hit body hands on for one primitive: distance (infinity on a miss), the
@@ -260,8 +263,8 @@ pub fn closest_hit(scene: &HwScene, origin: V3, dir: V3) -> Option<(&HwPrimitive
     best
 }
 
-/// The shading block: the Lambert term `N·L` of a hit, or `None` (background) when
-/// it is negative (or NaN).
+/// The shading block: the Lambert term `N·L` of a hit, or `None` (background) unless
+/// it is positive (`N·L = 0` is the silhouette; NaN is not positive).
 pub fn diffuse(primitive: &HwPrimitive, hit: &BodyHit, light: V3) -> Option<f32> {
     let to_light = normalize(sub(light, hit.point));
     let radial = sub(hit.point, primitive.center);
@@ -270,16 +273,16 @@ pub fn diffuse(primitive: &HwPrimitive, hit: &BodyHit, light: V3) -> Option<f32>
         HwKind::Cylinder => sub(radial, scale(primitive.axis, hit.m)),
     };
     let lambert = dot(normalize(normal), to_light);
-    // `N·L ≥ 0`: not below zero, and not NaN.
-    (!fp::lt(lambert, 0.0) && !lambert.is_nan()).then_some(lambert)
+    fp::lt(0.0, lambert).then_some(lambert)
 }
 
-/// The gray value of the pixel whose ray leaves the observer along `dir`.
+/// The gray value of the pixel whose ray leaves the observer along `dir`: `N·L × 255`
+/// converted to 8 bits, or the background.
 pub fn pixel_gray(scene: &HwScene, dir: V3) -> u8 {
     let background = to_gray8(scene.background_gray);
     closest_hit(scene, scene.eye, dir)
         .and_then(|(primitive, hit)| diffuse(primitive, &hit, scene.light))
-        .map_or(background, to_gray8)
+        .map_or(background, |lambert| fp::to_u8(fp::mul(lambert, 255.0)))
 }
 
 /// The image the hardware computes for `scene` on a `width` × `height` screen.

@@ -2,12 +2,18 @@
 //!
 //! The screen iterator issues one pixel every 3·⌈n/K⌉ cycles: each intersection unit
 //! holds a ray while its ⌈n/K⌉ primitives stream past, and the minimum-distance block
-//! needs every result held for 3 cycles. A frame is W·H issues plus the pipeline fill
-//! (the last pixel's trip through primary ray, intersection, minimum distance, the
-//! comparator tree and shading). With K = 1 at 640×480 and 50 MHz the issues alone are
-//! 640·480·3·n / 50e6 = 0.018432·n s, the thesis's eq. 49; the fill adds a few hundred
-//! cycles (µs). An empty scene still paces at 3 cycles per pixel (the minimum-distance
-//! hold).
+//! needs every result held for 3 cycles. With K = 1 at 640×480 and 50 MHz the issues
+//! alone are 640·480·3·n / 50e6 = 0.018432·n s, the thesis's eq. 49.
+//!
+//! A frame's cycles are counted from the first pixel's issue (cycle 0) to the cycle the
+//! last pixel's gray level is written to the frame buffer, which is what the generated
+//! RTL's simulation measures: the last pixel is issued at (W·H − 1)·p (p = 3c cycles
+//! per pixel, c = ⌈n/K⌉ primitives per unit), its ray is ready L_ray later, its last
+//! primitive enters the intersection unit 3(c − 1) after that, and its result then
+//! crosses intersection, minimum distance, the comparator tree and shading. So
+//! `cycles = W·H·p + fill` with `fill = L_ray + L_int + L_min + L_tree + L_shade − 3`
+//! (a few hundred cycles, µs). An empty scene still paces at 3 cycles per pixel (one
+//! slot that hits nothing: the minimum-distance hold).
 
 use serde::Serialize;
 
@@ -42,7 +48,8 @@ pub fn frame_timing(
 ) -> FrameTiming {
     let units = pipeline.design.units;
     let per_pixel = cycles_per_pixel(primitives, units);
-    let fill = pipeline.fill_cycles() + per_pixel;
+    // The last primitive slot of a pixel starts 3 cycles before the next issue.
+    let fill = pipeline.fill_cycles() - 3;
     let cycles = u64::from(width) * u64::from(height) * per_pixel + fill;
     FrameTiming {
         primitives,
@@ -86,5 +93,22 @@ mod tests {
             );
             assert!(t.seconds > eq49, "the fill adds time");
         }
+    }
+
+    #[test]
+    fn a_frame_ends_when_the_last_pixel_leaves_shading() {
+        // Hand count, 2×1 pixels, n = 2, K = 1: p = 6. Pixel 1 is issued at 6, its ray
+        // is ready at 6 + L_ray, its second primitive enters at 6 + L_ray + 3 and leaves
+        // the pipeline L_int + L_min + L_shade later.
+        let lib = Library::cyclone_iv_e();
+        let p = Pipeline::build(&lib, &Design::thesis());
+        let t = frame_timing(&p, 2, 2, 1, 50e6);
+        let last_write = 6
+            + p.primary_ray.latency()
+            + 3
+            + p.intersection.latency()
+            + p.min_distance.latency()
+            + p.shading.latency();
+        assert_eq!(t.cycles, u64::from(last_write));
     }
 }

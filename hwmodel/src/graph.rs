@@ -37,6 +37,40 @@ pub enum NodeKind {
     RowRegister,
 }
 
+/// What an add/sub core computes from its inputs `[a, b]`. A negated operand is a
+/// flipped sign bit on the wire (no logic, exact), so all four are one IP core.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum AddSubMode {
+    /// `a + b`.
+    Add,
+    /// `a − b`.
+    Sub,
+    /// `−a + b`.
+    NegAdd,
+    /// `−a − b`.
+    NegSub,
+}
+
+/// What a node means beyond its operator kind: the part of the graph the scheduler
+/// ignores and the RTL generator and the graph evaluator need.
+///
+/// Operand order is meaning too: a compare's inputs `[a, b]` give `a < b`; a select's
+/// `[sel, a, b]` give `sel ? b : a`; a register's `[value, enable]` load `value` when
+/// `enable` is set (no enable: every cycle).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum Detail {
+    /// Nothing more (block inputs, multipliers, roots, compares, selects, registers).
+    #[default]
+    None,
+    /// A literal frame constant: its IEEE-754 bit pattern (or integer value).
+    Literal(u32),
+    /// An add/sub core and what it computes.
+    AddSub(AddSubMode),
+    /// A scene-memory read: word `field` of the primitive at the address input
+    /// (`HwPrimitive::WORD_NAMES` order, then the shading extras).
+    Field(u32),
+}
+
 /// One node.
 #[derive(Clone, Debug)]
 pub struct Node {
@@ -45,6 +79,7 @@ pub struct Node {
     /// Width of the value it produces.
     pub bits: u32,
     pub label: String,
+    pub detail: Detail,
 }
 
 /// A dataflow graph under construction or finished.
@@ -111,8 +146,14 @@ impl Graph {
             inputs,
             bits,
             label: label.to_string(),
+            detail: Detail::None,
         });
         self.nodes.len() - 1
+    }
+
+    fn with_detail(&mut self, id: NodeId, detail: Detail) -> NodeId {
+        self.nodes[id].detail = detail;
+        id
     }
 
     /// A 32-bit input that changes with every item.
@@ -128,6 +169,51 @@ impl Graph {
     /// A 32-bit frame constant (eye, light, camera step, literal).
     pub fn constant(&mut self, label: &str) -> NodeId {
         self.input_held(label, 32, FRAME_CONSTANT)
+    }
+
+    /// A literal 32-bit frame constant (0, 1, 2, 4, 255, ∞ …).
+    pub fn literal(&mut self, label: &str, value: f32) -> NodeId {
+        let id = self.constant(label);
+        self.with_detail(id, Detail::Literal(value.to_bits()))
+    }
+
+    /// A literal frame constant of `bits` (a flag or a small integer).
+    pub fn literal_bits(&mut self, label: &str, bits: u32, value: u32) -> NodeId {
+        let id = self.input_held(label, bits, FRAME_CONSTANT);
+        self.with_detail(id, Detail::Literal(value))
+    }
+
+    /// An add/sub core computing `mode` of `[a, b]`.
+    pub fn add_sub(&mut self, mode: AddSubMode, a: NodeId, b: NodeId, label: &str) -> NodeId {
+        let id = self.op(OpKind::AddSub, &[a, b], label);
+        self.with_detail(id, Detail::AddSub(mode))
+    }
+
+    /// `a + b`.
+    pub fn add(&mut self, a: NodeId, b: NodeId, label: &str) -> NodeId {
+        self.add_sub(AddSubMode::Add, a, b, label)
+    }
+
+    /// `a − b`.
+    pub fn sub(&mut self, a: NodeId, b: NodeId, label: &str) -> NodeId {
+        self.add_sub(AddSubMode::Sub, a, b, label)
+    }
+
+    /// `a < b` (one bit).
+    pub fn less(&mut self, a: NodeId, b: NodeId, label: &str) -> NodeId {
+        self.op_bits(OpKind::Compare, &[a, b], 1, label)
+    }
+
+    /// `sel ? b : a`, as wide as `a`.
+    pub fn select(&mut self, sel: NodeId, a: NodeId, b: NodeId, label: &str) -> NodeId {
+        let bits = self.nodes[a].bits;
+        self.op_bits(OpKind::Mux, &[sel, a, b], bits, label)
+    }
+
+    /// A read of word `field` of the primitive at `address` from the scene memory.
+    pub fn ram_read(&mut self, address: NodeId, field: u32, bits: u32, label: &str) -> NodeId {
+        let id = self.op_bits(OpKind::RamRead, &[address], bits, label);
+        self.with_detail(id, Detail::Field(field))
     }
 
     /// An operator producing a 32-bit value.

@@ -15,6 +15,8 @@
 //! - [`table`]: the model next to the thesis's tables 7 and 8 with percentage errors;
 //! - [`hw_scene`], [`emulator`], [`mif`]: the scene as the hardware holds it, the image
 //!   it computes, and its Memory Initialization File;
+//! - [`graph_eval`]: the block graphs evaluated on values, the picture they compute
+//!   (checked against the emulator; the reference for the generated RTL);
 //! - [`float_policy`]: the arithmetic of the RTL's floating-point operators (rounding,
 //!   flushed subnormals, NaN), which the emulator computes in.
 
@@ -26,6 +28,7 @@ pub mod emulator;
 pub mod float_policy;
 pub mod frame_timing;
 pub mod graph;
+pub mod graph_eval;
 pub mod hw_scene;
 pub mod library;
 pub mod mif;

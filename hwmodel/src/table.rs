@@ -13,7 +13,7 @@ use crate::composites::{
     dot, normalize, vector_add_sub, vector_input, vector_output, vector_scale,
 };
 use crate::design::Design;
-use crate::graph::Graph;
+use crate::graph::{AddSubMode, Graph};
 use crate::library::{Library, OpKind, Resources};
 
 /// A row as the thesis printed it: latency, LE, comb, regs, mem bits, mult.
@@ -283,7 +283,7 @@ pub fn composite_figures(lib: &Library) -> Vec<BlockFigures> {
     let add_s = build(&|g| {
         let a = vector_input(g, "a");
         let b = vector_input(g, "b");
-        let r = vector_add_sub(g, a, b, "a+b");
+        let r = vector_add_sub(g, AddSubMode::Add, a, b, "a+b");
         vector_output(g, r);
     });
     [
