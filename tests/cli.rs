@@ -658,6 +658,58 @@ fn hw_time_what_ifs_show_the_thesis_design_beside_them() {
 }
 
 #[test]
+fn hw_time_warns_when_a_design_fits_only_on_paper() {
+    // The thesis's design on its board: about three quarters of the LEs (the thesis
+    // routed 78 %), within the 85 % routing headroom.
+    let v = json(&rtprof(&["hw", "time", "balls7", "--json"]));
+    assert_eq!(v["fits"], true);
+    assert_eq!(v["fit_state"], "fits");
+    assert_eq!(v["fit"]["state"], "fits");
+    assert_eq!(v["fit"]["routing_headroom"], 0.85);
+    assert_eq!(v["fit"]["above_headroom"], serde_json::json!([]));
+    // All three optimizations buy a second intersection unit that fills the device
+    // (about 99 % of its LEs): it fits on paper, but is above the headroom.
+    let what_if = [
+        "hw",
+        "time",
+        "balls7",
+        "--ortho",
+        "--no-rsqrt-shading",
+        "--fast-sqrt",
+        "--units",
+        "2",
+    ];
+    let v = json(&rtprof(&[&what_if[..], &["--json"]].concat()));
+    let le = v["utilization"]["le"].as_f64().unwrap();
+    assert!(le > 0.85 && le <= 1.0, "{le}");
+    assert_eq!(v["fits"], true);
+    assert_eq!(v["fit_state"], "fits_on_paper");
+    assert_eq!(v["fit"]["above_headroom"], serde_json::json!(["le"]));
+    assert_eq!(v["largest_units"], 2);
+    assert_eq!(v["largest_units_within_headroom"], 1);
+    assert_eq!(v["thesis_design"]["fit_state"], "fits");
+    // The text says so in a warning line, for the what-if only.
+    let out = rtprof(&what_if);
+    assert!(out.status.success(), "{}", stderr(&out));
+    let text = String::from_utf8_lossy(&out.stdout);
+    let warnings: Vec<&str> = text
+        .lines()
+        .filter(|l| l.trim_start().starts_with("warning:"))
+        .collect();
+    assert_eq!(warnings.len(), 1, "{text}");
+    assert!(
+        warnings[0].contains("logic elements at")
+            && warnings[0].contains("above the 85 % routing headroom"),
+        "{text}"
+    );
+    assert!(text.contains("on paper only (le > 85 %)"), "{text}");
+    // A second unit alone does not fit at all: no headroom warning, a "no".
+    let v = json(&rtprof(&["hw", "time", "balls7", "--units", "2", "--json"]));
+    assert_eq!(v["fits"], false);
+    assert_eq!(v["fit_state"], "does_not_fit");
+}
+
+#[test]
 fn hw_table_json_names_the_blocks_and_gives_errors() {
     let v = json(&rtprof(&["hw", "table", "--json"]));
     let blocks = v["blocks"].as_array().unwrap();

@@ -7,6 +7,8 @@
 //! validated device and what runs out, the model's worst error against table 8, and
 //! failures. A sentence whose data is missing is left out.
 
+use hwmodel::device::{FitState, headroom_warning, resources_above_headroom};
+
 use crate::charts::short_name;
 use crate::format::{join_list, percent_of};
 use crate::results::{
@@ -223,6 +225,33 @@ fn hardware_speedup_finding(results: &Results) -> Option<String> {
     ))
 }
 
+/// The fit of a device use: fits, fits on paper only (logic or memory above the routing
+/// headroom, [`hwmodel::device::ROUTING_HEADROOM_PERCENT`]), does not fit.
+pub fn fit_state(d: &DeviceUse) -> FitState {
+    FitState::of(d.fits, &resources_above_headroom_of(d))
+}
+
+/// The routing-headroom warning of a device use ([`hwmodel::device::headroom_warning`]),
+/// `None` unless it fits on paper only.
+pub fn headroom_warning_of(d: &DeviceUse) -> Option<String> {
+    if fit_state(d) != FitState::FitsOnPaper {
+        return None;
+    }
+    let share = |used: u64, capacity: u64| percent_of(used, capacity) / 100.0;
+    let above: Vec<(&str, f64)> = resources_above_headroom_of(d)
+        .into_iter()
+        .map(|r| match r {
+            "le" => (r, share(d.le, d.le_capacity)),
+            _ => (r, share(d.mem_bits, d.mem_capacity)),
+        })
+        .collect();
+    headroom_warning(&above)
+}
+
+fn resources_above_headroom_of(d: &DeviceUse) -> Vec<&'static str> {
+    resources_above_headroom((d.le, d.le_capacity), (d.mem_bits, d.mem_capacity))
+}
+
 /// Resources a device runs out of: demand at or above its capacity.
 pub fn exhausted_resources(d: &DeviceUse) -> Vec<String> {
     let mut out = Vec::new();
@@ -267,9 +296,19 @@ fn device_finding(results: &Results) -> Option<String> {
     } else {
         format!("what runs out is {}", join_list(&exhausted))
     };
+    let (verdict, only) = match fit_state(d) {
+        FitState::Fits => ("fits", String::new()),
+        FitState::FitsOnPaper => (
+            "fits",
+            format!(
+                " only on paper, above the {} % routing headroom",
+                hwmodel::device::ROUTING_HEADROOM_PERCENT
+            ),
+        ),
+        FitState::DoesNotFit => ("does not fit", String::new()),
+    };
     Some(format!(
-        "The thesis design {} the {}{} ({use_text}); {runs_out}.",
-        if d.fits { "fits" } else { "does not fit" },
+        "The thesis design {verdict} the {}{}{only} ({use_text}); {runs_out}.",
         d.device,
         if d.validated {
             ""
@@ -757,5 +796,46 @@ mod tests {
         assert_eq!(geometric_mean([f64::NAN, -1.0]), None);
         let (m, n) = geometric_mean([2.0, 8.0, f64::INFINITY]).expect("mean");
         assert!((m - 4.0).abs() < 1e-12 && n == 2);
+    }
+
+    /// The EP4CE115 with `le` logic elements used, everything else as the sample's.
+    fn ep4ce115_at(le: u64) -> DeviceUse {
+        let mut d = sample_results().hardware.expect("hardware").devices[0].clone();
+        assert_eq!((d.device.as_str(), d.le_capacity), ("EP4CE115", 114_480));
+        d.le = le;
+        d.fits = le <= d.le_capacity;
+        d
+    }
+
+    #[test]
+    fn the_device_finding_says_when_the_design_fits_only_on_paper() {
+        // 83,948 of 114,480 LEs (73.3 %): within the 85 % headroom.
+        let d = ep4ce115_at(83_948);
+        assert_eq!(fit_state(&d), FitState::Fits);
+        assert_eq!(headroom_warning_of(&d), None);
+        // 113,335 LEs, 99 %: fits on paper only, with the one warning sentence.
+        let d = ep4ce115_at(113_335);
+        assert_eq!(fit_state(&d), FitState::FitsOnPaper);
+        assert_eq!(
+            headroom_warning_of(&d).as_deref(),
+            Some(
+                "logic elements at 99.0 % of the device, above the 85 % routing headroom: \
+                 fits on paper, but a design this full rarely routes or meets timing"
+            )
+        );
+        let mut r = sample_results();
+        r.hardware.as_mut().expect("hardware").devices[0] = d;
+        let f = device_finding(&r).expect("a device finding");
+        assert!(
+            f.starts_with(
+                "The thesis design fits the EP4CE115 only on paper, above the 85 % routing headroom (99 % of its logic elements"
+            ),
+            "{f}"
+        );
+        // 97,308 LEs is exactly 85 %: within. Over the device: does not fit, no warning.
+        assert_eq!(fit_state(&ep4ce115_at(97_308)), FitState::Fits);
+        let over = ep4ce115_at(114_481);
+        assert_eq!(fit_state(&over), FitState::DoesNotFit);
+        assert_eq!(headroom_warning_of(&over), None);
     }
 }

@@ -7,7 +7,10 @@ use std::sync::atomic::AtomicBool;
 
 use hwmodel::blocks::Pipeline;
 use hwmodel::design::Design;
-use hwmodel::device::{Fit, demand, fit, largest_units};
+use hwmodel::device::{
+    Fit, FitState, ROUTING_HEADROOM_PERCENT, demand, fit, largest_units,
+    largest_units_within_headroom,
+};
 use hwmodel::frame_timing::{FrameTiming, frame_timing};
 use hwmodel::hw_scene::HwScene;
 use hwmodel::library::{DeviceSpec, Library};
@@ -25,12 +28,17 @@ pub struct Prediction {
     pub design: String,
     #[serde(flatten)]
     pub timing: FrameTiming,
+    /// Every resource within the device (on paper; `fit_state` adds the headroom).
     pub fits: bool,
+    /// `fits`, `fits_on_paper` (above the routing headroom: warned) or `does_not_fit`.
+    pub fit_state: FitState,
     pub utilization: hwmodel::device::Utilization,
     #[serde(rename = "fit")]
     pub detail: Fit,
-    /// The largest number of intersection units that fits this device.
+    /// The largest number of intersection units that fits this device (on paper).
     pub largest_units: Option<u32>,
+    /// The largest number of intersection units within the routing headroom.
+    pub largest_units_within_headroom: Option<u32>,
 }
 
 /// Measured software time of the same job.
@@ -81,9 +89,13 @@ pub fn predict(
         design: design.label(),
         timing,
         fits: f.fits,
+        fit_state: f.state,
         utilization: f.utilization.clone(),
         detail: f,
         largest_units: largest_units(lib, device, design, primitives, width, height),
+        largest_units_within_headroom: largest_units_within_headroom(
+            lib, device, design, primitives, width, height,
+        ),
     }
 }
 
@@ -204,12 +216,18 @@ fn format_prediction_column(p: &Prediction) -> Vec<String> {
         ),
         format!("{} ({})", f.used.mem_bits, pct(f.utilization.mem_bits)),
         format!("{} ({})", f.plls, pct(f.utilization.plls)),
-        if f.fits {
-            "yes".to_string()
-        } else {
-            format!("no ({} over)", f.over.join(", "))
+        match f.state {
+            FitState::Fits => f.state.label().to_string(),
+            FitState::FitsOnPaper => format!(
+                "{} ({} > {ROUTING_HEADROOM_PERCENT} %)",
+                f.state.label(),
+                f.above_headroom.join(", ")
+            ),
+            FitState::DoesNotFit => format!("{} ({} over)", f.state.label(), f.over.join(", ")),
         },
         p.largest_units
+            .map_or_else(|| "none".to_string(), |k| k.to_string()),
+        p.largest_units_within_headroom
             .map_or_else(|| "none".to_string(), |k| k.to_string()),
     ]
 }
@@ -249,6 +267,7 @@ impl TimeReport {
             "PLLs",
             "fits",
             "largest K that fits",
+            "largest K in headroom",
         ];
         let mut columns = Vec::new();
         if let Some(t) = &r.thesis_design {
@@ -256,7 +275,7 @@ impl TimeReport {
         }
         columns.push(format_prediction_column(p));
         for (i, label) in labels.iter().enumerate() {
-            out += &format!("  {label:<20}");
+            out += &format!("  {label:<22}");
             for c in &columns {
                 out += &format!(" {:<34}", c[i]);
             }
@@ -268,6 +287,11 @@ impl TimeReport {
                 t.timing.seconds / p.timing.seconds,
                 (p.detail.used.le as f64 / t.detail.used.le as f64 - 1.0) * 100.0
             );
+        }
+        for q in r.thesis_design.iter().chain([p]) {
+            if let Some(warning) = q.detail.headroom_warning() {
+                out += &format!("  warning: {}: {warning}\n", q.design);
+            }
         }
         if p.detail.soft_mult_elements > 0 {
             out += &format!(

@@ -1,7 +1,8 @@
 //! `rtprof hw`: the FPGA pipeline model. `table` (the model next to the thesis's tables
 //! 7 and 8), `time` (frame time, device fit and what-ifs for a scene, optionally against
 //! the measured software), `render` (the image the hardware would show) and `mif` (the
-//! scene memory as an Altera Memory Initialization File).
+//! scene memory as an Altera Memory Initialization File); `rtl`, `sim` and `synth` are
+//! in `hw_rtl.rs`.
 
 use super::scene_args::{SCENE_HELP, SIZE_HELP, named_after, parse_scene, parse_size};
 use anyhow::Result;
@@ -29,6 +30,14 @@ enum HwCommand {
     Render(RenderArgs),
     /// Write the scene memory as an Altera Memory Initialization File (.mif).
     Mif(MifArgs),
+    /// Write the pipeline as Verilog generated from the model's scheduled graphs.
+    Rtl(super::hw_rtl::RtlArgs),
+    /// Simulate the generated RTL with Verilator: image, cycles per frame and per
+    /// block, checked against the model and the emulator.
+    Sim(super::hw_rtl::SimArgs),
+    /// Synthesize the generated RTL with Yosys for Cyclone IV E: LUT4, flip-flops and
+    /// memory per block beside the model and the thesis's table 8.
+    Synth(super::hw_rtl::SynthArgs),
 }
 
 /// Design changes shared by `table` and `time`.
@@ -106,7 +115,8 @@ struct TimeArgs {
     #[arg(long, value_name = "N", default_value_t = 3,
           value_parser = clap::value_parser!(u32).range(1..=1000))]
     repeats: u32,
-    /// Print JSON: {primitives, units, clock_hz, cycles, seconds, fits, utilization, …}.
+    /// Print JSON: {primitives, units, clock_hz, cycles, seconds, fits, fit_state,
+    /// utilization, …}; fit_state is fits_on_paper above the routing headroom.
     #[arg(long)]
     json: bool,
 }
@@ -146,6 +156,9 @@ pub fn run(args: &HwArgs) -> Result<()> {
         HwCommand::Time(a) => time(a),
         HwCommand::Render(a) => render(a),
         HwCommand::Mif(a) => mif(a),
+        HwCommand::Rtl(a) => super::hw_rtl::rtl(a),
+        HwCommand::Sim(a) => super::hw_rtl::simulate(a),
+        HwCommand::Synth(a) => super::hw_rtl::synth(a),
     }
 }
 

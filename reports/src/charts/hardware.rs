@@ -1,6 +1,7 @@
 //! The hardware model's charts: software against hardware frame time and speed-up per
 //! scene (thesis fig. 49, 50), and the devices' utilization.
 
+use hwmodel::device::ROUTING_HEADROOM_PERCENT;
 use plotters::prelude::*;
 
 use super::Chart;
@@ -10,7 +11,7 @@ use super::data::{RESOURCES, device_shares, hardware_scenes};
 use super::marks::{Dashed, Key, Place, cap, keyed, stem};
 use super::numbers::{format_number, truncate};
 use super::scale::{Axis, Ticks, finite_positive, tight_log_range};
-use super::style::{ALARM, INK, PALETTE, VALUE_PX, text_width};
+use super::style::{ALARM, GUIDE_TEXT, INK, PALETTE, VALUE_PX, text_width};
 use crate::results::Results;
 
 /// Software and hardware bars of a scene.
@@ -33,6 +34,12 @@ const LIMIT: Dashed = Dashed {
     width: 2,
     dash: 6,
     gap: 4,
+};
+
+/// The routing headroom's line: a guide, not a limit (`hwmodel::device`).
+const HEADROOM: Dashed = Dashed {
+    colour: GUIDE_TEXT,
+    ..LIMIT
 };
 
 /// Scene names as category labels.
@@ -146,8 +153,13 @@ pub fn device_utilization_chart(results: &Results) -> Option<Chart> {
     Some(category_chart(
         (
             "device-utilization",
-            format!("Device utilization of the thesis design ({})", hardware.family),
-            "Share of each device's logic elements, 9-bit multipliers (demand, counting those the fitter builds in logic), memory bits and PLLs; above the dashed 100 % line the resource runs out.".to_string(),
+            format!(
+                "Device utilization of the thesis design ({})",
+                hardware.family
+            ),
+            format!(
+                "Share of each device's logic elements, 9-bit multipliers (demand, counting those the fitter builds in logic), memory bits and PLLs; above the dashed 100 % line the resource runs out; logic elements or memory bits above the grey {ROUTING_HEADROOM_PERCENT} % line fit on paper only (the routing-headroom rule)."
+            ),
         ),
         Categories::fitted(labels, 0.0, "device"),
         Axis::linear(0.0, max, Ticks::Whole, "utilization (% of the device)", 56),
@@ -158,7 +170,13 @@ pub fn device_utilization_chart(results: &Results) -> Option<Chart> {
                     .iter()
                     .map(|g| if g.1[r].is_finite() { g.1[r] } else { 0.0 })
                     .collect();
-                let anno = plot.columns(RESOURCE_SLOTS, r, shares.iter().copied().enumerate(), 0.0, colour)?;
+                let anno = plot.columns(
+                    RESOURCE_SLOTS,
+                    r,
+                    shares.iter().copied().enumerate(),
+                    0.0,
+                    colour,
+                )?;
                 keyed(anno, resource, Key::Box(colour));
                 for (i, v) in shares.iter().enumerate() {
                     let at = (RESOURCE_SLOTS.centre(i, r), *v);
@@ -166,6 +184,17 @@ pub fn device_utilization_chart(results: &Results) -> Option<Chart> {
                 }
             }
             plot.reference_line(100.0, LIMIT, "device capacity (100 %)")?;
+            // The headroom's note at the right end, clear of the capacity line's at the
+            // left (the devices after the thesis's are the larger, emptier ones).
+            let headroom = ROUTING_HEADROOM_PERCENT as f64;
+            let (x0, x1) = (plot.chart.x_range().start, plot.chart.x_range().end);
+            plot.dashed([(x0, headroom), (x1, headroom)], HEADROOM)?;
+            plot.text(
+                &format!("routing headroom ({ROUTING_HEADROOM_PERCENT} %)"),
+                (x1, headroom),
+                Place::AboveLeft,
+                HEADROOM.colour,
+            )?;
             plot.legend(SeriesLabelPosition::UpperRight)
         },
     ))

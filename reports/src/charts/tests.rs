@@ -143,6 +143,7 @@ fn every_chart_of_the_sample_is_svg_with_its_axis_titles() {
                 "utilization (% of the device)",
                 "EP4CE115",
                 "5CGXFC9 (unvalidated)",
+                "routing headroom (85 %)",
             ],
         ),
         (

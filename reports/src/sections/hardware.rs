@@ -7,8 +7,10 @@ use super::GRID_COLUMNS;
 use crate::document::{
     Block, Builder, Cell, Column, ImageGrid, Inline, Section, Table, Tile, Tone,
 };
+use crate::findings::{fit_state, headroom_warning_of};
 use crate::format;
 use crate::results::{DeviceUse, HwColumn, HwRow, HwRowKind, SceneResult};
+use hwmodel::device::{FitState, ROUTING_HEADROOM_PERCENT, above_headroom};
 
 /// Tables 7 or 8: each cell the model's figure, its detail the thesis's figure and the
 /// model's signed error, its tone the size of that error ([`Tone::of_error`]).
@@ -103,7 +105,7 @@ pub fn device_utilization(b: &mut Builder) -> Section {
     if devices.is_empty() {
         return s.empty("No device fit in this run (no hardware model).");
     }
-    s.text("The thesis's design fitted to each device: used and available resources, and the largest number of intersection units that still fits.");
+    s.text(format!("The thesis's design fitted to each device: used and available resources, and the largest number of intersection units that still fits. A design that fits but uses more than {ROUTING_HEADROOM_PERCENT} % of the logic elements or memory bits fits on paper only: Quartus rarely routes a device that full, or meets timing on it (the routing-headroom rule, docs/hardware-model.md)."));
     let mut t = Table::new(vec![
         Column::text("device"),
         Column::text("fits"),
@@ -111,12 +113,20 @@ pub fn device_utilization(b: &mut Builder) -> Section {
         Column::number("9-bit multipliers"),
         Column::number("memory bits"),
         Column::number("PLLs"),
-        Column::number("largest K that fits"),
+        Column::number("largest K that fits").detail("on paper"),
     ]);
     for d in devices {
         t.rows.push(device_row(d));
     }
     s.blocks.push(Block::Table(t));
+    for d in devices {
+        if let Some(warning) = headroom_warning_of(d) {
+            s.blocks.push(Block::note(
+                Tone::Warning,
+                format!("{}: {warning}.", d.device),
+            ));
+        }
+    }
     if let Some(figure) = b.chart("device-utilization", 10.0) {
         s.blocks.push(figure);
     }
@@ -130,6 +140,23 @@ fn device_row(d: &DeviceUse) -> Vec<Cell> {
             format::percent_of(used, capacity),
         )
         .tone(if over { Tone::Bad } else { Tone::Neutral })
+    };
+    // Logic and memory: a warning above the routing headroom, bad when they run out.
+    let headroom_usage = |used: u64, capacity: u64| {
+        let cell = usage(used, capacity, used >= capacity);
+        if used < capacity && above_headroom(used, capacity) {
+            cell.tone(Tone::Warning).detail(format!(
+                "above the {ROUTING_HEADROOM_PERCENT} % routing headroom"
+            ))
+        } else {
+            cell
+        }
+    };
+    let state = fit_state(d);
+    let state_tone = match state {
+        FitState::Fits => Tone::Good,
+        FitState::FitsOnPaper => Tone::Warning,
+        FitState::DoesNotFit => Tone::Bad,
     };
     let mut mult = usage(
         d.mult,
@@ -148,10 +175,10 @@ fn device_row(d: &DeviceUse) -> Vec<Cell> {
     }
     vec![
         device,
-        Cell::text(if d.fits { "yes" } else { "no" }).tone(Tone::of_yes(d.fits)),
-        usage(d.le, d.le_capacity, d.le >= d.le_capacity),
+        Cell::text(state.label()).tone(state_tone),
+        headroom_usage(d.le, d.le_capacity),
         mult,
-        usage(d.mem_bits, d.mem_capacity, d.mem_bits >= d.mem_capacity),
+        headroom_usage(d.mem_bits, d.mem_capacity),
         usage(
             u64::from(d.plls),
             u64::from(d.pll_capacity),
@@ -249,4 +276,44 @@ pub fn sw_hw(b: &mut Builder) -> Section {
         )));
     }
     s
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_device_row_marks_logic_above_the_routing_headroom() {
+        let mut d = testkit::sample_results()
+            .hardware
+            .expect("hardware")
+            .devices[0]
+            .clone();
+        assert_eq!(d.le_capacity, 114_480);
+        // 50 %: fits, the LE cell neutral.
+        d.le = 57_240;
+        let row = device_row(&d);
+        assert_eq!((row[1].text.as_str(), row[1].tone), ("yes", Tone::Good));
+        assert_eq!(
+            (row[2].tone, row[2].detail.as_deref()),
+            (Tone::Neutral, None)
+        );
+        // 99 %: fits on paper only, the LE cell a warning that says why.
+        d.le = 113_335;
+        let row = device_row(&d);
+        assert_eq!(
+            (row[1].text.as_str(), row[1].tone),
+            ("on paper only", Tone::Warning)
+        );
+        assert_eq!(
+            (row[2].tone, row[2].detail.as_deref()),
+            (Tone::Warning, Some("above the 85 % routing headroom"))
+        );
+        // Over the device: does not fit, the LE cell bad.
+        d.le = 114_481;
+        d.fits = false;
+        let row = device_row(&d);
+        assert_eq!((row[1].text.as_str(), row[1].tone), ("no", Tone::Bad));
+        assert_eq!(row[2].tone, Tone::Bad);
+    }
 }
