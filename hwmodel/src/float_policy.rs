@@ -44,6 +44,11 @@
 //! Overflow needs no special case: IEEE rounding to nearest overflows to infinity
 //! exactly when the 24-bit rounding reaches 2¹²⁸.
 //!
+//! [`inv_sqrt`] is no operation of its own: it is [`div`]`(1.0, `[`sqrt`]`(a))`, two
+//! policy operations, rounded twice. [`to_u8`] converts to an integer (rounding half
+//! away from zero, saturating), so rules 2 to 4 have nothing to say about its result;
+//! it flushes subnormal inputs like every operator.
+//!
 //! [`fast_sqrt`], [`select`] and the delay line are operations on bit patterns and
 //! take no part in the policy.
 
@@ -113,6 +118,29 @@ pub fn sqrt(a: f32) -> f32 {
     let root = a.sqrt();
     // The root of a positive normal number is normal: `finish` only canonicalises NaN.
     finish(root, f64::from(root))
+}
+
+/// `1 / sqrt(a)` under the policy (`fp_inv_sqrt`): exactly [`div`]`(1.0, `[`sqrt`]`(a))`,
+/// each step rounded to nearest, ties to even (so the result is rounded twice, as the
+/// software's normalisation computes it; it is not always the correctly rounded
+/// reciprocal root). `inv_sqrt(+0) = +inf`, `inv_sqrt(-0) = -inf` (the root of -0 is
+/// -0), subnormals count as zeros of their sign, `inv_sqrt(+inf) = +0`, and a NaN,
+/// negative non-zero or -inf input gives [`CANONICAL_NAN`].
+pub fn inv_sqrt(a: f32) -> f32 {
+    div(1.0, sqrt(a))
+}
+
+/// `a` as an unsigned 8-bit integer (`fp_to_u8`, the pixel's gray value): rounded to
+/// nearest, ties away from zero (`f32::round`: 127.5 gives 128, 0.5 gives 1), then
+/// saturated to 0..=255 (255.5 and more, and +inf, give 255). Negative values, zeros,
+/// subnormals (flushed) and NaN give 0.
+///
+/// For `x` in [0, 255] this is `x.round() as u8`, the rounding of
+/// [`crate::emulator::to_gray8`], so `to_u8(v * 255.0) == to_gray8(v)` for every `v`.
+pub fn to_u8(a: f32) -> u8 {
+    // `as` saturates: NaN and negative values (-0.5 rounds to -1) to 0, 255.5 and above
+    // to 255. A subnormal rounds to zero either way; flushing it says so.
+    flush(a).round() as u8
 }
 
 /// `a < b` under the policy (`fp_compare`'s `lt`): subnormals are zeros, zeros are
@@ -280,6 +308,80 @@ mod tests {
         assert!(lt(f32::NEG_INFINITY, -f32::MAX));
         assert_eq!(bits(sqrt(-0.0)), 0x8000_0000);
         assert_eq!(bits(sqrt(f32::INFINITY)), 0x7F80_0000);
+    }
+
+    #[test]
+    fn inv_sqrt_is_a_root_then_a_reciprocal() {
+        assert_eq!(bits(inv_sqrt(4.0)), bits(0.5));
+        assert_eq!(bits(inv_sqrt(0.25)), bits(2.0));
+        assert_eq!(bits(inv_sqrt(1.0)), bits(1.0));
+        // sqrt(2) = 0x3FB504F3 (1.41421354), 1 / that = 0.707106769 = 0x3F3504F3.
+        assert_eq!(bits(inv_sqrt(2.0)), 0x3F35_04F3);
+        // 2^-126 (the smallest normal): root 2^-63, reciprocal 2^63.
+        assert_eq!(bits(inv_sqrt(f32::MIN_POSITIVE)), 0x5F00_0000);
+        assert_eq!(bits(inv_sqrt(0.0)), 0x7F80_0000);
+        assert_eq!(bits(inv_sqrt(-0.0)), 0xFF80_0000);
+        assert_eq!(bits(inv_sqrt(1e-40)), 0x7F80_0000); // subnormal: +0
+        assert_eq!(bits(inv_sqrt(-1e-40)), 0xFF80_0000); // -0
+        assert_eq!(bits(inv_sqrt(f32::INFINITY)), 0);
+        for x in [-1.0, f32::NEG_INFINITY, f32::from_bits(0x7F80_0001)] {
+            assert_eq!(bits(inv_sqrt(x)), CANONICAL_NAN);
+        }
+    }
+
+    #[test]
+    fn to_u8_rounds_half_away_from_zero_and_saturates() {
+        assert_eq!(to_u8(127.5), 128);
+        assert_eq!(to_u8(126.5), 127);
+        assert_eq!(to_u8(0.5), 1);
+        assert_eq!(to_u8(f32::from_bits(0x3EFF_FFFF)), 0); // just below 0.5
+        assert_eq!(to_u8(0.0), 0);
+        assert_eq!(to_u8(1e-40), 0);
+        assert_eq!(to_u8(1.0), 1);
+        assert_eq!(to_u8(254.49), 254);
+        assert_eq!(to_u8(254.5), 255);
+        assert_eq!(to_u8(255.0), 255);
+        assert_eq!(to_u8(255.49), 255);
+        assert_eq!(to_u8(255.5), 255);
+        assert_eq!(to_u8(300.0), 255);
+        assert_eq!(to_u8(f32::MAX), 255);
+        assert_eq!(to_u8(f32::INFINITY), 255);
+        assert_eq!(to_u8(-0.4), 0);
+        assert_eq!(to_u8(-0.5), 0);
+        assert_eq!(to_u8(-1.0), 0);
+        assert_eq!(to_u8(f32::NEG_INFINITY), 0);
+        assert_eq!(to_u8(f32::NAN), 0);
+        assert_eq!(to_u8(-f32::NAN), 0);
+    }
+
+    #[test]
+    fn to_u8_of_the_scaled_gray_value_is_to_gray8() {
+        use crate::emulator::to_gray8;
+        let mut values = vec![
+            -1.0,
+            -0.0,
+            0.0,
+            1e-40,
+            1.0,
+            1.5,
+            1e30,
+            f32::MAX,
+            f32::INFINITY,
+            f32::NEG_INFINITY,
+            f32::NAN,
+        ];
+        // Around every rounding boundary (k + 0.5) / 255, a few ulps either side.
+        for k in 0..=255u32 {
+            let v = (k as f32 + 0.5) / 255.0;
+            values.extend((0..9).map(|d| f32::from_bits(v.to_bits() + d - 4)));
+        }
+        // A sweep of [0, 1] and a little beyond.
+        values.extend((0..0x3F90_0000u32).step_by(4099).map(f32::from_bits));
+        for v in values {
+            assert_eq!(to_u8(v * 255.0), to_gray8(v), "{v:e}");
+            // Scaled with the policy's multiplier, as the pipeline would.
+            assert_eq!(to_u8(mul(v, 255.0)), to_gray8(v), "{v:e}");
+        }
     }
 
     #[test]

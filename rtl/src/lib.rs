@@ -10,7 +10,10 @@
 
 /// The operators' arithmetic, kept in `hwmodel` so that its emulator computes in it.
 pub use hwmodel::float_policy;
+pub mod generate;
 pub mod operators;
+pub mod sim;
+pub mod synth;
 
 use std::path::PathBuf;
 
@@ -35,6 +38,21 @@ pub enum RtlError {
         port: String,
         problem: &'static str,
     },
+    /// A tool the command needs is not installed.
+    #[error("`{tool}` was not found: {hint}")]
+    ToolMissing {
+        tool: &'static str,
+        hint: &'static str,
+    },
+    /// A tool ran and failed.
+    #[error("{tool}: {message}")]
+    Tool { tool: &'static str, message: String },
+    /// The design cannot be generated as asked.
+    #[error("RTL generation: {0}")]
+    Generate(String),
+    /// A synthesis that cannot be run or reported as asked.
+    #[error("synthesis: {0}")]
+    Synth(String),
     /// A module asked to stand in for an operator it does not implement.
     #[error("{module} does not implement the library operator `{op}`")]
     NotImplemented {

@@ -36,7 +36,7 @@ pub const DELAY: SourceFile = SourceFile {
 
 /// Every source file of the library: the operators in [`Operator::ALL`] order, then
 /// the delay line they share.
-pub const SOURCES: [SourceFile; 11] = [
+pub const SOURCES: [SourceFile; 13] = [
     Operator::AddSub.source(),
     Operator::Multiply.source(),
     Operator::Divide.source(),
@@ -47,6 +47,8 @@ pub const SOURCES: [SourceFile; 11] = [
     Operator::Const.source(),
     Operator::Select.source(),
     Operator::Register.source(),
+    Operator::InvSqrt.source(),
+    Operator::ToU8.source(),
     DELAY,
 ];
 
@@ -74,11 +76,17 @@ pub enum Operator {
     Select,
     /// `fp_register`: `y = a`, LATENCY cycles later.
     Register,
+    /// `fp_inv_sqrt`: `y = 1 / sqrt(a)`, computed as `fp_div(1.0, fp_sqrt(a))` (it
+    /// instantiates both cores: see [`Operator::files`]).
+    InvSqrt,
+    /// `fp_to_u8`: `y = (u8) round(a)`, an 8-bit `y`, rounded half away from zero and
+    /// saturated to 0..=255.
+    ToU8,
 }
 
 impl Operator {
     /// Every operator.
-    pub const ALL: [Operator; 10] = [
+    pub const ALL: [Operator; 12] = [
         Operator::AddSub,
         Operator::Multiply,
         Operator::Divide,
@@ -89,6 +97,8 @@ impl Operator {
         Operator::Const,
         Operator::Select,
         Operator::Register,
+        Operator::InvSqrt,
+        Operator::ToU8,
     ];
 
     /// The Verilog module name.
@@ -104,6 +114,8 @@ impl Operator {
             Operator::Const => "fp_const",
             Operator::Select => "fp_select",
             Operator::Register => "fp_register",
+            Operator::InvSqrt => "fp_inv_sqrt",
+            Operator::ToU8 => "fp_to_u8",
         }
     }
 
@@ -150,14 +162,29 @@ impl Operator {
                 name: "fp_register.v",
                 text: include_str!("../verilog/fp_register.v"),
             },
+            Operator::InvSqrt => SourceFile {
+                name: "fp_inv_sqrt.v",
+                text: include_str!("../verilog/fp_inv_sqrt.v"),
+            },
+            Operator::ToU8 => SourceFile {
+                name: "fp_to_u8.v",
+                text: include_str!("../verilog/fp_to_u8.v"),
+            },
         }
     }
 
-    /// The files a design using this operator must read: its own and, for every
-    /// operator with a clock, the delay line.
+    /// The files a design using this operator must read: its own, those of the modules
+    /// it instantiates (`fp_inv_sqrt` is built from `fp_sqrt` and `fp_div`) and, for
+    /// every operator with a clock, the delay line.
     pub fn files(self) -> Vec<SourceFile> {
         match self {
             Operator::Const => vec![self.source()],
+            Operator::InvSqrt => vec![
+                self.source(),
+                Operator::Sqrt.source(),
+                Operator::Divide.source(),
+                DELAY,
+            ],
             _ => vec![self.source(), DELAY],
         }
     }
@@ -168,7 +195,9 @@ impl Operator {
     /// `fp_from_int` implements the `convert` row. That row's name is "float to int
     /// (IP)"; the pipeline converts the other way (the screen iterator's counters to
     /// floats), and ALTFP_CONVERT has the same documented latency, 6, for both
-    /// directions at 32 bits.
+    /// directions at 32 bits. `fp_to_u8` (the gray value to the frame buffer's byte)
+    /// implements the same row: ALTFP_CONVERT's float-to-integer direction, whose
+    /// latency, 6, does not depend on the integer's width.
     pub const fn op_kind(self) -> Option<OpKind> {
         match self {
             Operator::AddSub => Some(OpKind::AddSub),
@@ -181,6 +210,8 @@ impl Operator {
             Operator::Const => None,
             Operator::Select => Some(OpKind::Mux),
             Operator::Register => Some(OpKind::Register),
+            Operator::InvSqrt => Some(OpKind::InvSqrt),
+            Operator::ToU8 => Some(OpKind::Convert),
         }
     }
 
@@ -219,15 +250,19 @@ impl Operator {
     }
 
     /// The names of the module's ports, inputs first; the result port is last (`lt`
-    /// for the comparator, `y` for everything else).
+    /// for the comparator, `y` for everything else; `fp_to_u8`'s `y` is 8 bits wide,
+    /// every other `y` 32).
     pub const fn ports(self) -> &'static [&'static str] {
         match self {
             Operator::AddSub => &["clk", "a", "b", "sub", "y"],
             Operator::Multiply | Operator::Divide => &["clk", "a", "b", "y"],
             Operator::Compare => &["clk", "a", "b", "lt"],
-            Operator::Sqrt | Operator::FromInt | Operator::FastSqrt | Operator::Register => {
-                &["clk", "a", "y"]
-            }
+            Operator::Sqrt
+            | Operator::InvSqrt
+            | Operator::FromInt
+            | Operator::ToU8
+            | Operator::FastSqrt
+            | Operator::Register => &["clk", "a", "y"],
             Operator::Const => &["y"],
             Operator::Select => &["clk", "sel", "a", "b", "y"],
         }
@@ -356,6 +391,8 @@ mod tests {
                 ("fp_const", 0),
                 ("fp_select", 0),
                 ("fp_register", 1),
+                ("fp_inv_sqrt", 26),
+                ("fp_to_u8", 6),
             ]
         );
         assert_eq!(
@@ -365,6 +402,12 @@ mod tests {
             7
         );
         assert!(Operator::Sqrt.latency_as(&lib, OpKind::Divide).is_err());
+        assert_eq!(
+            Operator::InvSqrt.latency_as(&lib, OpKind::InvSqrt).unwrap(),
+            26
+        );
+        assert_eq!(Operator::ToU8.latency_as(&lib, OpKind::Convert).unwrap(), 6);
+        assert!(Operator::InvSqrt.latency_as(&lib, OpKind::Sqrt).is_err());
     }
 
     #[test]
@@ -407,6 +450,25 @@ mod tests {
                 assert!(!code.contains(banned), "{}: {banned:?}", file.name);
             }
         }
+    }
+
+    #[test]
+    fn files_hold_every_module_a_source_instantiates() {
+        for op in Operator::ALL {
+            let files = op.files();
+            let code = strip_comments(op.source().text);
+            for file in SOURCES {
+                let module = file.name.trim_end_matches(".v");
+                let used = code.contains(&format!("{module} #("))
+                    && !code.contains(&format!("module {module} #("));
+                if used {
+                    assert!(files.contains(&file), "{}: {}", op.module_name(), file.name);
+                }
+            }
+            assert_eq!(files[0], op.source());
+            assert!(files.iter().all(|f| SOURCES.contains(f)));
+        }
+        assert_eq!(Operator::InvSqrt.files().len(), 4);
     }
 
     /// The text without `//` line comments and `/* */` block comments.

@@ -3,7 +3,8 @@
 //!
 //! For each operator: 1,000,000 seeded random inputs (uniform bit patterns mixed with
 //! values drawn to hit near-equal exponents, cancellation, rounding ties, exact results
-//! and the edges of the exponent range) and a list of edge cases. The test writes the
+//! and the edges of the exponent range; for `fp_to_u8`, values in [-2, 300] with exact
+//! halves and their neighbours) and a list of edge cases. The test writes the
 //! inputs to a file, builds a Verilator model of the operator at the latency of its row
 //! in hwmodel's Cyclone IV E library (wrapped in a generated `tb_top` with uniform
 //! ports, driven by `rtl/verilog/tb/tb_main.cpp`, one input per clock), runs it, and
@@ -308,6 +309,71 @@ fn sqrt_inputs(rng: &mut fastrand::Rng, n: usize) -> Vec<Input> {
         .collect()
 }
 
+/// Random inputs for the reciprocal root: the square root's (uniform bits, positive
+/// normals, exact squares and their neighbours), and powers of two over the whole
+/// exponent range with their neighbours (exact roots of even powers, exact reciprocals).
+fn inv_sqrt_inputs(rng: &mut fastrand::Rng, n: usize) -> Vec<Input> {
+    let mut out = sqrt_inputs(rng, n);
+    for input in &mut out {
+        if rng.u8(0..4) == 0 {
+            let power = rng.u32(1..255) << 23;
+            input[0] = power.wrapping_add(rng.u32(0..5)).wrapping_sub(2);
+        }
+    }
+    out
+}
+
+/// Random inputs for the float-to-byte conversion: uniform bit patterns; uniform values
+/// in [-2, 300]; exact integers and halves k + 0.5 (ties, rounded away from zero) for
+/// k in -3..=300, and their neighbours a few ulps away; and values with exponents
+/// around the conversion's range (0.5 to 512, either sign).
+fn u8_inputs(rng: &mut fastrand::Rng, n: usize) -> Vec<Input> {
+    (0..n)
+        .map(|_| {
+            let a = match rng.u8(0..8) {
+                0 => rng.u32(..),
+                1..=3 => (rng.f32() * 302.0 - 2.0).to_bits(),
+                4 => (rng.i32(-3..=300) as f32).to_bits(),
+                5 => (rng.i32(-3..=300) as f32 + 0.5).to_bits(),
+                6 => (rng.i32(-3..=300) as f32 + 0.5)
+                    .to_bits()
+                    .wrapping_add(rng.u32(0..7))
+                    .wrapping_sub(3),
+                _ => {
+                    let exp = rng.u32(124..=136);
+                    let sign = if rng.u8(0..8) == 0 { 0x8000_0000 } else { 0 };
+                    sign | (exp << 23) | fraction(rng)
+                }
+            };
+            [a, 0, 0]
+        })
+        .collect()
+}
+
+/// The float-to-byte conversion's edge list: every integer and half from -3 to 300
+/// with its neighbours one ulp away, and the largest floats below the saturation and
+/// rounding thresholds.
+fn u8_edges() -> Vec<Input> {
+    let mut out: Vec<u32> = edge_values();
+    for k in -3..=300 {
+        for x in [k as f32, k as f32 + 0.5] {
+            let b = x.to_bits();
+            out.extend([b, b.wrapping_add(1), b.wrapping_sub(1)]);
+        }
+    }
+    out.extend([
+        0x3EFF_FFFF, // just below 0.5
+        0x437F_8000, // 255.5
+        0x437F_7FFF, // just below 255.5
+        0x437F_FFFF, // just below 256
+        0x4380_0000, // 256
+        0x4F00_0000, // 2^31
+        0x4F80_0000, // 2^32
+        0x5F80_0000, // 2^64
+    ]);
+    out.into_iter().map(|a| [a, 0, 0]).collect()
+}
+
 /// Random integers for the conversion: uniform, of random bit lengths, and ties (the
 /// bits below the 24 kept ones exactly one half).
 fn int_inputs(rng: &mut fastrand::Rng, n: usize) -> Vec<Input> {
@@ -370,8 +436,10 @@ fn reference(op: Operator, [a, b, c]: Input) -> u32 {
         Operator::Multiply => fp::mul(f(a), f(b)).to_bits(),
         Operator::Divide => fp::div(f(a), f(b)).to_bits(),
         Operator::Sqrt => fp::sqrt(f(a)).to_bits(),
+        Operator::InvSqrt => fp::inv_sqrt(f(a)).to_bits(),
         Operator::Compare => u32::from(fp::lt(f(a), f(b))),
         Operator::FromInt => fp::from_int(a as i32).to_bits(),
+        Operator::ToU8 => u32::from(fp::to_u8(f(a))),
         Operator::FastSqrt => fp::fast_sqrt(f(a)).to_bits(),
         Operator::Const => CONSTANTS[(c & 3) as usize],
         Operator::Select => fp::select(c & 1 == 1, f(a), f(b)).to_bits(),
@@ -388,7 +456,9 @@ fn inputs(op: Operator) -> (Vec<Input>, usize) {
             binary_inputs(&mut rng, op, RANDOM)
         }
         Operator::Sqrt => sqrt_inputs(&mut rng, RANDOM),
+        Operator::InvSqrt => inv_sqrt_inputs(&mut rng, RANDOM),
         Operator::FromInt => int_inputs(&mut rng, RANDOM),
+        Operator::ToU8 => u8_inputs(&mut rng, RANDOM),
         Operator::Compare => compare_inputs(&mut rng, RANDOM),
         Operator::FastSqrt | Operator::Register | Operator::Select | Operator::Const => (0..RANDOM)
             .map(|_| [rng.u32(..), rng.u32(..), rng.u32(..)])
@@ -399,12 +469,13 @@ fn inputs(op: Operator) -> (Vec<Input>, usize) {
             binary_edges(op)
         }
         Operator::FromInt => INT_EDGES.iter().map(|&x| [x as u32, 0, 0]).collect(),
+        Operator::ToU8 => u8_edges(),
         Operator::Const => (0..4).map(|c| [0, 0, c]).collect(),
         Operator::Select => edge_values()
             .iter()
             .flat_map(|&x| [[x, !x, 0], [x, !x, 1]])
             .collect(),
-        Operator::Sqrt | Operator::FastSqrt | Operator::Register => {
+        Operator::Sqrt | Operator::InvSqrt | Operator::FastSqrt | Operator::Register => {
             edge_values().iter().map(|&x| [x, 0, 0]).collect()
         }
     };
@@ -465,9 +536,15 @@ fn wrapper(op: Operator, lib: &Library) -> String {
                 &[("clk", "clk"), ("a", "a"), ("b", "b"), ("lt", "lt")]
             )
         ),
-        Operator::Sqrt | Operator::FromInt | Operator::FastSqrt | Operator::Register => {
-            instance(&[], "dut", &[("clk", "clk"), ("a", "a"), ("y", "y")])
-        }
+        Operator::Sqrt
+        | Operator::InvSqrt
+        | Operator::FromInt
+        | Operator::FastSqrt
+        | Operator::Register => instance(&[], "dut", &[("clk", "clk"), ("a", "a"), ("y", "y")]),
+        Operator::ToU8 => format!(
+            "wire [7:0] q;\n    {}\n    assign y = {{24'd0, q}};",
+            instance(&[], "dut", &[("clk", "clk"), ("a", "a"), ("y", "q")])
+        ),
         Operator::Select => instance(
             &[],
             "dut",
@@ -702,6 +779,12 @@ fn fp_sqrt_is_bit_exact() {
 
 #[test]
 #[ignore = "needs verilator"]
+fn fp_inv_sqrt_is_bit_exact() {
+    check(Operator::InvSqrt);
+}
+
+#[test]
+#[ignore = "needs verilator"]
 fn fp_compare_is_bit_exact() {
     check(Operator::Compare);
 }
@@ -710,6 +793,23 @@ fn fp_compare_is_bit_exact() {
 #[ignore = "needs verilator"]
 fn fp_from_int_is_bit_exact() {
     check(Operator::FromInt);
+}
+
+#[test]
+#[ignore = "needs verilator"]
+fn fp_to_u8_is_bit_exact() {
+    // The ties must really be exercised: inputs exactly halfway between two bytes.
+    let (cases, _) = inputs(Operator::ToU8);
+    let ties = cases
+        .iter()
+        .filter(|&&[a, _, _]| {
+            let x = f(a);
+            (0.0..255.0).contains(&x) && x.fract() == 0.5
+        })
+        .count();
+    eprintln!("fp_to_u8: {ties} inputs exactly halfway between two bytes");
+    assert!(ties > 100_000, "only {ties} ties");
+    check(Operator::ToU8);
 }
 
 #[test]

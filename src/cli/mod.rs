@@ -5,6 +5,7 @@ mod compare;
 mod count;
 mod gate;
 mod hw;
+mod hw_rtl;
 mod interrupt;
 mod merge;
 mod profile;

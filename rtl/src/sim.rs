@@ -1,0 +1,349 @@
+//! Cycle-accurate simulation of the generated pipeline with Verilator.
+//!
+//! [`build`] compiles the generated Verilog and its testbench (`tb_pipeline.cpp`) into
+//! a program, once per design (the build directory is keyed by a hash of the files,
+//! so the scenes of one design share it); [`run`] writes the scene (its memory words
+//! and the frame constants the scene block precomputes) for the testbench, runs one
+//! frame and reads back the frame buffer, the cycles from the first pixel's issue to
+//! the last frame-buffer write, and each block's latency as built (the first valid
+//! output after the first valid input, from the blocks' structural monitors).
+
+use std::collections::hash_map::DefaultHasher;
+use std::fmt::Write as _;
+use std::fs;
+use std::hash::{Hash, Hasher};
+use std::path::{Path, PathBuf};
+use std::process::Command;
+
+use serde::Serialize;
+
+use hwmodel::blocks::Pipeline;
+use hwmodel::emulator::{HwImage, to_gray8};
+use hwmodel::frame_timing::{cycles_per_pixel, frame_timing};
+use hwmodel::graph_eval::{FrameConstants, light_direction, shading_words};
+use hwmodel::hw_scene::HwScene;
+
+use crate::RtlError;
+use crate::generate::{self, GeneratedRtl, TOP};
+use crate::operators::write_atomically;
+
+/// What one simulated frame measured.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct SimResult {
+    /// Cycles from the first pixel's issue to the last frame-buffer write.
+    pub cycles: u64,
+    /// The model's figure for the same frame ([`frame_timing`]).
+    pub model_cycles: u64,
+    /// Frame-buffer writes (W·H when every pixel came out).
+    pub writes: u64,
+    /// Per block: name, latency as simulated (`None`: no valid output), model latency.
+    pub blocks: Vec<BlockLatency>,
+    #[serde(skip)]
+    pub image: HwImage,
+}
+
+/// One block's simulated latency beside the model's.
+#[derive(Clone, Debug, PartialEq, Eq, Serialize)]
+pub struct BlockLatency {
+    pub name: String,
+    pub simulated: Option<u64>,
+    pub model: u32,
+}
+
+/// Scene-memory address bits for `primitives` (at least 64 primitives, so that the
+/// test-bench scenes share one build).
+pub fn depth_bits_for(primitives: usize) -> u32 {
+    let n = primitives.max(64) as u64;
+    64 - (n - 1).leading_zeros()
+}
+
+fn tool_missing(tool: &'static str) -> RtlError {
+    RtlError::ToolMissing {
+        tool,
+        hint: "install it with `bash scripts/install-rtl-tools.sh` (Debian: apt-get install verilator g++ make)",
+    }
+}
+
+fn io(path: &Path) -> impl FnOnce(std::io::Error) -> RtlError + '_ {
+    move |source| RtlError::Io {
+        path: path.to_path_buf(),
+        source,
+    }
+}
+
+/// Compiles `rtl` with Verilator under `root` (in `root/<hash>`, reused when the files
+/// are unchanged) and returns the simulator program.
+pub fn build(rtl: &GeneratedRtl, root: &Path) -> Result<PathBuf, RtlError> {
+    let mut hasher = DefaultHasher::new();
+    rtl.files.hash(&mut hasher);
+    let dir = root.join(format!("{:016x}", hasher.finish()));
+    let program = dir.join("obj").join("Vsim");
+    if program.exists() {
+        return Ok(program);
+    }
+    generate::write(rtl, &dir)?;
+    let sources: Vec<String> = rtl
+        .files
+        .iter()
+        .map(|(name, _)| name.clone())
+        .filter(|n| n.ends_with(".v"))
+        .collect();
+    let output = Command::new("verilator")
+        .current_dir(&dir)
+        .args([
+            "--cc",
+            "--exe",
+            "--build",
+            "-j",
+            "2",
+            "-O3",
+            "--x-assign",
+            "fast",
+            "--x-initial",
+            "fast",
+            "-Wno-fatal",
+            "-Wno-lint",
+            "-Wno-style",
+            "--top-module",
+            TOP,
+            "-Mdir",
+            "obj",
+            "-o",
+            "Vsim",
+        ])
+        .args(&sources)
+        .arg(generate::TESTBENCH.name)
+        .output()
+        .map_err(|_| tool_missing("verilator"))?;
+    if !output.status.success() || !program.exists() {
+        let log = dir.join("verilator.log");
+        let mut text = String::from_utf8_lossy(&output.stdout).to_string();
+        text += &String::from_utf8_lossy(&output.stderr);
+        write_atomically(&log, &text)?;
+        let tail: Vec<&str> = text.lines().rev().take(12).collect();
+        return Err(RtlError::Tool {
+            tool: "verilator",
+            message: format!(
+                "the build failed (log: {}):\n{}",
+                log.display(),
+                tail.into_iter().rev().collect::<Vec<_>>().join("\n")
+            ),
+        });
+    }
+    Ok(program)
+}
+
+/// The testbench's input: frame constants and scene words for `scene` at
+/// `width`×`height` on `pipeline`.
+pub fn testbench_input(pipeline: &Pipeline, scene: &HwScene, width: u32, height: u32) -> String {
+    let k = FrameConstants::new(scene, width, height);
+    let n = scene.primitives.len() as u64;
+    let units = pipeline.design.units.max(1);
+    let per_unit = cycles_per_pixel(n, units) / 3;
+    let timing = frame_timing(pipeline, n, width, height, 1.0);
+    let mut out = String::new();
+    let hex = |v: [f32; 3]| {
+        format!(
+            "{:08X} {:08X} {:08X}",
+            v[0].to_bits(),
+            v[1].to_bits(),
+            v[2].to_bits()
+        )
+    };
+    let forward = view_direction(scene);
+    writeln!(
+        out,
+        "width {width}\nheight {height}\nper_unit {per_unit}\nprim_count {n}\nmax_cycles {}\nbackground {}",
+        timing.cycles * 2 + 100_000,
+        to_gray8(scene.background_gray)
+    )
+    .ok();
+    for (name, v) in [
+        ("scan_line", k.rays.scan_line),
+        ("row_step", k.rays.pixel_height),
+        ("column_step", k.rays.pixel_width),
+        ("eye", scene.eye),
+        ("view_dir", forward),
+        ("light", scene.light),
+        ("light_dir", light_direction(scene.light)),
+    ] {
+        writeln!(out, "{name} {}", hex(v)).ok();
+    }
+    for (i, p) in scene.primitives.iter().enumerate() {
+        let mut words: Vec<u32> = p.to_words().to_vec();
+        if pipeline.design.no_rsqrt_shading {
+            words.extend(shading_words(p, scene.light).map(f32::to_bits));
+        }
+        for (field, w) in words.iter().enumerate() {
+            writeln!(out, "word {i} {field} {w:08X}").ok();
+        }
+    }
+    out
+}
+
+/// The unit view direction (the orthographic design's constant ray).
+fn view_direction(scene: &HwScene) -> [f32; 3] {
+    let d = [0, 1, 2].map(|i| hwmodel::float_policy::sub(scene.look_at[i], scene.eye[i]));
+    // The same normalization as the light's direction.
+    light_direction(d)
+}
+
+/// Runs `program` on `scene` in `work` (input, image and results files).
+pub fn run(
+    program: &Path,
+    pipeline: &Pipeline,
+    scene: &HwScene,
+    width: u32,
+    height: u32,
+    work: &Path,
+) -> Result<SimResult, RtlError> {
+    fs::create_dir_all(work).map_err(io(work))?;
+    let input = work.join("sim_input.txt");
+    write_atomically(&input, &testbench_input(pipeline, scene, width, height))?;
+    let image_path = work.join("frame.pgm");
+    let results = work.join("sim_results.txt");
+    let output = Command::new(program)
+        .arg(&input)
+        .arg(&image_path)
+        .arg(&results)
+        .output()
+        .map_err(io(program))?;
+    if !output.status.success() {
+        return Err(RtlError::Tool {
+            tool: "simulation",
+            message: format!(
+                "{} exited with {} (3: the frame did not finish in time): {}",
+                program.display(),
+                output.status,
+                String::from_utf8_lossy(&output.stderr)
+            ),
+        });
+    }
+    let text = fs::read_to_string(&results).map_err(io(&results))?;
+    let bytes = fs::read(&image_path).map_err(io(&image_path))?;
+    let image = parse_pgm(&bytes, width, height).ok_or_else(|| RtlError::Tool {
+        tool: "simulation",
+        message: format!("{}: not a {width}x{height} PGM", image_path.display()),
+    })?;
+    let mut cycles = None;
+    let mut writes = 0;
+    let mut simulated = std::collections::HashMap::new();
+    for line in text.lines() {
+        let words: Vec<&str> = line.split_whitespace().collect();
+        match words.as_slice() {
+            ["cycles", v] => cycles = v.parse::<u64>().ok(),
+            ["writes", v] => writes = v.parse::<u64>().unwrap_or(0),
+            ["latency", name, v] => {
+                simulated.insert(name.to_string(), v.parse::<u64>().ok());
+            }
+            _ => {}
+        }
+    }
+    let n = scene.primitives.len() as u64;
+    let model = frame_timing(pipeline, n, width, height, 1.0);
+    let blocks = [
+        Some(&pipeline.primary_ray),
+        Some(&pipeline.intersection),
+        Some(&pipeline.min_distance),
+        pipeline.min_tree.as_ref(),
+        Some(&pipeline.shading),
+    ]
+    .into_iter()
+    .flatten()
+    .map(|b| BlockLatency {
+        name: b.name.to_string(),
+        simulated: simulated.get(b.name).copied().flatten(),
+        model: b.latency(),
+    })
+    .collect();
+    Ok(SimResult {
+        cycles: cycles.ok_or_else(|| RtlError::Tool {
+            tool: "simulation",
+            message: "no frame-buffer write: the pipeline produced no pixel".into(),
+        })?,
+        model_cycles: model.cycles,
+        writes,
+        blocks,
+        image,
+    })
+}
+
+/// The picture the simulation must reproduce, and where it comes from: the emulator
+/// for the thesis's arithmetic (any number of units), the block graphs evaluated on
+/// values ([`hwmodel::graph_eval`]) for the what-ifs that change it.
+pub fn reference_image(
+    pipeline: &Pipeline,
+    scene: &HwScene,
+    width: u32,
+    height: u32,
+) -> Result<(HwImage, &'static str), RtlError> {
+    let d = &pipeline.design;
+    if !d.fast_sqrt && !d.ortho && !d.no_rsqrt_shading {
+        return Ok((
+            hwmodel::emulator::render(scene, width, height),
+            "the emulator (rtprof hw render)",
+        ));
+    }
+    hwmodel::graph_eval::render(pipeline, scene, width, height)
+        .map(|image| (image, "the block graphs evaluated"))
+        .map_err(|e| RtlError::Generate(e.to_string()))
+}
+
+/// How far two gray images are apart.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+pub struct ImageDifference {
+    pub differing_pixels: u64,
+    pub rms: f64,
+}
+
+/// Pixels that differ and the RMS difference in gray levels (images of one size).
+pub fn compare_images(a: &HwImage, b: &HwImage) -> ImageDifference {
+    let mut differing = 0;
+    let mut sum = 0.0;
+    for (x, y) in a.pixels.iter().zip(&b.pixels) {
+        let d = f64::from(*x) - f64::from(*y);
+        if d != 0.0 {
+            differing += 1;
+        }
+        sum += d * d;
+    }
+    let n = a.pixels.len().max(1) as f64;
+    ImageDifference {
+        differing_pixels: differing,
+        rms: (sum / n).sqrt(),
+    }
+}
+
+/// A binary PGM (`P5`) of `width`×`height`, 8-bit.
+fn parse_pgm(bytes: &[u8], width: u32, height: u32) -> Option<HwImage> {
+    let header = format!("P5\n{width} {height}\n255\n");
+    let pixels = bytes.strip_prefix(header.as_bytes())?;
+    (pixels.len() == width as usize * height as usize).then(|| HwImage {
+        width,
+        height,
+        pixels: pixels.to_vec(),
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn memory_depth_covers_the_scene_with_a_floor_of_64() {
+        assert_eq!(depth_bits_for(0), 6);
+        assert_eq!(depth_bits_for(7), 6);
+        assert_eq!(depth_bits_for(64), 6);
+        assert_eq!(depth_bits_for(65), 7);
+        assert_eq!(depth_bits_for(1000), 10);
+    }
+
+    #[test]
+    fn pgm_round_trip_checks_the_size() {
+        let bytes = b"P5\n2 1\n255\n\x07\x09";
+        let image = parse_pgm(bytes, 2, 1).map(|i| i.pixels);
+        assert_eq!(image, Some(vec![7, 9]));
+        assert!(parse_pgm(bytes, 1, 2).is_none());
+        assert!(parse_pgm(b"P5\n2 1\n255\n\x07", 2, 1).is_none());
+    }
+}

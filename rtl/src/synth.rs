@@ -1,0 +1,1045 @@
+//! Synthesis with Yosys for Cyclone IV E: the logic cells, flip-flops and memory bits
+//! of the RTL's blocks, each with its multiplier logic apart.
+//!
+//! [`synthesize`] writes a Yosys script into a directory and runs
+//! `yosys -q -l synth.log -s synth.ys` there: `read_verilog` of the files, then
+//! `synth_intel -family cycloneive -top <top> -noflatten`, so that the hierarchy is kept
+//! and every module is mapped on its own. Yosys's `stat` of the mapped netlist
+//! (`stat.txt`) lists each module's own cells; the report rolls the hierarchy up, so
+//! that each block asked for gets the figures of one of its instances including its
+//! submodules (instance counts times the submodules' figures):
+//!
+//! * `lut4`: 4-input look-up tables, `cycloneive_lcell_comb` cells ([`LUT4_CELL`]),
+//!   and the inverters the cell map leaves as `$not` ([`INVERTER_CELL`]);
+//! * `ff`: flip-flops, `dffeas` cells ([`FF_CELL`]);
+//! * `mem_bits`: the bits of the memories the RTL declares (width × depth, from a `stat`
+//!   taken before mapping, `stat_rtl.txt`), and `m9k`: the M9K blocks they were mapped
+//!   to (`altsyncram` cells, [`M9K_CELL`]). A memory too small for an M9K is built
+//!   of flip-flops and then counts in `ff` as well;
+//! * `mult_lut4`: the part of `lut4` in instances of the multiplier arrays
+//!   ([`MULTIPLIER_MODULES`]: `fp_mul_array`, the significand product of `fp_mul`), so
+//!   that the multipliers' cost can be told apart from the rest.
+//!
+//! Why these numbers are not Quartus's (the thesis's figures come from Quartus with the
+//! ALTFP megafunctions):
+//!
+//! * Yosys's `synth_intel` is experimental. It maps all logic into LUTs in normal
+//!   mode (ABC, `abc -lut 4`): no arithmetic-mode carry chains, so an adder or a
+//!   comparator costs more cells than in Quartus, where one logic element is one bit
+//!   of an adder;
+//! * no DSP inference: a `*` is built of LUTs, where Quartus uses the embedded 9 × 9 /
+//!   18 × 18 multipliers (no logic cells at all). Hence `mult_lut4`: subtract it to
+//!   compare with a Quartus fit;
+//! * no ALTFP cores: these are the library's own operators (`rtl/verilog`), written
+//!   for clarity and bit-exactness, not the hand-optimised IP cores;
+//! * the hierarchy is kept, so nothing is optimised across module boundaries (a few
+//!   percent), there is no register retiming (the operators' delay lines stay at
+//!   their outputs) and no packing: a logic element of the device holds one LUT and
+//!   one flip-flop, so the design needs between max(lut4, ff) and lut4 + ff of them;
+//! * ABC's mapping is repeatable for the same input but not stable against unrelated
+//!   changes: reading more files, or in another order, moves a figure by a percent or
+//!   two (`fp_mul`: 1817 or 1840 LUTs), and so can another Yosys version.
+//!
+//! One fix-up in the flow: in Yosys 0.23, `synth_intel`'s `opt -full` after the
+//! `techmap` can create a coarse `$mux` again (`opt_share`) that nothing maps any more;
+//! the script runs `synth_intel` in three parts with a `techmap; opt -fast` before the
+//! LUT mapping, so that the netlist is made of device cells only. Any cell that is not
+//! a LUT, a flip-flop, an M9K or a module of the design is reported in
+//! [`SynthReport::unmapped`].
+//!
+//! Run time is ABC's: about 10 s each for `fp_add_sub` and `fp_mul`, half a minute
+//! for `fp_sqrt`, and more than 10 minutes for `fp_div`, whose 26-step recurrence is
+//! one deep combinational core (with Yosys 0.23 on a loaded 2-core machine).
+
+use std::collections::{BTreeMap, BTreeSet};
+use std::fs;
+use std::path::{Path, PathBuf};
+use std::process::Command;
+use std::time::Instant;
+
+use serde::Serialize;
+
+use crate::RtlError;
+use crate::operators::write_atomically;
+
+/// The device family passed to `synth_intel`.
+pub const FAMILY: &str = "cycloneive";
+/// The cell of a 4-input LUT (a logic element's combinational part).
+pub const LUT4_CELL: &str = "cycloneive_lcell_comb";
+/// What the Cyclone IV E cell map makes of a one-input LUT (an inverter Yosys could
+/// not absorb, e.g. the sign flip of `−b` at a module port): Yosys's `$not`. In the
+/// device it is one logic element's LUT, so it counts in `lut4`.
+pub const INVERTER_CELL: &str = "$not";
+/// The cell of a flip-flop (a logic element's register).
+pub const FF_CELL: &str = "dffeas";
+/// The cell of one M9K block (9216 bits with parity).
+pub const M9K_CELL: &str = "altsyncram";
+/// The modules whose logic counts as multiplier logic (`mult_lut4`).
+pub const MULTIPLIER_MODULES: &[&str] = &["fp_mul_array"];
+
+/// The script, the log and the two `stat` outputs, in the synthesis directory.
+const SCRIPT: &str = "synth.ys";
+const LOG: &str = "synth.log";
+const STAT: &str = "stat.txt";
+const STAT_RTL: &str = "stat_rtl.txt";
+
+const INSTALL_HINT: &str =
+    "install it with `bash scripts/install-rtl-tools.sh` (Debian: apt-get install yosys)";
+
+/// The synthesis figures of a module, including its submodules.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize)]
+pub struct SynthFigures {
+    /// 4-input LUTs ([`LUT4_CELL`]).
+    pub lut4: u64,
+    /// Flip-flops ([`FF_CELL`]).
+    pub ff: u64,
+    /// Bits of the memories the RTL declares (width × depth).
+    pub mem_bits: u64,
+    /// M9K blocks ([`M9K_CELL`]).
+    pub m9k: u64,
+    /// The LUTs of `lut4` in multiplier arrays ([`MULTIPLIER_MODULES`]).
+    pub mult_lut4: u64,
+}
+
+impl SynthFigures {
+    /// `self + n × other`.
+    fn add_times(&mut self, n: u64, other: &SynthFigures) {
+        self.lut4 += n * other.lut4;
+        self.ff += n * other.ff;
+        self.mem_bits += n * other.mem_bits;
+        self.m9k += n * other.m9k;
+        self.mult_lut4 += n * other.mult_lut4;
+    }
+}
+
+/// The figures of one block asked for: one instance of its module, submodules
+/// included. A block whose module is instantiated with different parameters has one
+/// entry per parameter set.
+#[derive(Clone, Debug, PartialEq, Eq, Serialize)]
+pub struct BlockFigures {
+    /// The name asked for (`fp_mul`).
+    pub block: String,
+    /// Yosys's name of the module (`$paramod\fp_mul\LATENCY=s32'00…101` when
+    /// parameterised).
+    pub module: String,
+    /// How many instances of the module the design has under the top.
+    pub instances: u64,
+    /// The figures of one instance.
+    pub figures: SynthFigures,
+}
+
+/// One module of the synthesized design.
+#[derive(Clone, Debug, PartialEq, Eq, Serialize)]
+pub struct ModuleFigures {
+    /// The module's name without Yosys's parameter decoration (`fp_mul`).
+    pub base: String,
+    /// Instances under the top (1 for the top).
+    pub instances: u64,
+    /// The figures of one instance, submodules included.
+    pub figures: SynthFigures,
+}
+
+/// Cells of one module that are neither a LUT, a flip-flop, an M9K nor a module of
+/// the design (cells the flow left unmapped).
+#[derive(Clone, Debug, PartialEq, Eq, Serialize)]
+pub struct UnmappedCells {
+    pub module: String,
+    pub cell: String,
+    pub count: u64,
+}
+
+/// The outcome of one Yosys run.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct SynthReport {
+    /// The top module.
+    pub top: String,
+    /// `synth_intel`'s family ([`FAMILY`]).
+    pub family: &'static str,
+    /// `yosys -V`.
+    pub yosys: String,
+    /// The whole design (the top, rolled up).
+    pub total: SynthFigures,
+    /// The blocks asked for, in the order asked.
+    pub blocks: Vec<BlockFigures>,
+    /// Every module under the top, by Yosys's name.
+    pub modules: BTreeMap<String, ModuleFigures>,
+    /// Cells left unmapped (none in a clean run).
+    pub unmapped: Vec<UnmappedCells>,
+    /// The problems Yosys's `check` passes reported (0 in a clean run).
+    pub check_problems: u64,
+    /// The distinct warnings of the log (`synth_intel` always warns that it is
+    /// experimental).
+    pub warnings: Vec<String>,
+    /// Wall time of the Yosys run, in seconds.
+    pub seconds: f64,
+    /// The Yosys log.
+    pub log: PathBuf,
+}
+
+impl SynthReport {
+    /// The figures of `block` (its first parameter set), if it was asked for.
+    pub fn block(&self, block: &str) -> Option<&BlockFigures> {
+        self.blocks.iter().find(|b| b.block == block)
+    }
+}
+
+/// Synthesizes `files` (Verilog) with `top` as the top module for Cyclone IV E in
+/// `dir` (created if missing; the script, log and `stat` outputs are written there)
+/// and reports the figures of the whole design and of every module named in `blocks`
+/// (by plain module name: all of a module's parameter sets are reported).
+///
+/// Errors when Yosys is not installed ([`RtlError::ToolMissing`]), fails, or a block
+/// is not in the design.
+pub fn synthesize(
+    dir: &Path,
+    files: &[PathBuf],
+    top: &str,
+    blocks: &[&str],
+) -> Result<SynthReport, RtlError> {
+    let yosys = yosys_version("yosys")?;
+    for name in std::iter::once(&top).chain(blocks) {
+        if !is_identifier(name) {
+            return Err(RtlError::Synth(format!(
+                "`{name}` is not a plain Verilog module name"
+            )));
+        }
+    }
+    fs::create_dir_all(dir).map_err(io(dir))?;
+    let mut absolute = Vec::with_capacity(files.len());
+    for file in files {
+        absolute.push(std::path::absolute(file).map_err(io(file))?);
+    }
+    let text = script(&absolute, top)?;
+    write_atomically(&dir.join(SCRIPT), &text)?;
+    for stale in [STAT, STAT_RTL] {
+        let path = dir.join(stale);
+        match fs::remove_file(&path) {
+            Err(e) if e.kind() != std::io::ErrorKind::NotFound => return Err(io(&path)(e)),
+            _ => {}
+        }
+    }
+
+    let log = dir.join(LOG);
+    let start = Instant::now();
+    let out = Command::new("yosys")
+        .current_dir(dir)
+        .args(["-q", "-l", LOG, "-s", SCRIPT])
+        .output()
+        .map_err(|e| spawn_error("yosys", &e))?;
+    let seconds = start.elapsed().as_secs_f64();
+    let log_text = fs::read_to_string(&log).unwrap_or_default();
+    if !out.status.success() {
+        // The ERROR lines of the log, else the end of what Yosys printed.
+        let errors: Vec<&str> = log_text.lines().filter(|l| l.contains("ERROR")).collect();
+        let stderr = String::from_utf8_lossy(&out.stderr);
+        let detail = if errors.is_empty() {
+            let lines: Vec<&str> = stderr.lines().collect();
+            lines[lines.len().saturating_sub(20)..].join("\n")
+        } else {
+            errors.join("\n")
+        };
+        return Err(RtlError::Tool {
+            tool: "yosys",
+            message: format!(
+                "synthesis of `{top}` failed ({}; log: {}):\n{detail}",
+                out.status,
+                log.display()
+            ),
+        });
+    }
+
+    let stat = read_stat(&dir.join(STAT))?;
+    let stat_rtl = read_stat(&dir.join(STAT_RTL))?;
+    let mut report = report_from_stats(top, &stat, &stat_rtl, blocks)?;
+    report.yosys = yosys;
+    report.check_problems = check_problems(&log_text);
+    report.warnings = warnings(&log_text);
+    report.seconds = seconds;
+    report.log = log;
+    Ok(report)
+}
+
+/// The Yosys script: read the files, synthesize keeping the hierarchy, `stat` before
+/// and after mapping.
+fn script(files: &[PathBuf], top: &str) -> Result<String, RtlError> {
+    let mut text =
+        String::from("# Written by rtl::synth (rtprof): Cyclone IV E, hierarchy kept.\n");
+    for file in files {
+        let name = file
+            .to_str()
+            .ok_or_else(|| RtlError::Synth(format!("{}: not a UTF-8 path", file.display())))?;
+        if name.contains(['"', '\n', '\r']) {
+            return Err(RtlError::Synth(format!(
+                "{}: Yosys scripts cannot name a path with quotes or line breaks",
+                file.display()
+            )));
+        }
+        text.push_str(&format!("read_verilog \"{name}\"\n"));
+    }
+    let synth = format!("synth_intel -family {FAMILY} -top {top} -noflatten");
+    text.push_str(&format!(
+        "{synth} -run :coarse\n\
+         tee -o {STAT_RTL} stat\n\
+         {synth} -run coarse:map_luts\n\
+         # Maps the coarse cells synth_intel's `opt -full` can leave after its techmap.\n\
+         techmap\n\
+         opt -fast\n\
+         # `abc -fast`: the default script did not finish fp_div's 26-stage digit\n\
+         # recurrence in 20 minutes; the fast one maps it in about 15 s.\n\
+         abc -fast -lut 4\n\
+         clean\n\
+         {synth} -run map_cells:\n\
+         tee -o {STAT} stat\n"
+    ));
+    Ok(text)
+}
+
+/// `yosys -V` of `program`, or why it cannot be run.
+fn yosys_version(program: &str) -> Result<String, RtlError> {
+    let out = Command::new(program)
+        .arg("-V")
+        .output()
+        .map_err(|e| spawn_error("yosys", &e))?;
+    if !out.status.success() {
+        return Err(RtlError::Tool {
+            tool: "yosys",
+            message: format!("`{program} -V` failed ({})", out.status),
+        });
+    }
+    Ok(String::from_utf8_lossy(&out.stdout).trim().to_string())
+}
+
+fn spawn_error(tool: &'static str, e: &std::io::Error) -> RtlError {
+    if e.kind() == std::io::ErrorKind::NotFound {
+        RtlError::ToolMissing {
+            tool,
+            hint: INSTALL_HINT,
+        }
+    } else {
+        RtlError::Tool {
+            tool,
+            message: format!("cannot run it: {e}"),
+        }
+    }
+}
+
+fn io(path: &Path) -> impl FnOnce(std::io::Error) -> RtlError + '_ {
+    move |source| RtlError::Io {
+        path: path.to_path_buf(),
+        source,
+    }
+}
+
+fn is_identifier(name: &str) -> bool {
+    let mut chars = name.chars();
+    chars
+        .next()
+        .is_some_and(|c| c.is_ascii_alphabetic() || c == '_')
+        && chars.all(|c| c.is_ascii_alphanumeric() || c == '_' || c == '$')
+}
+
+/// One module's own cells, as `stat` lists them.
+#[derive(Clone, Debug, Default, PartialEq, Eq)]
+struct ModuleStat {
+    /// Cells by type: device cells and instances of the design's modules alike.
+    cells: BTreeMap<String, u64>,
+    /// `Number of memory bits`.
+    memory_bits: u64,
+}
+
+fn read_stat(path: &Path) -> Result<BTreeMap<String, ModuleStat>, RtlError> {
+    let text = fs::read_to_string(path).map_err(io(path))?;
+    parse_stat(&text).map_err(|problem| RtlError::Tool {
+        tool: "yosys",
+        message: format!("{}: {problem}", path.display()),
+    })
+}
+
+/// Parses the text of Yosys's `stat`: one `=== <module> ===` section per module (the
+/// `design hierarchy` section is skipped), each with its `Number of memory bits` and,
+/// after `Number of cells`, one `<cell type> <count>` line per cell type.
+fn parse_stat(text: &str) -> Result<BTreeMap<String, ModuleStat>, String> {
+    let mut modules = BTreeMap::new();
+    // The module being read, and whether its cell list has begun.
+    let mut current: Option<(String, ModuleStat, bool)> = None;
+    for (n, line) in text.lines().enumerate() {
+        let trimmed = line.trim();
+        if let Some(name) = trimmed
+            .strip_prefix("=== ")
+            .and_then(|rest| rest.strip_suffix(" ==="))
+        {
+            if let Some((name, stat, _)) = current.take() {
+                modules.insert(name, stat);
+            }
+            if name != "design hierarchy" {
+                current = Some((name.to_string(), ModuleStat::default(), false));
+            }
+            continue;
+        }
+        let Some((_, stat, in_cells)) = current.as_mut() else {
+            continue;
+        };
+        if trimmed.is_empty() {
+            continue;
+        }
+        let (key, count) = trimmed
+            .rsplit_once(char::is_whitespace)
+            .ok_or_else(|| format!("line {}: no count in `{trimmed}`", n + 1))?;
+        let count: u64 = count
+            .parse()
+            .map_err(|_| format!("line {}: `{count}` is not a count", n + 1))?;
+        let key = key.trim_end();
+        if let Some(field) = key.strip_suffix(':') {
+            match field {
+                "Number of memory bits" => stat.memory_bits = count,
+                "Number of cells" => *in_cells = true,
+                _ => {}
+            }
+        } else if *in_cells {
+            *stat.cells.entry(key.to_string()).or_default() += count;
+        } else {
+            return Err(format!("line {}: unexpected `{trimmed}`", n + 1));
+        }
+    }
+    if let Some((name, stat, _)) = current {
+        modules.insert(name, stat);
+    }
+    if modules.is_empty() {
+        return Err("no module statistics".into());
+    }
+    Ok(modules)
+}
+
+/// A module's name without Yosys's parameter decoration:
+/// `$paramod\fp_mul\LATENCY=s32'…` and `$paramod$<hash>\fp_delay` are `fp_mul` and
+/// `fp_delay`.
+fn base_name(module: &str) -> &str {
+    let module = module.strip_prefix('\\').unwrap_or(module);
+    match module.strip_prefix("$paramod") {
+        Some(rest) if rest.starts_with('$') => rest.split_once('\\').map_or(rest, |(_, n)| n),
+        Some(rest) => {
+            let rest = rest.strip_prefix('\\').unwrap_or(rest);
+            rest.split_once('\\').map_or(rest, |(n, _)| n)
+        }
+        None => module,
+    }
+}
+
+/// Rolls the final `stat` (and the memory bits of the `stat` before mapping) up from
+/// `top`; the blocks are matched by plain module name.
+fn report_from_stats(
+    top: &str,
+    stat: &BTreeMap<String, ModuleStat>,
+    stat_rtl: &BTreeMap<String, ModuleStat>,
+    blocks: &[&str],
+) -> Result<SynthReport, RtlError> {
+    if !stat.contains_key(top) {
+        return Err(RtlError::Synth(format!(
+            "the top module `{top}` is not in Yosys's statistics"
+        )));
+    }
+    // Depth-first from the top: post-order (submodules before their parents).
+    let mut order: Vec<&str> = Vec::new();
+    let mut done: BTreeSet<&str> = BTreeSet::new();
+    let mut on_path: Vec<&str> = Vec::new();
+    visit(top, stat, &mut order, &mut done, &mut on_path)?;
+
+    let mut figures: BTreeMap<&str, SynthFigures> = BTreeMap::new();
+    let mut unmapped = Vec::new();
+    for &module in &order {
+        let cells = &stat[module].cells;
+        let mut f = SynthFigures {
+            mem_bits: stat_rtl.get(module).map_or(0, |s| s.memory_bits),
+            ..SynthFigures::default()
+        };
+        for (cell, &count) in cells {
+            match cell.as_str() {
+                LUT4_CELL | INVERTER_CELL => f.lut4 += count,
+                FF_CELL => f.ff += count,
+                M9K_CELL => f.m9k += count,
+                sub if stat.contains_key(sub) => f.add_times(count, &figures[sub]),
+                _ => unmapped.push(UnmappedCells {
+                    module: module.to_string(),
+                    cell: cell.clone(),
+                    count,
+                }),
+            }
+        }
+        if MULTIPLIER_MODULES.contains(&base_name(module)) {
+            f.mult_lut4 = f.lut4;
+        }
+        figures.insert(module, f);
+    }
+
+    // Instances: from the top down (reverse post-order: parents before submodules).
+    let mut instances: BTreeMap<&str, u64> = BTreeMap::from([(top, 1)]);
+    for &module in order.iter().rev() {
+        let n = instances.get(module).copied().unwrap_or(0);
+        for (cell, &count) in &stat[module].cells {
+            if let Some((sub, _)) = stat.get_key_value(cell.as_str()) {
+                *instances.entry(sub.as_str()).or_default() += n * count;
+            }
+        }
+    }
+
+    let modules: BTreeMap<String, ModuleFigures> = order
+        .iter()
+        .map(|&m| {
+            (
+                m.to_string(),
+                ModuleFigures {
+                    base: base_name(m).to_string(),
+                    instances: instances.get(m).copied().unwrap_or(0),
+                    figures: figures[m],
+                },
+            )
+        })
+        .collect();
+    let mut block_figures = Vec::new();
+    for &block in blocks {
+        let found: Vec<BlockFigures> = modules
+            .iter()
+            .filter(|(_, m)| m.base == block)
+            .map(|(name, m)| BlockFigures {
+                block: block.to_string(),
+                module: name.clone(),
+                instances: m.instances,
+                figures: m.figures,
+            })
+            .collect();
+        if found.is_empty() {
+            return Err(RtlError::Synth(format!(
+                "the block `{block}` is not a module of the design under `{top}`"
+            )));
+        }
+        block_figures.extend(found);
+    }
+    Ok(SynthReport {
+        top: top.to_string(),
+        family: FAMILY,
+        yosys: String::new(),
+        total: figures[top],
+        blocks: block_figures,
+        modules,
+        unmapped,
+        check_problems: 0,
+        warnings: Vec::new(),
+        seconds: 0.0,
+        log: PathBuf::new(),
+    })
+}
+
+/// Post-order depth-first walk of the hierarchy; errors on a cycle.
+fn visit<'a>(
+    module: &'a str,
+    stat: &'a BTreeMap<String, ModuleStat>,
+    order: &mut Vec<&'a str>,
+    done: &mut BTreeSet<&'a str>,
+    on_path: &mut Vec<&'a str>,
+) -> Result<(), RtlError> {
+    if done.contains(module) {
+        return Ok(());
+    }
+    if on_path.contains(&module) {
+        return Err(RtlError::Synth(format!(
+            "the module hierarchy has a cycle through `{module}`"
+        )));
+    }
+    let Some((module, own)) = stat.get_key_value(module) else {
+        return Ok(());
+    };
+    on_path.push(module);
+    for cell in own.cells.keys() {
+        if stat.contains_key(cell.as_str()) {
+            visit(cell, stat, order, done, on_path)?;
+        }
+    }
+    on_path.pop();
+    done.insert(module);
+    order.push(module);
+    Ok(())
+}
+
+/// The sum of the `Found and reported N problems.` lines of the log.
+fn check_problems(log: &str) -> u64 {
+    log.lines()
+        .filter_map(|l| {
+            l.trim()
+                .strip_prefix("Found and reported ")?
+                .strip_suffix(" problems.")?
+                .parse::<u64>()
+                .ok()
+        })
+        .sum()
+}
+
+/// The distinct `Warning:` lines of the log, in order.
+fn warnings(log: &str) -> Vec<String> {
+    let mut seen = BTreeSet::new();
+    log.lines()
+        .map(str::trim)
+        .filter(|l| l.starts_with("Warning:"))
+        .filter(|l| seen.insert(*l))
+        .map(str::to_string)
+        .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    // `stat` of a real run (Yosys 0.23, the flow of `script`) of this design, with
+    // the library's fp_delay.v and fp_mul.v:
+    //
+    //     module ram_blk(input clk, input we, input [7:0] wa, input [7:0] ra, input [31:0] d, output reg [31:0] q);
+    //       reg [31:0] m [0:255];
+    //       always @(posedge clk) begin if (we) m[wa] <= d; q <= m[ra]; end
+    //     endmodule
+    //     module sample_top(input clk, input [31:0] a, input [31:0] b, input we, input [7:0] wa, input [7:0] ra,
+    //                       output [31:0] y0, output [31:0] y1, output [31:0] y2, output [31:0] q);
+    //       fp_mul #(.LATENCY(2)) m0 (.clk(clk), .a(a), .b(b), .y(y0));
+    //       fp_mul #(.LATENCY(2)) m1 (.clk(clk), .a(b), .b(a), .y(y1));
+    //       fp_mul #(.LATENCY(1)) m2 (.clk(clk), .a(a), .b(a), .y(y2));
+    //       ram_blk r0 (.clk(clk), .we(we), .wa(wa), .ra(ra), .d(a), .q(q));
+    //     endmodule
+
+    const STAT_SAMPLE: &str = r#"
+10. Printing statistics.
+
+=== $paramod$034035bcd992107f1710cd84d8e56530c58b5531\fp_delay ===
+
+   Number of wires:                  4
+   Number of wire bits:            129
+   Number of public wires:           4
+   Number of public wire bits:     129
+   Number of memories:               0
+   Number of memory bits:            0
+   Number of processes:              0
+   Number of cells:                 64
+     dffeas                         64
+
+=== $paramod$0d3382739923d207fae774c3f37fc69270b7e514\fp_delay ===
+
+   Number of wires:                  3
+   Number of wire bits:             65
+   Number of public wires:           3
+   Number of public wire bits:      65
+   Number of memories:               0
+   Number of memory bits:            0
+   Number of processes:              0
+   Number of cells:                 32
+     dffeas                         32
+
+=== $paramod\fp_mul\LATENCY=s32'00000000000000000000000000000001 ===
+
+   Number of wires:                 83
+   Number of wire bits:            421
+   Number of public wires:           6
+   Number of public wire bits:     177
+   Number of memories:               0
+   Number of memory bits:            0
+   Number of processes:              0
+   Number of cells:                188
+     $paramod$0d3382739923d207fae774c3f37fc69270b7e514\fp_delay      1
+     cycloneive_lcell_comb         186
+     fp_mul_array                    1
+
+=== $paramod\fp_mul\LATENCY=s32'00000000000000000000000000000010 ===
+
+   Number of wires:                 91
+   Number of wire bits:            475
+   Number of public wires:           6
+   Number of public wire bits:     177
+   Number of memories:               0
+   Number of memory bits:            0
+   Number of processes:              0
+   Number of cells:                202
+     $paramod$034035bcd992107f1710cd84d8e56530c58b5531\fp_delay      1
+     cycloneive_lcell_comb         200
+     fp_mul_array                    1
+
+=== fp_mul_array ===
+
+   Number of wires:                695
+   Number of wire bits:           2327
+   Number of public wires:           3
+   Number of public wire bits:      96
+   Number of memories:               0
+   Number of memory bits:            0
+   Number of processes:              0
+   Number of cells:               1616
+     cycloneive_lcell_comb        1616
+
+=== ram_blk ===
+
+   Number of wires:                  7
+   Number of wire bits:             86
+   Number of public wires:           6
+   Number of public wire bits:      82
+   Number of memories:               0
+   Number of memory bits:            0
+   Number of processes:              0
+   Number of cells:                  1
+     altsyncram                      1
+
+=== sample_top ===
+
+   Number of wires:                 10
+   Number of wire bits:            210
+   Number of public wires:          10
+   Number of public wire bits:     210
+   Number of memories:               0
+   Number of memory bits:            0
+   Number of processes:              0
+   Number of cells:                  4
+     $paramod\fp_mul\LATENCY=s32'00000000000000000000000000000001      1
+     $paramod\fp_mul\LATENCY=s32'00000000000000000000000000000010      2
+     ram_blk                         1
+
+=== design hierarchy ===
+
+   sample_top                        1
+     $paramod\fp_mul\LATENCY=s32'00000000000000000000000000000001      1
+       $paramod$0d3382739923d207fae774c3f37fc69270b7e514\fp_delay      1
+       fp_mul_array                  1
+     $paramod\fp_mul\LATENCY=s32'00000000000000000000000000000010      2
+       $paramod$034035bcd992107f1710cd84d8e56530c58b5531\fp_delay      1
+       fp_mul_array                  1
+     ram_blk                         1
+
+   Number of wires:               2378
+   Number of wire bits:           8971
+   Number of public wires:          54
+   Number of public wire bits:    1434
+   Number of memories:               0
+   Number of memory bits:            0
+   Number of processes:              0
+   Number of cells:               5595
+     altsyncram                      1
+     cycloneive_lcell_comb        5434
+     dffeas                        160
+
+"#;
+
+    // The same run's `stat` before mapping (stat_rtl.txt), two of its sections.
+    const STAT_RTL_SAMPLE: &str = r#"=== ram_blk ===
+
+   Number of wires:                 17
+   Number of wire bits:            362
+   Number of public wires:           6
+   Number of public wire bits:      82
+   Number of memories:               1
+   Number of memory bits:         8192
+   Number of processes:              1
+   Number of cells:                  1
+     $memrd                          1
+
+
+=== $paramod\fp_mul\LATENCY=s32'00000000000000000000000000000001 ===
+
+   Number of wires:                 85
+   Number of wire bits:            971
+   Number of public wires:          23
+   Number of public wire bits:     330
+   Number of memories:               0
+   Number of memory bits:            0
+   Number of processes:              1
+   Number of cells:                 35
+     $add                            4
+     $and                            1
+     $eq                             8
+     $ge                             1
+     $le                             1
+     $logic_and                      6
+     $logic_or                       5
+     $ne                             2
+     $or                             1
+     $paramod$0d3382739923d207fae774c3f37fc69270b7e514\fp_delay      1
+     $reduce_or                      2
+     $sub                            1
+     $xor                            1
+     fp_mul_array                    1
+
+"#;
+
+    fn sample_report(blocks: &[&str]) -> SynthReport {
+        let stat = parse_stat(STAT_SAMPLE).unwrap();
+        let stat_rtl = parse_stat(STAT_RTL_SAMPLE).unwrap();
+        report_from_stats("sample_top", &stat, &stat_rtl, blocks).unwrap()
+    }
+
+    const MUL_L1: &str = "$paramod\\fp_mul\\LATENCY=s32'00000000000000000000000000000001";
+    const MUL_L2: &str = "$paramod\\fp_mul\\LATENCY=s32'00000000000000000000000000000010";
+
+    #[test]
+    fn stat_is_parsed_per_module() {
+        let stat = parse_stat(STAT_SAMPLE).unwrap();
+        // Seven modules; the `design hierarchy` section is not one.
+        assert_eq!(stat.len(), 7);
+        assert_eq!(
+            stat[MUL_L2].cells,
+            BTreeMap::from([
+                (
+                    "$paramod$034035bcd992107f1710cd84d8e56530c58b5531\\fp_delay".to_string(),
+                    1
+                ),
+                (LUT4_CELL.to_string(), 200),
+                ("fp_mul_array".to_string(), 1),
+            ])
+        );
+        assert_eq!(stat["ram_blk"].cells[M9K_CELL], 1);
+        // Memories are mapped: the bits are counted before mapping.
+        assert_eq!(stat["ram_blk"].memory_bits, 0);
+        assert_eq!(
+            parse_stat(STAT_RTL_SAMPLE).unwrap()["ram_blk"].memory_bits,
+            8192
+        );
+    }
+
+    #[test]
+    fn the_hierarchy_is_rolled_up() {
+        let report = sample_report(&["fp_mul", "ram_blk", "fp_mul_array"]);
+        // By hand from the sample: fp_mul_array has 1616 LUTs, all multiplier logic;
+        // fp_mul at LATENCY 1 has 186 of its own and a 32-bit, 1-deep delay line; at
+        // LATENCY 2, 200 and a 2-deep delay line (64 flip-flops).
+        let mul_l1 = SynthFigures {
+            lut4: 186 + 1616,
+            ff: 32,
+            mult_lut4: 1616,
+            ..SynthFigures::default()
+        };
+        let mul_l2 = SynthFigures {
+            lut4: 200 + 1616,
+            ff: 64,
+            mult_lut4: 1616,
+            ..SynthFigures::default()
+        };
+        let ram = SynthFigures {
+            mem_bits: 256 * 32,
+            m9k: 1,
+            ..SynthFigures::default()
+        };
+        let array = SynthFigures {
+            lut4: 1616,
+            mult_lut4: 1616,
+            ..SynthFigures::default()
+        };
+        let block = |module: &str, instances, figures| BlockFigures {
+            block: base_name(module).to_string(),
+            module: module.to_string(),
+            instances,
+            figures,
+        };
+        assert_eq!(
+            report.blocks,
+            [
+                block(MUL_L1, 1, mul_l1),
+                block(MUL_L2, 2, mul_l2),
+                block("ram_blk", 1, ram),
+                block("fp_mul_array", 3, array),
+            ]
+        );
+        assert_eq!(report.block("fp_mul").map(|b| b.instances), Some(1));
+        // The top: one fp_mul at LATENCY 1, two at LATENCY 2 and the RAM. Yosys's own
+        // `design hierarchy` totals agree: 5434 LUTs, 160 flip-flops, 1 M9K.
+        assert_eq!(
+            report.total,
+            SynthFigures {
+                lut4: 1802 + 2 * 1816,
+                ff: 32 + 2 * 64,
+                mem_bits: 8192,
+                m9k: 1,
+                mult_lut4: 3 * 1616,
+            }
+        );
+        assert_eq!(report.total.lut4, 5434);
+        assert_eq!(report.total.ff, 160);
+        assert_eq!(report.modules.len(), 7);
+        assert_eq!(report.modules["sample_top"].instances, 1);
+        assert_eq!(
+            report.modules["$paramod$034035bcd992107f1710cd84d8e56530c58b5531\\fp_delay"].instances,
+            2
+        );
+        assert!(report.unmapped.is_empty());
+    }
+
+    #[test]
+    fn missing_blocks_and_unmapped_cells_are_reported() {
+        let stat = parse_stat(STAT_SAMPLE).unwrap();
+        let err =
+            report_from_stats("sample_top", &stat, &BTreeMap::new(), &["fp_div"]).unwrap_err();
+        assert!(err.to_string().contains("`fp_div`"), "{err}");
+        assert!(report_from_stats("nope", &stat, &BTreeMap::new(), &[]).is_err());
+
+        // The coarse `$mux` synth_intel can leave behind (see the module doc).
+        let text = STAT_SAMPLE.replace(
+            "     cycloneive_lcell_comb         186\n",
+            "     $mux                            1\n     cycloneive_lcell_comb         186\n",
+        );
+        let stat = parse_stat(&text).unwrap();
+        let report = report_from_stats("sample_top", &stat, &BTreeMap::new(), &[]).unwrap();
+        assert_eq!(
+            report.unmapped,
+            [UnmappedCells {
+                module: MUL_L1.to_string(),
+                cell: "$mux".to_string(),
+                count: 1,
+            }]
+        );
+        assert_eq!(report.total.lut4, 5434);
+        assert_eq!(report.total.mem_bits, 0);
+    }
+
+    #[test]
+    fn malformed_stat_is_an_error() {
+        assert!(parse_stat("").is_err());
+        assert!(parse_stat("=== m ===\n   Number of cells:   x\n").is_err());
+        assert!(parse_stat("=== m ===\n   dffeas 3\n").is_err());
+    }
+
+    #[test]
+    fn parameter_decorations_are_stripped() {
+        assert_eq!(base_name(MUL_L1), "fp_mul");
+        assert_eq!(
+            base_name("$paramod$034035bcd992107f1710cd84d8e56530c58b5531\\fp_delay"),
+            "fp_delay"
+        );
+        assert_eq!(base_name("fp_mul_array"), "fp_mul_array");
+        assert_eq!(base_name("\\top"), "top");
+    }
+
+    #[test]
+    fn the_script_keeps_the_hierarchy() {
+        let text = script(&[PathBuf::from("/a b/fp_mul.v")], "synth_top").unwrap();
+        assert!(text.contains("read_verilog \"/a b/fp_mul.v\"\n"), "{text}");
+        assert!(
+            text.contains(
+                "synth_intel -family cycloneive -top synth_top -noflatten -run map_cells:\n"
+            ),
+            "{text}"
+        );
+        assert!(text.contains("abc -fast -lut 4\n"), "{text}");
+        assert!(text.contains("tee -o stat.txt stat\n"), "{text}");
+        assert!(script(&[PathBuf::from("/a\"b.v")], "t").is_err());
+        assert!(!is_identifier("a b") && !is_identifier("1a") && is_identifier("fp_mul"));
+    }
+
+    #[test]
+    fn a_missing_yosys_says_how_to_install_it() {
+        let err = yosys_version("rtprof-no-such-yosys").unwrap_err();
+        assert!(
+            matches!(err, RtlError::ToolMissing { tool: "yosys", .. }),
+            "{err}"
+        );
+        assert!(
+            err.to_string().contains("scripts/install-rtl-tools.sh"),
+            "{err}"
+        );
+        assert!(err.to_string().contains("apt-get install yosys"), "{err}");
+    }
+
+    /// A top that instantiates `op` at `latency` (the parameters cannot be set from
+    /// `synth_intel -top`).
+    fn wrapper(op: crate::Operator, latency: u32) -> String {
+        let ports = op.ports();
+        let (output, inputs) = ports.split_last().unwrap();
+        let width = |port: &str| match port {
+            "clk" | "sub" | "sel" | "lt" => "",
+            _ => " [31:0]",
+        };
+        let mut decls: Vec<String> = inputs
+            .iter()
+            .map(|p| format!("input{} {p}", width(p)))
+            .collect();
+        decls.push(format!("output{} {output}", width(output)));
+        let conns: Vec<String> = ports.iter().map(|p| format!(".{p}({p})")).collect();
+        format!(
+            "module synth_top ({});\n    {} #(.LATENCY({latency})) u ({});\nendmodule\n",
+            decls.join(", "),
+            op.module_name(),
+            conns.join(", ")
+        )
+    }
+
+    fn synthesize_operator(op: crate::Operator, latency: u32) -> BlockFigures {
+        let dir = std::env::temp_dir().join(format!(
+            "rtl-synth-{}-{}",
+            op.module_name(),
+            std::process::id()
+        ));
+        let mut files = crate::write_sources(&dir.join("src")).unwrap();
+        let top = dir.join("src").join("synth_top.v");
+        fs::write(&top, wrapper(op, latency)).unwrap();
+        files.push(top);
+        let report = synthesize(&dir.join("yosys"), &files, "synth_top", &[op.module_name()])
+            .unwrap_or_else(|e| panic!("{e}"));
+        eprintln!(
+            "{} at LATENCY {latency}: {:?} in {:.1} s ({})",
+            op.module_name(),
+            report.total,
+            report.seconds,
+            report.yosys
+        );
+        assert!(report.unmapped.is_empty(), "{:?}", report.unmapped);
+        assert_eq!(report.check_problems, 0, "{}", report.log.display());
+        assert!(
+            report.warnings.iter().all(|w| w.contains("experimental")),
+            "{:?}",
+            report.warnings
+        );
+        assert_eq!(report.blocks.len(), 1);
+        let block = report.blocks[0].clone();
+        assert_eq!(block.instances, 1);
+        // The wrapper adds nothing.
+        assert_eq!(block.figures, report.total);
+        fs::remove_dir_all(&dir).unwrap();
+        block
+    }
+
+    #[test]
+    #[ignore = "needs yosys"]
+    fn synth_errors_carry_yosys_messages() {
+        let dir = std::env::temp_dir().join(format!("rtl-synth-error-{}", std::process::id()));
+        fs::create_dir_all(&dir).unwrap();
+        let file = dir.join("broken.v");
+        fs::write(
+            &file,
+            "module broken (input a, output y);\n    assign y = ;\nendmodule\n",
+        )
+        .unwrap();
+        let err = synthesize(&dir, &[file], "broken", &[]).unwrap_err();
+        let text = err.to_string();
+        assert!(
+            matches!(err, RtlError::Tool { tool: "yosys", .. }),
+            "{text}"
+        );
+        assert!(
+            text.contains("ERROR") && text.contains("synth.log"),
+            "{text}"
+        );
+        fs::remove_dir_all(&dir).unwrap();
+    }
+
+    #[test]
+    #[ignore = "needs yosys"]
+    fn synth_fp_add_sub() {
+        let f = synthesize_operator(crate::Operator::AddSub, 7).figures;
+        // The delay line alone holds LATENCY × 32 result bits.
+        assert!(f.ff >= 7 * 32, "{f:?}");
+        assert!(f.lut4 > 0, "{f:?}");
+        assert_eq!(f.mult_lut4, 0);
+        assert_eq!((f.mem_bits, f.m9k), (0, 0));
+    }
+
+    #[test]
+    #[ignore = "needs yosys"]
+    fn synth_fp_mul() {
+        let f = synthesize_operator(crate::Operator::Multiply, 5).figures;
+        assert!(f.ff >= 5 * 32, "{f:?}");
+        assert!(f.lut4 > 0, "{f:?}");
+        // The 24 x 24 array is most of a multiplier built of LUTs.
+        assert!(f.mult_lut4 > 0 && 2 * f.mult_lut4 >= f.lut4, "{f:?}");
+        assert!(f.mult_lut4 <= f.lut4, "{f:?}");
+        assert_eq!((f.mem_bits, f.m9k), (0, 0));
+    }
+}
