@@ -149,6 +149,21 @@ impl Pipeline {
         }
     }
 
+    /// Every block in the order a pixel crosses them: primary ray, intersection,
+    /// minimum distance, the comparator tree (K > 1), shading.
+    pub fn blocks_in_order(&self) -> Vec<&Block> {
+        [
+            Some(&self.primary_ray),
+            Some(&self.intersection),
+            Some(&self.min_distance),
+            self.min_tree.as_ref(),
+            Some(&self.shading),
+        ]
+        .into_iter()
+        .flatten()
+        .collect()
+    }
+
     /// The four table-8 blocks in order.
     pub fn table_blocks(&self) -> [&Block; 4] {
         [

@@ -678,16 +678,7 @@ pub fn generate(
         files.push((format!("{module}.v"), text));
     }
     files.push(("min_distance.v".into(), min_distance_module(lib)));
-    for b in [
-        Some(&pipeline.primary_ray),
-        Some(&pipeline.intersection),
-        Some(&pipeline.min_distance),
-        pipeline.min_tree.as_ref(),
-        Some(&pipeline.shading),
-    ]
-    .into_iter()
-    .flatten()
-    {
+    for b in pipeline.blocks_in_order() {
         blocks.push(BlockRtl {
             name: b.name,
             module: b.name.to_string(),

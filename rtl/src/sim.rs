@@ -14,6 +14,7 @@ use std::fs;
 use std::hash::{Hash, Hasher};
 use std::path::{Path, PathBuf};
 use std::process::Command;
+use std::sync::atomic::{AtomicU64, Ordering};
 
 use serde::Serialize;
 
@@ -21,7 +22,7 @@ use hwmodel::blocks::Pipeline;
 use hwmodel::emulator::{HwImage, to_gray8};
 use hwmodel::frame_timing::{cycles_per_pixel, frame_timing};
 use hwmodel::graph_eval::{FrameConstants, light_direction, shading_words};
-use hwmodel::hw_scene::HwScene;
+use hwmodel::hw_scene::{HwPrimitive, HwScene};
 
 use crate::RtlError;
 use crate::generate::{self, GeneratedRtl, TOP};
@@ -76,12 +77,22 @@ fn io(path: &Path) -> impl FnOnce(std::io::Error) -> RtlError + '_ {
 pub fn build(rtl: &GeneratedRtl, root: &Path) -> Result<PathBuf, RtlError> {
     let mut hasher = DefaultHasher::new();
     rtl.files.hash(&mut hasher);
-    let dir = root.join(format!("{:016x}", hasher.finish()));
+    let hash = format!("{:016x}", hasher.finish());
+    let dir = root.join(&hash);
     let program = dir.join("obj").join("Vsim");
     if program.exists() {
         return Ok(program);
     }
-    generate::write(rtl, &dir)?;
+    // Built aside and renamed into place, so that two builds of one design at once
+    // (tests in parallel, two commands) never share a half-built directory.
+    static BUILDS: AtomicU64 = AtomicU64::new(0);
+    let staging = root.join(format!(
+        "{hash}.building-{}-{}",
+        std::process::id(),
+        BUILDS.fetch_add(1, Ordering::Relaxed)
+    ));
+    let _ = fs::remove_dir_all(&staging);
+    generate::write(rtl, &staging)?;
     let sources: Vec<String> = rtl
         .files
         .iter()
@@ -89,7 +100,7 @@ pub fn build(rtl: &GeneratedRtl, root: &Path) -> Result<PathBuf, RtlError> {
         .filter(|n| n.ends_with(".v"))
         .collect();
     let output = Command::new("verilator")
-        .current_dir(&dir)
+        .current_dir(&staging)
         .args([
             "--cc",
             "--exe",
@@ -115,8 +126,8 @@ pub fn build(rtl: &GeneratedRtl, root: &Path) -> Result<PathBuf, RtlError> {
         .arg(generate::TESTBENCH.name)
         .output()
         .map_err(|_| tool_missing("verilator"))?;
-    if !output.status.success() || !program.exists() {
-        let log = dir.join("verilator.log");
+    if !output.status.success() || !staging.join("obj").join("Vsim").exists() {
+        let log = staging.join("verilator.log");
         let mut text = String::from_utf8_lossy(&output.stdout).to_string();
         text += &String::from_utf8_lossy(&output.stderr);
         write_atomically(&log, &text)?;
@@ -130,12 +141,28 @@ pub fn build(rtl: &GeneratedRtl, root: &Path) -> Result<PathBuf, RtlError> {
             ),
         });
     }
-    Ok(program)
+    if fs::rename(&staging, &dir).is_err() {
+        // Another build of the same design finished first: use it.
+        let _ = fs::remove_dir_all(&staging);
+    }
+    if program.exists() {
+        Ok(program)
+    } else {
+        Err(RtlError::Tool {
+            tool: "verilator",
+            message: format!("{} is missing after the build", program.display()),
+        })
+    }
 }
 
-/// The testbench's input: frame constants and scene words for `scene` at
-/// `width`×`height` on `pipeline`.
-pub fn testbench_input(pipeline: &Pipeline, scene: &HwScene, width: u32, height: u32) -> String {
+/// The testbench's input for `scene` at `width`×`height` on `pipeline`: the frame
+/// constants and the scene memory's words (read back from the scene's MIF).
+pub fn testbench_input(
+    pipeline: &Pipeline,
+    scene: &HwScene,
+    width: u32,
+    height: u32,
+) -> Result<String, RtlError> {
     let k = FrameConstants::new(scene, width, height);
     let n = scene.primitives.len() as u64;
     let units = pipeline.design.units.max(1);
@@ -169,8 +196,16 @@ pub fn testbench_input(pipeline: &Pipeline, scene: &HwScene, width: u32, height:
     ] {
         writeln!(out, "{name} {}", hex(v)).ok();
     }
-    for (i, p) in scene.primitives.iter().enumerate() {
-        let mut words: Vec<u32> = p.to_words().to_vec();
+    // The memory's words as the MIF holds them (`rtprof hw mif`), read back from it.
+    let mif = hwmodel::mif::parse_mif(&hwmodel::mif::to_mif(scene))
+        .map_err(|e| RtlError::Generate(format!("the scene's MIF does not read back: {e}")))?;
+    for (i, (p, words)) in scene
+        .primitives
+        .iter()
+        .zip(mif.chunks(HwPrimitive::WORDS))
+        .enumerate()
+    {
+        let mut words = words.to_vec();
         if pipeline.design.no_rsqrt_shading {
             words.extend(shading_words(p, scene.light).map(f32::to_bits));
         }
@@ -178,7 +213,7 @@ pub fn testbench_input(pipeline: &Pipeline, scene: &HwScene, width: u32, height:
             writeln!(out, "word {i} {field} {w:08X}").ok();
         }
     }
-    out
+    Ok(out)
 }
 
 /// The unit view direction (the orthographic design's constant ray).
@@ -199,7 +234,7 @@ pub fn run(
 ) -> Result<SimResult, RtlError> {
     fs::create_dir_all(work).map_err(io(work))?;
     let input = work.join("sim_input.txt");
-    write_atomically(&input, &testbench_input(pipeline, scene, width, height))?;
+    write_atomically(&input, &testbench_input(pipeline, scene, width, height)?)?;
     let image_path = work.join("frame.pgm");
     let results = work.join("sim_results.txt");
     let output = Command::new(program)
@@ -241,21 +276,15 @@ pub fn run(
     }
     let n = scene.primitives.len() as u64;
     let model = frame_timing(pipeline, n, width, height, 1.0);
-    let blocks = [
-        Some(&pipeline.primary_ray),
-        Some(&pipeline.intersection),
-        Some(&pipeline.min_distance),
-        pipeline.min_tree.as_ref(),
-        Some(&pipeline.shading),
-    ]
-    .into_iter()
-    .flatten()
-    .map(|b| BlockLatency {
-        name: b.name.to_string(),
-        simulated: simulated.get(b.name).copied().flatten(),
-        model: b.latency(),
-    })
-    .collect();
+    let blocks = pipeline
+        .blocks_in_order()
+        .into_iter()
+        .map(|b| BlockLatency {
+            name: b.name.to_string(),
+            simulated: simulated.get(b.name).copied().flatten(),
+            model: b.latency(),
+        })
+        .collect();
     Ok(SimResult {
         cycles: cycles.ok_or_else(|| RtlError::Tool {
             tool: "simulation",

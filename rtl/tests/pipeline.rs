@@ -51,7 +51,8 @@ fn build_root() -> PathBuf {
     target.join("rtl-sim")
 }
 
-fn check(design: Design, names: &[String]) -> Vec<(String, u64, u64)> {
+/// Simulates `names` on `design`; `test` keeps the runs of parallel tests apart.
+fn check(test: &str, design: Design, names: &[String]) -> Vec<(String, u64, u64)> {
     let lib = Library::cyclone_iv_e();
     let pipeline = Pipeline::build(&lib, &design);
     let rtl = generate::generate(&lib, &pipeline, 6).unwrap_or_else(|e| panic!("{e}"));
@@ -62,7 +63,7 @@ fn check(design: Design, names: &[String]) -> Vec<(String, u64, u64)> {
         let hw = scene(name);
         let work = build_root()
             .join("runs")
-            .join(format!("{name}-{}", design.label()));
+            .join(format!("{test}-{name}-{}", design.label()));
         let started = std::time::Instant::now();
         let result = sim::run(&program, &pipeline, &hw, width, height, &work)
             .unwrap_or_else(|e| panic!("{name}: {e}"));
@@ -109,15 +110,20 @@ fn check(design: Design, names: &[String]) -> Vec<(String, u64, u64)> {
 #[test]
 #[ignore = "needs verilator"]
 fn the_thesis_pipeline_simulates_to_the_emulators_picture_and_the_models_cycles() {
-    check(Design::thesis(), &scenes(&["balls2", "cylinder3", "both7"]));
+    check(
+        "thesis",
+        Design::thesis(),
+        &scenes(&["balls2", "cylinder3", "both7"]),
+    );
 }
 
 #[test]
 #[ignore = "needs verilator"]
 fn two_units_halve_the_cycles_per_pixel() {
     let names = scenes(&["balls2", "both7"]);
-    let one = check(Design::thesis(), &names);
+    let one = check("units", Design::thesis(), &names);
     let two = check(
+        "units",
         Design {
             units: 2,
             ..Design::thesis()

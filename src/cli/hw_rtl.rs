@@ -106,7 +106,7 @@ pub fn rtl(args: &RtlArgs) -> Result<()> {
             .unwrap_or((tracer_scene.view.width, tracer_scene.view.height));
         rtl::operators::write_atomically(
             &args.output.join("sim_input.txt"),
-            &sim::testbench_input(&pipeline, hw, width, height),
+            &sim::testbench_input(&pipeline, hw, width, height)?,
         )?;
         rtl::operators::write_atomically(
             &args.output.join("scene.mif"),
@@ -124,7 +124,10 @@ pub fn rtl(args: &RtlArgs) -> Result<()> {
         println!("  {:<14} {:>4} cycles", b.name, b.latency);
     }
     println!(
-        "simulate: rtprof hw sim SCENE{}",
+        "simulate: rtprof hw sim {}{}",
+        args.scene
+            .as_ref()
+            .map_or("SCENE".to_string(), ToString::to_string),
         if design.units > 1 {
             format!(" --units {}", design.units)
         } else {
@@ -244,7 +247,12 @@ pub fn simulate(args: &SimArgs) -> Result<()> {
         );
     }
     if !agrees {
-        bail!("the simulated RTL and the model disagree (see above)");
+        // A failed check, not bad input: exit code 1.
+        return Err(super::Outcome::new(
+            1,
+            "the simulated RTL disagrees with the model or the emulator (see above)",
+        )
+        .into());
     }
     Ok(())
 }
@@ -329,16 +337,10 @@ pub fn synth(args: &SynthArgs) -> Result<()> {
     let mut rows = Vec::new();
     for name in &blocks {
         let yosys = report.block(name).map(|b| b.figures);
-        let block = [
-            Some(&pipeline.primary_ray),
-            Some(&pipeline.intersection),
-            Some(&pipeline.min_distance),
-            Some(&pipeline.shading),
-            pipeline.min_tree.as_ref(),
-        ]
-        .into_iter()
-        .flatten()
-        .find(|b| b.name == *name);
+        let block = pipeline
+            .blocks_in_order()
+            .into_iter()
+            .find(|b| b.name == *name);
         let model = block.map(|b| b.resources());
         let thesis = tables
             .blocks
