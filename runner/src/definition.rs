@@ -20,6 +20,10 @@ fn default_profile_samples() -> u64 {
     crate::profile_job::DEFAULT_MIN_SAMPLES
 }
 
+fn yes() -> bool {
+    true
+}
+
 /// A suite definition.
 #[derive(Clone, Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -40,6 +44,13 @@ pub struct SuiteDef {
     #[serde(default = "default_profile_samples")]
     pub profile_samples: u64,
     pub hardware_repeats: u32,
+    /// Whether each scene the hardware can render also runs the hardware model and
+    /// emulator (default: yes).
+    #[serde(default = "yes")]
+    pub hardware: bool,
+    /// Whether the heaviest scene is profiled (default: yes).
+    #[serde(default = "yes")]
+    pub profile: bool,
     /// Scenes (by their name in results, e.g. `balls4`, `rings-small`) whose baseline,
     /// simd and bvh renders also write per-pixel maps.
     #[serde(default)]
@@ -113,6 +124,12 @@ impl SuiteDef {
             other => other,
         })?;
         Ok(def)
+    }
+
+    /// A definition built in code (`rtprof serve`'s jobs), checked as a file would be.
+    pub fn checked(self, file: &str) -> Result<Self, RunError> {
+        self.check(file)?;
+        Ok(self)
     }
 
     fn check(&self, file: &str) -> Result<(), RunError> {

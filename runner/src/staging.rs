@@ -55,6 +55,16 @@ impl Staging {
     }
 }
 
+impl Staging {
+    /// Keeps what was staged as `partial` (an unfinished run's outputs, named as
+    /// such) instead of removing it: one rename; `partial` must not exist.
+    pub fn keep_as(self, partial: &Path) -> Result<(), RunError> {
+        std::fs::rename(&self.dir, partial)
+            .map_err(|e| RunError::io("keep the partial outputs as", partial, &e))
+        // Dropped here: the staging directory is gone, so its removal does nothing.
+    }
+}
+
 /// What a user is told when a run into `output` was stopped after `done` of `total`
 /// scenes and its staged files discarded.
 pub fn discarded_message(output: &Path, done: usize, total: usize) -> String {

@@ -426,6 +426,7 @@ impl SceneRunner<'_> {
             cpu_samples: k.cpu_samples,
         });
         let hardware = match HwScene::from_scene(&scene) {
+            Ok(_) if !self.def.hardware => None,
             Ok(hw) => match self.run_hardware(spec, &scene, &hw) {
                 Ok(h) => Some(h),
                 Err(RunError::Stopped) => return Err(RunError::Stopped),
@@ -667,6 +668,9 @@ impl SceneRunner<'_> {
         specs: &[SceneSpec],
         results: &[SceneResult],
     ) -> Result<Option<ProfileResult>, RunError> {
+        if !self.def.profile {
+            return Ok(None);
+        }
         let reference = |s: &SceneResult| {
             let v = s.variants.iter().find(|v| v.variant.is_reference())?;
             Some(v.time.median)

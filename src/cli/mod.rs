@@ -15,6 +15,7 @@ mod report;
 mod scaling;
 mod scene;
 mod scene_args;
+mod serve;
 mod suite;
 mod variants;
 
@@ -57,6 +58,9 @@ enum Command {
     /// Growth study: time, tests and nodes per ray of each accelerator against scene
     /// size, tens to a million primitives, with fitted exponents; scaling.json, .svg.
     Scaling(scaling::ScalingArgs),
+    /// The local web app: pick a scene, run variants, view images, counts, flamegraphs,
+    /// hardware and the gate, open the reports (http://127.0.0.1:8080/).
+    Serve(serve::ServeArgs),
 }
 
 /// How a table is printed: aligned text for a terminal, GitHub-flavoured Markdown (a
@@ -114,5 +118,6 @@ pub fn run(cli: Cli) -> anyhow::Result<()> {
         Command::Report(args) => report::run(&args),
         Command::Scene(args) => scene::run(&args),
         Command::Scaling(args) => scaling::run(&args),
+        Command::Serve(args) => serve::run(&args),
     }
 }

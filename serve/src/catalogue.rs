@@ -1,0 +1,243 @@
+//! The scenes a job can name: the built-in scenes, the generators (SPD databases at a
+//! size factor, sphereflake, lattice) and the NFF files uploaded to this server; and
+//! the variants and parts a job can ask for. `GET /api/scenes` is this, as JSON.
+
+use std::path::{Path, PathBuf};
+
+use runner::scene_input::{SPD_PREFIX, SceneInput};
+use serde::Serialize;
+use tracer::{Limits, VariantSet};
+
+use crate::error::ApiError;
+use crate::job::Part;
+
+/// The prefix of an uploaded scene's id.
+pub const UPLOAD_PREFIX: &str = "upload:";
+
+/// A scene a job can name as is.
+#[derive(Clone, Debug, Serialize)]
+pub struct SceneEntry {
+    pub id: String,
+    /// `builtin` or `uploaded`.
+    pub group: &'static str,
+    pub family: String,
+    pub primitives: u64,
+}
+
+/// A scene generator: its id is `PREFIX:N`.
+#[derive(Clone, Debug, Serialize)]
+pub struct GeneratorEntry {
+    pub prefix: String,
+    pub label: String,
+    pub parameter: &'static str,
+    pub min: u32,
+    pub max: u32,
+    pub default: u32,
+    pub summary: String,
+}
+
+#[derive(Clone, Debug, Serialize)]
+pub struct VariantEntry {
+    pub name: String,
+    pub summary: String,
+}
+
+#[derive(Clone, Debug, Serialize)]
+pub struct PartEntry {
+    pub name: &'static str,
+    pub label: &'static str,
+}
+
+#[derive(Clone, Debug, Serialize)]
+pub struct LimitsEntry {
+    pub max_side: u32,
+    pub max_pixels: u64,
+    pub max_upload_bytes: u64,
+}
+
+/// Everything `GET /api/scenes` lists.
+#[derive(Clone, Debug, Serialize)]
+pub struct Listing {
+    pub scenes: Vec<SceneEntry>,
+    pub generators: Vec<GeneratorEntry>,
+    pub variants: Vec<VariantEntry>,
+    pub parts: Vec<PartEntry>,
+    pub limits: LimitsEntry,
+}
+
+/// The combinations the suite runs, offered beside the single variants.
+const COMBINATIONS: [&str; 2] = ["bvh+simd", "bvh+simd+packets"];
+
+/// The scene catalogue of one server: fixed names plus the uploads directory.
+#[derive(Clone, Debug)]
+pub struct Catalogue {
+    uploads: PathBuf,
+    max_upload_bytes: u64,
+}
+
+impl Catalogue {
+    pub fn new(uploads: PathBuf, max_upload_bytes: u64) -> Self {
+        Catalogue {
+            uploads,
+            max_upload_bytes,
+        }
+    }
+
+    /// Where uploaded scenes are kept.
+    pub fn uploads_dir(&self) -> &Path {
+        &self.uploads
+    }
+
+    pub fn max_upload_bytes(&self) -> u64 {
+        self.max_upload_bytes
+    }
+
+    /// The file of the uploaded scene `name` (already checked to be a plain name).
+    pub fn upload_path(&self, name: &str) -> PathBuf {
+        self.uploads.join(format!("{name}.nff"))
+    }
+
+    /// Everything a job can name.
+    pub fn listing(&self) -> Listing {
+        let mut scenes: Vec<SceneEntry> = tracer::builtin_scenes::all()
+            .map(|b| SceneEntry {
+                id: b.name.to_string(),
+                group: "builtin",
+                family: b.family.to_string(),
+                primitives: b.primitives as u64,
+            })
+            .collect();
+        scenes.extend(self.uploaded());
+        let mut generators: Vec<GeneratorEntry> = spd::PROGRAMS
+            .iter()
+            .map(|p| GeneratorEntry {
+                prefix: format!("{SPD_PREFIX}{}", p.name),
+                label: format!("SPD {}", p.name),
+                parameter: "size factor",
+                min: 1,
+                max: p.max_size_factor,
+                default: p.default_size_factor,
+                summary: p.summary.to_string(),
+            })
+            .collect();
+        use tracer::generators::{MAX_LATTICE_SIDE, MAX_SPHEREFLAKE_DEPTH};
+        generators.push(GeneratorEntry {
+            prefix: "sphereflake".into(),
+            label: "sphereflake".into(),
+            parameter: "depth",
+            min: 0,
+            max: MAX_SPHEREFLAKE_DEPTH,
+            default: 2,
+            summary: "Haines's sphereflake without the ground: 1 + 9 + 81 + ... spheres".into(),
+        });
+        generators.push(GeneratorEntry {
+            prefix: "lattice".into(),
+            label: "lattice".into(),
+            parameter: "side",
+            min: 1,
+            max: MAX_LATTICE_SIDE,
+            default: 3,
+            summary: "N^3 spheres on a cubic lattice joined by 3 N^2 (N-1) cylinders".into(),
+        });
+        let mut variants: Vec<VariantEntry> = tracer::Variant::ALL
+            .iter()
+            .filter(|v| v.available() && VariantSet::parse(v.name()).is_ok())
+            .map(|v| VariantEntry {
+                name: v.name().to_string(),
+                summary: v.description().to_string(),
+            })
+            .collect();
+        for combination in COMBINATIONS {
+            if VariantSet::parse(combination).is_ok() {
+                variants.push(VariantEntry {
+                    name: combination.to_string(),
+                    summary: format!("{combination} combined"),
+                });
+            }
+        }
+        let limits = Limits::default();
+        Listing {
+            scenes,
+            generators,
+            variants,
+            parts: Part::ALL
+                .iter()
+                .map(|p| PartEntry {
+                    name: p.name(),
+                    label: p.label(),
+                })
+                .collect(),
+            limits: LimitsEntry {
+                max_side: limits.max_side,
+                max_pixels: limits.max_pixels,
+                max_upload_bytes: self.max_upload_bytes,
+            },
+        }
+    }
+
+    /// The uploaded scenes, by name (primitive counts from their parse).
+    fn uploaded(&self) -> Vec<SceneEntry> {
+        let Ok(entries) = std::fs::read_dir(&self.uploads) else {
+            return Vec::new();
+        };
+        let mut names: Vec<String> = entries
+            .filter_map(|e| e.ok())
+            .filter_map(|e| {
+                let name = e.file_name().to_string_lossy().into_owned();
+                let stem = name.strip_suffix(".nff")?;
+                crate::uploads::check_name(stem).ok()?;
+                Some(stem.to_string())
+            })
+            .collect();
+        names.sort();
+        names
+            .into_iter()
+            .filter_map(|name| {
+                let path = self.upload_path(&name);
+                let scene = tracer::load_nff_with_limits(&path, &Limits::default()).ok()?;
+                Some(SceneEntry {
+                    id: format!("{UPLOAD_PREFIX}{name}"),
+                    group: "uploaded",
+                    family: "other".into(),
+                    primitives: scene.primitive_count() as u64,
+                })
+            })
+            .collect()
+    }
+
+    /// The suite entry of a scene id (a built-in name, a generator, or an uploaded
+    /// scene's file). Never a path the request names: a job reads no file but the
+    /// uploads.
+    pub fn resolve(&self, id: &str) -> Result<String, ApiError> {
+        if id.is_empty() {
+            return Err(ApiError::invalid(
+                "no scene: pick one of GET /api/scenes (e.g. balls3)",
+            ));
+        }
+        if let Some(name) = id.strip_prefix(UPLOAD_PREFIX) {
+            crate::uploads::check_name(name)?;
+            let path = self.upload_path(name);
+            if !path.is_file() {
+                return Err(ApiError::invalid(format!(
+                    "no uploaded scene '{name}': upload it first (POST /api/scenes?name={name})"
+                )));
+            }
+            return Ok(path.display().to_string());
+        }
+        let unknown = || {
+            ApiError::invalid(format!(
+                "unknown scene '{id}': GET /api/scenes lists the built-in scenes and generators"
+            ))
+        };
+        if id.contains(['/', '\\']) || id.ends_with(".nff") {
+            return Err(unknown());
+        }
+        // A base directory that cannot exist: a name is never read as a file.
+        let nowhere = Path::new("/nonexistent/rtprof-serve");
+        match SceneInput::parse(id, nowhere) {
+            Ok(SceneInput::File(_)) => Err(unknown()),
+            Ok(input) => Ok(input.to_string()),
+            Err(e) => Err(ApiError::invalid(e.to_string())),
+        }
+    }
+}

@@ -1,0 +1,426 @@
+//! The job queue: jobs run one at a time on a worker thread (the renders use every
+//! core), each watched through a channel the event streams follow, each cancellable
+//! at the runner's next safe point. Status changes are saved to the job's `job.json`.
+
+use std::collections::BTreeMap;
+use std::path::Path;
+use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::{Arc, Mutex, MutexGuard, mpsc};
+
+use runner::RunError;
+use runner::definition::SuiteDef;
+use runner::staging::Staging;
+use runner::suite::{RunContext, Suite};
+use tokio::sync::watch;
+
+use crate::catalogue::Catalogue;
+use crate::error::ApiError;
+use crate::job::{Job, JobProgress, JobRequest, JobStatus, Part};
+use crate::store::{PARTIAL_DIR, Store, list_files};
+
+struct Entry {
+    job: Job,
+    stop: Arc<AtomicBool>,
+    watch: watch::Sender<Job>,
+}
+
+/// Every job this server knows (the history and the new ones).
+pub struct Jobs {
+    entries: Mutex<BTreeMap<u64, Entry>>,
+    store: Store,
+    catalogue: Catalogue,
+    queue: Mutex<Option<mpsc::Sender<u64>>>,
+    /// Set when the server stops: the running job ends as interrupted, not cancelled.
+    shutting_down: AtomicBool,
+}
+
+impl Jobs {
+    /// The registry with the history of the data directory, and its worker started.
+    pub fn start(store: Store, catalogue: Catalogue, history: Vec<Job>) -> Arc<Self> {
+        let entries = history
+            .into_iter()
+            .filter_map(|job| {
+                let id = job.id.parse().ok()?;
+                let (watch, _) = watch::channel(job.clone());
+                let stop = Arc::new(AtomicBool::new(false));
+                Some((id, Entry { job, stop, watch }))
+            })
+            .collect();
+        let (sender, receiver) = mpsc::channel();
+        let jobs = Arc::new(Jobs {
+            entries: Mutex::new(entries),
+            store,
+            catalogue,
+            queue: Mutex::new(Some(sender)),
+            shutting_down: AtomicBool::new(false),
+        });
+        let worker = Arc::clone(&jobs);
+        std::thread::Builder::new()
+            .name("rtprof-jobs".into())
+            .spawn(move || {
+                while let Ok(id) = receiver.recv() {
+                    worker.run(id);
+                }
+            })
+            .map_or_else(
+                |e| eprintln!("rtprof: error: cannot start the job worker: {e}"),
+                |_| (),
+            );
+        jobs
+    }
+
+    fn lock(&self) -> MutexGuard<'_, BTreeMap<u64, Entry>> {
+        // A panic while holding the lock leaves plain data; keep serving it.
+        self.entries.lock().unwrap_or_else(|e| e.into_inner())
+    }
+
+    pub fn catalogue(&self) -> &Catalogue {
+        &self.catalogue
+    }
+
+    pub fn store(&self) -> &Store {
+        &self.store
+    }
+
+    /// Checks `request` and queues it.
+    pub fn submit(&self, request: JobRequest) -> Result<Job, ApiError> {
+        let request = request.checked(&self.catalogue)?;
+        let job = {
+            let mut entries = self.lock();
+            let id = entries.keys().next_back().map_or(1, |last| last + 1);
+            let job = Job {
+                id: id.to_string(),
+                request,
+                status: JobStatus::Queued,
+                created: runner::machine::now_rfc3339(),
+                started: None,
+                finished: None,
+                progress: JobProgress {
+                    stage: "queued".into(),
+                    ..JobProgress::default()
+                },
+                error: None,
+                files: Vec::new(),
+            };
+            self.store
+                .save(&job)
+                .map_err(|e| ApiError::internal(e.to_string()))?;
+            let (watch, _) = watch::channel(job.clone());
+            let stop = Arc::new(AtomicBool::new(false));
+            entries.insert(
+                id,
+                Entry {
+                    job: job.clone(),
+                    stop,
+                    watch,
+                },
+            );
+            job
+        };
+        let queued = self
+            .queue
+            .lock()
+            .ok()
+            .and_then(|q| q.as_ref().map(|s| s.send(job_id(&job)).is_ok()));
+        if queued != Some(true) {
+            return Err(ApiError::new(
+                axum::http::StatusCode::SERVICE_UNAVAILABLE,
+                "the server is stopping; it takes no new jobs",
+            ));
+        }
+        Ok(job)
+    }
+
+    /// Every job, newest first.
+    pub fn list(&self) -> Vec<Job> {
+        self.lock().values().rev().map(|e| e.job.clone()).collect()
+    }
+
+    pub fn get(&self, id: u64) -> Result<Job, ApiError> {
+        self.lock()
+            .get(&id)
+            .map(|e| e.job.clone())
+            .ok_or_else(|| unknown(id))
+    }
+
+    /// A receiver of the job's every change (its current state first).
+    pub fn subscribe(&self, id: u64) -> Result<watch::Receiver<Job>, ApiError> {
+        self.lock()
+            .get(&id)
+            .map(|e| e.watch.subscribe())
+            .ok_or_else(|| unknown(id))
+    }
+
+    /// Cancels a queued job at once, a running one at the runner's next safe point.
+    pub fn cancel(&self, id: u64) -> Result<Job, ApiError> {
+        let status = self.get(id)?.status;
+        match status {
+            JobStatus::Queued => {
+                self.update(id, true, |job| {
+                    job.status = JobStatus::Cancelled;
+                    job.finished = Some(runner::machine::now_rfc3339());
+                    job.error = Some("cancelled before it started".into());
+                });
+            }
+            JobStatus::Running => {
+                if let Some(entry) = self.lock().get(&id) {
+                    entry.stop.store(true, Ordering::SeqCst);
+                }
+                self.update(id, false, |job| {
+                    job.progress.message = CANCELLING.into();
+                });
+            }
+            done => {
+                return Err(ApiError::conflict(format!(
+                    "job {id} is already {}: there is nothing to cancel",
+                    serde_json::to_value(done)
+                        .ok()
+                        .and_then(|v| v.as_str().map(str::to_string))
+                        .unwrap_or_default()
+                )));
+            }
+        }
+        self.get(id)
+    }
+
+    /// Stops taking jobs and stops the running one (it ends as interrupted); returns
+    /// whether one was running.
+    pub fn shut_down(&self) -> bool {
+        self.shutting_down.store(true, Ordering::SeqCst);
+        if let Ok(mut queue) = self.queue.lock() {
+            queue.take();
+        }
+        let entries = self.lock();
+        let running = entries
+            .values()
+            .filter(|e| e.job.status == JobStatus::Running)
+            .inspect(|e| e.stop.store(true, Ordering::SeqCst))
+            .count();
+        running > 0
+    }
+
+    /// Whether a job is running.
+    pub fn busy(&self) -> bool {
+        self.lock()
+            .values()
+            .any(|e| e.job.status == JobStatus::Running)
+    }
+
+    /// Changes job `id`, tells its watchers, and saves `job.json` when `save`.
+    fn update(&self, id: u64, save: bool, change: impl FnOnce(&mut Job)) {
+        let mut entries = self.lock();
+        let Some(entry) = entries.get_mut(&id) else {
+            return;
+        };
+        change(&mut entry.job);
+        entry.watch.send_replace(entry.job.clone());
+        if save && let Err(e) = self.store.save(&entry.job) {
+            eprintln!("rtprof: warning: {e}");
+        }
+    }
+
+    /// Runs job `id` (on the worker thread), unless it was cancelled while queued.
+    fn run(&self, id: u64) {
+        let Some((request, stop)) = self.lock().get(&id).and_then(|e| {
+            (e.job.status == JobStatus::Queued).then(|| (e.job.request.clone(), e.stop.clone()))
+        }) else {
+            return;
+        };
+        self.update(id, true, |job| {
+            job.status = JobStatus::Running;
+            job.started = Some(runner::machine::now_rfc3339());
+            job.progress.stage = "starting".into();
+        });
+        let dir = self.store.job_dir(id);
+        let progress = ProgressSink {
+            jobs: self,
+            id,
+            stop: &stop,
+        };
+        let outcome = execute(&request, &self.catalogue, &dir, &progress, &stop);
+        let interrupted = self.shutting_down.load(Ordering::SeqCst);
+        let files = list_files(&dir);
+        let partial = match files.iter().any(|f| f.starts_with("partial/")) {
+            true => "; its partial outputs are under partial/",
+            false => "; it had written no output yet",
+        };
+        self.update(id, true, |job| {
+            job.finished = Some(runner::machine::now_rfc3339());
+            job.files = files;
+            match outcome {
+                Ok(()) => {
+                    job.status = JobStatus::Done;
+                    job.progress.fraction = 1.0;
+                    job.progress.stage = "done".into();
+                    job.progress.message.clear();
+                }
+                Err(Ended::Stopped) if interrupted => {
+                    job.status = JobStatus::Interrupted;
+                    job.error = Some(format!("the server stopped during this job{partial}"));
+                }
+                Err(Ended::Stopped) => {
+                    job.status = JobStatus::Cancelled;
+                    job.error = Some(format!("cancelled{partial}"));
+                }
+                Err(Ended::Failed(message)) => {
+                    job.status = JobStatus::Failed;
+                    job.error = Some(format!("{message}{partial}"));
+                }
+            }
+        });
+    }
+}
+
+/// What a job being cancelled says: the runner stops between renders, not within one.
+const CANCELLING: &str = "cancelling: stopping after the current render";
+
+fn job_id(job: &Job) -> u64 {
+    job.id.parse().unwrap_or(0)
+}
+
+fn unknown(id: u64) -> ApiError {
+    ApiError::not_found(format!("no job {id}: GET /api/jobs lists them"))
+}
+
+/// How a job ended without finishing.
+enum Ended {
+    Stopped,
+    Failed(String),
+}
+
+/// The suite definition of a job: its one scene and variants at its size, with the
+/// parts it asked for; or the embedded suite's quick run.
+fn definition(request: &JobRequest, catalogue: &Catalogue) -> Result<(SuiteDef, bool), Ended> {
+    let failed = |e: &dyn std::fmt::Display| Ended::Failed(e.to_string());
+    if request.runs(Part::Suite) {
+        return Ok((SuiteDef::load(None).map_err(|e| failed(&e))?, true));
+    }
+    let entry = catalogue
+        .resolve(&request.scene)
+        .map_err(|e| Ended::Failed(e.message))?;
+    let def = SuiteDef {
+        name: "serve".into(),
+        size: request.size,
+        repeats: 3,
+        min_seconds: 0.1,
+        variants: request.variants.clone(),
+        scenes: vec![entry],
+        extra_size: request.size,
+        profile_size: request.size,
+        profile_frequency: 1000,
+        profile_samples: 300,
+        hardware_repeats: 1,
+        hardware: request.runs(Part::Hardware),
+        profile: request.runs(Part::Profile),
+        pixel_stats: Vec::new(),
+        spd: None,
+        quick: None,
+    };
+    Ok((def.checked("the job").map_err(|e| failed(&e))?, false))
+}
+
+/// Runs a job into its directory: staged, published whole when it succeeds, kept as
+/// `partial/` when it is stopped, fails or panics.
+fn execute(
+    request: &JobRequest,
+    catalogue: &Catalogue,
+    dir: &Path,
+    progress: &ProgressSink<'_>,
+    stop: &AtomicBool,
+) -> Result<(), Ended> {
+    let failed = |e: &dyn std::fmt::Display| Ended::Failed(e.to_string());
+    let (def, quick) = definition(request, catalogue)?;
+    let mut suite = Suite::prepare(def, quick, Path::new(""), None).map_err(|e| failed(&e))?;
+    if request.runs(Part::PixelMaps) {
+        suite.def.pixel_stats = suite.scenes.iter().map(|s| s.name.clone()).collect();
+    }
+    let staging = Staging::create(dir).map_err(|e| failed(&e))?;
+    let ctx = RunContext {
+        out: staging.dir(),
+        threads: request.threads,
+        progress,
+        stop,
+    };
+    let run = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
+        let results = suite.run(&ctx)?;
+        if stop.load(Ordering::SeqCst) {
+            return Err(RunError::Stopped);
+        }
+        runner::Progress::begin(progress, "reports", 0);
+        runner::Progress::message(progress, "writing results.json, report.html and report.pdf");
+        runner::report_files::write_run(&results, staging.dir())?;
+        Ok(())
+    }));
+    let ended = match run {
+        Ok(Ok(())) => return staging.publish(dir).map_err(|e| failed(&e)),
+        Ok(Err(RunError::Stopped | RunError::StoppedAfter { .. })) => Ended::Stopped,
+        Ok(Err(e)) => Ended::Failed(e.to_string()),
+        Err(_) => {
+            Ended::Failed("internal error (panic) while running this job; please report it".into())
+        }
+    };
+    // Never a results.json among partial outputs: only a finished job has one.
+    let _ = std::fs::remove_file(staging.dir().join("results.json"));
+    if let Err(e) = staging.keep_as(&dir.join(PARTIAL_DIR)) {
+        eprintln!("rtprof: warning: {e}");
+    }
+    Err(ended)
+}
+
+/// The runner's progress, as the job's progress.
+struct ProgressSink<'a> {
+    jobs: &'a Jobs,
+    id: u64,
+    /// The job's stop flag: once set, every message says the job is being cancelled.
+    stop: &'a AtomicBool,
+}
+
+/// The share of a whole job done at the start and end of each stage.
+fn stage_span(stage: &str) -> (f64, f64) {
+    match stage {
+        "machine" => (0.0, 0.05),
+        "scenes" => (0.05, 0.85),
+        "profile" => (0.85, 0.93),
+        "reports" => (0.93, 1.0),
+        _ => (0.0, 0.0),
+    }
+}
+
+impl ProgressSink<'_> {
+    fn change(&self, change: impl FnOnce(&mut JobProgress)) {
+        self.jobs.update(self.id, false, |job| {
+            change(&mut job.progress);
+            let p = &mut job.progress;
+            let (start, end) = stage_span(&p.stage);
+            let within = if p.total > 0 {
+                p.done.min(p.total) as f64 / p.total as f64
+            } else {
+                0.0
+            };
+            p.fraction = start + (end - start) * within;
+        });
+    }
+}
+
+impl runner::Progress for ProgressSink<'_> {
+    fn begin(&self, stage: &str, total: u64) {
+        self.change(|p| {
+            p.stage = stage.to_string();
+            p.total = total;
+            p.done = 0;
+            p.message.clear();
+        });
+    }
+
+    fn message(&self, text: &str) {
+        let text = match self.stop.load(Ordering::SeqCst) {
+            true => format!("{CANCELLING}; {text}"),
+            false => text.to_string(),
+        };
+        self.change(|p| p.message = text);
+    }
+
+    fn advance(&self, steps: u64) {
+        self.change(|p| p.done += steps);
+    }
+}

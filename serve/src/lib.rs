@@ -1,0 +1,171 @@
+//! `rtprof serve`: the thesis's GUI (Pick, Run, View Image, Open report) as a local
+//! web app over the same runner and reports as the command line. A page (askama
+//! template, embedded script, no network reference) drives a JSON API
+//! (docs/serve.md); jobs run one at a time in the background with live progress
+//! (server-sent events), each into its own directory of the data directory, where
+//! `rtprof report` can read its results.json too.
+//!
+//! The server binds to 127.0.0.1 unless told otherwise, answers only requests
+//! addressed to it by that name, and refuses state-changing requests without its
+//! per-server token ([`guard`]).
+
+pub mod api;
+pub mod catalogue;
+pub mod error;
+pub mod guard;
+pub mod job;
+pub mod jobs;
+pub mod page;
+pub mod store;
+pub mod uploads;
+
+use std::net::{IpAddr, Ipv4Addr, SocketAddr};
+use std::path::PathBuf;
+use std::sync::Arc;
+
+pub use error::{ApiError, ServeError};
+
+/// Default largest upload, bytes (64 MiB).
+pub const DEFAULT_MAX_UPLOAD_BYTES: u64 = 64 << 20;
+
+/// How to serve.
+#[derive(Clone, Debug)]
+pub struct Config {
+    pub bind: IpAddr,
+    /// 0: any free port.
+    pub port: u16,
+    /// The data directory (jobs, uploads, server.json).
+    pub data: PathBuf,
+    pub max_upload_bytes: u64,
+}
+
+impl Default for Config {
+    fn default() -> Self {
+        Config {
+            bind: IpAddr::V4(Ipv4Addr::LOCALHOST),
+            port: 8080,
+            data: PathBuf::from("rtprof-data"),
+            max_upload_bytes: DEFAULT_MAX_UPLOAD_BYTES,
+        }
+    }
+}
+
+/// A server running on its own threads.
+pub struct Server {
+    pub address: SocketAddr,
+    pub url: String,
+    pub token: String,
+    /// Directories under `jobs/` that were not readable jobs, skipped on start.
+    pub skipped: Vec<String>,
+    jobs: Arc<jobs::Jobs>,
+    shutdown: Option<tokio::sync::oneshot::Sender<()>>,
+    thread: Option<std::thread::JoinHandle<()>>,
+}
+
+impl Server {
+    /// Opens the data directory (rebuilding the history), binds and starts serving.
+    pub fn start(config: &Config) -> Result<Server, ServeError> {
+        let store = store::Store::open(&config.data)?;
+        let history = store.history()?;
+        let catalogue = catalogue::Catalogue::new(store.scenes_dir(), config.max_upload_bytes);
+        let token = guard::new_token().map_err(ServeError::Other)?;
+        let runtime = tokio::runtime::Builder::new_multi_thread()
+            .worker_threads(2)
+            .enable_all()
+            .build()
+            .map_err(|e| ServeError::Other(format!("cannot start the async runtime: {e}")))?;
+        let wanted = SocketAddr::new(config.bind, config.port);
+        let listener = runtime
+            .block_on(tokio::net::TcpListener::bind(wanted))
+            .map_err(|e| ServeError::Bind {
+                address: wanted.to_string(),
+                message: e.to_string(),
+            })?;
+        let address = listener.local_addr().map_err(|e| ServeError::Bind {
+            address: wanted.to_string(),
+            message: e.to_string(),
+        })?;
+        let url = match address.ip() {
+            IpAddr::V6(ip) => format!("http://[{ip}]:{}/", address.port()),
+            IpAddr::V4(ip) => format!("http://{ip}:{}/", address.port()),
+        };
+        let hosts = if config.bind.is_loopback() {
+            vec![
+                "127.0.0.1".to_string(),
+                "localhost".to_string(),
+                "::1".to_string(),
+            ]
+        } else {
+            // An explicit non-local --bind: the user chose to be reachable by any name.
+            Vec::new()
+        };
+        let jobs = jobs::Jobs::start(store.clone(), catalogue, history.jobs);
+        let state = api::AppState {
+            jobs: Arc::clone(&jobs),
+            token: token.clone(),
+        };
+        let guard = guard::Guard {
+            token: token.clone(),
+            hosts,
+        };
+        let app = api::router(state, guard, config.max_upload_bytes);
+        store.announce(&url, &token)?;
+        let (shutdown, stopped) = tokio::sync::oneshot::channel::<()>();
+        let thread = std::thread::Builder::new()
+            .name("rtprof-serve".into())
+            .spawn(move || {
+                runtime.block_on(async move {
+                    let served = axum::serve(listener, app)
+                        .with_graceful_shutdown(async {
+                            let _ = stopped.await;
+                        })
+                        .await;
+                    if let Err(e) = served {
+                        eprintln!("rtprof: error: the server stopped: {e}");
+                    }
+                });
+                // Event streams never end by themselves: do not wait for them.
+                runtime.shutdown_background();
+            })
+            .map_err(|e| ServeError::Other(format!("cannot start the server thread: {e}")))?;
+        Ok(Server {
+            address,
+            url,
+            token,
+            skipped: history.skipped,
+            jobs,
+            shutdown: Some(shutdown),
+            thread: Some(thread),
+        })
+    }
+
+    /// Stops serving and stops the running job (it ends as interrupted, its partial
+    /// outputs kept); waits for both.
+    pub fn stop(mut self) {
+        self.stop_now();
+    }
+
+    fn stop_now(&mut self) {
+        if let Some(shutdown) = self.shutdown.take() {
+            let _ = shutdown.send(());
+        }
+        self.jobs.shut_down();
+        while self.jobs.busy() {
+            std::thread::sleep(std::time::Duration::from_millis(50));
+        }
+        if let Some(thread) = self.thread.take() {
+            let _ = thread.join();
+        }
+    }
+
+    /// Whether a job is running now.
+    pub fn busy(&self) -> bool {
+        self.jobs.busy()
+    }
+}
+
+impl Drop for Server {
+    fn drop(&mut self) {
+        self.stop_now();
+    }
+}

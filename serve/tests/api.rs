@@ -1,0 +1,363 @@
+//! The JSON API against a real server on a free port: refusals (path traversal, an
+//! oversized upload, a malformed NFF, an absurd size, an unknown variant, requests
+//! without the token or from another site) each with its status code, a job run to
+//! the end with every file it lists, a cancelled job's partial outputs, and 50
+//! concurrent status requests while a job runs.
+
+use std::path::PathBuf;
+use std::time::{Duration, Instant};
+
+use serde_json::{Value, json};
+use serve::{Config, Server};
+
+struct Fixture {
+    server: Server,
+    data: PathBuf,
+    agent: ureq::Agent,
+}
+
+impl Fixture {
+    fn new(name: &str, max_upload_bytes: u64) -> Fixture {
+        let data = std::env::temp_dir().join(format!("rtprof-serve-{name}-{}", std::process::id()));
+        let _ = std::fs::remove_dir_all(&data);
+        let config = Config {
+            port: 0,
+            data: data.clone(),
+            max_upload_bytes,
+            ..Config::default()
+        };
+        let server = Server::start(&config).unwrap();
+        let agent: ureq::Agent = ureq::Agent::config_builder()
+            .http_status_as_error(false)
+            .build()
+            .into();
+        Fixture {
+            server,
+            data,
+            agent,
+        }
+    }
+
+    fn url(&self, path: &str) -> String {
+        format!("{}{}", self.server.url, path.trim_start_matches('/'))
+    }
+
+    fn get(&self, path: &str) -> (u16, Value) {
+        let mut r = self.agent.get(&self.url(path)).call().unwrap();
+        let status = r.status().as_u16();
+        let text = r.body_mut().read_to_string().unwrap_or_default();
+        (
+            status,
+            serde_json::from_str(&text).unwrap_or(Value::String(text)),
+        )
+    }
+
+    fn post_job(&self, body: Value) -> (u16, Value) {
+        let mut r = self
+            .agent
+            .post(&self.url("/api/jobs"))
+            .header("X-Rtprof-Token", &self.server.token)
+            .send_json(body)
+            .unwrap();
+        let status = r.status().as_u16();
+        (status, r.body_mut().read_json().unwrap_or(Value::Null))
+    }
+
+    fn upload(&self, name: &str, body: &[u8]) -> (u16, Value) {
+        let mut r = self
+            .agent
+            .post(&self.url(&format!("/api/scenes?name={name}")))
+            .header("X-Rtprof-Token", &self.server.token)
+            .send(body)
+            .unwrap();
+        let status = r.status().as_u16();
+        (status, r.body_mut().read_json().unwrap_or(Value::Null))
+    }
+
+    /// Waits until job `id` has a final status (at most `limit`).
+    fn wait(&self, id: &str, limit: Duration) -> Value {
+        let start = Instant::now();
+        loop {
+            let (_, job) = self.get(&format!("/api/jobs/{id}"));
+            let status = job["status"].as_str().unwrap_or_default().to_string();
+            if !matches!(status.as_str(), "queued" | "running") {
+                return job;
+            }
+            assert!(start.elapsed() < limit, "job {id} still {status}: {job}");
+            std::thread::sleep(Duration::from_millis(100));
+        }
+    }
+}
+
+impl Drop for Fixture {
+    fn drop(&mut self) {
+        let _ = std::fs::remove_dir_all(&self.data);
+    }
+}
+
+#[test]
+fn bad_requests_are_refused_with_the_right_status() {
+    let f = Fixture::new("refusals", 4096);
+    // Oversized upload: 413, before anything is parsed or kept.
+    let big = vec![b'#'; 8192];
+    let (status, body) = f.upload("big", &big);
+    assert_eq!(status, 413, "{body}");
+    assert!(body["error"].as_str().unwrap().contains("4096"), "{body}");
+    // Malformed NFF: 422 with the line.
+    let bad =
+        b"v\nfrom 0 0 5\nat 0 0 0\nup 0 1 0\nangle 40\nhither 1\nresolution 8 8\ns 0 0 0 oops\n";
+    let (status, body) = f.upload("broken", bad);
+    assert_eq!(status, 422, "{body}");
+    assert_eq!(body["line"], 8, "{body}");
+    assert!(
+        body["error"].as_str().unwrap().starts_with("broken.nff:8:"),
+        "{body}"
+    );
+    // A name that is a path: 422; nothing was kept.
+    let (status, _) = f.upload("..%2Fevil", b"v\n");
+    assert_eq!(status, 422);
+    assert_eq!(std::fs::read_dir(f.data.join("scenes")).unwrap().count(), 0);
+    // Absurd sizes, unknown variants and scenes, a scene named by path: 422.
+    for (body, says) in [
+        (
+            json!({"scene": "balls3", "size": [100000, 100000]}),
+            "size 100000x100000",
+        ),
+        (json!({"scene": "balls3", "size": [0, 10]}), "size 0x10"),
+        (
+            json!({"scene": "balls3", "variants": ["warp-drive"]}),
+            "warp-drive",
+        ),
+        (json!({"scene": "/etc/passwd"}), "unknown scene"),
+        (
+            json!({"scene": "../../shared/spd/balls.nff"}),
+            "unknown scene",
+        ),
+        (json!({"scene": "balls3", "threads": 0}), "threads 0"),
+    ] {
+        let (status, answer) = f.post_job(body.clone());
+        assert_eq!(status, 422, "{body} -> {answer}");
+        assert!(answer["error"].as_str().unwrap().contains(says), "{answer}");
+    }
+    // Not JSON at all: 400; unknown fields: 422.
+    let r = f
+        .agent
+        .post(&f.url("/api/jobs"))
+        .header("X-Rtprof-Token", &f.server.token)
+        .header("Content-Type", "application/json")
+        .send("{not json")
+        .unwrap();
+    assert_eq!(r.status().as_u16(), 400);
+    let (status, _) = f.post_job(json!({"scene": "balls3", "colour": "red"}));
+    assert_eq!(status, 422);
+    // No token, a wrong token, another origin, another host name: 403.
+    let job = json!({"scene": "balls1"});
+    let r = f.agent.post(&f.url("/api/jobs")).send_json(&job).unwrap();
+    assert_eq!(r.status().as_u16(), 403);
+    let r = f
+        .agent
+        .post(&f.url("/api/jobs"))
+        .header("X-Rtprof-Token", "0123456789abcdef0123456789abcdef")
+        .send_json(&job)
+        .unwrap();
+    assert_eq!(r.status().as_u16(), 403);
+    let r = f
+        .agent
+        .post(&f.url("/api/jobs"))
+        .header("X-Rtprof-Token", &f.server.token)
+        .header("Origin", "http://evil.example")
+        .send_json(&job)
+        .unwrap();
+    assert_eq!(r.status().as_u16(), 403);
+    let r = f.agent.delete(&f.url("/api/jobs/1")).call().unwrap();
+    assert_eq!(r.status().as_u16(), 403);
+    let r = f
+        .agent
+        .get(&f.url("/api/jobs"))
+        .header("Host", "evil.example")
+        .call()
+        .unwrap();
+    assert_eq!(r.status().as_u16(), 403);
+    // None of the refused requests made a job.
+    assert_eq!(f.get("/api/jobs").1["jobs"].as_array().unwrap().len(), 0);
+    // Unknown job: 404; not a number: 400.
+    assert_eq!(f.get("/api/jobs/99").0, 404);
+    assert_eq!(f.get("/api/jobs/abc").0, 400);
+}
+
+#[test]
+fn a_job_runs_to_the_end_and_its_files_are_served_but_nothing_outside() {
+    let f = Fixture::new("job", serve::DEFAULT_MAX_UPLOAD_BYTES);
+    // An uploaded scene, run with two variants and the hardware model.
+    let scene = tracer::builtin_scenes::find("balls2").unwrap().text;
+    let (status, entry) = f.upload("mine", scene.as_bytes());
+    assert_eq!(status, 201, "{entry}");
+    assert_eq!(entry["id"], "upload:mine");
+    assert_eq!(entry["primitives"], 2);
+    let (status, _) = f.upload("mine", scene.as_bytes());
+    assert_eq!(status, 409, "an upload never replaces another");
+    let listing = f.get("/api/scenes").1;
+    assert!(
+        listing["scenes"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .any(|s| s["id"] == "upload:mine")
+    );
+    let (status, job) = f.post_job(json!({
+        "scene": "upload:mine", "variants": ["bvh"], "size": [24, 18], "threads": 1,
+        "run": ["render", "hardware"]
+    }));
+    assert_eq!(status, 202, "{job}");
+    let id = job["id"].as_str().unwrap().to_string();
+    assert_eq!(job["request"]["variants"], json!(["baseline", "bvh"]));
+    let job = f.wait(&id, Duration::from_secs(300));
+    assert_eq!(job["status"], "done", "{job}");
+    assert_eq!(job["progress"]["fraction"], 1.0);
+    let files: Vec<&str> = job["files"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .filter_map(Value::as_str)
+        .collect();
+    for expected in [
+        "results.json",
+        "report.html",
+        "report.pdf",
+        "images/mine-baseline.png",
+        "images/mine-bvh.png",
+        "images/mine-bvh-diff.png",
+        "images/mine-hw.png",
+    ] {
+        assert!(files.contains(&expected), "{expected} not in {files:?}");
+    }
+    // Every listed file is served, with its type.
+    for file in &files {
+        let r = f
+            .agent
+            .get(&f.url(&format!("/api/jobs/{id}/files/{file}")))
+            .call()
+            .unwrap();
+        assert_eq!(r.status().as_u16(), 200, "{file}");
+    }
+    // results.json is a valid results file `rtprof report` reads: one scene, both
+    // variants, their counts exact (the same rays for both).
+    let results =
+        results::Results::read_file(&f.data.join("jobs").join(&id).join("results.json")).unwrap();
+    let s = &results.scenes[0];
+    assert_eq!((s.width, s.height, s.variants.len()), (24, 18, 2));
+    assert_eq!(s.variants[0].counts["rays.primary"], 24 * 18);
+    assert_eq!(
+        s.variants[0].counts["rays.primary"],
+        s.variants[1].counts["rays.primary"]
+    );
+    assert!(s.hardware.is_some() && results.profile.is_none());
+    // Traversal, encoded every way a client might: 400 (and never the file).
+    std::fs::write(f.data.join("secret.txt"), "secret").unwrap();
+    for path in [
+        "..%2F..%2Fsecret.txt",
+        "%2e%2e/%2e%2e/secret.txt",
+        "images%2F..%2F..%2F..%2Fsecret.txt",
+        "%2Fetc%2Fpasswd",
+        ".rtprof-x",
+        "job.json%00",
+    ] {
+        let (status, body) = f.get(&format!("/api/jobs/{id}/files/{path}"));
+        assert!(status == 400, "{path}: {status} {body}");
+    }
+    // The gate of the run against itself passes; against another frame it cannot compare.
+    let gate = f.get(&format!("/api/gate?old={id}&new={id}")).1;
+    assert_eq!(gate["passed"], true, "{gate}");
+    assert!(gate["text"].as_str().unwrap().contains("passed"), "{gate}");
+}
+
+#[test]
+fn a_running_job_answers_50_concurrent_requests_and_cancels_to_partial_outputs() {
+    let f = Fixture::new("cancel", serve::DEFAULT_MAX_UPLOAD_BYTES);
+    // Brute force over the SPD balls' 7,382 primitives, one thread: seconds a render.
+    let (status, job) = f.post_job(json!({
+        "scene": "spd:balls", "variants": ["simd", "fast-sqrt"], "size": [128, 96],
+        "threads": 1, "run": ["render", "profile"]
+    }));
+    assert_eq!(status, 202, "{job}");
+    let id = job["id"].as_str().unwrap().to_string();
+    // A second job waits its turn.
+    let (_, second) = f.post_job(json!({"scene": "balls1", "size": [8, 6]}));
+    let second = second["id"].as_str().unwrap().to_string();
+    let start = Instant::now();
+    while f.get(&format!("/api/jobs/{id}")).1["progress"]["stage"] != "scenes" {
+        assert!(
+            start.elapsed() < Duration::from_secs(120),
+            "the job never reached its renders"
+        );
+        std::thread::sleep(Duration::from_millis(50));
+    }
+    assert_eq!(f.get(&format!("/api/jobs/{second}")).1["status"], "queued");
+    let answered: Vec<(u16, String)> = std::thread::scope(|scope| {
+        let handles: Vec<_> = (0..50)
+            .map(|_| {
+                scope.spawn(|| {
+                    let (status, job) = f.get(&format!("/api/jobs/{id}"));
+                    (
+                        status,
+                        job["status"].as_str().unwrap_or_default().to_string(),
+                    )
+                })
+            })
+            .collect();
+        handles.into_iter().map(|h| h.join().unwrap()).collect()
+    });
+    assert_eq!(answered.len(), 50);
+    assert!(
+        answered.iter().all(|(s, st)| *s == 200 && st == "running"),
+        "{answered:?}"
+    );
+    // Cancel the second while queued, then the running one.
+    let r = f
+        .agent
+        .delete(&f.url(&format!("/api/jobs/{second}")))
+        .header("X-Rtprof-Token", &f.server.token)
+        .call()
+        .unwrap();
+    assert_eq!(r.status().as_u16(), 202);
+    let r = f
+        .agent
+        .delete(&f.url(&format!("/api/jobs/{id}")))
+        .header("X-Rtprof-Token", &f.server.token)
+        .call()
+        .unwrap();
+    assert_eq!(r.status().as_u16(), 202);
+    let job = f.wait(&id, Duration::from_secs(300));
+    assert_eq!(job["status"], "cancelled", "{job}");
+    assert_eq!(
+        f.get(&format!("/api/jobs/{second}")).1["status"],
+        "cancelled"
+    );
+    // Cancelling again: 409.
+    let r = f
+        .agent
+        .delete(&f.url(&format!("/api/jobs/{id}")))
+        .header("X-Rtprof-Token", &f.server.token)
+        .call()
+        .unwrap();
+    assert_eq!(r.status().as_u16(), 409);
+    // Its outputs are marked partial; no results.json anywhere in it.
+    let files: Vec<&str> = job["files"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .filter_map(Value::as_str)
+        .collect();
+    assert!(files.iter().all(|f| f.starts_with("partial/")), "{files:?}");
+    assert!(
+        !files.iter().any(|f| f.ends_with("results.json")),
+        "{files:?}"
+    );
+    let dir = f.data.join("jobs").join(&id);
+    assert!(dir.join("partial").is_dir());
+    assert!(!dir.join("results.json").exists());
+    // job.json on disk says so too.
+    let saved: Value =
+        serde_json::from_slice(&std::fs::read(dir.join("job.json")).unwrap()).unwrap();
+    assert_eq!(saved["status"], "cancelled");
+}

@@ -1,0 +1,83 @@
+//! `rtprof serve` killed (SIGKILL) during a job and started again on the same data
+//! directory: the history lists the earlier complete job with its results intact, the
+//! interrupted one is marked so with its partial outputs, and no file is corrupt.
+
+mod serve;
+
+use std::time::Duration;
+
+use serde_json::{Value, json};
+use serve::{Served, temp_dir};
+
+#[test]
+fn a_killed_server_restarts_with_its_history_and_the_interrupted_job_marked() {
+    let data = temp_dir("serve-restart");
+    let first = Served::start(&data);
+    let done = first.submit(json!({"scene": "balls2", "variants": ["bvh"], "size": [32, 24]}));
+    let job = first.wait_until(&done, Duration::from_secs(300), |j| {
+        j["status"] != "queued" && j["status"] != "running"
+    });
+    assert_eq!(job["status"], "done", "{job}");
+    // A long job (brute force over the SPD balls, one thread), killed once its renders
+    // have begun.
+    let killed = first.submit(json!({
+        "scene": "spd:balls", "variants": ["simd", "fast-sqrt"], "size": [128, 96], "threads": 1
+    }));
+    first.wait_until(&killed, Duration::from_secs(120), |j| {
+        j["progress"]["stage"] == "scenes"
+    });
+    drop(first); // SIGKILL: no chance to clean up.
+    let dir = data.join("jobs").join(&killed);
+    let saved: Value =
+        serde_json::from_slice(&std::fs::read(dir.join("job.json")).unwrap()).unwrap();
+    assert_eq!(
+        saved["status"], "running",
+        "job.json still says running after the kill"
+    );
+
+    let second = Served::start(&data);
+    let jobs = second.get("/api/jobs")["jobs"].as_array().unwrap().clone();
+    assert_eq!(jobs.len(), 2, "{jobs:?}");
+    let find = |id: &str| jobs.iter().find(|j| j["id"] == id).unwrap().clone();
+    assert_eq!(find(&done)["status"], "done");
+    let interrupted = find(&killed);
+    assert_eq!(interrupted["status"], "interrupted", "{interrupted}");
+    assert!(interrupted["finished"].is_string());
+    // Its staged outputs are kept under partial/, with no results.json.
+    let files: Vec<&str> = interrupted["files"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .filter_map(Value::as_str)
+        .collect();
+    assert!(files.iter().all(|f| f.starts_with("partial/")), "{files:?}");
+    assert!(!files.iter().any(|f| f.ends_with("results.json")));
+    assert!(!dir.join("results.json").exists());
+    // job.json was rewritten whole; the done job's results read as valid results.
+    let saved: Value =
+        serde_json::from_slice(&std::fs::read(dir.join("job.json")).unwrap()).unwrap();
+    assert_eq!(saved["status"], "interrupted");
+    let results = data.join("jobs").join(&done).join("results.json");
+    let results = std::fs::read(&results).unwrap();
+    let results: Value = serde_json::from_slice(&results).unwrap();
+    assert_eq!(
+        results["scenes"][0]["variants"].as_array().unwrap().len(),
+        2
+    );
+    // No temporary file is left in either job's directory.
+    for id in [&done, &killed] {
+        for entry in std::fs::read_dir(data.join("jobs").join(id)).unwrap() {
+            let name = entry.unwrap().file_name().to_string_lossy().into_owned();
+            assert!(!name.starts_with('.'), "leftover {name} in job {id}");
+        }
+    }
+    // The new server takes new jobs and numbers them after the old ones.
+    let next = second.submit(json!({"scene": "balls1", "size": [8, 6]}));
+    assert_eq!(next, "3");
+    let job = second.wait_until(&next, Duration::from_secs(300), |j| {
+        j["status"] == "done" || j["status"] == "failed"
+    });
+    assert_eq!(job["status"], "done", "{job}");
+    drop(second);
+    std::fs::remove_dir_all(&data).unwrap();
+}
