@@ -9,12 +9,6 @@
   const FINAL = new Set(['done', 'failed', 'cancelled', 'interrupted']);
   const ACTIVE = new Set(['queued', 'running']);
   const TABS = ['pick', 'run', 'view', 'open', 'gate'];
-  const BAND_NAMES = {
-    visually_identical: 'visually identical',
-    similar: 'similar',
-    notable_changes: 'notable changes',
-    different: 'different',
-  };
   const GROUPS = [['builtin', 'built-in'], ['uploaded', 'uploaded']];
   const POLL_MS = 4000;
   const COMPARE_WIDTH = 640; // target on-screen width of the comparison slider
@@ -131,10 +125,29 @@
     return `${String(dir).replace(/\/+$/, '')}/${name}`;
   }
 
+  /** The band's name and RMS range, as GET /api/scenes gives them (the thesis's table 2). */
+  function bandInfo(band) {
+    return (state.catalog?.bands ?? []).find((b) => b.key === band) ?? null;
+  }
+
+  function bandName(band) {
+    return bandInfo(band)?.name ?? String(band).replace(/_/g, ' ');
+  }
+
+  function bandTitle(band) {
+    const bands = state.catalog?.bands ?? [];
+    const i = bands.findIndex((b) => b.key === band);
+    if (i < 0) return `RMS band: ${bandName(band)}`;
+    const low = i === 0 ? 0 : bands[i - 1].upper_edge;
+    const high = bands[i].upper_edge;
+    const range = high == null ? `RMS ≥ ${low}` : `${low} ≤ RMS < ${high}`;
+    return `RMS band: ${bands[i].name} (${range}; thesis table 2)`;
+  }
+
   function bandChip(band) {
     if (!band) return null;
-    return el('span', { class: `band band-${cssPart(band)}`, title: `RMS band: ${BAND_NAMES[band] ?? band}` },
-      BAND_NAMES[band] ?? String(band));
+    return el('span', { class: `band band-${cssPart(band)}`, title: bandTitle(band) },
+      bandName(band));
   }
 
   function statusBadge(status) {

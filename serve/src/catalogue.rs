@@ -48,6 +48,18 @@ pub struct PartEntry {
     pub label: &'static str,
 }
 
+/// An image-quality band (the thesis's table 2), so that the page names and explains
+/// them as the reports do.
+#[derive(Clone, Debug, Serialize)]
+pub struct BandEntry {
+    /// Its key in results.json (`visually_identical`).
+    pub key: analysis::Band,
+    /// Its name (`visually identical`).
+    pub name: &'static str,
+    /// The RMS where the next band starts (`null` for the last).
+    pub upper_edge: Option<f64>,
+}
+
 #[derive(Clone, Debug, Serialize)]
 pub struct LimitsEntry {
     pub max_side: u32,
@@ -62,6 +74,7 @@ pub struct Listing {
     pub generators: Vec<GeneratorEntry>,
     pub variants: Vec<VariantEntry>,
     pub parts: Vec<PartEntry>,
+    pub bands: Vec<BandEntry>,
     pub limits: LimitsEntry,
 }
 
@@ -165,6 +178,14 @@ impl Catalogue {
                 .map(|p| PartEntry {
                     name: p.name(),
                     label: p.label(),
+                })
+                .collect(),
+            bands: analysis::Band::ALL
+                .iter()
+                .map(|&key| BandEntry {
+                    key,
+                    name: key.name(),
+                    upper_edge: key.upper_edge(),
                 })
                 .collect(),
             limits: LimitsEntry {

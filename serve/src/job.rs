@@ -120,8 +120,21 @@ impl JobRequest {
                 "threads {threads}: choose 1 to {MAX_THREADS}, or leave it out for one per core"
             )));
         }
+        // One run per distinct set: `simd+bvh` and `bvh+simd` are the same variant (the
+        // first spelling is kept).
+        let key = |set: &VariantSet| {
+            let mut names: Vec<&str> = set.variants().iter().map(|v| v.name()).collect();
+            names.sort_unstable();
+            names
+        };
         let mut variants = vec!["baseline".to_string()];
+        let mut seen = vec![key(&VariantSet::default())];
         for name in &self.variants {
+            if name.contains(',') {
+                return Err(ApiError::invalid(format!(
+                    "variant '{name}': give each variant as its own entry (combine with '+')"
+                )));
+            }
             let set = VariantSet::parse(name)
                 .map_err(|e| ApiError::invalid(format!("variant '{name}': {e}")))?;
             if let Some(v) = set.variants().iter().find(|v| !v.available()) {
@@ -130,9 +143,9 @@ impl JobRequest {
                     v.name()
                 )));
             }
-            let canonical = set.to_string();
-            if !variants.contains(&canonical) {
-                variants.push(canonical);
+            if !seen.contains(&key(&set)) {
+                seen.push(key(&set));
+                variants.push(set.to_string());
             }
         }
         if !suite {
@@ -198,4 +211,58 @@ pub struct Job {
     /// `partial/...` for a job that did not finish).
     #[serde(default)]
     pub files: Vec<String>,
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn catalogue() -> Catalogue {
+        Catalogue::new(std::path::PathBuf::from("/nonexistent/uploads"), 1024)
+    }
+
+    fn request(scene: &str, variants: &[&str]) -> JobRequest {
+        JobRequest {
+            scene: scene.into(),
+            variants: variants.iter().map(|v| v.to_string()).collect(),
+            size: [16, 12],
+            threads: None,
+            run: vec![Part::Profile],
+        }
+    }
+
+    #[test]
+    fn requests_are_normalized_baseline_first_without_repeats() {
+        let r = request("balls3", &["simd+bvh", "bvh", "baseline", "bvh+simd"])
+            .checked(&catalogue())
+            .unwrap();
+        // The reference first, each set once (in its first spelling).
+        assert_eq!(r.variants, ["baseline", "simd+bvh", "bvh"]);
+        assert_eq!(r.run, [Part::Render, Part::Profile]);
+        // The suite runs its own scenes and variants.
+        let mut suite = request("", &["bvh"]);
+        suite.run = vec![Part::Suite, Part::Hardware];
+        let suite = suite.checked(&catalogue()).unwrap();
+        assert_eq!((suite.scene.as_str(), suite.variants.len()), ("", 0));
+        assert_eq!(suite.run, [Part::Render, Part::Suite]);
+    }
+
+    #[test]
+    fn bad_requests_say_what_to_change() {
+        let message = |r: JobRequest| r.checked(&catalogue()).unwrap_err().message;
+        assert!(message(request("", &[])).contains("no scene"));
+        assert!(message(request("balls99", &[])).contains("unknown scene 'balls99'"));
+        assert!(message(request("/etc/passwd", &[])).contains("unknown scene"));
+        assert!(message(request("upload:../x", &[])).contains("not a scene name"));
+        assert!(message(request("upload:missing", &[])).contains("upload it first"));
+        assert!(message(request("spd:balls:99", &[])).contains("out of range"));
+        assert!(message(request("balls3", &["warp"])).contains("variant 'warp'"));
+        assert!(message(request("balls3", &["bvh,simd"])).contains("its own entry"));
+        let mut big = request("balls3", &[]);
+        big.size = [1 << 20, 2];
+        assert!(message(big).contains("size 1048576x2"));
+        let mut threads = request("balls3", &[]);
+        threads.threads = Some(0);
+        assert!(message(threads).contains("threads 0"));
+    }
 }

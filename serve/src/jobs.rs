@@ -183,20 +183,37 @@ impl Jobs {
         self.get(id)
     }
 
-    /// Stops taking jobs and stops the running one (it ends as interrupted); returns
-    /// whether one was running.
-    pub fn shut_down(&self) -> bool {
+    /// Stops taking jobs: the queued ones end as interrupted at once, the running one
+    /// at the runner's next safe point (also as interrupted).
+    pub fn shut_down(&self) {
         self.shutting_down.store(true, Ordering::SeqCst);
         if let Ok(mut queue) = self.queue.lock() {
             queue.take();
         }
-        let entries = self.lock();
-        let running = entries
-            .values()
-            .filter(|e| e.job.status == JobStatus::Running)
-            .inspect(|e| e.stop.store(true, Ordering::SeqCst))
-            .count();
-        running > 0
+        let queued: Vec<u64> = {
+            let entries = self.lock();
+            for entry in entries.values() {
+                if entry.job.status == JobStatus::Running {
+                    entry.stop.store(true, Ordering::SeqCst);
+                }
+            }
+            entries
+                .iter()
+                .filter(|(_, e)| e.job.status == JobStatus::Queued)
+                .map(|(&id, _)| id)
+                .collect()
+        };
+        for id in queued {
+            self.update(id, true, |job| {
+                // The worker may have started it meanwhile; then it stops as running.
+                if job.status != JobStatus::Queued {
+                    return;
+                }
+                job.status = JobStatus::Interrupted;
+                job.finished = Some(runner::machine::now_rfc3339());
+                job.error = Some("the server stopped before this job started; run it again".into());
+            });
+        }
     }
 
     /// Whether a job is running.
@@ -231,6 +248,10 @@ impl Jobs {
             job.started = Some(runner::machine::now_rfc3339());
             job.progress.stage = "starting".into();
         });
+        // A stop that came while it was being started.
+        if self.shutting_down.load(Ordering::SeqCst) {
+            stop.store(true, Ordering::SeqCst);
+        }
         let dir = self.store.job_dir(id);
         let progress = ProgressSink {
             jobs: self,

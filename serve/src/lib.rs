@@ -28,6 +28,9 @@ pub use error::{ApiError, ServeError};
 /// Default largest upload, bytes (64 MiB).
 pub const DEFAULT_MAX_UPLOAD_BYTES: u64 = 64 << 20;
 
+/// How long connections still open at a stop may take to finish.
+const SHUTDOWN_GRACE: std::time::Duration = std::time::Duration::from_secs(2);
+
 /// How to serve.
 #[derive(Clone, Debug)]
 pub struct Config {
@@ -58,7 +61,7 @@ pub struct Server {
     /// Directories under `jobs/` that were not readable jobs, skipped on start.
     pub skipped: Vec<String>,
     jobs: Arc<jobs::Jobs>,
-    shutdown: Option<tokio::sync::oneshot::Sender<()>>,
+    shutdown: Option<tokio::sync::watch::Sender<bool>>,
     thread: Option<std::thread::JoinHandle<()>>,
 }
 
@@ -110,18 +113,27 @@ impl Server {
         };
         let app = api::router(state, guard, config.max_upload_bytes);
         store.announce(&url, &token)?;
-        let (shutdown, stopped) = tokio::sync::oneshot::channel::<()>();
+        let (shutdown, stopped) = tokio::sync::watch::channel(false);
         let thread = std::thread::Builder::new()
             .name("rtprof-serve".into())
             .spawn(move || {
                 runtime.block_on(async move {
-                    let served = axum::serve(listener, app)
-                        .with_graceful_shutdown(async {
-                            let _ = stopped.await;
-                        })
-                        .await;
-                    if let Err(e) = served {
-                        eprintln!("rtprof: error: the server stopped: {e}");
+                    let mut graceful = stopped.clone();
+                    let served = axum::serve(listener, app).with_graceful_shutdown(async move {
+                        let _ = graceful.wait_for(|stop| *stop).await;
+                    });
+                    // Open connections get a moment to finish; a client that holds one
+                    // (an event stream of a page left open) does not hold the stop.
+                    let mut deadline = stopped;
+                    let deadline = async move {
+                        let _ = deadline.wait_for(|stop| *stop).await;
+                        tokio::time::sleep(SHUTDOWN_GRACE).await;
+                    };
+                    tokio::select! {
+                        served = served => if let Err(e) = served {
+                            eprintln!("rtprof: error: the server stopped: {e}");
+                        },
+                        () = deadline => {}
                     }
                 });
                 // Event streams never end by themselves: do not wait for them.
@@ -147,7 +159,7 @@ impl Server {
 
     fn stop_now(&mut self) {
         if let Some(shutdown) = self.shutdown.take() {
-            let _ = shutdown.send(());
+            let _ = shutdown.send(true);
         }
         self.jobs.shut_down();
         while self.jobs.busy() {

@@ -74,6 +74,16 @@ impl Fixture {
         (status, r.body_mut().read_json().unwrap_or(Value::Null))
     }
 
+    /// DELETE /api/jobs/ID with the token: the status code.
+    fn cancel(&self, id: &str) -> u16 {
+        let url = self.url(&format!("/api/jobs/{id}"));
+        let r = self
+            .agent
+            .delete(&url)
+            .header("X-Rtprof-Token", &self.server.token);
+        r.call().unwrap().status().as_u16()
+    }
+
     /// Waits until job `id` has a final status (at most `limit`).
     fn wait(&self, id: &str, limit: Duration) -> Value {
         let start = Instant::now();
@@ -313,20 +323,8 @@ fn a_running_job_answers_50_concurrent_requests_and_cancels_to_partial_outputs()
         "{answered:?}"
     );
     // Cancel the second while queued, then the running one.
-    let r = f
-        .agent
-        .delete(&f.url(&format!("/api/jobs/{second}")))
-        .header("X-Rtprof-Token", &f.server.token)
-        .call()
-        .unwrap();
-    assert_eq!(r.status().as_u16(), 202);
-    let r = f
-        .agent
-        .delete(&f.url(&format!("/api/jobs/{id}")))
-        .header("X-Rtprof-Token", &f.server.token)
-        .call()
-        .unwrap();
-    assert_eq!(r.status().as_u16(), 202);
+    assert_eq!(f.cancel(&second), 202);
+    assert_eq!(f.cancel(&id), 202);
     let job = f.wait(&id, Duration::from_secs(300));
     assert_eq!(job["status"], "cancelled", "{job}");
     assert_eq!(
@@ -334,13 +332,7 @@ fn a_running_job_answers_50_concurrent_requests_and_cancels_to_partial_outputs()
         "cancelled"
     );
     // Cancelling again: 409.
-    let r = f
-        .agent
-        .delete(&f.url(&format!("/api/jobs/{id}")))
-        .header("X-Rtprof-Token", &f.server.token)
-        .call()
-        .unwrap();
-    assert_eq!(r.status().as_u16(), 409);
+    assert_eq!(f.cancel(&id), 409);
     // Its outputs are marked partial; no results.json anywhere in it.
     let files: Vec<&str> = job["files"]
         .as_array()
