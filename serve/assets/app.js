@@ -838,7 +838,7 @@
     renderOpen(job);
     if (!FINAL.has(job.status)) {
       follow(job.id);
-      const key = `${job.id}:active`;
+      const key = `${job.id}:${job.status}`;
       if (state.viewKey !== key) {
         state.viewKey = key;
         $('results').replaceChildren(el('p', { class: 'muted placeholder' },
@@ -913,7 +913,6 @@
       el('section', { class: 'result-block' },
         el('h3', {}, 'No results'),
         el('p', {}, explain),
-        job.error ? el('pre', { class: 'error-pre' }, job.error) : null,
         el('h4', {}, partial.length ? 'Partial outputs' : 'Files'),
         shown.length ? fileList(job.id, shown) : el('p', { class: 'muted' }, 'The job kept no partial outputs.')),
     );

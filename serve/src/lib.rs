@@ -61,6 +61,7 @@ pub struct Server {
     /// Directories under `jobs/` that were not readable jobs, skipped on start.
     pub skipped: Vec<String>,
     jobs: Arc<jobs::Jobs>,
+    _lock: store::DataLock,
     shutdown: Option<tokio::sync::watch::Sender<bool>>,
     thread: Option<std::thread::JoinHandle<()>>,
 }
@@ -69,6 +70,7 @@ impl Server {
     /// Opens the data directory (rebuilding the history), binds and starts serving.
     pub fn start(config: &Config) -> Result<Server, ServeError> {
         let store = store::Store::open(&config.data)?;
+        let lock = store.lock()?;
         let history = store.history()?;
         let catalogue = catalogue::Catalogue::new(store.scenes_dir(), config.max_upload_bytes);
         let token = guard::new_token().map_err(ServeError::Other)?;
@@ -146,6 +148,7 @@ impl Server {
             token,
             skipped: history.skipped,
             jobs,
+            _lock: lock,
             shutdown: Some(shutdown),
             thread: Some(thread),
         })

@@ -22,6 +22,12 @@ pub struct Store {
     root: PathBuf,
 }
 
+/// The data directory held by one server: a second server on it would mark the
+/// first one's running job interrupted and number its jobs over the first's.
+pub struct DataLock {
+    _file: std::fs::File,
+}
+
 /// What the data directory held on start.
 pub struct History {
     pub jobs: Vec<Job>,
@@ -38,6 +44,27 @@ impl Store {
         Ok(Store {
             root: root.to_path_buf(),
         })
+    }
+
+    /// Takes the data directory for this process (an advisory lock on `.lock`, released
+    /// when the process ends, however it ends).
+    pub fn lock(&self) -> Result<DataLock, ServeError> {
+        let path = self.root.join(".lock");
+        let file = std::fs::OpenOptions::new()
+            .create(true)
+            .truncate(false)
+            .write(true)
+            .open(&path)
+            .map_err(|e| ServeError::io("open", &path, &e))?;
+        match file.try_lock() {
+            Ok(()) => Ok(DataLock { _file: file }),
+            Err(std::fs::TryLockError::WouldBlock) => Err(ServeError::Other(format!(
+                "another rtprof serve is using {} (its address is in server.json there): stop it, \
+                 or give this one another --data directory",
+                self.root.display()
+            ))),
+            Err(std::fs::TryLockError::Error(e)) => Err(ServeError::io("lock", &path, &e)),
+        }
     }
 
     pub fn root(&self) -> &Path {

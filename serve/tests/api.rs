@@ -190,6 +190,21 @@ fn bad_requests_are_refused_with_the_right_status() {
     assert_eq!(r.status().as_u16(), 403);
     // None of the refused requests made a job.
     assert_eq!(f.get("/api/jobs").1["jobs"].as_array().unwrap().len(), 0);
+    // A second server on the same data directory is refused (it would mark the first
+    // one's running job interrupted).
+    let second = Config {
+        port: 0,
+        data: f.data.clone(),
+        ..Config::default()
+    };
+    let refused = Server::start(&second).err().map(|e| e.to_string());
+    assert!(
+        refused
+            .as_deref()
+            .unwrap_or_default()
+            .contains("another rtprof serve"),
+        "{refused:?}"
+    );
     // Unknown job: 404; not a number: 400.
     assert_eq!(f.get("/api/jobs/99").0, 404);
     assert_eq!(f.get("/api/jobs/abc").0, 400);
