@@ -240,6 +240,10 @@ fn pick_run_view_open_in_a_real_browser() {
         shown.as_u64().unwrap() > 0,
         "the progress bar never showed a partial value"
     );
+    eprintln!(
+        "live progress: {} events, fractions {fractions:?}; the bar showed a partial value {shown} times",
+        fractions.len()
+    );
 
     // View: both images and the difference map, loaded (decoded, not broken).
     let loaded = "(sel) => [...document.querySelectorAll(sel)].filter(i => i.complete && i.naturalWidth > 0).length";

@@ -35,6 +35,11 @@ fn a_killed_server_restarts_with_its_history_and_the_interrupted_job_marked() {
         "job.json still says running after the kill"
     );
 
+    // A job directory whose job.json is not readable (written by hand, say): skipped and
+    // left alone, never reused.
+    std::fs::create_dir_all(data.join("jobs/3")).unwrap();
+    std::fs::write(data.join("jobs/3/job.json"), "{not json").unwrap();
+
     let second = Served::start(&data);
     let jobs = second.get("/api/jobs")["jobs"].as_array().unwrap().clone();
     assert_eq!(jobs.len(), 2, "{jobs:?}");
@@ -44,12 +49,7 @@ fn a_killed_server_restarts_with_its_history_and_the_interrupted_job_marked() {
     assert_eq!(interrupted["status"], "interrupted", "{interrupted}");
     assert!(interrupted["finished"].is_string());
     // Its staged outputs are kept under partial/, with no results.json.
-    let files: Vec<&str> = interrupted["files"]
-        .as_array()
-        .unwrap()
-        .iter()
-        .filter_map(Value::as_str)
-        .collect();
+    let files = serve::files(&interrupted);
     assert!(files.iter().all(|f| f.starts_with("partial/")), "{files:?}");
     assert!(!files.iter().any(|f| f.ends_with("results.json")));
     assert!(!dir.join("results.json").exists());
@@ -73,7 +73,11 @@ fn a_killed_server_restarts_with_its_history_and_the_interrupted_job_marked() {
     }
     // The new server takes new jobs and numbers them after the old ones.
     let next = second.submit(json!({"scene": "balls1", "size": [8, 6]}));
-    assert_eq!(next, "3");
+    assert_eq!(next, "4");
+    assert_eq!(
+        std::fs::read_to_string(data.join("jobs/3/job.json")).unwrap(),
+        "{not json"
+    );
     let job = second.wait_until(&next, Duration::from_secs(300), |j| {
         j["status"] == "done" || j["status"] == "failed"
     });

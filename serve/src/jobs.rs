@@ -87,7 +87,11 @@ impl Jobs {
         let request = request.checked(&self.catalogue)?;
         let job = {
             let mut entries = self.lock();
-            let id = entries.keys().next_back().map_or(1, |last| last + 1);
+            let mut id = entries.keys().next_back().map_or(1, |last| last + 1);
+            // Never into a directory the history skipped (unreadable, left alone).
+            while self.store.job_dir(id).exists() {
+                id += 1;
+            }
             let job = Job {
                 id: id.to_string(),
                 request,

@@ -17,6 +17,16 @@ pub struct Served {
     pub agent: ureq::Agent,
 }
 
+/// The files a job lists.
+pub fn files(job: &Value) -> Vec<&str> {
+    job["files"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .filter_map(Value::as_str)
+        .collect()
+}
+
 /// A fresh directory under the system's temporary directory.
 pub fn temp_dir(name: &str) -> PathBuf {
     let dir = std::env::temp_dir().join(format!("rtprof-{name}-{}", std::process::id()));
