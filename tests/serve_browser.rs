@@ -235,6 +235,10 @@ fn pick_run_view_open_in_a_real_browser() {
         "no progress between start and end: {fractions:?}"
     );
     assert_eq!(fractions.last(), Some(&1.0));
+    assert!(
+        fractions.windows(2).all(|w| w[0] <= w[1]),
+        "the progress went back: {fractions:?}"
+    );
     let shown = browser.eval("window.__shown.filter(v => v > 0 && v < 1).length");
     assert!(
         shown.as_u64().unwrap() > 0,

@@ -449,3 +449,25 @@ impl runner::Progress for ProgressSink<'_> {
         self.change(|p| p.done += steps);
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::stage_span;
+
+    #[test]
+    fn the_stages_cover_the_job_in_order_without_gaps() {
+        // The runner's stages in the order it runs them, then the reports: the
+        // fraction never goes back and ends at 1.
+        let order = ["machine", "scenes", "profile", "reports"];
+        let mut end = 0.0;
+        for stage in order {
+            let (start, stop) = stage_span(stage);
+            assert_eq!(start, end, "{stage} starts where the stage before ended");
+            assert!(stop > start, "{stage}");
+            end = stop;
+        }
+        assert_eq!(end, 1.0);
+        // A stage the table does not know shows no progress rather than a wrong one.
+        assert_eq!(stage_span("starting"), (0.0, 0.0));
+    }
+}

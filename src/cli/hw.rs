@@ -40,9 +40,10 @@ enum HwCommand {
     Synth(super::hw_rtl::SynthArgs),
 }
 
-/// Design changes shared by `table` and `time`.
+/// The design's changes from the thesis's, shared by every `hw` command that takes a
+/// design (`table`, `time`, `rtl`, `sim`, `synth`).
 #[derive(clap::Args, Debug, Clone)]
-struct WhatIf {
+pub struct DesignFlags {
     /// What-if: the bit-trick square root (one adder, 1 cycle) instead of the IP core.
     #[arg(long)]
     fast_sqrt: bool,
@@ -52,17 +53,14 @@ struct WhatIf {
     /// What-if: shading without the inverse square root (light at infinity).
     #[arg(long)]
     no_rsqrt_shading: bool,
-    /// What-if: K parallel intersection units.
+    /// What-if: K parallel intersection units (each with its minimum-distance block).
     #[arg(long, value_name = "K", default_value_t = 1,
           value_parser = clap::value_parser!(u32).range(1..=4096))]
     units: u32,
-    /// Device (default EP4CE115, the thesis's; others are unvalidated).
-    #[arg(long, value_name = "D", default_value = "EP4CE115")]
-    device: String,
 }
 
-impl WhatIf {
-    fn design(&self) -> Design {
+impl DesignFlags {
+    pub fn design(&self) -> Design {
         Design {
             units: self.units,
             fast_sqrt: self.fast_sqrt,
@@ -70,6 +68,22 @@ impl WhatIf {
             no_rsqrt_shading: self.no_rsqrt_shading,
             ..Design::thesis()
         }
+    }
+}
+
+/// Design changes and the device, for `table` and `time`.
+#[derive(clap::Args, Debug, Clone)]
+struct WhatIf {
+    #[command(flatten)]
+    design: DesignFlags,
+    /// Device (default EP4CE115, the thesis's; others are unvalidated).
+    #[arg(long, value_name = "D", default_value = "EP4CE115")]
+    device: String,
+}
+
+impl WhatIf {
+    fn design(&self) -> Design {
+        self.design.design()
     }
 
     fn device(&self) -> Result<(Library, DeviceSpec)> {

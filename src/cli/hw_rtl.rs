@@ -13,33 +13,27 @@ use runner::hardware_files::hardware_scene;
 use runner::scene_input::SceneInput;
 use std::path::PathBuf;
 
-/// The design the RTL is generated for.
+/// The design the RTL is generated for: the model's design flags, within what the
+/// generator builds.
 #[derive(clap::Args, Debug, Clone)]
 pub struct RtlDesign {
-    /// K parallel intersection units (each with its minimum-distance block).
-    #[arg(long, value_name = "K", default_value_t = 1,
-          value_parser = clap::value_parser!(u32).range(1..=64))]
-    units: u32,
-    /// The bit-trick square root instead of the IP core.
-    #[arg(long)]
-    fast_sqrt: bool,
-    /// Orthographic primary rays (generated, not simulated: no reference picture).
-    #[arg(long)]
-    ortho: bool,
-    /// Shading without the inverse square root (light at infinity).
-    #[arg(long)]
-    no_rsqrt_shading: bool,
+    #[command(flatten)]
+    flags: super::hw::DesignFlags,
 }
 
+/// Most intersection units the generator builds (the comparator tree's width).
+const MAX_RTL_UNITS: u32 = 64;
+
 impl RtlDesign {
-    fn design(&self) -> Design {
-        Design {
-            units: self.units,
-            fast_sqrt: self.fast_sqrt,
-            ortho: self.ortho,
-            no_rsqrt_shading: self.no_rsqrt_shading,
-            ..Design::thesis()
-        }
+    fn design(&self) -> Result<Design> {
+        let design = self.flags.design();
+        anyhow::ensure!(
+            design.units <= MAX_RTL_UNITS,
+            "--units {}: the RTL is generated for at most {MAX_RTL_UNITS} units \
+             (`rtprof hw time --units K` models more)",
+            design.units
+        );
+        Ok(design)
     }
 }
 
@@ -93,7 +87,7 @@ fn cache_dir() -> PathBuf {
 
 pub fn rtl(args: &RtlArgs) -> Result<()> {
     let lib = Library::cyclone_iv_e();
-    let design = args.design.design();
+    let design = args.design.design()?;
     let pipeline = Pipeline::build(&lib, &design);
     let scene = args.scene.as_ref().map(hardware_scene).transpose()?;
     let primitives = scene.as_ref().map_or(0, |(_, hw)| hw.primitive_count());
@@ -139,7 +133,7 @@ pub fn rtl(args: &RtlArgs) -> Result<()> {
 
 pub fn simulate(args: &SimArgs) -> Result<()> {
     let lib = Library::cyclone_iv_e();
-    let design = args.design.design();
+    let design = args.design.design()?;
     if design.ortho {
         bail!(
             "--ortho is generated (rtprof hw rtl --ortho) but not simulated: neither the \
@@ -294,7 +288,7 @@ Why the columns differ:
 
 pub fn synth(args: &SynthArgs) -> Result<()> {
     let lib = Library::cyclone_iv_e();
-    let design = args.design.design();
+    let design = args.design.design()?;
     let pipeline = Pipeline::build(&lib, &design);
     let rtl = generate::generate(&lib, &pipeline, sim::depth_bits_for(0))?;
     let work = match &args.work_dir {
