@@ -5,28 +5,8 @@
 # it for Cyclone IV E. Debian packages, non-interactive; does nothing when all are
 # already there. Needs root (or sudo) for apt-get.
 set -euo pipefail
+cd "$(dirname "$0")"
 
-missing=()
-command -v verilator >/dev/null 2>&1 || missing+=(verilator)
-command -v g++ >/dev/null 2>&1 || missing+=(g++)
-# Verilator's generated makefiles call make.
-command -v make >/dev/null 2>&1 || missing+=(make)
-command -v yosys >/dev/null 2>&1 || missing+=(yosys)
-
-if [ "${#missing[@]}" -eq 0 ]; then
-    echo "install-rtl-tools: verilator, g++, make and yosys are installed"
-    verilator --version
-    yosys -V
-    exit 0
-fi
-
-sudo=""
-if [ "$(id -u)" -ne 0 ]; then
-    sudo="sudo"
-fi
-
-echo "install-rtl-tools: installing ${missing[*]}"
-$sudo apt-get update -qq
-DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
+bash ./install-packages.sh --no-recommends verilator g++ make yosys
 verilator --version
 yosys -V

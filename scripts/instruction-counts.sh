@@ -6,14 +6,15 @@
 # Installs what it needs once: valgrind (Debian package) and gungraun-runner of the
 # exact version the benches crate uses, into $GUNGRAUN_HOME (default
 # ~/.cache/gungraun, outside any checkout, so CI reuses it).
-# Usage: scripts/instruction-counts.sh [extra gungraun arguments, e.g. a filter]
+# Usage: scripts/instruction-counts.sh [--install-only | extra gungraun arguments, e.g. a filter]
+#   --install-only   install valgrind and the runner, measure nothing (CI does it while
+#                    it compiles)
+# RTPROF_BENCH_FEATURES adds cargo features to the bench build (CI: tracer/embree, the
+# features of its one release build, so that cargo builds the tracer once).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
-if ! command -v valgrind >/dev/null; then
-    echo "instruction-counts: installing valgrind" >&2
-    apt-get update -qq && DEBIAN_FRONTEND=noninteractive apt-get install -y -qq valgrind >/dev/null
-fi
+bash scripts/install-packages.sh valgrind >&2
 
 # The runner must match the library version exactly (gungraun refuses otherwise).
 version=$(cargo metadata --format-version 1 --locked --all-features \
@@ -24,6 +25,11 @@ if [ ! -x "$runner" ]; then
     echo "instruction-counts: installing gungraun-runner $version into $home/$version" >&2
     cargo install --locked --quiet --version "$version" --root "$home/$version" gungraun-runner
 fi
+if [ "${1:-}" = "--install-only" ]; then
+    echo "instruction-counts: valgrind and gungraun-runner $version are installed"
+    exit 0
+fi
 
-GUNGRAUN_RUNNER="$runner" cargo bench -p benches --features instructions --bench instructions \
+features="instructions${RTPROF_BENCH_FEATURES:+,$RTPROF_BENCH_FEATURES}"
+GUNGRAUN_RUNNER="$runner" cargo bench -p benches --features "$features" --bench instructions \
     -- --save-summary=json "$@"

@@ -3,6 +3,13 @@
 //! The command line lives in `cli/`, one file per command; the work itself lives in the
 //! workspace crates (`tracer` for rendering and counting).
 
+// What user input can reach returns an error: no unwrap, expect or panic outside tests
+// (unit tests are cfg(test); integration tests, benches and examples are other crates).
+#![cfg_attr(
+    not(test),
+    deny(clippy::unwrap_used, clippy::expect_used, clippy::panic)
+)]
+
 mod cli;
 mod startup;
 

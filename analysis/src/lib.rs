@@ -16,6 +16,13 @@
 //!   flat profile and call graph, folded stacks, flamegraphs, Amdahl projections;
 //! - [`error`]: the error types of the above.
 
+// What user input can reach returns an error: no unwrap, expect or panic outside tests
+// (unit tests are cfg(test); integration tests, benches and examples are other crates).
+#![cfg_attr(
+    not(test),
+    deny(clippy::unwrap_used, clippy::expect_used, clippy::panic)
+)]
+
 pub mod error;
 pub mod image_metrics;
 pub mod power_law;

@@ -11,8 +11,7 @@
 use criterion::{BenchmarkGroup, Criterion, Throughput, measurement::WallTime};
 use std::hint::black_box;
 use tracer::{
-    Count, Counter, NoCount, RenderOptions, Sampling, Scene, ShadingMode, VariantSet,
-    render_variant,
+    Count, NoCount, RenderOptions, Sampling, Scene, ShadingMode, VariantSet, render_variant,
 };
 
 /// Frame size of every render of the group.
@@ -45,7 +44,11 @@ pub fn options() -> RenderOptions {
 
 /// One whole render of `scene` with `variants`, counted with `C`; returns the number
 /// of primary rays that hit (kept alive so the render is not optimized away).
-pub fn render<C: Counter>(scene: &Scene, options: &RenderOptions, variants: &VariantSet) -> u64 {
+pub fn render<C: tracer::RenderWith>(
+    scene: &Scene,
+    options: &RenderOptions,
+    variants: &VariantSet,
+) -> u64 {
     render_variant::<C>(scene, options, variants, &|_| {})
         .unwrap_or_else(|e| panic!("render failed: {e}"))
         .rendered
@@ -54,7 +57,7 @@ pub fn render<C: Counter>(scene: &Scene, options: &RenderOptions, variants: &Var
 }
 
 /// Registers `frame/<name>`: a render with `variants` counted with `C`, in `pool`.
-fn bench_render<C: Counter>(
+fn bench_render<C: tracer::RenderWith>(
     group: &mut BenchmarkGroup<'_, WallTime>,
     pool: &rayon::ThreadPool,
     name: &str,

@@ -20,6 +20,13 @@
 //! - [`float_policy`]: the arithmetic of the RTL's floating-point operators (rounding,
 //!   flushed subnormals, NaN), which the emulator computes in.
 
+// What user input can reach returns an error: no unwrap, expect or panic outside tests
+// (unit tests are cfg(test); integration tests, benches and examples are other crates).
+#![cfg_attr(
+    not(test),
+    deny(clippy::unwrap_used, clippy::expect_used, clippy::panic)
+)]
+
 pub mod blocks;
 pub mod composites;
 pub mod design;

@@ -11,6 +11,13 @@
 //! false-colour pictures with a legend ([`pixel_maps`]). This crate never renders a
 //! scene.
 
+// What user input can reach returns an error: no unwrap, expect or panic outside tests
+// (unit tests are cfg(test); integration tests, benches and examples are other crates).
+#![cfg_attr(
+    not(test),
+    deny(clippy::unwrap_used, clippy::expect_used, clippy::panic)
+)]
+
 pub mod charts;
 pub mod document;
 pub mod exports;

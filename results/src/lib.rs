@@ -9,6 +9,13 @@
 //! are checked with `tracer`'s variant set, the RMS band and the estimate are
 //! `analysis`'s, the hardware tables' figures are `hwmodel`'s.
 
+// What user input can reach returns an error: no unwrap, expect or panic outside tests
+// (unit tests are cfg(test); integration tests, benches and examples are other crates).
+#![cfg_attr(
+    not(test),
+    deny(clippy::unwrap_used, clippy::expect_used, clippy::panic)
+)]
+
 pub mod bvh_quality;
 pub mod change;
 pub mod created;

@@ -8,6 +8,13 @@
 //! bit for bit through Verilator (`tests/operators.rs`, `cargo test -p rtl --
 //! --ignored`; `scripts/install-rtl-tools.sh` installs Verilator and g++).
 
+// What user input can reach returns an error: no unwrap, expect or panic outside tests
+// (unit tests are cfg(test); integration tests, benches and examples are other crates).
+#![cfg_attr(
+    not(test),
+    deny(clippy::unwrap_used, clippy::expect_used, clippy::panic)
+)]
+
 /// The operators' arithmetic, kept in `hwmodel` so that its emulator computes in it.
 pub use hwmodel::float_policy;
 pub mod generate;

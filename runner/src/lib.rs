@@ -35,6 +35,13 @@
 //! - [`staging`]: staged, atomic output; [`pool`]: worker threads;
 //! - [`progress`], [`error`]; [`messages`]: errors on one line, as rtprof prints them.
 
+// What user input can reach returns an error: no unwrap, expect or panic outside tests
+// (unit tests are cfg(test); integration tests, benches and examples are other crates).
+#![cfg_attr(
+    not(test),
+    deny(clippy::unwrap_used, clippy::expect_used, clippy::panic)
+)]
+
 pub mod benchmarks;
 pub mod bvh_study;
 pub mod calibration;

@@ -6,7 +6,7 @@ use std::time::{Duration, Instant};
 
 use tracer::accel::BvhStats;
 use tracer::{
-    Counter, Counts, Limits, RenderOptions, Rendered, Sampling, Scene, ShadingMode, VariantSet,
+    Counts, Limits, RenderOptions, Rendered, Sampling, Scene, ShadingMode, VariantSet,
     render_variant,
 };
 
@@ -80,7 +80,7 @@ pub struct SceneRender<C> {
 }
 
 /// Loads and renders; progress counts sample rows.
-pub fn render_scene<C: Counter>(
+pub fn render_scene<C: tracer::RenderWith>(
     req: &RenderRequest<'_>,
     progress: &dyn Progress,
 ) -> Result<SceneRender<C>, RunError> {

@@ -9,6 +9,13 @@
 //! addressed to it by that name, and refuses state-changing requests without its
 //! per-server token ([`guard`]).
 
+// What user input can reach returns an error: no unwrap, expect or panic outside tests
+// (unit tests are cfg(test); integration tests, benches and examples are other crates).
+#![cfg_attr(
+    not(test),
+    deny(clippy::unwrap_used, clippy::expect_used, clippy::panic)
+)]
+
 pub mod api;
 pub mod catalogue;
 pub mod error;

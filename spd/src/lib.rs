@@ -12,6 +12,13 @@
 //! [`transform_stack`] (`libtx`), [`output`] and [`tessellate`] (the `lib_output_*`
 //! NFF side), then one module per program.
 
+// What user input can reach returns an error: no unwrap, expect or panic outside tests
+// (unit tests are cfg(test); integration tests, benches and examples are other crates).
+#![cfg_attr(
+    not(test),
+    deny(clippy::unwrap_used, clippy::expect_used, clippy::panic)
+)]
+
 pub mod output;
 pub mod published;
 pub mod random;

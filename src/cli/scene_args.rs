@@ -6,7 +6,7 @@ use anyhow::Result;
 use runner::render_job::{RenderRequest, RenderSettings, SceneRender, render_scene};
 use runner::scene_input::SceneInput;
 use std::path::{Path, PathBuf};
-use tracer::{Counter, Limits, RenderOptions, Scene, ShadingMode, VariantSet};
+use tracer::{Limits, RenderOptions, RenderWith, Scene, ShadingMode, VariantSet};
 
 #[derive(clap::Args, Debug)]
 pub struct SceneArgs {
@@ -169,12 +169,12 @@ pub fn parse_size(text: &str) -> Result<(u32, u32), String> {
 impl SceneArgs {
     /// Loads the scene and renders it with counter `C`, progress on stderr.
     /// A brute-force render of a big scene first says how long it will take.
-    pub fn run<C: Counter>(&self, mode: ShadingMode) -> Result<SceneRender<C>> {
+    pub fn run<C: RenderWith>(&self, mode: ShadingMode) -> Result<SceneRender<C>> {
         self.run_with(mode, false)
     }
 
     /// [`SceneArgs::run`], recording each sample's work when `per_sample`.
-    pub fn run_with<C: Counter>(
+    pub fn run_with<C: RenderWith>(
         &self,
         mode: ShadingMode,
         per_sample: bool,

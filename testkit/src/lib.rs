@@ -3,6 +3,13 @@
 //! [`write_sample_files`] writes the images and texts it refers to. Used only as a
 //! dev-dependency.
 
+// What user input can reach returns an error: no unwrap, expect or panic outside tests
+// (unit tests are cfg(test); integration tests, benches and examples are other crates).
+#![cfg_attr(
+    not(test),
+    deny(clippy::unwrap_used, clippy::expect_used, clippy::panic)
+)]
+
 pub mod files;
 pub mod sample;
 pub mod temp_dir;

@@ -25,6 +25,12 @@
 //! assert_eq!(counts.tests.sphere.tests, counts.calls.intersect); // one sphere per query
 //! ```
 
+// What user input can reach returns an error: no unwrap, expect or panic outside tests
+// (unit tests are cfg(test); integration tests, benches and examples are other crates).
+#![cfg_attr(
+    not(test),
+    deny(clippy::unwrap_used, clippy::expect_used, clippy::panic)
+)]
 // `!(x > y)` is written on purpose throughout: unlike `x <= y` it also rejects NaN.
 #![allow(clippy::neg_cmp_op_on_partial_ord)]
 // Tests compute expected values independently, outside the counting layer (the
@@ -71,7 +77,7 @@ pub use render::{Frame, RenderError, RenderMethod, RenderOptions, Rendered, rend
 pub use scene::{Light, Material, Scene, View};
 pub use shading::{MAX_DEPTH, RayLog, ShadingMode};
 pub use variants::{
-    Accelerator, DiffuseForm, SqrtMethod, Variant, VariantConfig, VariantError, VariantRender,
-    VariantSet, render_variant,
+    Accelerator, DiffuseForm, RenderWith, SqrtMethod, Variant, VariantConfig, VariantError,
+    VariantRender, VariantSet, render_variant, render_variant_with,
 };
 pub use vec3::Vec3;

@@ -37,6 +37,17 @@ struct Probe {
     stacks: BTreeMap<usize, BTreeSet<u64>>,
 }
 
+impl tracer::RenderWith for Probe {
+    fn render_variant(
+        scene: &Scene,
+        options: &tracer::RenderOptions,
+        variants: &VariantSet,
+        progress: &(dyn Fn(u64) + Sync),
+    ) -> Result<tracer::VariantRender<Self>, tracer::RenderError> {
+        tracer::render_variant_with::<Self>(scene, options, variants, progress)
+    }
+}
+
 impl Counter for Probe {
     const ENABLED: bool = true;
     const PHASES: bool = true;
@@ -313,7 +324,7 @@ fn thread_cpu_ns() -> Option<u64> {
 
 /// Wall and on-CPU seconds per render of `batch` renders of `scene` with counter `C`
 /// (the CPU time is the calling thread's: call it on the pool's one worker).
-fn time_renders<C: Counter>(scene: &Scene, set: &VariantSet, batch: u32) -> (f64, f64) {
+fn time_renders<C: tracer::RenderWith>(scene: &Scene, set: &VariantSet, batch: u32) -> (f64, f64) {
     let opts = options(320, 240);
     let cpu = thread_cpu_ns();
     let start = Instant::now();

@@ -6,7 +6,7 @@
 
 use crate::accel::{BruteForce, Bvh, BvhStats, Intersector, Simd, WideBvh};
 use crate::camera::Projection;
-use crate::counter::{Counter, NoCount};
+use crate::counter::{Count, Counter, NoCount, Phased, QueryClock};
 use crate::render::{RenderError, RenderMethod, RenderOptions, Rendered, render};
 use crate::scene::Scene;
 use crate::variants::eye_space::with_eye_offsets;
@@ -33,7 +33,60 @@ pub struct VariantRender<C> {
 
 /// Renders `scene` with `variants`; `options` are the caller's (size, sampling, shading
 /// mode, depth, limits), everything else comes from the variants.
-pub fn render_variant<C: Counter>(
+///
+/// The renderer for each of this crate's counters is compiled once, in this crate (see
+/// [`RenderWith`]), however many crates call it.
+pub fn render_variant<C: RenderWith>(
+    scene: &Scene,
+    options: &RenderOptions,
+    variants: &VariantSet,
+    progress: &(dyn Fn(u64) + Sync),
+) -> Result<VariantRender<C>, RenderError> {
+    C::render_variant(scene, options, variants, progress)
+}
+
+/// A counter [`render_variant`] renders with.
+///
+/// Why a trait: a generic function is compiled again in every crate that instantiates it
+/// (optimized builds share no instantiations between crates), and the renderer with all
+/// its variants is most of the tracer's code, so the runner, the binary, the web app and
+/// the benchmarks each compiled their own copies, which were most of their build time.
+/// Each counter of this crate implements it with a non-generic function, compiled here
+/// once with the tracer's own codegen settings; a counter defined elsewhere (a test's)
+/// implements it by calling [`render_variant_with`].
+pub trait RenderWith: Counter {
+    /// [`render_variant`] with this counter.
+    fn render_variant(
+        scene: &Scene,
+        options: &RenderOptions,
+        variants: &VariantSet,
+        progress: &(dyn Fn(u64) + Sync),
+    ) -> Result<VariantRender<Self>, RenderError>;
+}
+
+/// Implements [`RenderWith`] for this crate's counters. `inline(never)`: inlined into a
+/// caller, the call would instantiate the renderer in the caller's crate again.
+macro_rules! render_with_compiled_here {
+    ($($counter:ty),*) => {$(
+        impl RenderWith for $counter {
+            #[inline(never)]
+            fn render_variant(
+                scene: &Scene,
+                options: &RenderOptions,
+                variants: &VariantSet,
+                progress: &(dyn Fn(u64) + Sync),
+            ) -> Result<VariantRender<Self>, RenderError> {
+                render_variant_with::<Self>(scene, options, variants, progress)
+            }
+        }
+    )*};
+}
+
+render_with_compiled_here!(NoCount, Count, Phased, QueryClock);
+
+/// The renderer behind [`render_variant`], generic over any counter: for counters defined
+/// outside this crate (their [`RenderWith`] calls it).
+pub fn render_variant_with<C: Counter>(
     scene: &Scene,
     options: &RenderOptions,
     variants: &VariantSet,
