@@ -9,8 +9,6 @@
 # Usage: scripts/instruction-counts.sh [--install-only | extra gungraun arguments, e.g. a filter]
 #   --install-only   install valgrind and the runner, measure nothing (CI does it while
 #                    it compiles)
-# RTPROF_BENCH_FEATURES adds cargo features to the bench build (CI: tracer/embree, the
-# features of its one release build, so that cargo builds the tracer once).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
@@ -30,6 +28,5 @@ if [ "${1:-}" = "--install-only" ]; then
     exit 0
 fi
 
-features="instructions${RTPROF_BENCH_FEATURES:+,$RTPROF_BENCH_FEATURES}"
-GUNGRAUN_RUNNER="$runner" cargo bench -p benches --features "$features" --bench instructions \
+GUNGRAUN_RUNNER="$runner" cargo bench -p benches --features instructions --bench instructions \
     -- --save-summary=json "$@"
