@@ -220,7 +220,7 @@ pub fn render<C: Counter, I: Intersector>(
             let mut records = options
                 .per_sample
                 .then(|| SampleRows::with_capacity(columns as usize, C::ENABLED));
-            let samples = if method.packets {
+            let samples = if I::PACKETS && method.packets {
                 let packets = PacketRow {
                     camera: &camera,
                     shader: &shader,

@@ -27,6 +27,10 @@ use crate::scene::Scene;
 
 /// Answers the two queries a Whitted tracer asks of its scene.
 pub trait Intersector: Sync {
+    /// Whether this intersector walks packets of rays together (variant `packets`, the
+    /// wide BVH only). The renderer compiles its packet path only where it is true.
+    const PACKETS: bool = false;
+
     /// The closest intersection beyond `t_min` (counts one `calls.intersect`).
     fn closest_hit<C: Counter>(&self, ray: &Ray, t_min: f32, c: &mut C) -> Option<Hit>;
 

@@ -682,6 +682,8 @@ fn sphere_pack<C: Counter, const FROM_EYE: bool>(
 }
 
 impl Intersector for WideBvh<'_> {
+    const PACKETS: bool = true;
+
     fn closest_hit<C: Counter>(&self, ray: &Ray, t_min: f32, c: &mut C) -> Option<Hit> {
         self.closest(ray, t_min, c)
     }
