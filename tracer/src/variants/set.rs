@@ -465,6 +465,24 @@ mod tests {
         ));
     }
 
+    /// The renderer compiles its packet path only for intersectors with
+    /// `Intersector::PACKETS` (render.rs); the rules above must let `packets` run with
+    /// exactly those, or a packet render would silently trace one ray at a time.
+    #[test]
+    fn the_packet_path_is_compiled_for_the_structure_packets_run_with() {
+        use crate::accel::{BruteForce, Bvh, Intersector, Simd, WideBvh};
+        let structures = [
+            ("", BruteForce::PACKETS),
+            ("simd+", Simd::PACKETS),
+            ("bvh+", Bvh::PACKETS),
+            ("bvh+simd+", WideBvh::PACKETS),
+        ];
+        for (structure, compiled) in structures {
+            let name = format!("{structure}packets");
+            assert_eq!(VariantSet::parse(&name).is_ok(), compiled, "{name}");
+        }
+    }
+
     #[test]
     fn config_collects_every_choice() {
         let set = VariantSet::parse("bvh,fast-sqrt-tuned,ortho,pixel-avg,no-rsqrt-shading")
