@@ -1,8 +1,9 @@
 //! The build profiles keep their rules (docs/build-times.md): dependencies build at
-//! opt-level 0 without debug info except a list of hot crates at opt-level 3, the same
-//! list in the test and release profiles (cargo has no shared lists, so it is written
-//! twice and checked here), and every crate the lists name is one the build has (a crate
-//! renamed or dropped by an upgrade would otherwise leave its entry silently unused).
+//! opt-level 0 without debug info except a list of hot crates, optimised, the same list
+//! in the test and release profiles (cargo has no shared lists, so it is written twice
+//! and checked here; the test profile may build one at 1 where 3 only costs build time),
+//! and every crate the lists name is one the build has (a crate renamed or dropped by an
+//! upgrade would otherwise leave its entry silently unused).
 
 use std::collections::BTreeSet;
 use toml::Table;
@@ -33,12 +34,24 @@ fn overrides(manifest: &Table, profile: &str) -> Table {
         .clone()
 }
 
-/// The packages a profile builds at `opt-level = 3`.
-fn hot(overrides: &Table) -> BTreeSet<String> {
+/// The dependencies a profile optimises (`opt-level` 1 or more), by name, with the level.
+fn hot(overrides: &Table, own: &BTreeSet<String>) -> Vec<(String, i64)> {
     overrides
         .iter()
-        .filter(|(_, o)| o.get("opt-level").and_then(|v| v.as_integer()) == Some(3))
-        .map(|(name, _)| name.clone())
+        .filter(|(name, _)| !own.contains(*name))
+        .filter_map(|(name, o)| Some((name.clone(), o.get("opt-level")?.as_integer()?)))
+        .filter(|(_, level)| *level > 0)
+        .collect()
+}
+
+/// The workspace's own crates (their overrides are not dependencies').
+fn workspace_members(manifest: &Table) -> BTreeSet<String> {
+    manifest["workspace"]["members"]
+        .as_array()
+        .expect("a workspace member list")
+        .iter()
+        .filter_map(|m| m.as_str())
+        .map(|m| m.rsplit('/').next().unwrap_or(m).to_owned())
         .collect()
 }
 
@@ -58,13 +71,31 @@ fn dependencies_build_unoptimized_without_debug_info_but_the_hot_ones() {
             "[profile.{profile}.package] \"*\" should build dependencies without debug info"
         );
     }
-    let dev = hot(&overrides(&manifest, "dev"));
-    let release = hot(&overrides(&manifest, "release"));
+    let own = workspace_members(&manifest);
+    let dev = hot(&overrides(&manifest, "dev"), &own);
+    let release = hot(&overrides(&manifest, "release"), &own);
     assert!(dev.len() >= 10, "the hot list is nearly empty: {dev:?}");
+    let names = |list: &[(String, i64)]| list.iter().map(|(n, _)| n.clone()).collect::<Vec<_>>();
     assert_eq!(
-        dev, release,
+        names(&dev),
+        names(&release),
         "the hot crates differ between [profile.dev.package] and [profile.release.package]"
     );
+    for ((name, in_dev), (_, in_release)) in dev.iter().zip(&release) {
+        assert!(
+            in_dev <= in_release,
+            "{name} is optimised more for the tests ({in_dev}) than in release ({in_release})"
+        );
+    }
+}
+
+/// The tests read function names from sampled stacks (the profile and flat-profile
+/// tests), and inlined frames keep their paths only with "limited" debug info or more;
+/// "full" costs a sixth more build time for variables no test reads.
+#[test]
+fn the_test_profile_keeps_the_names_the_profile_tests_read() {
+    let dev = &manifest()["profile"]["dev"];
+    assert_eq!(dev["debug"].as_str(), Some("limited"));
 }
 
 #[test]

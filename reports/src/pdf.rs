@@ -14,10 +14,12 @@
 
 use std::collections::BTreeSet;
 use std::fmt::Write as _;
+use std::sync::LazyLock;
 
 use typst::foundations::{Bytes, Dict, Element, IntoValue, Selector};
 use typst::introspection::Introspector as _;
 use typst::model::HeadingElem;
+use typst::text::Font;
 use typst_as_lib::TypstEngine;
 use typst_layout::PagedDocument;
 
@@ -83,13 +85,21 @@ pub fn input_data(doc: &Document) -> Result<Vec<u8>, PdfError> {
     Ok(serde_json::to_vec(doc)?)
 }
 
+/// The embedded fonts, parsed once per process. Parsing them is most of the cost of a
+/// small document, and a report with a damaged file typesets once per asset.
+static FONTS: LazyLock<Vec<Font>> = LazyLock::new(|| {
+    typst_assets::fonts()
+        .flat_map(|data| Font::iter(typst::foundations::Bytes::new(data)))
+        .collect()
+});
+
 /// Lays a document out with the template.
 pub fn typeset(doc: &Document) -> Result<PagedDocument, PdfError> {
     let mut inputs = Dict::new();
     inputs.insert("document".into(), Bytes::new(input_data(doc)?).into_value());
     let engine = TypstEngine::builder()
         .main_file(TEMPLATE)
-        .fonts(typst_assets::fonts())
+        .fonts(FONTS.iter().cloned())
         .with_static_file_resolver(
             doc.assets
                 .iter()

@@ -3,10 +3,21 @@
 
 use std::path::{Path, PathBuf};
 use std::process::Command;
+use std::sync::Mutex;
 
 use reports::Run;
-use reports::pdf::render_pdf;
+use reports::pdf::PdfError;
 use testkit::{sample_results, write_sample_files};
+
+/// typst lays a document out on every core, so two typesets at once only contend: this
+/// file's tests took 42 s on two cores side by side and 34 s one after another.
+static TYPESETTING: Mutex<()> = Mutex::new(());
+
+/// [`reports::pdf::render_pdf`], one typeset at a time.
+fn render_pdf(runs: &[Run]) -> Result<Vec<u8>, PdfError> {
+    let _alone = TYPESETTING.lock().unwrap_or_else(|e| e.into_inner());
+    reports::pdf::render_pdf(runs)
+}
 
 /// A fresh directory for one test.
 fn temp_dir(name: &str) -> PathBuf {
@@ -218,12 +229,12 @@ fn several_runs_get_a_comparison() {
 }
 
 /// Renders a real results file when asked to, for looking at the result:
-/// `RTPROF_PDF_RESULTS=out/results.json RTPROF_PDF_OUT=/tmp/report.pdf cargo test -p reports --test pdf real_results`.
+/// `RTPROF_PDF_RESULTS=out/results.json RTPROF_PDF_OUT=/tmp/report.pdf cargo test -p reports --test pdf real_results -- --ignored`.
 #[test]
+#[ignore = "renders the results file RTPROF_PDF_RESULTS names, for looking at"]
 fn real_results_when_given() {
-    let Ok(path) = std::env::var("RTPROF_PDF_RESULTS") else {
-        return;
-    };
+    let path = std::env::var("RTPROF_PDF_RESULTS")
+        .expect("set RTPROF_PDF_RESULTS to the results.json to render");
     let path = PathBuf::from(path);
     let text = std::fs::read_to_string(&path).expect("read results");
     let results = reports::results::Results::from_json(&text).expect("parse results");

@@ -152,29 +152,3 @@ pub fn parse_and_render_tiny(text: &str, file: &str) -> Result<Outcome, Defect> 
     }
     Ok(Outcome::Rendered)
 }
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    const VIEW: &str =
-        "v\nfrom 0 0 -5\nat 0 0 0\nup 0 1 0\nangle 40\nhither 0\nresolution 640 480\n";
-
-    #[test]
-    fn a_plain_scene_renders_with_every_entry() {
-        let text = format!("{VIEW}l 1 1 -5\nf 1 0 0 1 0.5 10 0.5 1.5\ns 0 0 0 1\n");
-        assert!(matches!(
-            parse_and_render_tiny(&text, "ok.nff"),
-            Ok(Outcome::Rendered)
-        ));
-    }
-
-    #[test]
-    fn a_bad_line_is_a_rejection_naming_it() {
-        let text = format!("{VIEW}s 0 0 0\n");
-        match parse_and_render_tiny(&text, "bad.nff") {
-            Ok(Outcome::Rejected(e)) => assert_eq!(e.line, 8, "{e}"),
-            other => panic!("expected a rejection, got {other:?}"),
-        }
-    }
-}
