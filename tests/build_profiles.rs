@@ -71,6 +71,15 @@ fn dependencies_build_unoptimized_without_debug_info_but_the_hot_ones() {
             "[profile.{profile}.package] \"*\" should build dependencies without debug info"
         );
     }
+    // Unoptimised typst typesets every PDF of the tests; its checks made that slower.
+    let all = &overrides(&manifest, "dev")["*"];
+    for check in ["debug-assertions", "overflow-checks"] {
+        assert_eq!(
+            all.get(check).and_then(|v| v.as_bool()),
+            Some(false),
+            "[profile.dev.package] \"*\" should build dependencies without {check}"
+        );
+    }
     let own = workspace_members(&manifest);
     let dev = hot(&overrides(&manifest, "dev"), &own);
     let release = hot(&overrides(&manifest, "release"), &own);
