@@ -2,6 +2,7 @@
 //! opt-level 0 without debug info except a list of hot crates, optimised, the same list
 //! in the test and release profiles (cargo has no shared lists, so it is written twice
 //! and checked here; the test profile may build one at 1 where 3 only costs build time),
+//! rtprof's crates that render in the tests optimised and the others not,
 //! and every crate the lists name is one the build has (a crate renamed or dropped by an
 //! upgrade would otherwise leave its entry silently unused).
 
@@ -105,6 +106,38 @@ fn dependencies_build_unoptimized_without_debug_info_but_the_hot_ones() {
 fn the_test_profile_keeps_the_names_the_profile_tests_read() {
     let dev = &manifest()["profile"]["dev"];
     assert_eq!(dev["debug"].as_str(), Some("limited"));
+}
+
+/// rtprof's crates whose tests do no long work build unoptimised for the tests; the ones
+/// that render in them (the renderers, the SPD generators, the hardware model's
+/// emulator) keep the profile's opt-level 1: unoptimised, their renders take several
+/// times as long.
+#[test]
+fn the_crates_that_render_in_the_tests_stay_optimised() {
+    let manifest = manifest();
+    let dev = overrides(&manifest, "dev");
+    let level = |name: &str| {
+        dev.get(name)
+            .and_then(|o| o.get("opt-level"))
+            .and_then(|v| v.as_integer())
+    };
+    assert_eq!(
+        manifest["profile"]["dev"]["opt-level"].as_integer(),
+        Some(1)
+    );
+    for name in ["tracer", "spd", "hwmodel"] {
+        assert!(
+            level(name).is_none_or(|l| l >= 1),
+            "{name} at {level:?}",
+            level = level(name)
+        );
+    }
+    let own = workspace_members(&manifest);
+    let unoptimised = own.iter().filter(|n| level(n) == Some(0)).count();
+    assert!(
+        unoptimised >= 5,
+        "only {unoptimised} of rtprof's crates build unoptimised"
+    );
 }
 
 #[test]

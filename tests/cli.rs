@@ -888,7 +888,11 @@ fn suite_writes_results_and_reports_and_the_gate_sets_the_exit_code() {
     // Same program, same counts: the gate passes. Time is taken out of the question by a
     // wide threshold (these renders take microseconds, where scheduler noise alone can
     // move a relative time several-fold); the files it writes are there.
+    // `--no-pdf` leaves report.pdf out (typesetting it is most of this tiny run's time)
+    // and removes one an earlier run left: it would describe other results.
     let second = dir.join("second");
+    std::fs::create_dir_all(&second).unwrap();
+    std::fs::copy(first.join("report.pdf"), second.join("report.pdf")).unwrap();
     let out = rtprof(&[
         "suite",
         suite.to_str().unwrap(),
@@ -898,11 +902,24 @@ fn suite_writes_results_and_reports_and_the_gate_sets_the_exit_code() {
         results_path.to_str().unwrap(),
         "--threshold",
         "1000",
+        "--no-pdf",
     ]);
     assert_eq!(out.status.code(), Some(0), "{}", stderr(&out));
-    for f in ["gate.txt", "gate.md", "variants.csv", "summary.md"] {
+    for f in [
+        "gate.txt",
+        "gate.md",
+        "variants.csv",
+        "summary.md",
+        "report.html",
+    ] {
         assert!(second.join(f).is_file(), "{f} missing");
     }
+    assert!(!second.join("report.pdf").exists(), "a stale report.pdf");
+    assert!(
+        stderr(&out).contains("{results.json, report.html, variants.csv, summary.md}"),
+        "{}",
+        stderr(&out)
+    );
     // A baseline whose counts differ: exit 1, the changed counter named.
     let doctored = dir.join("doctored.json");
     std::fs::write(
@@ -919,6 +936,7 @@ fn suite_writes_results_and_reports_and_the_gate_sets_the_exit_code() {
         doctored.to_str().unwrap(),
         "--threshold",
         "1000",
+        "--no-pdf",
     ]);
     assert_eq!(out.status.code(), Some(1), "{}", stderr(&out));
     assert!(String::from_utf8_lossy(&out.stdout).contains("rays.primary"));
@@ -1082,6 +1100,7 @@ fn suite_writes_results_and_reports_and_the_gate_sets_the_exit_code() {
         target.join("criterion").to_str().unwrap(),
         "-o",
         with_benchmarks.to_str().unwrap(),
+        "--no-pdf",
     ]);
     assert_eq!(out.status.code(), Some(0), "{}", stderr(&out));
     assert!(
@@ -1259,6 +1278,7 @@ fn every_counter_appears_everywhere() {
         suite.to_str().unwrap(),
         "-o",
         out_dir.to_str().unwrap(),
+        "--no-pdf",
     ]);
     assert_eq!(out.status.code(), Some(0), "{}", stderr(&out));
     let results: serde_json::Value =
@@ -1388,6 +1408,7 @@ fn a_suite_with_a_failed_scene_writes_the_rest_and_exits_3() {
         suite.to_str().unwrap(),
         "-o",
         out_dir.to_str().unwrap(),
+        "--no-pdf",
     ]);
     // 3: some parts failed, the rest was measured and written (not 0, not 2).
     assert_eq!(out.status.code(), Some(3), "{}", stderr(&out));

@@ -55,6 +55,7 @@ fn tiny_suite(test: &str, progress: Option<&str>) -> String {
             suite.to_str().unwrap(),
             "-o",
             out_dir.to_str().unwrap(),
+            "--no-pdf",
         ],
         progress,
     );

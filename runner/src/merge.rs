@@ -383,16 +383,17 @@ impl Merged {
     }
 
     /// What the merge did, for the user: shards, scenes, failures, where it wrote.
-    pub fn summary(&self, output: &Path) -> String {
+    pub fn summary(&self, output: &Path, pdf: crate::report_files::Pdf) -> String {
         let shards: Vec<String> = self.shards.iter().map(Shard::to_string).collect();
         let failures = self.results.failures.len();
         let mut text = format!(
-            "merged shards {}: {} scenes × {} variants; {failures} failure{}; wrote {}/{{results.json, report.html, report.pdf}}\n",
+            "merged shards {}: {} scenes × {} variants; {failures} failure{}; wrote {}/{{results.json, {}, variants.csv, summary.md}}\n",
             shards.join(", "),
             self.results.scenes.len(),
             self.results.suite.variants.len(),
             if failures == 1 { "" } else { "s" },
-            output.display()
+            output.display(),
+            pdf.documents()
         );
         for f in &self.results.failures {
             text += &format!("  failed: {}: {}\n", f.place(), f.message);

@@ -88,7 +88,7 @@ fn shards_merge_back_into_the_whole_run_in_the_suite_order() {
     }
     assert!(
         merged
-            .summary(&out)
+            .summary(&out, crate::report_files::Pdf::Write)
             .starts_with("merged shards 1/3, 2/3, 3/3: 11 scenes × 6 variants; 1 failure;")
     );
     let _ = std::fs::remove_dir_all(&dir);

@@ -31,9 +31,48 @@ pub fn load_runs(paths: &[PathBuf]) -> Result<Vec<Run>, RunError> {
     Ok(runs)
 }
 
-/// Writes report.html, report.pdf, variants.csv (the first run's) and summary.md for
-/// `runs` into `dir`.
-pub fn write_reports(runs: &[Run], dir: &Path) -> Result<(), RunError> {
+/// Whether a run's reports include report.pdf. Typesetting it takes seconds (report.html
+/// has the same content), so `--no-pdf` leaves it out, and removes a report.pdf left in
+/// the output directory by an earlier run: it would describe other results.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum Pdf {
+    #[default]
+    Write,
+    Skip,
+}
+
+impl Pdf {
+    /// `--no-pdf`'s choice.
+    pub fn unless(no_pdf: bool) -> Self {
+        if no_pdf { Pdf::Skip } else { Pdf::Write }
+    }
+
+    /// The report documents written, for the messages that list a run's files.
+    pub fn documents(self) -> &'static str {
+        match self {
+            Pdf::Write => "report.html, report.pdf",
+            Pdf::Skip => "report.html",
+        }
+    }
+
+    /// With [`Pdf::Skip`], removes `output`'s report.pdf (an earlier run's) if there is one.
+    pub fn remove_stale(self, output: &Path) -> Result<(), RunError> {
+        if self == Pdf::Write {
+            return Ok(());
+        }
+        let path = output.join("report.pdf");
+        match std::fs::remove_file(&path) {
+            Err(e) if e.kind() != std::io::ErrorKind::NotFound => {
+                Err(RunError::io("remove the earlier", &path, &e))
+            }
+            _ => Ok(()),
+        }
+    }
+}
+
+/// Writes report.html, report.pdf (unless `pdf` says not), variants.csv (the first
+/// run's) and summary.md for `runs` into `dir`.
+pub fn write_reports(runs: &[Run], dir: &Path, pdf: Pdf) -> Result<(), RunError> {
     if let Some(main) = runs.first() {
         let csv = reports::exports::variants_csv(&main.results);
         crate::staging::save(dir, "variants.csv", csv.as_bytes())?;
@@ -42,15 +81,18 @@ pub fn write_reports(runs: &[Run], dir: &Path) -> Result<(), RunError> {
     }
     let failed = |what: &str, message: String| RunError::Report(format!("{what}: {message}"));
     // The two documents are independent: typeset the PDF while the HTML is built.
-    let (html, pdf) = std::thread::scope(|scope| {
-        let pdf = scope.spawn(|| reports::pdf::render_pdf(runs));
-        (reports::html::render_html(runs), pdf.join())
+    let (html, typeset) = std::thread::scope(|scope| {
+        let typeset = (pdf == Pdf::Write).then(|| scope.spawn(|| reports::pdf::render_pdf(runs)));
+        (reports::html::render_html(runs), typeset.map(|t| t.join()))
     });
     let html = html.map_err(|e| failed("cannot build report.html", e.to_string()))?;
     let html_path = dir.join("report.html");
     write_atomically(&html_path, html.as_bytes())
         .map_err(|e| RunError::io("write", &html_path, &e))?;
-    let pdf = pdf
+    let Some(typeset) = typeset else {
+        return pdf.remove_stale(dir);
+    };
+    let pdf = typeset
         .map_err(|_| {
             failed(
                 "typesetting report.pdf failed",
@@ -62,8 +104,8 @@ pub fn write_reports(runs: &[Run], dir: &Path) -> Result<(), RunError> {
     write_atomically(&pdf_path, &pdf).map_err(|e| RunError::io("write", &pdf_path, &e))
 }
 
-/// Writes one run's results.json, report.html and report.pdf into `dir`.
-pub fn write_run(results: &Results, dir: &Path) -> Result<(), RunError> {
+/// Writes one run's results.json and reports into `dir`.
+pub fn write_run(results: &Results, dir: &Path, pdf: Pdf) -> Result<(), RunError> {
     let json = serde_json::to_string_pretty(results)
         .map_err(|e| RunError::Report(format!("cannot serialize results.json: {e}")))?;
     crate::staging::save(dir, "results.json", json.as_bytes())?;
@@ -72,5 +114,5 @@ pub fn write_run(results: &Results, dir: &Path) -> Result<(), RunError> {
         results: results.clone(),
         base_dir: dir.to_path_buf(),
     };
-    write_reports(&[run], dir)
+    write_reports(&[run], dir, pdf)
 }

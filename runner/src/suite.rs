@@ -55,15 +55,22 @@ pub struct RunContext<'a> {
 impl Suite {
     /// What a finished run says: scenes, variants, time, failures (one line each) and
     /// where its files are.
-    pub fn summary(&self, results: &Results, seconds: f64, output: &Path) -> String {
+    pub fn summary(
+        &self,
+        results: &Results,
+        seconds: f64,
+        output: &Path,
+        pdf: crate::report_files::Pdf,
+    ) -> String {
         let failures = results.failures.len();
         let mut text = format!(
-            "suite '{}': {} scenes × {} variants in {seconds:.1} s; {failures} failure{}; wrote {}/{{results.json, report.html, report.pdf, variants.csv, summary.md}}\n",
+            "suite '{}': {} scenes × {} variants in {seconds:.1} s; {failures} failure{}; wrote {}/{{results.json, {}, variants.csv, summary.md}}\n",
             self.def.name,
             results.scenes.len(),
             self.def.variants.len(),
             if failures == 1 { "" } else { "s" },
-            output.display()
+            output.display(),
+            pdf.documents()
         );
         for f in &results.failures {
             text += &format!("  failed: {}: {}\n", f.place(), f.message);

@@ -9,6 +9,7 @@ use std::sync::{Arc, Mutex, MutexGuard, mpsc};
 
 use runner::RunError;
 use runner::definition::SuiteDef;
+use runner::report_files::Pdf;
 use runner::staging::Staging;
 use runner::suite::{RunContext, Suite};
 use tokio::sync::watch;
@@ -373,7 +374,7 @@ fn execute(
         }
         runner::Progress::begin(progress, "reports", 0);
         runner::Progress::message(progress, "writing results.json, report.html and report.pdf");
-        runner::report_files::write_run(&results, staging.dir())?;
+        runner::report_files::write_run(&results, staging.dir(), Pdf::Write)?;
         Ok(())
     }));
     let ended = match run {

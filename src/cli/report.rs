@@ -3,7 +3,7 @@
 
 use anyhow::{Context, Result};
 use results::Results;
-use runner::report_files::{load_runs, write_reports};
+use runner::report_files::{Pdf, load_runs, write_reports};
 use std::path::PathBuf;
 
 #[derive(clap::Args, Debug)]
@@ -16,6 +16,10 @@ pub struct ReportArgs {
     output: Option<PathBuf>,
     #[command(flatten)]
     benchmarks: BenchmarkDirs,
+    /// Leave out report.pdf (typesetting it takes seconds; report.html has the same
+    /// content). A report.pdf left in the directory by an earlier run is removed.
+    #[arg(long)]
+    no_pdf: bool,
 }
 
 /// Where the benchmark harnesses saved their figures (`cargo bench -p benches`).
@@ -63,11 +67,13 @@ pub fn run(args: &ReportArgs) -> Result<()> {
         dir
     };
     std::fs::create_dir_all(&dir).with_context(|| format!("cannot create {}", dir.display()))?;
-    write_reports(&runs, &dir)?;
+    let pdf = Pdf::unless(args.no_pdf);
+    write_reports(&runs, &dir, pdf)?;
     let plural = if runs.len() == 1 { "" } else { "s" };
     eprintln!(
-        "wrote {}/report.html and report.pdf from {} run{plural}",
+        "wrote {}/{{{}, variants.csv, summary.md}} from {} run{plural}",
         dir.display(),
+        pdf.documents(),
         runs.len()
     );
     Ok(())

@@ -7,6 +7,7 @@ use super::progress::Bars;
 use anyhow::{Context, Result};
 use runner::RunError;
 use runner::definition::SuiteDef;
+use runner::report_files::Pdf;
 use runner::staging::{Staging, discarded_message, save};
 use runner::suite::{RunContext, Suite};
 use std::path::{Path, PathBuf};
@@ -43,6 +44,10 @@ pub struct SuiteArgs {
     shard: Option<results::Shard>,
     #[command(flatten)]
     benchmarks: super::report::BenchmarkDirs,
+    /// Leave out report.pdf (typesetting it takes seconds; report.html has the same
+    /// content). A report.pdf left in the directory by an earlier run is removed.
+    #[arg(long)]
+    no_pdf: bool,
 }
 
 pub(super) fn parse_threshold(text: &str) -> Result<f64, String> {
@@ -100,14 +105,16 @@ pub fn run(args: &SuiteArgs) -> Result<()> {
         Err(e) => return Err(e.into()),
     };
     args.benchmarks.add_to(&mut results, true)?;
-    runner::report_files::write_run(&results, staging.dir())?;
+    let pdf = Pdf::unless(args.no_pdf);
+    runner::report_files::write_run(&results, staging.dir(), pdf)?;
     let total = suite.scenes.len();
     if stop.load(std::sync::atomic::Ordering::SeqCst) {
         return Err(interrupted(&args.output, total, total));
     }
     staging.publish(&args.output)?;
+    pdf.remove_stale(&args.output)?;
     let seconds = started.elapsed().as_secs_f64();
-    eprint!("{}", suite.summary(&results, seconds, &args.output));
+    eprint!("{}", suite.summary(&results, seconds, &args.output, pdf));
     if let Some(old) = old {
         let gate = args.gate.gate(&old, &results)?;
         let text = super::gate::render(&gate, super::Format::Text)?;
