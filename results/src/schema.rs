@@ -445,26 +445,40 @@ pub struct Profile {
 }
 
 impl Profile {
-    /// The bottleneck a headline names: the row with the largest inclusive share,
-    /// leaving out the whole-run frames (at least
+    /// The bottleneck a headline names: the row with the most self time (the work that
+    /// costs by itself; a primitive test's self share is its inclusive share), leaving
+    /// out the whole-run frames (at least
     /// [`analysis::profile::flat::WHOLE_RUN_PERCENT`] of the samples, and threads'
-    /// roots: the render's outermost frames) and noise; the rule of [`analysis::profile::flat::bottleneck`].
-    /// `None` for profiles without inclusive shares (`/2` files).
+    /// roots: the render's outermost frames) and noise; the rule of
+    /// [`analysis::profile::flat::bottleneck`]. `None` for profiles without inclusive
+    /// shares (`/2` files), where whole-run frames cannot be told.
     pub fn bottleneck(&self) -> Option<&FlatRow> {
-        self.flat
-            .iter()
+        self.candidates().max_by(|a, b| {
+            let inclusive = |r: &FlatRow| r.inclusive_percent.unwrap_or(0.0);
+            a.percent
+                .total_cmp(&b.percent)
+                .then_with(|| inclusive(a).total_cmp(&inclusive(b)))
+                .then_with(|| b.name.cmp(&a.name))
+        })
+    }
+
+    /// The row with the largest inclusive share short of the whole run: a parent's share
+    /// holds the work it calls (the rule of [`analysis::profile::flat::largest_inclusive`]).
+    pub fn largest_inclusive(&self) -> Option<&FlatRow> {
+        self.candidates()
             .filter_map(|r| Some((r, r.inclusive_percent?)))
-            .filter(|&(r, p)| p < analysis::profile::flat::WHOLE_RUN_PERCENT && !r.noise && !r.root)
             .max_by(|a, b| a.1.total_cmp(&b.1).then_with(|| b.0.name.cmp(&a.0.name)))
             .map(|(r, _)| r)
     }
 
-    /// The row with the most self time: where the samples land.
-    pub fn hottest(&self) -> Option<&FlatRow> {
-        self.flat.iter().max_by(|a, b| {
-            a.percent
-                .total_cmp(&b.percent)
-                .then_with(|| b.name.cmp(&a.name))
+    /// Rows that may headline: with an inclusive share short of the whole run, not noise,
+    /// not a thread's root.
+    fn candidates(&self) -> impl Iterator<Item = &FlatRow> {
+        self.flat.iter().filter(|r| {
+            r.inclusive_percent
+                .is_some_and(|p| p < analysis::profile::flat::WHOLE_RUN_PERCENT)
+                && !r.noise
+                && !r.root
         })
     }
 }

@@ -1,5 +1,6 @@
-//! The profile's headline rows: the bottleneck by inclusive share (whole-run frames and
-//! noise left out) and the hottest by self share, on hand-made rows.
+//! The profile's headline rows: the bottleneck by self share and the largest inclusive
+//! share (whole-run frames, threads' roots and noise left out of both), on hand-made
+//! rows shaped like SPD rings' profile.
 
 use results::{FlatRow, Profile, ProfileView, VariantName};
 
@@ -38,7 +39,7 @@ fn profile(flat: Vec<FlatRow>) -> Profile {
 }
 
 #[test]
-fn the_bottleneck_is_the_largest_inclusive_share_below_the_whole_run() {
+fn the_bottleneck_is_the_most_self_time_and_the_largest_parent_is_named_apart() {
     let p = profile(vec![
         row("sample row", 0.0, Some(100.0), true),
         row("root", 0.2, Some(99.6), true),
@@ -47,19 +48,25 @@ fn the_bottleneck_is_the_largest_inclusive_share_below_the_whole_run() {
         row("sphere test", 34.3, Some(34.3), false),
         // Noise never headlines, whatever its share says.
         row("camera ray", 0.1, Some(80.0), true),
+        row("noise leaf", 70.0, Some(70.0), true),
         // Nor does a thread's root, which holds that thread's whole work.
         FlatRow {
             root: true,
-            ..row("worker", 0.0, Some(95.7), false)
+            ..row("worker", 66.0, Some(95.7), false)
         },
+        // Nor a frame on (nearly) every sample.
+        row("everywhere", 80.0, Some(99.7), false),
     ]);
-    assert_eq!(p.bottleneck().map(|r| r.name.as_str()), Some("shading"));
-    assert_eq!(p.hottest().map(|r| r.name.as_str()), Some("cylinder test"));
-    // A /2 profile has no inclusive shares: no bottleneck claim.
+    assert_eq!(
+        p.bottleneck().map(|r| r.name.as_str()),
+        Some("cylinder test")
+    );
+    assert_eq!(
+        p.largest_inclusive().map(|r| r.name.as_str()),
+        Some("shading")
+    );
+    // A /2 profile has no inclusive shares: no claim either way.
     let old = profile(vec![row("Cylinder::intersect", 90.8, None, false)]);
     assert!(old.bottleneck().is_none());
-    assert_eq!(
-        old.hottest().map(|r| r.name.as_str()),
-        Some("Cylinder::intersect")
-    );
+    assert!(old.largest_inclusive().is_none());
 }

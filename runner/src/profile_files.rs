@@ -248,15 +248,20 @@ impl ProfileReport {
         if let Some(o) = &r.overhead {
             out += &o.to_text();
         }
-        if let Some(top) = analysis::profile::flat::bottleneck(&p.phases.flat) {
-            let limit = 1.0 / (1.0 - top.inclusive_percent / 100.0).max(1e-9);
+        let flat = &p.phases.flat;
+        if let Some(top) = analysis::profile::flat::bottleneck(flat) {
+            let limit = 1.0 / (1.0 - top.percent / 100.0).max(1e-9);
             out += &format!(
-                "bottleneck: {} holds {:.1} % (95 % interval {:.1}-{:.1} %) of the time with everything it calls; free, the render would run {limit:.2}x faster\n",
-                top.name,
-                top.inclusive_percent,
-                top.inclusive_interval.low,
-                top.inclusive_interval.high
+                "bottleneck: {} takes {:.1} % (95 % interval {:.1}-{:.1} %) of the time itself; free, the render would run {limit:.2}x faster\n",
+                top.name, top.percent, top.self_interval.low, top.self_interval.high
             );
+            let parent = analysis::profile::flat::largest_inclusive(flat);
+            if let Some(parent) = parent.filter(|r| r.name != top.name) {
+                out += &format!(
+                    "largest with everything it calls: {} holds {:.1} %, {:.1} % itself: the rest is the work it calls\n",
+                    parent.name, parent.inclusive_percent, parent.percent
+                );
+            }
         }
         out += "\nPhase view (the tracer's record of what each thread was doing; the native-symbol view is in the *-native files)\n";
         out += &p.phases.flat_text;

@@ -41,7 +41,11 @@ fn the_docs_give_each_bootstrap_s_resamples_with_its_constant() {
     assert_eq!(grouped(500), "500");
     let (times, changes) = (runner::timing::RESAMPLES, results::change::RESAMPLES);
     states("suite-and-reports.md", times, "runner::timing::RESAMPLES");
-    states("suite-and-reports.md", changes, "results::change::RESAMPLES");
+    states(
+        "suite-and-reports.md",
+        changes,
+        "results::change::RESAMPLES",
+    );
     states("gate.md", changes, "results::change::RESAMPLES");
     states("gate.md", times, "runner::timing::RESAMPLES");
 }

@@ -1,6 +1,6 @@
 //! gprof's flat profile (binutils `gprof/hist.c` layout) from sampled call stacks,
 //! with what gprof cannot give: inclusive time, a 95 % interval on every share, the
-//! rows too rarely sampled to be told from zero, and the bottleneck by inclusive time.
+//! rows too rarely sampled to be told from zero, and the bottleneck by self time.
 //!
 //! # Figures
 //! - *self* samples of a function: its frame was running; *inclusive*: it was anywhere
@@ -197,11 +197,27 @@ pub fn flat_profile(input: &ProfileInput<'_>) -> FlatProfile {
     }
 }
 
-/// The bottleneck a headline names: the function with the most inclusive samples,
-/// leaving out whole-run frames ([`FlatRow::whole_run`]: the render's outermost frames
-/// hold every sample and would always win) and functions whose inclusive share is
-/// itself below the noise floor. Ties go to more self samples, then to the name.
+/// The bottleneck a headline names: the work that costs most by itself, the function
+/// with the most self samples (a leaf such as a primitive test has self = inclusive),
+/// leaving out whole-run frames ([`FlatRow::whole_run`]) and noise rows. Ties go to
+/// more inclusive samples, then to the name. A parent's inclusive share holds the work
+/// it calls (shading holds its shadow queries' tests): [`largest_inclusive`] names it.
 pub fn bottleneck(flat: &FlatProfile) -> Option<&FlatRow> {
+    flat.rows
+        .iter()
+        .filter(|r| !r.whole_run() && !r.noise)
+        .max_by(|a, b| {
+            (a.self_samples, a.inclusive_samples)
+                .cmp(&(b.self_samples, b.inclusive_samples))
+                .then_with(|| b.name.cmp(&a.name))
+        })
+}
+
+/// The function with the most inclusive samples, leaving out whole-run frames (the
+/// render's outermost frames hold every sample and would always win) and functions
+/// whose inclusive share is itself below the noise floor: what making it and everything
+/// it calls free would buy. Ties go to more self samples, then to the name.
+pub fn largest_inclusive(flat: &FlatProfile) -> Option<&FlatRow> {
     flat.rows
         .iter()
         .filter(|r| !r.whole_run() && !below_noise_floor(r.inclusive_samples, flat.samples))
@@ -494,18 +510,18 @@ mod tests {
     }
 
     #[test]
-    fn bottleneck_is_the_largest_inclusive_row_short_of_the_whole_run() {
+    fn largest_inclusive_is_the_largest_inclusive_row_short_of_the_whole_run() {
         // main holds 100 %: left out; a holds 80 % inclusive (self only 30 %): a, not b.
-        assert_eq!(bottleneck(&four_renders()).unwrap().name, "a");
+        assert_eq!(largest_inclusive(&four_renders()).unwrap().name, "a");
         // root and x hold 99.6 % (>= 99.5): both whole-run; other (4 samples) wins.
         let stacks = samples(&[(&["root", "x"], 996), (&["other"], 4)], 0.001);
         let profile = flat(&stacks, &CallCounts::new(), 1);
         assert!(row(&profile, "root").whole_run() && row(&profile, "x").whole_run());
-        assert_eq!(bottleneck(&profile).unwrap().name, "other");
+        assert_eq!(largest_inclusive(&profile).unwrap().name, "other");
         // At 99.4 % they count; root and x tie on inclusive, x runs: x.
         let stacks = samples(&[(&["root", "x"], 994), (&["other"], 6)], 0.001);
         assert_eq!(
-            bottleneck(&flat(&stacks, &CallCounts::new(), 1))
+            largest_inclusive(&flat(&stacks, &CallCounts::new(), 1))
                 .unwrap()
                 .name,
             "x"
@@ -515,10 +531,37 @@ mod tests {
         let stacks = samples(&[(&["worker", "y"], 900), (&["idle"], 100)], 0.001);
         let profile = flat(&stacks, &CallCounts::new(), 1);
         assert!(row(&profile, "worker").root && !row(&profile, "idle").root);
-        assert_eq!(bottleneck(&profile).unwrap().name, "y");
-        // Only whole-run frames and noise: no bottleneck.
+        assert_eq!(largest_inclusive(&profile).unwrap().name, "y");
+        // Only whole-run frames and noise: none.
         let stacks = samples(&[(&["root", "x"], 999), (&["other"], 1)], 0.001);
-        assert!(bottleneck(&flat(&stacks, &CallCounts::new(), 1)).is_none());
+        assert!(largest_inclusive(&flat(&stacks, &CallCounts::new(), 1)).is_none());
+    }
+
+    #[test]
+    fn the_bottleneck_is_the_most_self_time_not_the_parent_that_holds_it() {
+        // SPD rings' shape: shading holds the shadow queries and the reflection rays'
+        // tests (75 % inclusive, 1 % itself); the cylinder test costs 64 % itself.
+        let stacks = samples(
+            &[
+                (&["row", "shading", "shadow", "cylinder test"], 400),
+                (&["row", "shading", "cylinder test"], 140),
+                (&["row", "cylinder test"], 100),
+                (&["row", "shading"], 10),
+                (&["row", "shading", "shadow"], 200),
+                (&["row", "sphere test"], 150),
+            ],
+            0.001,
+        );
+        let profile = flat(&stacks, &CallCounts::new(), 1);
+        assert_eq!(largest_inclusive(&profile).unwrap().name, "shading");
+        let top = bottleneck(&profile).unwrap();
+        assert_eq!(top.name, "cylinder test");
+        assert_eq!((top.self_samples, top.inclusive_samples), (640, 640));
+        // A noise row never headlines; whole-run frames neither.
+        let stacks = samples(&[(&["root", "x"], 999), (&["other"], 1)], 0.001);
+        let profile = flat(&stacks, &CallCounts::new(), 1);
+        assert!(row(&profile, "other").noise);
+        assert!(bottleneck(&profile).is_none());
     }
 
     #[test]

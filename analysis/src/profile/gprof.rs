@@ -60,7 +60,9 @@
 //!   Longer names are printed in full and push the rest of their row to the right.
 //!   The `[index]` column is never cut to 6 characters either.
 
-pub use super::flat::{FlatProfile, FlatRow, WHOLE_RUN_PERCENT, bottleneck, flat_profile};
+pub use super::flat::{
+    FlatProfile, FlatRow, WHOLE_RUN_PERCENT, bottleneck, flat_profile, largest_inclusive,
+};
 pub use super::tally::ProfileInput;
 use super::tally::{Tally, percent_of};
 use serde::{Deserialize, Serialize};

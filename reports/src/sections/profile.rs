@@ -129,13 +129,13 @@ fn flat_text_block(b: &Builder, path: &str, what: &str) -> Block {
     }
 }
 
-/// The bottleneck by inclusive time (what making it and its callees free would buy)
-/// and, when another, the hottest function by self time.
+/// The bottleneck by self time (the work that costs by itself: what making it free
+/// would buy) and, when another, the largest share with everything it calls, saying
+/// that share is mostly the work it calls.
 fn headline(profile: &Profile) -> Option<String> {
     let top = profile.bottleneck()?;
-    let share = top.inclusive_percent?;
     let interval = top
-        .inclusive_interval
+        .self_interval
         .map(|[lo, hi]| {
             format!(
                 " (95 % interval {}–{})",
@@ -144,19 +144,21 @@ fn headline(profile: &Profile) -> Option<String> {
             )
         })
         .unwrap_or_default();
-    let limit = 1.0 / (1.0 - share / 100.0).max(1e-9);
+    let limit = 1.0 / (1.0 - top.percent / 100.0).max(1e-9);
     let mut text = format!(
-        "Bottleneck of the {}: {} holds {}{interval} of the time with everything it calls; if that became free, the whole render would run {} faster.",
+        "Bottleneck of the {}: {} takes {}{interval} of the time itself; if it became free, the whole render would run {} faster.",
         profile.variant,
         top.name,
-        format::percent(share, 1),
+        format::percent(top.percent, 1),
         format::speedup(limit),
     );
-    if let Some(hot) = profile.hottest().filter(|h| h.name != top.name) {
+    if let Some(parent) = profile.largest_inclusive().filter(|p| p.name != top.name) {
+        let share = parent.inclusive_percent.unwrap_or(parent.percent);
         text += &format!(
-            " The most time in one function itself: {}, {} self.",
-            hot.name,
-            format::percent(hot.percent, 1)
+            " {} holds more, {} with everything it calls, but only {} itself: the rest is the work it calls.",
+            parent.name,
+            format::percent(share, 1),
+            format::percent(parent.percent, 1)
         );
     }
     Some(text)
@@ -373,7 +375,7 @@ pub fn amdahl(b: &mut Builder) -> Section {
         return s.empty("No profile in this run, so no Amdahl table.");
     };
     s.text(
-        "The whole run's speed-up if one function became 2×, 10× or infinitely faster: alone (its self time) and with everything it calls (its inclusive time). Rows are the functions with the most inclusive time, leaving out what stands for the whole render (threads' roots such as `sample row`, frames on at least 99.5 % of the samples); the bottleneck is the first row.",
+        "The whole run's speed-up if one function became 2×, 10× or infinitely faster: alone (its self time) and with everything it calls (its inclusive time). Rows are the functions with the most inclusive time, leaving out what stands for the whole render (threads' roots such as `sample row`, frames on at least 99.5 % of the samples). The first row can be a caller whose share is the work it calls; the headline's bottleneck is the most time in one function itself.",
     );
     for profile in profiles(p) {
         s.blocks
