@@ -7,17 +7,9 @@ fn doc(name: &str) -> String {
     std::fs::read_to_string(&path).unwrap_or_else(|e| panic!("{path}: {e}"))
 }
 
-/// `n` as the docs write it: 10,000.
+/// `n` as the docs write it (10,000): the reports' one formatter of counts.
 fn grouped(n: usize) -> String {
-    let digits = n.to_string();
-    let mut out = String::new();
-    for (i, c) in digits.chars().enumerate() {
-        if i > 0 && (digits.len() - i) % 3 == 0 {
-            out.push(',');
-        }
-        out.push(c);
-    }
-    out
+    reports::format::count(n as u64)
 }
 
 /// The page gives `count` resamples in the same sentence as `constant`'s name.
@@ -36,9 +28,6 @@ fn states(page: &str, count: usize, constant: &str) {
 
 #[test]
 fn the_docs_give_each_bootstrap_s_resamples_with_its_constant() {
-    assert_eq!(grouped(10_000), "10,000");
-    assert_eq!(grouped(2_000), "2,000");
-    assert_eq!(grouped(500), "500");
     let (times, changes) = (runner::timing::RESAMPLES, results::change::RESAMPLES);
     states("suite-and-reports.md", times, "runner::timing::RESAMPLES");
     states(
