@@ -42,11 +42,6 @@ pub enum Pdf {
 }
 
 impl Pdf {
-    /// `--no-pdf`'s choice.
-    pub fn unless(no_pdf: bool) -> Self {
-        if no_pdf { Pdf::Skip } else { Pdf::Write }
-    }
-
     /// The report documents written, for the messages that list a run's files.
     pub fn documents(self) -> &'static str {
         match self {

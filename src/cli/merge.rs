@@ -5,7 +5,6 @@
 use super::Outcome;
 use anyhow::{Context, Result};
 use runner::merge::{MergeOptions, merge, read_part};
-use runner::report_files::Pdf;
 use runner::staging::Staging;
 use runner::suite::Suite;
 use std::path::PathBuf;
@@ -21,10 +20,8 @@ pub struct MergeArgs {
     /// Merge parts from different suites, binaries or machine classes anyway.
     #[arg(long)]
     allow_mixed: bool,
-    /// Leave out report.pdf (typesetting it takes seconds; report.html has the same
-    /// content). A report.pdf left in the directory by an earlier run is removed.
-    #[arg(long)]
-    no_pdf: bool,
+    #[command(flatten)]
+    pdf: super::report::PdfFlag,
 }
 
 pub fn run(args: &MergeArgs) -> Result<()> {
@@ -42,7 +39,7 @@ pub fn run(args: &MergeArgs) -> Result<()> {
         .with_context(|| format!("cannot create {}", args.output.display()))?;
     let staging = Staging::create(&args.output)?;
     merged.copy_files(staging.dir())?;
-    let pdf = Pdf::unless(args.no_pdf);
+    let pdf = args.pdf.choice();
     runner::report_files::write_run(&merged.results, staging.dir(), pdf)?;
     staging.publish(&args.output)?;
     pdf.remove_stale(&args.output)?;

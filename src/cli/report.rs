@@ -16,10 +16,23 @@ pub struct ReportArgs {
     output: Option<PathBuf>,
     #[command(flatten)]
     benchmarks: BenchmarkDirs,
+    #[command(flatten)]
+    pdf: PdfFlag,
+}
+
+/// `--no-pdf`, the same for every command that writes the reports.
+#[derive(clap::Args, Debug, Default)]
+pub struct PdfFlag {
     /// Leave out report.pdf (typesetting it takes seconds; report.html has the same
     /// content). A report.pdf left in the directory by an earlier run is removed.
     #[arg(long)]
     no_pdf: bool,
+}
+
+impl PdfFlag {
+    pub fn choice(&self) -> Pdf {
+        if self.no_pdf { Pdf::Skip } else { Pdf::Write }
+    }
 }
 
 /// Where the benchmark harnesses saved their figures (`cargo bench -p benches`).
@@ -67,7 +80,7 @@ pub fn run(args: &ReportArgs) -> Result<()> {
         dir
     };
     std::fs::create_dir_all(&dir).with_context(|| format!("cannot create {}", dir.display()))?;
-    let pdf = Pdf::unless(args.no_pdf);
+    let pdf = args.pdf.choice();
     write_reports(&runs, &dir, pdf)?;
     let plural = if runs.len() == 1 { "" } else { "s" };
     eprintln!(

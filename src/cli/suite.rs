@@ -7,7 +7,6 @@ use super::progress::Bars;
 use anyhow::{Context, Result};
 use runner::RunError;
 use runner::definition::SuiteDef;
-use runner::report_files::Pdf;
 use runner::staging::{Staging, discarded_message, save};
 use runner::suite::{RunContext, Suite};
 use std::path::{Path, PathBuf};
@@ -44,10 +43,8 @@ pub struct SuiteArgs {
     shard: Option<results::Shard>,
     #[command(flatten)]
     benchmarks: super::report::BenchmarkDirs,
-    /// Leave out report.pdf (typesetting it takes seconds; report.html has the same
-    /// content). A report.pdf left in the directory by an earlier run is removed.
-    #[arg(long)]
-    no_pdf: bool,
+    #[command(flatten)]
+    pdf: super::report::PdfFlag,
 }
 
 pub(super) fn parse_threshold(text: &str) -> Result<f64, String> {
@@ -105,7 +102,7 @@ pub fn run(args: &SuiteArgs) -> Result<()> {
         Err(e) => return Err(e.into()),
     };
     args.benchmarks.add_to(&mut results, true)?;
-    let pdf = Pdf::unless(args.no_pdf);
+    let pdf = args.pdf.choice();
     runner::report_files::write_run(&results, staging.dir(), pdf)?;
     let total = suite.scenes.len();
     if stop.load(std::sync::atomic::Ordering::SeqCst) {
