@@ -250,7 +250,7 @@ impl ProfileReport {
         }
         let flat = &p.phases.flat;
         if let Some(top) = analysis::profile::flat::bottleneck(flat) {
-            let limit = 1.0 / (1.0 - top.percent / 100.0).max(1e-9);
+            let limit = analysis::profile::amdahl::speedup(top.percent / 100.0, f64::INFINITY);
             out += &format!(
                 "bottleneck: {} takes {:.1} % (95 % interval {:.1}-{:.1} %) of the time itself; free, the render would run {limit:.2}x faster\n",
                 top.name, top.percent, top.self_interval.low, top.self_interval.high
