@@ -235,6 +235,52 @@ fn command_line_misuse_exits_2() {
     std::fs::remove_dir_all(&dir).ok();
 }
 
+/// The `Commands:` list of a help text: each command's name and one-line description.
+fn commands_listed(help: &str) -> Vec<(String, String)> {
+    help.lines()
+        .skip_while(|line| line.trim() != "Commands:")
+        .skip(1)
+        .take_while(|line| line.starts_with("  "))
+        .filter_map(|line| {
+            let (name, description) = line.trim().split_once(' ')?;
+            Some((name.to_string(), description.trim().to_string()))
+        })
+        .filter(|(name, _)| name != "help")
+        .collect()
+}
+
+#[test]
+fn every_command_s_help_opens_with_the_line_its_parent_lists() {
+    // The arguments of each command are built only when it runs (clap's `defer`); what
+    // they flatten in must not replace the command's own description.
+    let mut pending = vec![Vec::<String>::new()];
+    let mut seen = 0;
+    while let Some(path) = pending.pop() {
+        let mut args: Vec<&str> = path.iter().map(String::as_str).collect();
+        args.push("-h");
+        let out = rtprof(&args);
+        assert_eq!(out.status.code(), Some(0), "{args:?}: {}", stderr(&out));
+        let help = String::from_utf8_lossy(&out.stdout).into_owned();
+        for (name, description) in commands_listed(&help) {
+            let mut sub = path.clone();
+            sub.push(name);
+            let mut sub_args: Vec<&str> = sub.iter().map(String::as_str).collect();
+            sub_args.push("-h");
+            let out = rtprof(&sub_args);
+            let sub_help = String::from_utf8_lossy(&out.stdout).into_owned();
+            assert_eq!(
+                sub_help.lines().next().unwrap_or_default(),
+                description,
+                "{sub_args:?}"
+            );
+            seen += 1;
+            pending.push(sub);
+        }
+    }
+    // rtprof's 13 commands, hw's 7 and scene's 2.
+    assert!(seen >= 22, "only {seen} commands listed");
+}
+
 fn read(path: &Path) -> Vec<u8> {
     std::fs::read(path).unwrap_or_else(|e| panic!("{}: {e}", path.display()))
 }

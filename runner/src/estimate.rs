@@ -9,7 +9,7 @@ use std::time::Duration;
 use tracer::{NoCount, RenderOptions, Sampling, Scene, VariantSet, render_variant};
 
 use crate::error::RunError;
-use crate::pool::thread_pool;
+use crate::pool::Workers;
 
 /// Scenes with fewer primitives than this render fast enough by brute force.
 pub const MANY_PRIMITIVES: usize = 1_000;
@@ -84,7 +84,7 @@ pub fn brute_force(
         height: PROBE_SIZE.1,
         ..*options
     };
-    let one = thread_pool(Some(1))?;
+    let one = Workers::new(Some(1))?;
     let probed = one.install(|| render_variant::<NoCount>(scene, &probe, variants, &|_| {}));
     let Ok(out) = probed else {
         return Ok(None);

@@ -15,6 +15,42 @@ pub fn thread_pool(threads: Option<u16>) -> Result<rayon::ThreadPool, RunError> 
     })
 }
 
+/// Where a render's rows run: on the calling thread, or in a pool of worker threads.
+pub enum Workers {
+    /// One worker, and the caller is no pool's worker: the rows run on the calling thread
+    /// (`tracer::render` does that outside any pool), without starting a thread for it
+    /// (a fifth of a 1×1 render's time in the process).
+    Calling,
+    Pool(rayon::ThreadPool),
+}
+
+impl Workers {
+    /// `threads` workers (default: one per core), on the calling thread when that is one
+    /// and it is not itself a pool's worker (where the tracer would use that pool).
+    pub fn new(threads: Option<u16>) -> Result<Self, RunError> {
+        if threads == Some(1) && rayon::current_thread_index().is_none() {
+            return Ok(Self::Calling);
+        }
+        thread_pool(threads).map(Self::Pool)
+    }
+
+    /// Runs `work` where the workers are.
+    pub fn install<R: Send>(&self, work: impl FnOnce() -> R + Send) -> R {
+        match self {
+            Self::Calling => work(),
+            Self::Pool(pool) => pool.install(work),
+        }
+    }
+
+    /// How many threads trace.
+    pub fn threads(&self) -> usize {
+        match self {
+            Self::Calling => 1,
+            Self::Pool(pool) => pool.current_num_threads(),
+        }
+    }
+}
+
 /// The workers worth starting for a job of `pieces` independent pieces (a render's
 /// sample rows, its only parallel work): `threads` (default: rayon's, one per core or
 /// `RAYON_NUM_THREADS`), but no more than there are pieces, so that a render of one
@@ -41,6 +77,23 @@ pub fn workers_for(threads: Option<u16>, pieces: u64) -> Option<u16> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn one_worker_is_the_calling_thread_unless_it_is_a_pool_s_worker() {
+        let workers = Workers::new(Some(1)).unwrap_or_else(|e| panic!("{e}"));
+        assert!(matches!(workers, Workers::Calling));
+        assert_eq!(workers.threads(), 1);
+        let here = std::thread::current().id();
+        assert_eq!(workers.install(|| std::thread::current().id()), here);
+        // Inside a pool the tracer would use that pool: one worker gets a pool of its own.
+        let outer = thread_pool(Some(2)).unwrap_or_else(|e| panic!("{e}"));
+        let inner = outer.install(|| Workers::new(Some(1)).unwrap_or_else(|e| panic!("{e}")));
+        assert!(matches!(inner, Workers::Pool(_)));
+        assert_eq!(inner.threads(), 1);
+        let two = Workers::new(Some(2)).unwrap_or_else(|e| panic!("{e}"));
+        assert_eq!(two.threads(), 2);
+        assert_ne!(two.install(|| std::thread::current().id()), here);
+    }
 
     #[test]
     fn no_more_workers_than_pieces() {

@@ -11,7 +11,7 @@ use tracer::{
 };
 
 use crate::error::RunError;
-use crate::pool::{thread_pool, workers_for};
+use crate::pool::{Workers, workers_for};
 use crate::progress::Progress;
 use crate::scene_input::SceneInput;
 
@@ -103,9 +103,9 @@ pub fn render_scene<C: tracer::RenderWith>(
         .check_size(u64::from(width), u64::from(height))
         .map_err(|e| refuse(e.to_string()))?;
     let rows = options.sample_rows();
-    let pool = thread_pool(workers_for(req.settings.threads, rows))?;
+    let workers = Workers::new(workers_for(req.settings.threads, rows))?;
     progress.begin("tracing", rows);
-    let out = pool
+    let out = workers
         .install(|| render_variant::<C>(&scene, &options, &req.variants, &|n| progress.advance(n)));
     progress.end();
     let out = out.map_err(|e| RunError::render(req.scene, &e))?;
@@ -114,7 +114,7 @@ pub fn render_scene<C: tracer::RenderWith>(
         rendered: out.rendered,
         preprocessing: parsing + out.preprocessing,
         tracing: out.tracing,
-        threads: pool.current_num_threads(),
+        threads: workers.threads(),
         variants: req.variants.clone(),
         accelerator_bytes: out.accelerator_bytes,
         bvh: out.bvh,

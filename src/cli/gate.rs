@@ -23,7 +23,7 @@ pub struct GateArgs {
     format: Format,
 }
 
-/// The gate's flags, shared with `suite --baseline`.
+// The gate's flags, shared with `suite --baseline`.
 #[derive(clap::Args, Debug)]
 pub struct GateFlags {
     /// Noise threshold in percent: a relative time must change by more than this (and

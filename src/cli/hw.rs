@@ -21,6 +21,7 @@ pub struct HwArgs {
 }
 
 #[derive(clap::Subcommand, Debug)]
+#[command(defer = true)]
 enum HwCommand {
     /// Tables 7 and 8 as the model computes them, next to the thesis's, with % errors.
     Table(TableArgs),
@@ -40,8 +41,8 @@ enum HwCommand {
     Synth(super::hw_rtl::SynthArgs),
 }
 
-/// The design's changes from the thesis's, shared by every `hw` command that takes a
-/// design (`table`, `time`, `rtl`, `sim`, `synth`).
+// The design's changes from the thesis's, shared by every `hw` command that takes a
+// design (`table`, `time`, `rtl`, `sim`, `synth`).
 #[derive(clap::Args, Debug, Clone)]
 pub struct DesignFlags {
     /// What-if: the bit-trick square root (one adder, 1 cycle) instead of the IP core.
@@ -71,7 +72,7 @@ impl DesignFlags {
     }
 }
 
-/// Design changes and the device, for `table` and `time`.
+// Design changes and the device, for `table` and `time`.
 #[derive(clap::Args, Debug, Clone)]
 struct WhatIf {
     #[command(flatten)]

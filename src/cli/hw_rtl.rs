@@ -13,8 +13,8 @@ use runner::hardware_files::hardware_scene;
 use runner::scene_input::SceneInput;
 use std::path::PathBuf;
 
-/// The design the RTL is generated for: the model's design flags, within what the
-/// generator builds.
+// The design the RTL is generated for: the model's design flags, within what the
+// generator builds.
 #[derive(clap::Args, Debug, Clone)]
 pub struct RtlDesign {
     #[command(flatten)]

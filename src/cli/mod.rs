@@ -30,6 +30,9 @@ pub struct Cli {
 }
 
 #[derive(Subcommand, Debug)]
+// Each subcommand's arguments are built only when it runs (clap's `defer`): a start
+// builds one command's, not all of them.
+#[command(defer = true)]
 enum Command {
     /// Render an NFF scene to PNG or PPM (uncounted, full speed).
     Render(render::RenderArgs),

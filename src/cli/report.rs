@@ -20,7 +20,7 @@ pub struct ReportArgs {
     pdf: PdfFlag,
 }
 
-/// `--no-pdf`, the same for every command that writes the reports.
+// `--no-pdf`, the same for every command that writes the reports.
 #[derive(clap::Args, Debug, Default)]
 pub struct PdfFlag {
     /// Leave out report.pdf (typesetting it takes seconds; report.html has the same
@@ -35,7 +35,7 @@ impl PdfFlag {
     }
 }
 
-/// Where the benchmark harnesses saved their figures (`cargo bench -p benches`).
+// Where the benchmark harnesses saved their figures (`cargo bench -p benches`).
 #[derive(clap::Args, Debug, Default)]
 pub struct BenchmarkDirs {
     /// Add criterion's estimates (mean, median, 95 % intervals) from this directory,

@@ -15,6 +15,7 @@ pub struct SceneArgs {
 }
 
 #[derive(clap::Subcommand, Debug)]
+#[command(defer = true)]
 enum SceneCommand {
     /// List the scenes usable by name wherever a scene is asked for.
     List,

@@ -19,7 +19,7 @@ pub struct SceneArgs {
     pub render: RenderFlags,
 }
 
-/// How to shade: full colour unless one of these is given.
+// How to shade: full colour unless one of these is given.
 #[derive(clap::Args, Debug, Default)]
 pub struct ShadingFlags {
     /// Full shading converted to gray.
@@ -44,7 +44,7 @@ impl ShadingFlags {
     }
 }
 
-/// How to render: the flags of every command that renders a scene.
+// How to render: the flags of every command that renders a scene.
 #[derive(clap::Args, Debug)]
 pub struct RenderFlags {
     #[arg(long, value_name = "WxH", value_parser = parse_size, help = SIZE_HELP)]
@@ -89,9 +89,9 @@ impl RenderFlags {
 /// The --help heading of the limit flags.
 const LIMITS: &str = "Limits (raise them for very large inputs)";
 
-/// The input limits, checked before anything is allocated; each error names the flag
-/// that raises it. Defaults: `tracer::Limits::default()`. Listed under their own
-/// heading in --help.
+// The input limits, checked before anything is allocated; each error names the flag
+// that raises it. Defaults: `tracer::Limits::default()`. Listed under their own
+// heading in --help.
 #[derive(clap::Args, Debug, Clone, Default)]
 pub struct LimitArgs {
     /// Largest scene file, bytes [default: 1 GiB].

@@ -156,9 +156,10 @@ impl<C: Counter> Rendered<C> {
     }
 }
 
-/// Renders `scene` with `accel` in the current rayon pool, computing the picture by
-/// `method`. `progress` is called with 1 after each finished sample row (from worker
-/// threads).
+/// Renders `scene` with `accel`, computing the picture by `method`: in the rayon pool
+/// the caller runs in (`ThreadPool::install`), its sample rows in parallel, or outside
+/// any pool on the calling thread, one row after another. `progress` is called with 1
+/// after each finished sample row (from worker threads).
 pub fn render<C: Counter, I: Intersector>(
     scene: &Scene,
     accel: &I,
@@ -191,78 +192,82 @@ pub fn render<C: Counter, I: Intersector>(
     let (columns, rows) = camera.grid();
     let from_eye = method.projection == Projection::EyeRows;
 
-    let traced: Vec<TracedRow<C>> = (0..rows)
-        .into_par_iter()
-        .map(|row| {
-            let _phase = C::enter_phase(Phase::SampleRow);
-            let mut c = C::default();
-            let mut rays = RayLog::default();
-            // The bounded walk: the row's base direction once, then one step per pixel.
-            let row_base = from_eye.then(|| {
-                let _phase = C::enter_phase(Phase::CameraRay);
-                camera.row_base(row, &mut c)
-            });
-            let trace = |column: u32, c: &mut C, rays: &mut RayLog| {
-                if let Some(base) = row_base {
-                    let ray = {
-                        let _phase = C::enter_phase(Phase::CameraRay);
-                        camera.ray_from_eye(column, base, c)
-                    };
-                    shader.primary_from_eye(&ray, c, rays)
-                } else {
-                    let ray = {
-                        let _phase = C::enter_phase(Phase::CameraRay);
-                        camera.ray(column, row, c)
-                    };
-                    shader.primary(&ray, c, rays)
-                }
-            };
-            let mut records = options
-                .per_sample
-                .then(|| SampleRows::with_capacity(columns as usize, C::ENABLED));
-            let samples = if I::PACKETS && method.packets {
-                let packets = PacketRow {
-                    camera: &camera,
-                    shader: &shader,
-                    row,
-                    row_base,
-                    columns,
-                    checkerboard: method.checkerboard,
+    let trace_row = |row: u32| {
+        let _phase = C::enter_phase(Phase::SampleRow);
+        let mut c = C::default();
+        let mut rays = RayLog::default();
+        // The bounded walk: the row's base direction once, then one step per pixel.
+        let row_base = from_eye.then(|| {
+            let _phase = C::enter_phase(Phase::CameraRay);
+            camera.row_base(row, &mut c)
+        });
+        let trace = |column: u32, c: &mut C, rays: &mut RayLog| {
+            if let Some(base) = row_base {
+                let ray = {
+                    let _phase = C::enter_phase(Phase::CameraRay);
+                    camera.ray_from_eye(column, base, c)
                 };
-                packets.trace(&mut c, &mut rays, records.as_mut())
+                shader.primary_from_eye(&ray, c, rays)
             } else {
-                (0..columns)
-                    .map(|column| {
-                        if method.checkerboard && (column + row) % 2 == 1 {
-                            // Filled from the neighbours after the loop.
-                            if let Some(records) = &mut records {
-                                records.push_untraced();
-                            }
-                            Rgb::BLACK
-                        } else if let Some(records) = &mut records {
-                            // Each sample on its own counter, then added to the row's.
-                            let (mut own, mut own_rays) = (C::default(), RayLog::default());
-                            let start = Instant::now();
-                            let colour = trace(column, &mut own, &mut own_rays);
-                            records.push(start.elapsed(), &own, &own_rays);
-                            c.merge(&own);
-                            rays.merge(&own_rays);
-                            colour
-                        } else {
-                            trace(column, &mut c, &mut rays)
-                        }
-                    })
-                    .collect()
-            };
-            progress(1);
-            TracedRow {
-                samples,
-                counter: c,
-                rays: rays.counts,
-                records,
+                let ray = {
+                    let _phase = C::enter_phase(Phase::CameraRay);
+                    camera.ray(column, row, c)
+                };
+                shader.primary(&ray, c, rays)
             }
-        })
-        .collect();
+        };
+        let mut records = options
+            .per_sample
+            .then(|| SampleRows::with_capacity(columns as usize, C::ENABLED));
+        let samples = if I::PACKETS && method.packets {
+            let packets = PacketRow {
+                camera: &camera,
+                shader: &shader,
+                row,
+                row_base,
+                columns,
+                checkerboard: method.checkerboard,
+            };
+            packets.trace(&mut c, &mut rays, records.as_mut())
+        } else {
+            (0..columns)
+                .map(|column| {
+                    if method.checkerboard && (column + row) % 2 == 1 {
+                        // Filled from the neighbours after the loop.
+                        if let Some(records) = &mut records {
+                            records.push_untraced();
+                        }
+                        Rgb::BLACK
+                    } else if let Some(records) = &mut records {
+                        // Each sample on its own counter, then added to the row's.
+                        let (mut own, mut own_rays) = (C::default(), RayLog::default());
+                        let start = Instant::now();
+                        let colour = trace(column, &mut own, &mut own_rays);
+                        records.push(start.elapsed(), &own, &own_rays);
+                        c.merge(&own);
+                        rays.merge(&own_rays);
+                        colour
+                    } else {
+                        trace(column, &mut c, &mut rays)
+                    }
+                })
+                .collect()
+        };
+        progress(1);
+        TracedRow {
+            samples,
+            counter: c,
+            rays: rays.counts,
+            records,
+        }
+    };
+    // In the caller's pool, the rows in parallel; outside any pool, on the calling thread,
+    // rather than in a global pool started behind the caller's back.
+    let traced: Vec<TracedRow<C>> = if rayon::current_thread_index().is_some() {
+        (0..rows).into_par_iter().map(trace_row).collect()
+    } else {
+        (0..rows).map(trace_row).collect()
+    };
 
     let pixel_fill = C::enter_phase(Phase::PixelFill);
     let mut ray_counts = RayCounts::default();

@@ -85,3 +85,38 @@ fn every_spd_scene_gives_the_same_image_and_counts_on_1_2_and_8_threads() {
         }
     }
 }
+
+/// Outside any rayon pool the renderer traces on the calling thread (it starts no
+/// global pool), and gives the image and counts a pool of two gives.
+#[test]
+fn outside_a_pool_the_rows_run_on_the_calling_thread_with_the_same_result() {
+    let scene = load_spd("rings");
+    let opts = options(16, 12, Sampling::SpdCorners);
+    let variants = VariantSet::parse("bvh").unwrap_or_else(|e| panic!("{e}"));
+    let threads = std::sync::Mutex::new(std::collections::HashSet::new());
+    let note_thread = |_| {
+        let mut seen = threads.lock().unwrap_or_else(|e| panic!("{e}"));
+        seen.insert(std::thread::current().id());
+    };
+    assert!(rayon::current_thread_index().is_none());
+    let here = render_variant::<Count>(&scene, &opts, &variants, &note_thread)
+        .unwrap_or_else(|e| panic!("{e}"))
+        .rendered;
+    let seen = threads.into_inner().unwrap_or_else(|e| panic!("{e}"));
+    assert_eq!(
+        seen,
+        std::collections::HashSet::from([std::thread::current().id()]),
+        "rows traced on other threads"
+    );
+    let pool = rayon::ThreadPoolBuilder::new()
+        .num_threads(2)
+        .build()
+        .unwrap_or_else(|e| panic!("{e}"));
+    let pooled = pool
+        .install(|| render_variant::<Count>(&scene, &opts, &variants, &|_| {}))
+        .unwrap_or_else(|e| panic!("{e}"))
+        .rendered;
+    assert!(here.frame.pixels == pooled.frame.pixels);
+    assert_eq!(here.counts(), pooled.counts());
+    assert_eq!(here.rays, pooled.rays);
+}
