@@ -1,7 +1,10 @@
 //! Brute force: every query tests every primitive (the thesis's software reference and
 //! the `baseline` variant). Closest-hit queries always test all primitives; occlusion
 //! queries stop at the first blocker, in the fixed order spheres, cylinders, cones,
-//! polygons, patches (so counts stay deterministic). Each kind's loop is that kind's
+//! polygons, patches (so counts stay deterministic). Every test runs against the
+//! query's reach, not the closest hit so far, and the caller keeps the closer: so a
+//! test counts a hit wherever the intersection lies inside the ray's range, whatever the
+//! order of the primitives in the file. Each kind's loop is that kind's
 //! test phase (one phase per kind and query, not per primitive: the loop is the test
 //! work, and marking it once keeps the phase recording cheap).
 
@@ -111,7 +114,9 @@ impl BruteForce<'_> {
         {
             let _phase = kind_phase::<C, _>(Phase::SphereTest, &s.spheres);
             for (i, sphere) in s.spheres.iter().enumerate() {
-                if let Some(t) = sphere.intersect(ray, t_min, t_max, c) {
+                if let Some(t) = sphere.intersect(ray, t_min, f32::INFINITY, c)
+                    && t < t_max
+                {
                     t_max = t;
                     best = Some(Hit {
                         t,
@@ -124,7 +129,9 @@ impl BruteForce<'_> {
         {
             let _phase = kind_phase::<C, _>(Phase::CylinderTest, &s.cylinders);
             for (i, cylinder) in s.cylinders.iter().enumerate() {
-                if let Some((t, m)) = cylinder.intersect(ray, t_min, t_max, c) {
+                if let Some((t, m)) = cylinder.intersect(ray, t_min, f32::INFINITY, c)
+                    && t < t_max
+                {
                     t_max = t;
                     best = Some(Hit {
                         t,
@@ -137,7 +144,9 @@ impl BruteForce<'_> {
         {
             let _phase = kind_phase::<C, _>(Phase::ConeTest, &s.cones);
             for (i, cone) in s.cones.iter().enumerate() {
-                if let Some((t, m)) = cone.intersect(ray, t_min, t_max, c) {
+                if let Some((t, m)) = cone.intersect(ray, t_min, f32::INFINITY, c)
+                    && t < t_max
+                {
                     t_max = t;
                     best = Some(Hit {
                         t,
@@ -150,7 +159,9 @@ impl BruteForce<'_> {
         {
             let _phase = kind_phase::<C, _>(Phase::PolygonTest, &s.polygons);
             for (i, polygon) in s.polygons.iter().enumerate() {
-                if let Some(t) = polygon.intersect(ray, t_min, t_max, c) {
+                if let Some(t) = polygon.intersect(ray, t_min, f32::INFINITY, c)
+                    && t < t_max
+                {
                     t_max = t;
                     best = Some(Hit {
                         t,
@@ -163,7 +174,9 @@ impl BruteForce<'_> {
         {
             let _phase = kind_phase::<C, _>(Phase::PatchTest, &s.patches);
             for (i, patch) in s.patches.iter().enumerate() {
-                if let Some(t) = patch.intersect(ray, t_min, t_max, c) {
+                if let Some(t) = patch.intersect(ray, t_min, f32::INFINITY, c)
+                    && t < t_max
+                {
                     t_max = t;
                     best = Some(Hit {
                         t,

@@ -595,7 +595,12 @@ impl<'s> Bvh<'s> {
         let scene = self.scene;
         self.traverse(ray, t_min, &mut t_max, c, |leaf, t_max, c| {
             for &prim in leaf {
-                if let Some((t, aux)) = intersect_primitive(scene, prim, ray, t_min, *t_max, c) {
+                // Tested against the query's reach (the hit counts whatever was found
+                // before), kept when closer.
+                if let Some((t, aux)) =
+                    intersect_primitive(scene, prim, ray, t_min, f32::INFINITY, c)
+                    && t < *t_max
+                {
                     *t_max = t;
                     best = Some(Hit { t, prim, aux });
                 }

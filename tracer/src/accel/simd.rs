@@ -11,14 +11,16 @@
 //! Counts: every chunk tested issues [`LANES`] lanes (`accel.lanes_issued`), of which
 //! those holding a primitive are active (`accel.lanes_active`); their ratio is the
 //! lane utilization, low when a scene has fewer primitives of a kind than lanes. Every
-//! lane holding a primitive counts one test with the operations of the
-//! scalar test (`sub`, `dot`s, a `sqrt` where the discriminant is positive); a hit is a
-//! lane whose distance falls inside the interval known when its chunk started (brute
-//! force shrinks the interval after every primitive, so `hits` may differ slightly;
-//! `rays.*` and the picture do not).
+//! lane holding a primitive counts one test with the operations of the scalar test
+//! (its first stage's `sub` and `dot`s; the second stage's operations where the first
+//! did not rule out a hit; a `sqrt` where the discriminant is positive), and a hit where
+//! its intersection lies inside the query's reach, as brute force counts them (so
+//! closest-hit queries count the same tests and hits as `baseline`; a shadow query
+//! stops after the chunk where it found a blocker, brute force after the blocker).
 
 use super::{Intersector, cpu_has_avx2_fma, intersect_primitive, occluded_by_cones_and_planars};
 use crate::counter::{Counter, Phase, Stat};
+use crate::primitives::quick_miss_margin;
 use crate::ray::{Hit, PrimKind, PrimRef, Ray};
 use crate::scene::Scene;
 
@@ -255,10 +257,22 @@ fn quadric_pass_body<C: Counter>(
     if any && sphere.is_some() {
         return sphere.map(|s| hit(PrimKind::Sphere, s));
     }
-    let limit = sphere.map_or(t_max, |(t, _, _)| t);
+    // The cylinders are tested against the query's reach (their hits count whatever
+    // the spheres found) and kept only when closer than the closest sphere.
+    let closer_than = sphere.map_or(t_max, |(t, _, _)| t);
     let cylinder = {
         let _phase = C::enter_phase(Phase::CylinderTest);
-        cylinder_pass(&simd.cylinders, cylinder_count, ray, t_min, limit, any, c)
+        let chunks = &simd.cylinders;
+        cylinder_pass(
+            chunks,
+            cylinder_count,
+            ray,
+            t_min,
+            t_max,
+            closer_than,
+            any,
+            c,
+        )
     };
     match cylinder {
         Some(cy) => Some(hit(PrimKind::Cylinder, cy)),
@@ -280,40 +294,45 @@ fn sphere_pass<C: Counter>(
     let [dx, dy, dz] = ray.dir.to_array();
     let mut best = LaneBest::new(t_max);
     for (k, l) in chunks.iter().enumerate() {
-        // Step 1, every lane: the discriminant. Most chunks miss entirely and stop here.
+        // Step 1, every lane: the scalar test's first stage (the thesis's discriminant,
+        // trusted for certain misses). Most chunks miss entirely and stop here.
         let mut half_b = [0.0f32; LANES];
-        let mut disc = [0.0f32; LANES];
-        let mut disc_positive = [false; LANES];
-        let mut any_positive = false;
+        let mut passed = [false; LANES];
+        let mut any_passed = false;
         for i in 0..LANES {
             let (vx, vy, vz) = (ox - l.cx[i], oy - l.cy[i], oz - l.cz[i]);
             half_b[i] = dx * vx + dy * vy + dz * vz;
-            let cc = (vx * vx + vy * vy + vz * vz) - l.radius_sq[i];
-            disc[i] = half_b[i] * half_b[i] - cc;
-            disc_positive[i] = disc[i] > 0.0;
-            any_positive |= disc_positive[i];
+            let oo = vx * vx + vy * vy + vz * vz;
+            let textbook = half_b[i] * half_b[i] - (oo - l.radius_sq[i]);
+            passed[i] = textbook >= -quick_miss_margin(oo);
+            any_passed |= passed[i];
         }
+        let live = live_lanes(k, count);
         if C::ENABLED {
-            count_lanes(
-                c,
-                live_lanes(k, count),
-                1,
-                2,
-                &disc_positive,
-                Stat::SphereTest,
-            );
+            count_lanes(c, live, 1, 2, Stat::SphereTest);
         }
-        if !any_positive {
+        if !any_passed {
             continue;
         }
-        // Step 2: roots and the lane's interval, branch-free per lane.
+        // Step 2: the second stage (the discriminant from the centre's offset across
+        // the ray, as the scalar test computes it), the roots and the query's reach,
+        // branch-free per lane.
         let mut t = [f32::INFINITY; LANES];
+        let mut disc_positive = [false; LANES];
         for i in 0..LANES {
-            let root = C::sqrt_kernel(disc[i].max(0.0));
+            let (vx, vy, vz) = (ox - l.cx[i], oy - l.cy[i], oz - l.cz[i]);
+            let (ax, ay, az) = (
+                vx - dx * half_b[i],
+                vy - dy * half_b[i],
+                vz - dz * half_b[i],
+            );
+            let disc = l.radius_sq[i] - (ax * ax + ay * ay + az * az);
+            disc_positive[i] = passed[i] && disc > 0.0;
+            let root = C::sqrt_kernel(disc.max(0.0));
             let near = -half_b[i] - root;
             let far = -half_b[i] + root;
-            let near_ok = l.inside[i] == 0.0 && near > t_min && near < best.t[i];
-            let far_ok = far > t_min && far < best.t[i];
+            let near_ok = l.inside[i] == 0.0 && near > t_min && near < t_max;
+            let far_ok = far > t_min && far < t_max;
             let chosen = if near_ok { near } else { far };
             t[i] = if disc_positive[i] && (near_ok || far_ok) {
                 chosen
@@ -322,8 +341,11 @@ fn sphere_pass<C: Counter>(
             };
         }
         if C::ENABLED {
-            let hits = t.iter().filter(|x| x.is_finite()).count();
-            c.tally_n(Stat::SphereHit, hits as u64);
+            let second = passed[..live].iter().filter(|&&p| p).count() as u64;
+            c.tally_n(Stat::Scale, second);
+            c.tally_n(Stat::Sub, second);
+            c.tally_n(Stat::Dot, second);
+            count_roots_and_hits(c, live, &disc_positive, &t, Stat::SphereHit);
         }
         if best.update(k, &t, &[0.0; LANES]) && any {
             break;
@@ -333,27 +355,29 @@ fn sphere_pass<C: Counter>(
 }
 
 #[inline(always)]
+#[allow(clippy::too_many_arguments)]
 fn cylinder_pass<C: Counter>(
     chunks: &[CylinderLanes],
     count: usize,
     ray: &Ray,
     t_min: f32,
     t_max: f32,
+    closer_than: f32,
     any: bool,
     c: &mut C,
 ) -> Option<(f32, usize, f32)> {
     let [ox, oy, oz] = ray.origin.to_array();
     let [dx, dy, dz] = ray.dir.to_array();
-    let mut best = LaneBest::new(t_max);
+    let mut best = LaneBest::new(closer_than);
     for (k, l) in chunks.iter().enumerate() {
-        // Step 1, every lane: the quadratic's coefficients and discriminant.
+        // Step 1, every lane: the quadratic's coefficients and the scalar test's first
+        // stage (the thesis's discriminant, trusted for certain misses).
         let mut rv = [0.0f32; LANES];
         let mut ov = [0.0f32; LANES];
         let mut a = [0.0f32; LANES];
         let mut half_b = [0.0f32; LANES];
-        let mut disc = [0.0f32; LANES];
-        let mut disc_positive = [false; LANES];
-        let mut any_valid = false;
+        let mut passed = [false; LANES];
+        let mut any_passed = false;
         for i in 0..LANES {
             let (vx, vy, vz) = (ox - l.bx[i], oy - l.by[i], oz - l.bz[i]);
             rv[i] = dx * l.ax[i] + dy * l.ay[i] + dz * l.az[i];
@@ -363,53 +387,56 @@ fn cylinder_pass<C: Counter>(
             a[i] = 1.0 - rv[i] * rv[i];
             half_b[i] = ro - rv[i] * ov[i];
             let cc = oo - ov[i] * ov[i] - l.radius_sq[i];
-            disc[i] = half_b[i] * half_b[i] - a[i] * cc;
-            disc_positive[i] = disc[i] > 0.0;
-            any_valid |= disc_positive[i] & (a[i] > 0.0);
+            let textbook = half_b[i] * half_b[i] - a[i] * cc;
+            passed[i] = textbook >= -quick_miss_margin(oo) && a[i] > 0.0;
+            any_passed |= passed[i];
         }
+        let live = live_lanes(k, count);
         if C::ENABLED {
-            count_lanes(
-                c,
-                live_lanes(k, count),
-                1,
-                4,
-                &disc_positive,
-                Stat::CylinderTest,
-            );
+            count_lanes(c, live, 1, 4, Stat::CylinderTest);
         }
-        if !any_valid {
+        if !any_passed {
             continue;
         }
-        // Step 2: roots, the lane's interval and the axial bounds, branch-free per lane.
+        // Step 2: the second stage (a r² - (V·(Voc × R))², as the scalar test computes
+        // it), the roots, the query's reach and the axial bounds, branch-free per lane.
         let mut t = [f32::INFINITY; LANES];
         let mut m_at = [0.0f32; LANES];
+        let mut disc_positive = [false; LANES];
         for i in 0..LANES {
-            let valid = disc_positive[i] && a[i] > 0.0;
-            let root = C::sqrt_kernel(disc[i].max(0.0));
+            let (vx, vy, vz) = (ox - l.bx[i], oy - l.by[i], oz - l.bz[i]);
+            // Voc × R in the order of the scalar test's cross product.
+            let (nx, ny, nz) = (vy * dz - dy * vz, vz * dx - dz * vx, vx * dy - dx * vy);
+            let triple = l.ax[i] * nx + l.ay[i] * ny + l.az[i] * nz;
+            let disc = a[i] * l.radius_sq[i] - triple * triple;
+            disc_positive[i] = passed[i] && disc > 0.0;
+            let root = C::sqrt_kernel(disc.max(0.0));
             let near = (-half_b[i] - root) / a[i];
             let far = (-half_b[i] + root) / a[i];
             let m_near = ov[i] + near * rv[i];
             let m_far = ov[i] + far * rv[i];
             let near_ok = l.inside[i] == 0.0
                 && near > t_min
-                && near < best.t[i]
+                && near < t_max
                 && m_near > 0.0
                 && m_near < l.length[i];
-            let far_ok = far > t_min && far < best.t[i] && m_far > 0.0 && m_far < l.length[i];
+            let far_ok = far > t_min && far < t_max && m_far > 0.0 && m_far < l.length[i];
             let (chosen, m) = if near_ok {
                 (near, m_near)
             } else {
                 (far, m_far)
             };
-            (t[i], m_at[i]) = if valid && (near_ok || far_ok) {
+            (t[i], m_at[i]) = if disc_positive[i] && (near_ok || far_ok) {
                 (chosen, m)
             } else {
                 (f32::INFINITY, 0.0)
             };
         }
         if C::ENABLED {
-            let hits = t.iter().filter(|x| x.is_finite()).count();
-            c.tally_n(Stat::CylinderHit, hits as u64);
+            let second = passed[..live].iter().filter(|&&p| p).count() as u64;
+            c.tally_n(Stat::Cross, second);
+            c.tally_n(Stat::Dot, second);
+            count_roots_and_hits(c, live, &disc_positive, &t, Stat::CylinderHit);
         }
         if best.update(k, &t, &m_at) && any {
             break;
@@ -418,33 +445,39 @@ fn cylinder_pass<C: Counter>(
     best.closest()
 }
 
-/// Counts the tests of one chunk and the operations the scalar test would have run.
+/// Counts the tests of one chunk and the first stage's operations of the scalar test.
 #[inline(always)]
-fn count_lanes<C: Counter>(
-    c: &mut C,
-    live: usize,
-    subs: u64,
-    dots: u64,
-    disc_positive: &[bool; LANES],
-    test: Stat,
-) {
+fn count_lanes<C: Counter>(c: &mut C, live: usize, subs: u64, dots: u64, test: Stat) {
     let n = live as u64;
     c.tally_n(Stat::LanesIssued, LANES as u64);
     c.tally_n(Stat::LanesActive, n);
     c.tally_n(test, n);
     c.tally_n(Stat::Sub, subs * n);
     c.tally_n(Stat::Dot, dots * n);
-    c.tally_n(
-        Stat::Sqrt,
-        disc_positive[..live].iter().filter(|&&p| p).count() as u64,
-    );
+}
+
+/// Counts a chunk's square roots (lanes whose second-stage discriminant is positive)
+/// and hits (lanes with an intersection inside the query's reach).
+#[inline(always)]
+fn count_roots_and_hits<C: Counter>(
+    c: &mut C,
+    live: usize,
+    disc_positive: &[bool; LANES],
+    t: &[f32; LANES],
+    hit: Stat,
+) {
+    let roots = disc_positive[..live].iter().filter(|&&p| p).count();
+    c.tally_n(Stat::Sqrt, roots as u64);
+    let hits = t[..live].iter().filter(|x| x.is_finite()).count();
+    c.tally_n(hit, hits as u64);
 }
 
 impl Intersector for Simd<'_> {
     fn closest_hit<C: Counter>(&self, ray: &Ray, t_min: f32, c: &mut C) -> Option<Hit> {
         c.tally(Stat::Intersect);
-        let mut best = self.quadric_pass(ray, t_min, f32::INFINITY, false, c);
-        let mut t_max = best.map_or(f32::INFINITY, |h| h.t);
+        let reach = f32::INFINITY;
+        let mut best = self.quadric_pass(ray, t_min, reach, false, c);
+        let mut closest = best.map_or(f32::INFINITY, |h| h.t);
         let s = self.scene;
         let rest = [
             (PrimKind::Cone, s.cones.len()),
@@ -454,8 +487,10 @@ impl Intersector for Simd<'_> {
         for (kind, n) in rest {
             for index in 0..n as u32 {
                 let prim = PrimRef { kind, index };
-                if let Some((t, aux)) = intersect_primitive(s, prim, ray, t_min, t_max, c) {
-                    t_max = t;
+                if let Some((t, aux)) = intersect_primitive(s, prim, ray, t_min, reach, c)
+                    && t < closest
+                {
+                    closest = t;
                     best = Some(Hit { t, prim, aux });
                 }
             }
@@ -565,8 +600,13 @@ mod tests {
         simd.closest_hit(&ray, 0.0, &mut c);
         assert_eq!(c.get(Stat::SphereTest), 19);
         assert_eq!(c.get(Stat::CylinderTest), 11);
-        assert_eq!(c.get(Stat::Sub), 30);
-        assert_eq!(c.get(Stat::Dot), 19 * 2 + 11 * 4);
+        // The first stage: one `sub` per live lane, two `dot` per sphere, four per
+        // cylinder. The second runs only where the ray passes near: the inside-only
+        // sphere and cylinder around the origin (the small ones are 0.5 or more from
+        // the ray, against radii of 0.4 and 0.3, far outside the first stage's margin).
+        assert_eq!(c.get(Stat::Sub), 30 + 1);
+        assert_eq!((c.get(Stat::Scale), c.get(Stat::Cross)), (1, 1));
+        assert_eq!(c.get(Stat::Dot), 19 * 2 + 11 * 4 + 1 + 1);
         assert_eq!(c.get(Stat::Intersect), 1);
     }
 }

@@ -1,8 +1,14 @@
 //! Finite cylinder without caps (thesis ch. 1.3):
 //! `a = 1 - (R·V)²`, `b = 2((R·Voc) - (R·V)(Voc·V))`, `c = |Voc|² - (Voc·V)² - r²`,
 //! bounded by `0 < m < |Ct - Cb|` with `m = d (R·V) + Voc·V`; `N = normalize(P - (Cb + m V))`.
+//!
+//! As for the sphere, the thesis's discriminant `(b/2)² - a c` cancels for a thin or far
+//! cylinder, so it only screens out certain misses ([`quick_miss_margin`]); past that,
+//! Lagrange's identity gives it without cancellation: with `u` and `w` the parts of
+//! `Voc` and `R` across the axis, `(u·w)² - |w|²|u|² = -|u × w|²`, and `u × w` lies along
+//! the axis with length `|V·(Voc × R)|`, so `disc = a r² - (V·(Voc × R))²`.
 
-use super::{GeometryError, ordered_roots, test_radius_sq};
+use super::{GeometryError, ordered_roots, quick_miss_margin, test_radius_sq};
 use crate::counter::{Counter, NoCount, Stat};
 use crate::ray::Ray;
 use crate::vec3::Vec3;
@@ -52,8 +58,8 @@ impl Cylinder {
 
     /// First visible intersection in `(t_min, t_max)` as `(t, m)`.
     ///
-    /// Counts one `sub`, four `dot` and, when the ray meets the infinite cylinder,
-    /// one `sqrt`.
+    /// Counts one `sub` and four `dot`; past the first stage one `cross` and one `dot`
+    /// more, and when the ray meets the infinite cylinder one `sqrt`.
     #[inline(always)]
     pub fn intersect<C: Counter, const FROM_EYE: bool>(
         &self,
@@ -63,15 +69,25 @@ impl Cylinder {
         c: &mut C,
     ) -> Option<(f32, f32)> {
         c.tally(Stat::CylinderTest);
-        let AxialTerms { rv, ov, ro, oo } =
-            AxialTerms::new(ray, self.base, self.eye_offset, self.axis, c);
+        let AxialTerms {
+            voc,
+            rv,
+            ov,
+            ro,
+            oo,
+        } = AxialTerms::new(ray, self.base, self.eye_offset, self.axis, c);
         let a = 1.0 - rv * rv;
         let half_b = ro - rv * ov;
         let cc = oo - ov * ov - self.radius_sq;
-        let disc = half_b * half_b - a * cc;
         // a = 0: the ray runs parallel to the axis and never crosses the wall. A zero
-        // radius (radius² = -inf) gives disc = -inf or NaN: never hit.
-        if disc <= 0.0 || a <= 0.0 {
+        // radius (radius² = -inf) gives -inf or NaN: never hit.
+        if !(half_b * half_b - a * cc >= -quick_miss_margin(oo)) || a <= 0.0 {
+            return None;
+        }
+        let normal_to_both = c.cross(voc, ray.dir);
+        let triple = c.dot(self.axis, normal_to_both);
+        let disc = a * self.radius_sq - triple * triple;
+        if !(disc > 0.0) {
             return None;
         }
         let root = c.sqrt(disc);
@@ -107,8 +123,9 @@ impl Cylinder {
 }
 
 /// The dot products a ray-quadric test around an axis needs, with `Voc = O - base`:
-/// `R·V`, `Voc·V`, `R·Voc` and `Voc·Voc` (one `sub`, four `dot`).
+/// `R·V`, `Voc·V`, `R·Voc` and `Voc·Voc` (one `sub`, four `dot`), and `Voc` itself.
 pub(super) struct AxialTerms {
+    pub voc: Vec3,
     pub rv: f32,
     pub ov: f32,
     pub ro: f32,
@@ -126,6 +143,7 @@ impl AxialTerms {
     ) -> Self {
         let voc = ray.offset_from(base, eye_offset, c);
         Self {
+            voc,
             rv: c.dot(ray.dir, axis),
             ov: c.dot(voc, axis),
             ro: c.dot(ray.dir, voc),
@@ -236,13 +254,51 @@ mod tests {
             "t = {t}, m = {m}"
         );
         assert_eq!(
-            (c.get(Stat::Sub), c.get(Stat::Dot), c.get(Stat::Sqrt)),
-            (1, 4, 1)
+            (
+                c.get(Stat::Sub),
+                c.get(Stat::Dot),
+                c.get(Stat::Cross),
+                c.get(Stat::Sqrt)
+            ),
+            (1, 5, 1, 1),
+            "Voc, R·V, Voc·V, R·Voc, Voc·Voc; then V·(Voc × R); one sqrt"
         );
         assert_eq!(
             (c.get(Stat::CylinderTest), c.get(Stat::CylinderHit)),
             (1, 1)
         );
+    }
+
+    #[test]
+    fn a_thin_far_cylinder_is_hit_where_the_thesis_discriminant_cancels() {
+        // Radius 0.05 along y, 1000 away on the z axis; rays along +z at offset x.
+        let cyl = Cylinder::new(
+            Vec3::new(0.0, -1.0, 1000.0),
+            Vec3::new(0.0, 1.0, 1000.0),
+            0.05,
+            0,
+        )
+        .unwrap_or_else(|e| panic!("{e}"));
+        let along_z = |x: f32| ray([x, 0.0, 0.0], [0.0, 0.0, 1.0]);
+        // Hand-computed: offset 0.03 meets the wall at z = 1000 - √(0.0025 - 0.0009) = 999.96.
+        let (t, m) = cyl
+            .intersect(&along_z(0.03), 0.0, f32::INFINITY, &mut NoCount)
+            .unwrap_or((f32::NAN, f32::NAN));
+        assert!(
+            (t - 999.96).abs() < 1e-4 && (m - 1.0).abs() < 1e-6,
+            "t = {t}, m = {m}"
+        );
+        assert!(
+            cyl.intersect(&along_z(0.049), 0.0, f32::INFINITY, &mut NoCount)
+                .is_some()
+        );
+        assert!(
+            cyl.intersect(&along_z(0.051), 0.0, f32::INFINITY, &mut NoCount)
+                .is_none()
+        );
+        // The thesis's discriminant at offset 0.03 is lost in |Voc|²'s rounding.
+        let (a, half_b, cc) = (1.0f32, -1000.0f32, (1.0e6f32 + 0.0009 + 1.0) - 1.0 - 0.0025);
+        assert_eq!(half_b * half_b - a * cc, 0.0);
     }
 
     #[test]

@@ -46,6 +46,22 @@ pub(crate) fn test_radius_sq(radius: f32) -> f32 {
     if sq > 0.0 { sq } else { f32::NEG_INFINITY }
 }
 
+/// `2⁻¹⁶`: see [`quick_miss_margin`].
+const QUICK_MISS_FRACTION: f32 = 1.0 / 65536.0;
+
+/// The margin below which a quadric test's first-stage (the thesis's) discriminant
+/// certainly means a miss, for `scale` bounding the terms that cancel in it (`|Voc|²` for
+/// the sphere and the cylinder, weighted by the slope for the cone). Those terms carry
+/// rounding errors of a few ulps of `scale` (about 10 ε·scale for the sphere's products
+/// and sums, ε = 2⁻²⁴); the margin is 2⁻¹⁶·scale = 256 ε·scale, well above any of them,
+/// so no hit is ever rejected, and a power of two, so the product is exact. Tests that
+/// pass this stage (hits and near misses) compute the discriminant again without
+/// cancellation.
+#[inline(always)]
+pub(crate) fn quick_miss_margin(scale: f32) -> f32 {
+    scale * QUICK_MISS_FRACTION
+}
+
 /// The two roots of `a t² + 2 half_b t + c = 0` in ascending order, given the square
 /// root of the discriminant `half_b² - a c`. `a` must not be zero.
 #[inline(always)]

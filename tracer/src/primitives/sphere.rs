@@ -1,6 +1,19 @@
 //! Sphere: `d² + 2 (R·Voc) d + (|Voc|² - r²) = 0` (thesis ch. 1.3), `N = normalize(P - C)`.
+//!
+//! The thesis's discriminant `(R·Voc)² - (|Voc|² - r²)` cancels when the sphere is small
+//! and far (`|Voc| ≫ r`): its rounding error grows with `|Voc|²` while the answer is of
+//! the order of `r²`, so a sphere of radius 0.1 at distance 1000 is noise. The test runs
+//! in two stages (Haines, Günther and Akenine-Möller, "Precision Improvements for
+//! Ray/Sphere Intersection", Ray Tracing Gems, 2019, ch. 7):
+//! 1. the thesis's discriminant, trusted only to say "certainly a miss" when it lies
+//!    below [`quick_miss_margin`] (most tests end here, at the thesis's cost);
+//! 2. otherwise `r² - |Voc - (R·Voc) R|²`, the squared radius less the squared distance
+//!    from the centre to the ray, computed from the perpendicular vector: no
+//!    cancellation. The roots stay `-(R·Voc) ± √disc`: the near root of a sphere ahead
+//!    adds two terms of one sign, and the far root is needed only from inside or on the
+//!    surface, where `|R·Voc| ≤ r`, so neither cancels more than the inputs' rounding.
 
-use super::test_radius_sq;
+use super::{quick_miss_margin, test_radius_sq};
 use crate::counter::{Counter, Stat};
 use crate::ray::Ray;
 use crate::vec3::Vec3;
@@ -41,8 +54,9 @@ impl Sphere {
 
     /// Distance to the first visible intersection in `(t_min, t_max)`.
     ///
-    /// Counts one `sub`, two `dot` and, when the ray meets the sphere's
-    /// supporting quadric, one `sqrt`.
+    /// Counts one `sub` and two `dot`; past the first stage (a hit or a near miss) one
+    /// `scale`, one `sub` and one `dot` more, and when the ray meets the sphere's
+    /// supporting quadric one `sqrt`.
     #[inline(always)]
     pub fn intersect<C: Counter, const FROM_EYE: bool>(
         &self,
@@ -54,10 +68,16 @@ impl Sphere {
         c.tally(Stat::SphereTest);
         let voc = ray.offset_from(self.center, self.eye_offset, c);
         let half_b = c.dot(ray.dir, voc);
-        let cc = c.dot(voc, voc) - self.radius_sq;
-        let disc = half_b * half_b - cc;
-        // A tangent ray (disc = 0) and a zero-radius sphere (disc = -inf, see
-        // `test_radius_sq`) are never hit: neither has an area that a pixel could see,
+        let oo = c.dot(voc, voc);
+        // Stage 1. A zero-radius sphere (radius² = -inf, see `test_radius_sq`) ends here.
+        if !(half_b * half_b - (oo - self.radius_sq) >= -quick_miss_margin(oo)) {
+            return None;
+        }
+        // Stage 2: the centre's offset across the ray.
+        let along = c.scale(ray.dir, half_b);
+        let across = c.sub(voc, along);
+        let disc = self.radius_sq - c.dot(across, across);
+        // A tangent ray (disc = 0) is never hit: it has no area that a pixel could see,
         // and the normal would be undefined.
         if disc <= 0.0 {
             return None;
@@ -198,6 +218,44 @@ mod tests {
     }
 
     #[test]
+    fn a_small_far_sphere_is_hit_where_the_thesis_discriminant_cancels() {
+        // Radius 0.1 at distance 1000 on the z axis, rays along +z at a lateral offset.
+        let s = Sphere::new(Vec3::new(0.0, 0.0, 1000.0), 0.1, 0);
+        let along_z = |x: f32| ray([x, 0.0, 0.0], [0.0, 0.0, 1.0]);
+        // In f32, |Voc|² = 1e6 + x² rounds to 1e6 (its ulp is 0.0625), so the thesis's
+        // b² - (|Voc|² - r²) is exactly 0 for every offset: the sphere would vanish.
+        let voc = Vec3::new(-0.05, 0.0, -1000.0);
+        let half_b = NoCount.dot(Vec3::new(0.0, 0.0, 1.0), voc);
+        let textbook = half_b * half_b - (NoCount.dot(voc, voc) - 0.01);
+        assert_eq!(textbook, 0.0);
+        // Hand-computed: offset 0.05 meets the sphere at z = 1000 - √(0.01 - 0.0025).
+        let t = s
+            .intersect(&along_z(0.05), 0.0, f32::INFINITY, &mut NoCount)
+            .unwrap_or(f32::NAN);
+        let expected = 1000.0 - 0.0075f64.sqrt();
+        assert!(
+            (f64::from(t) - expected).abs() < 1e-4,
+            "t = {t}, expected {expected}"
+        );
+        // Just inside and just outside the rim (radius 0.1).
+        assert!(
+            s.intersect(&along_z(0.099), 0.0, f32::INFINITY, &mut NoCount)
+                .is_some()
+        );
+        assert!(
+            s.intersect(&along_z(0.101), 0.0, f32::INFINITY, &mut NoCount)
+                .is_none()
+        );
+        // Far outside: the first stage says "miss" with the thesis's operations only.
+        let mut c = Count::default();
+        assert!(
+            s.intersect(&along_z(5.0), 0.0, f32::INFINITY, &mut c)
+                .is_none()
+        );
+        assert_eq!((c.get(Stat::Dot), c.get(Stat::Scale)), (2, 0));
+    }
+
+    #[test]
     fn exact_counts_of_one_ray_against_one_sphere() {
         let s = Sphere::new(Vec3::new(0.0, 0.0, 3.0), 2.0, 0);
         let mut c = Count::default();
@@ -208,9 +266,14 @@ mod tests {
             &mut c,
         );
         assert_eq!(
-            (c.get(Stat::Sub), c.get(Stat::Dot), c.get(Stat::Sqrt)),
-            (1, 2, 1),
-            "hit: one O - C, R·Voc and Voc·Voc, one sqrt"
+            (
+                c.get(Stat::Sub),
+                c.get(Stat::Dot),
+                c.get(Stat::Scale),
+                c.get(Stat::Sqrt)
+            ),
+            (2, 3, 1, 1),
+            "hit: O - C, R·Voc and Voc·Voc; then (R·Voc) R, Voc - (R·Voc) R and its square; one sqrt"
         );
         assert_eq!((c.get(Stat::SphereTest), c.get(Stat::SphereHit)), (1, 1));
 

@@ -154,6 +154,7 @@ fn packet_search<C: Counter, const FROM_EYE: bool, const ANY: bool, const AVX2: 
     for (slab, ray) in slabs.iter_mut().zip(rays).skip(1) {
         *slab = Slab::new(ray);
     }
+    let reach = *t_max;
     let mut t_max = *t_max;
     let mut searching = (1u32 << n) - 1;
     // Uninitialised for the same reason as the single-ray stack: only entries below
@@ -174,8 +175,9 @@ fn packet_search<C: Counter, const FROM_EYE: bool, const ANY: bool, const AVX2: 
                 bits &= bits - 1;
                 let c = &mut counters[r];
                 c.tally(Stat::LeavesVisited);
+                let (ray, closer_than) = (&rays[r], t_max[r]);
                 if let Some(hit) =
-                    search_leaf::<C, FROM_EYE, ANY>(bvh, leaf, &rays[r], t_min, t_max[r], c)
+                    search_leaf::<C, FROM_EYE, ANY>(bvh, leaf, ray, t_min, reach[r], closer_than, c)
                 {
                     hits[r] = Some(hit);
                     if ANY {

@@ -24,6 +24,7 @@ use super::{Aabb, Bvh, BvhBuilder, Node};
 use crate::accel::{Intersector, cpu_has_avx2_fma, intersect_primitive};
 use crate::counter::{Counter, Phase, Stat};
 use crate::huge_pages;
+use crate::primitives::quick_miss_margin;
 use crate::ray::{Hit, PrimKind, PrimRef, Ray};
 use crate::scene::Scene;
 use glam::Vec3A;
@@ -338,6 +339,7 @@ fn search<C: Counter, const FROM_EYE: bool, const ANY: bool, const AVX2: bool>(
     if bvh.nodes.is_empty() {
         return None;
     }
+    let reach = t_max;
     let slab = Slab::new(ray);
     let mut best: Option<Hit> = None;
     // Uninitialised: a node step may push up to 7 entries, so the bound is large (kB),
@@ -350,7 +352,9 @@ fn search<C: Counter, const FROM_EYE: bool, const ANY: bool, const AVX2: bool>(
         if current.child & LEAF != 0 {
             c.tally(Stat::LeavesVisited);
             let leaf = &bvh.leaves[(current.child & !LEAF) as usize];
-            if let Some(hit) = search_leaf::<C, FROM_EYE, ANY>(bvh, leaf, ray, t_min, t_max, c) {
+            if let Some(hit) =
+                search_leaf::<C, FROM_EYE, ANY>(bvh, leaf, ray, t_min, reach, t_max, c)
+            {
                 if ANY {
                     return Some(hit);
                 }
@@ -469,13 +473,15 @@ pub(super) fn search_leaf<C: Counter, const FROM_EYE: bool, const ANY: bool>(
     leaf: &Leaf,
     ray: &Ray<FROM_EYE>,
     t_min: f32,
-    mut t_max: f32,
+    reach: f32,
+    mut closer_than: f32,
     c: &mut C,
 ) -> Option<Hit> {
     let mut best = None;
     if leaf.spheres > 0 {
         let pack = &bvh.packs[leaf.pack as usize];
-        if let Some((t, lane)) = sphere_pack(pack, leaf.spheres, ray, t_min, t_max, ANY, c) {
+        let found = sphere_pack(pack, leaf.spheres, ray, t_min, reach, closer_than, ANY, c);
+        if let Some((t, lane)) = found {
             let prim = PrimRef {
                 kind: PrimKind::Sphere,
                 index: pack.index[lane],
@@ -484,18 +490,20 @@ pub(super) fn search_leaf<C: Counter, const FROM_EYE: bool, const ANY: bool>(
             if ANY {
                 return Some(hit);
             }
-            t_max = t;
+            closer_than = t;
             best = Some(hit);
         }
     }
     let first = leaf.first as usize;
     for &prim in &bvh.others[first..first + leaf.others as usize] {
-        if let Some((t, aux)) = intersect_primitive(bvh.scene, prim, ray, t_min, t_max, c) {
+        if let Some((t, aux)) = intersect_primitive(bvh.scene, prim, ray, t_min, reach, c)
+            && t < closer_than
+        {
             let hit = Hit { t, prim, aux };
             if ANY {
                 return Some(hit);
             }
-            t_max = t;
+            closer_than = t;
             best = Some(hit);
         }
     }
@@ -614,45 +622,41 @@ fn min_or_second(a: f32, b: f32) -> f32 {
     if a < b { a } else { b }
 }
 
-/// The closest sphere of a pack in `(t_min, t_max)` as `(t, lane)` (with `any`: the
-/// first lane found), testing `live` lanes. The arithmetic is the scalar sphere test's,
-/// in the same order, so the distances are the same bit for bit; on equal distances the
-/// lowest lane wins, as the scalar loop keeps the first of equal hits.
+/// The closest sphere of a pack closer than `closer_than` as `(t, lane)` (with `any`:
+/// the first lane found), testing `live` lanes against the query's reach
+/// `(t_min, reach)`. The arithmetic is the scalar sphere test's, both stages, in the same
+/// order, so the distances are the same bit for bit; on equal distances the lowest lane
+/// wins, as the scalar loop keeps the first of equal hits.
 #[inline(always)]
+#[allow(clippy::too_many_arguments)]
 fn sphere_pack<C: Counter, const FROM_EYE: bool>(
     pack: &SpherePack,
     live: u32,
     ray: &Ray<FROM_EYE>,
     t_min: f32,
-    t_max: f32,
+    reach: f32,
+    closer_than: f32,
     any: bool,
     c: &mut C,
 ) -> Option<(f32, usize)> {
     let _phase = C::enter_phase(Phase::SphereTest);
     let [ox, oy, oz] = ray.origin.to_array();
     let [dx, dy, dz] = ray.dir.to_array();
-    let mut t = [f32::INFINITY; WIDTH];
-    let mut disc_positive = [false; WIDTH];
+    // The first stage (the thesis's discriminant, trusted for certain misses).
+    let mut half_b = [0.0f32; WIDTH];
+    let mut passed = [false; WIDTH];
+    let mut any_passed = false;
     for i in 0..WIDTH {
         let (vx, vy, vz) = (ox - pack.cx[i], oy - pack.cy[i], oz - pack.cz[i]);
-        let half_b = dx * vx + dy * vy + dz * vz;
-        let cc = (vx * vx + vy * vy + vz * vz) - pack.radius_sq[i];
-        let disc = half_b * half_b - cc;
-        disc_positive[i] = disc > 0.0;
-        let root = C::sqrt_kernel(disc.max(0.0));
-        let near = -half_b - root;
-        let far = -half_b + root;
-        let near_ok = pack.inside[i] == 0.0 && near > t_min && near < t_max;
-        let far_ok = far > t_min && far < t_max;
-        let chosen = if near_ok { near } else { far };
-        t[i] = if disc_positive[i] && (near_ok || far_ok) {
-            chosen
-        } else {
-            f32::INFINITY
-        };
+        half_b[i] = dx * vx + dy * vy + dz * vz;
+        let oo = vx * vx + vy * vy + vz * vz;
+        let textbook = half_b[i] * half_b[i] - (oo - pack.radius_sq[i]);
+        passed[i] = textbook >= -quick_miss_margin(oo);
+        any_passed |= passed[i];
     }
+    let n = u64::from(live);
+    let live = live as usize;
     if C::ENABLED {
-        let n = u64::from(live);
         c.tally_n(Stat::LanesIssued, WIDTH as u64);
         c.tally_n(Stat::LanesActive, n);
         c.tally_n(Stat::SphereTest, n);
@@ -661,7 +665,39 @@ fn sphere_pack<C: Counter, const FROM_EYE: bool>(
             c.tally_n(Stat::Sub, n);
         }
         c.tally_n(Stat::Dot, 2 * n);
-        let live = live as usize;
+    }
+    if !any_passed {
+        return None;
+    }
+    // The second stage: the centre's offset across the ray.
+    let mut t = [f32::INFINITY; WIDTH];
+    let mut disc_positive = [false; WIDTH];
+    for i in 0..WIDTH {
+        let (vx, vy, vz) = (ox - pack.cx[i], oy - pack.cy[i], oz - pack.cz[i]);
+        let (ax, ay, az) = (
+            vx - dx * half_b[i],
+            vy - dy * half_b[i],
+            vz - dz * half_b[i],
+        );
+        let disc = pack.radius_sq[i] - (ax * ax + ay * ay + az * az);
+        disc_positive[i] = passed[i] && disc > 0.0;
+        let root = C::sqrt_kernel(disc.max(0.0));
+        let near = -half_b[i] - root;
+        let far = -half_b[i] + root;
+        let near_ok = pack.inside[i] == 0.0 && near > t_min && near < reach;
+        let far_ok = far > t_min && far < reach;
+        let chosen = if near_ok { near } else { far };
+        t[i] = if disc_positive[i] && (near_ok || far_ok) {
+            chosen
+        } else {
+            f32::INFINITY
+        };
+    }
+    if C::ENABLED {
+        let second = passed[..live].iter().filter(|&&p| p).count() as u64;
+        c.tally_n(Stat::Scale, second);
+        c.tally_n(Stat::Sub, second);
+        c.tally_n(Stat::Dot, second);
         c.tally_n(
             Stat::Sqrt,
             disc_positive[..live].iter().filter(|&&p| p).count() as u64,
@@ -671,7 +707,7 @@ fn sphere_pack<C: Counter, const FROM_EYE: bool>(
     }
     let mut best: Option<(f32, usize)> = None;
     for (lane, &tl) in t.iter().enumerate() {
-        if tl < best.map_or(f32::INFINITY, |b| b.0) {
+        if tl < best.map_or(closer_than, |b| b.0) {
             best = Some((tl, lane));
             if any {
                 break;
@@ -908,9 +944,16 @@ mod tests {
             (c.get(Stat::LanesIssued), c.get(Stat::LanesActive)),
             (16, 4)
         );
+        // Each sphere meets the ray, so each runs both stages of the test: `sub` and
+        // two `dot`, then `scale`, `sub` and `dot`.
         assert_eq!(
-            (c.get(Stat::SphereTest), c.get(Stat::Sub), c.get(Stat::Dot)),
-            (3, 3, 6)
+            (
+                c.get(Stat::SphereTest),
+                c.get(Stat::Sub),
+                c.get(Stat::Dot),
+                c.get(Stat::Scale)
+            ),
+            (3, 6, 9, 3)
         );
         // Every sphere meets the ray (disc > 0): three square roots.
         assert_eq!(c.get(Stat::Sqrt), 3);
