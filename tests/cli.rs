@@ -384,12 +384,20 @@ fn count_json_uses_the_counter_names_and_spd_corner_rays() {
     assert!(
         text.lines()
             .next()
-            .is_some_and(|l| l.starts_with("name") && l.ends_with("calls")),
+            .is_some_and(|l| l.starts_with("name") && l.ends_with("calls  meaning")),
+        "{text}"
+    );
+    // Each row: the key, the value, and the counter table's description of it.
+    assert!(
+        text.lines().any(|l| {
+            let cells: Vec<&str> = l.split_whitespace().collect();
+            cells.len() > 2 && cells[0] == "rays.primary" && cells[1] == "64" && cells[2] == "eye"
+        }),
         "{text}"
     );
     assert!(
         text.lines()
-            .any(|l| l.starts_with("rays.primary ") && l.trim_end().ends_with(" 64")),
+            .any(|l| l.starts_with("tests.polygon.hits ") && l.contains("inside the outline")),
         "{text}"
     );
 }
@@ -1291,17 +1299,22 @@ fn every_counter_appears_everywhere() {
     let counts = counter_values(&scene, "16x12");
     assert_eq!(counts.len(), tracer::COUNTERS.len());
 
-    // The listing of `rtprof count`: one line per counter, key then value.
+    // The listing of `rtprof count`: one line per counter, key, value, then the
+    // counter table's description.
     let listing = rtprof(&["count", &scene, "--size", "16x12"]);
     assert!(listing.status.success(), "{}", stderr(&listing));
     let listing = String::from_utf8_lossy(&listing.stdout).into_owned();
     for (key, value) in &counts {
+        let description = tracer::COUNTERS
+            .iter()
+            .find(|d| d.key == key.as_str())
+            .map_or("", |d| d.description);
         assert!(
             listing.lines().any(|l| {
                 let mut words = l.split_whitespace();
                 words.next() == Some(key.as_str())
                     && words.next() == Some(value.to_string().as_str())
-                    && words.next().is_none()
+                    && words.collect::<Vec<_>>().join(" ") == description
             }),
             "{key} = {value} not listed:\n{listing}"
         );

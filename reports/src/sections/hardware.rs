@@ -201,7 +201,7 @@ pub fn sw_hw(b: &mut Builder) -> Section {
     if scenes.is_empty() {
         return s.empty("No scene ran on the hardware model (it takes spheres and cylinders only: the test-bench scenes).");
     }
-    s.text("The software's diffuse-only gray render (baseline) against the hardware model's frame time, and the emulator's image against the software's.");
+    s.text("The software's diffuse-only gray render (baseline) against the hardware model's frame time, and the emulator's image against the software's. The emulator keeps the thesis's sphere and cylinder arithmetic (its discriminant b² - c in single precision, the pipeline being studied), while the software's tests compute the discriminant without cancellation: on small or far primitives part of the image difference is the thesis formula's rounding.");
     for id in ["sw-hw-times", "hw-speedup"] {
         if let Some(figure) = b.chart(id, 10.0) {
             s.blocks.push(figure);

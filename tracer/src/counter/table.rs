@@ -144,22 +144,29 @@ counter_table! {
     Scale => ops.scale: "vector times scalar" ["scale"];
     Sqrt => ops.sqrt: "scalar square roots" ["sqrt"];
     Pow => ops.pow: "powers (the Phong highlight)" ["pow"];
-    // tests.*: a test per primitive tested against a ray, a hit per intersection
-    // inside the ray's interval.
-    SphereTest => tests.sphere.tests: "ray-sphere tests" ["Sphere::intersect"];
-    SphereHit => tests.sphere.hits: "ray-sphere hits" [];
-    CylinderTest => tests.cylinder.tests: "ray-cylinder tests" ["Cylinder::intersect"];
-    CylinderHit => tests.cylinder.hits: "ray-cylinder hits" [];
-    ConeTest => tests.cone.tests: "ray-cone tests" ["Cone::intersect"];
-    ConeHit => tests.cone.hits: "ray-cone hits" [];
-    PolygonTest => tests.polygon.tests: "ray-polygon tests" ["Polygon::intersect"];
-    PolygonHit => tests.polygon.hits: "ray-polygon hits" [];
-    PatchTest => tests.patch.tests: "ray-patch tests" ["Patch::intersect"];
-    PatchHit => tests.patch.hits: "ray-patch hits" [];
+    // tests.*: a test per primitive tested against a ray, a hit per test that found an
+    // intersection inside the query's range. Every test runs against the query's reach
+    // (the closest-so-far comparison is the caller's), so hits do not depend on the
+    // order of the primitives in the file.
+    SphereTest => tests.sphere.tests: "ray-sphere tests run" ["Sphere::intersect"];
+    SphereHit => tests.sphere.hits:
+        "ray-sphere tests that found a visible intersection inside the query's range (beyond the ray's offset, before the light for a shadow ray), nearest or not" [];
+    CylinderTest => tests.cylinder.tests: "ray-cylinder tests run" ["Cylinder::intersect"];
+    CylinderHit => tests.cylinder.hits:
+        "ray-cylinder tests that found a visible intersection inside the query's range, nearest or not" [];
+    ConeTest => tests.cone.tests: "ray-cone tests run" ["Cone::intersect"];
+    ConeHit => tests.cone.hits:
+        "ray-cone tests that found a visible intersection inside the query's range, nearest or not" [];
+    PolygonTest => tests.polygon.tests: "ray-polygon tests run" ["Polygon::intersect"];
+    PolygonHit => tests.polygon.hits:
+        "ray-polygon tests whose plane hit inside the query's range lies inside the outline" [];
+    PatchTest => tests.patch.tests: "ray-patch tests run" ["Patch::intersect"];
+    PatchHit => tests.patch.hits:
+        "ray-patch tests whose plane hit inside the query's range lies inside the outline" [];
     // The plane test opens every polygon and patch test (as in the thesis's table).
-    PlaneTest => tests.plane.tests: "ray-plane tests (polygons and patches)"
+    PlaneTest => tests.plane.tests: "ray-plane tests: the first step of every polygon and patch test"
         ["PlanarOutline::intersect_plane"];
-    PlaneHit => tests.plane.hits: "ray-plane hits" [];
+    PlaneHit => tests.plane.hits: "ray-plane tests that met the plane inside the query's range" [];
     // rays.*: the SPD's ray statistics.
     _ => rays.primary: "eye rays ((W+1)(H+1) with SPD corners, W·H otherwise)"
         ["Shader::primary", "Shader::primary_from_eye", "Camera::ray", "Camera::ray_from_eye"];
@@ -195,13 +202,31 @@ impl Counts {
             .collect()
     }
 
-    /// The counts as a two-column text table (`rtprof count`): name, value.
+    /// The counts as a text table (`rtprof count`): name, value, and what the counter
+    /// counts (its description in the counter table).
     pub fn to_text(&self) -> String {
-        let rows = self.rows();
-        let width = rows.iter().map(|(name, _)| name.len()).max().unwrap_or(4);
-        let mut out = format!("{:<width$}  {:>16}\n", "name", "calls");
-        for (name, value) in rows {
-            out += &format!("{name:<width$}  {value:>16}\n");
+        let width = COUNTERS.iter().map(|d| d.key.len()).max().unwrap_or(4);
+        let mut out = format!("{:<width$}  {:>16}  meaning\n", "name", "calls");
+        for def in COUNTERS {
+            let value = (def.value)(self);
+            out += &format!("{:<width$}  {value:>16}  {}\n", def.key, def.description);
+        }
+        out
+    }
+
+    /// The counter table as a Markdown page (docs/counters.md is this text; a test
+    /// keeps the two equal): each counter's key and meaning, in table order.
+    pub fn table_markdown() -> String {
+        let mut out = String::from(
+            "# The counters\n\n\
+             Generated from the counter table (`tracer/src/counter/table.rs`), the one place\n\
+             each counter is declared; `rtprof count` prints the same meanings beside the\n\
+             values. A test (`tracer/tests/counter_docs.rs`) fails when this page and the\n\
+             table differ; `RTPROF_BLESS=1 cargo test -p tracer --test counter_docs`\n\
+             rewrites it.\n\n| counter | meaning |\n|---|---|\n",
+        );
+        for def in COUNTERS {
+            out += &format!("| `{}` | {} |\n", def.key, def.description);
         }
         out
     }
