@@ -418,6 +418,75 @@ fn render_writes_an_image_and_reports_the_time_split() {
 }
 
 #[test]
+fn render_reference_writes_the_f64_picture_and_refuses_a_variant() {
+    let dir = scratch("render-reference");
+    let scene = dir.join("one.nff");
+    std::fs::write(
+        &scene,
+        format!(
+            "{VIEW}l 2 3 -6\nf 1 0.5 0 1 0.3 20 0 1\ns 0 0 0 1.5\np 3\n-3 -2 2\n3 -2 2\n0 3 2\n"
+        ),
+    )
+    .unwrap_or_else(|e| panic!("{e}"));
+    let scene = scene.display().to_string();
+    let img = |name: &str| dir.join(name).display().to_string();
+    let out = rtprof(&[
+        "render",
+        &scene,
+        "--reference",
+        "--threads",
+        "2",
+        "-o",
+        &img("r2.png"),
+    ]);
+    let err = stderr(&out);
+    assert_eq!(out.status.code(), Some(0), "{err}");
+    assert!(
+        err.contains("f64 reference") && err.contains("tracing"),
+        "{err}"
+    );
+    // Deterministic: one thread or two, the same bytes.
+    let out = rtprof(&[
+        "render",
+        &scene,
+        "--reference",
+        "--threads",
+        "1",
+        "-o",
+        &img("r1.png"),
+    ]);
+    assert_eq!(out.status.code(), Some(0), "{}", stderr(&out));
+    assert_eq!(read(&dir.join("r1.png")), read(&dir.join("r2.png")));
+    // A large sphere and a triangle: the f32 tracer draws the same picture.
+    let out = rtprof(&["render", &scene, "-o", &img("base.png")]);
+    assert_eq!(out.status.code(), Some(0), "{}", stderr(&out));
+    let out = rtprof(&["compare", &img("r1.png"), &img("base.png"), "--json"]);
+    let json: serde_json::Value =
+        serde_json::from_slice(&out.stdout).unwrap_or_else(|e| panic!("{e}"));
+    assert!(json["rms"].as_f64().is_some_and(|rms| rms < 0.1), "{json}");
+    // The reference is no variant: both at once is a usage error.
+    let out = rtprof(&[
+        "render",
+        &scene,
+        "--reference",
+        "--variant",
+        "bvh",
+        "-o",
+        &img("x.png"),
+    ]);
+    let err = stderr(&out);
+    assert_eq!(out.status.code(), Some(2), "{err}");
+    assert!(
+        err.contains("--reference") && err.contains("--variant"),
+        "{err}"
+    );
+    assert_eq!(err.trim_end().lines().count(), 1, "{err}");
+    let help = rtprof(&["render", "--help"]);
+    assert!(String::from_utf8_lossy(&help.stdout).contains("--reference"));
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+#[test]
 fn compare_reports_metrics_of_two_images_and_of_variants() {
     let dir = scratch("compare");
     let scene = dir.join("one.nff");
