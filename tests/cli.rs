@@ -564,6 +564,87 @@ fn compare_reports_metrics_of_two_images_and_of_variants() {
 }
 
 #[test]
+fn compare_against_the_f64_reference_gives_each_variant_its_error() {
+    let dir = scratch("compare-reference");
+    let out_dir = dir.join("images");
+    let out = rtprof(&[
+        "compare",
+        "spd:jacks",
+        "--variants",
+        "baseline,fast-sqrt",
+        "--reference",
+        "--size",
+        "24x24",
+        "--repeats",
+        "1",
+        "--json",
+        "-o",
+        &out_dir.display().to_string(),
+    ]);
+    assert_eq!(out.status.code(), Some(0), "{}", stderr(&out));
+    let json: serde_json::Value =
+        serde_json::from_slice(&out.stdout).unwrap_or_else(|e| panic!("{e}"));
+    assert!(
+        json["f64_reference"]["seconds"].as_f64().is_some(),
+        "{json}"
+    );
+    let rows = json["variants"].as_array().cloned().unwrap_or_default();
+    assert_eq!(rows.len(), 2);
+    let error = |i: usize, key: &str| rows[i]["vs_f64_reference"][key].clone();
+    // fast-sqrt's 6 % square roots move hits off the surfaces: further from the truth
+    // than the baseline.
+    let (base, fast) = (error(0, "rms").as_f64(), error(1, "rms").as_f64());
+    assert!(base.is_some_and(|b| fast.is_some_and(|f| f > b)), "{json}");
+    assert!(
+        error(1, "max_abs_diff").as_u64().is_some_and(|m| m > 0),
+        "{json}"
+    );
+    for name in [
+        "f64-reference.png",
+        "baseline-vs-f64.png",
+        "fast-sqrt-vs-f64.png",
+    ] {
+        assert!(out_dir.join(name).is_file(), "{name} missing");
+    }
+    // The table has the columns; without --reference neither the columns nor the key.
+    let table = rtprof(&[
+        "compare",
+        "spd:jacks",
+        "--variants",
+        "baseline",
+        "--reference",
+        "--size",
+        "16x16",
+        "--repeats",
+        "1",
+    ]);
+    let text = String::from_utf8_lossy(&table.stdout);
+    assert!(
+        text.contains("vs f64") && text.contains("f64 reference"),
+        "{text}"
+    );
+    let plain = rtprof(&[
+        "compare",
+        "spd:jacks",
+        "--variants",
+        "baseline",
+        "--size",
+        "16x16",
+        "--repeats",
+        "1",
+        "--json",
+    ]);
+    let json: serde_json::Value =
+        serde_json::from_slice(&plain.stdout).unwrap_or_else(|e| panic!("{e}"));
+    assert!(json.get("f64_reference").is_none());
+    assert!(json["variants"][0].get("vs_f64_reference").is_none());
+    // --reference needs --variants.
+    let out = rtprof(&["compare", "a.png", "b.png", "--reference"]);
+    assert_eq!(out.status.code(), Some(2), "{}", stderr(&out));
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+#[test]
 fn variants_lists_every_variant_with_measured_sqrt_errors() {
     let out = rtprof(&["variants", "--json"]);
     assert_eq!(out.status.code(), Some(0), "{}", stderr(&out));

@@ -1,9 +1,13 @@
-//! The reference job of `rtprof render --reference`: load a scene within limits and
-//! render it once with the f64 reference renderer (the `reference` crate), timing the
-//! preprocessing (parse + conversion to f64) and the tracing apart, as for the tracer.
+//! The reference jobs: `rtprof render --reference` loads a scene within limits and
+//! renders it once with the f64 reference renderer (the `reference` crate), timing the
+//! preprocessing (parse + conversion to f64) and the tracing apart, as for the tracer;
+//! `rtprof compare --variants … --reference` renders it in the comparison's pool and
+//! measures each variant's image error against it ([`ImageError`]).
 
 use std::time::{Duration, Instant};
 
+use analysis::{RgbImage, compare};
+use serde::Serialize;
 use tracer::{Frame, Scene, ShadingMode};
 
 use crate::error::RunError;
@@ -11,6 +15,7 @@ use crate::pool::{Workers, workers_for};
 use crate::progress::Progress;
 use crate::render_job::RenderSettings;
 use crate::scene_input::SceneInput;
+use crate::variant_job::RenderSetup;
 
 /// A finished reference render with its timings.
 pub struct ReferenceRender {
@@ -85,5 +90,47 @@ impl ReferenceRender {
             count(eye_rays),
             count((eye_rays as f64 / secs).round() as u64),
         )
+    }
+}
+
+/// The f64 reference's picture of a comparison's scene, with the seconds it took.
+pub struct ReferencePicture {
+    pub image: RgbImage,
+    pub seconds: f64,
+}
+
+/// Renders `setup`'s scene with its options in its pool with the reference renderer.
+pub fn render_in(setup: &RenderSetup<'_>) -> Result<ReferencePicture, RunError> {
+    let start = Instant::now();
+    let frame = setup
+        .pool
+        .install(|| reference::render(setup.scene, setup.options, &|_| {}))
+        .map_err(|e| RunError::Render {
+            context: setup.name.to_string(),
+            message: e.to_string(),
+        })?;
+    let seconds = start.elapsed().as_secs_f64();
+    let image = RgbImage::new(frame.width, frame.height, frame.to_rgb8())?;
+    Ok(ReferencePicture { image, seconds })
+}
+
+/// How far an image is from the reference's: RMS and maximum of the 8-bit channel
+/// differences, PSNR (`None` when identical: infinite).
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct ImageError {
+    pub rms: f64,
+    pub psnr: Option<f64>,
+    pub max_abs_diff: u8,
+}
+
+impl ImageError {
+    /// The error of `image` against `truth` (same size).
+    pub fn between(truth: &RgbImage, image: &RgbImage) -> Result<Self, RunError> {
+        let m = compare(truth, image)?;
+        Ok(Self {
+            rms: m.rms,
+            psnr: m.psnr.is_finite().then_some(m.psnr),
+            max_abs_diff: m.max_abs_diff,
+        })
     }
 }
