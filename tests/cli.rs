@@ -426,6 +426,75 @@ fn render_writes_an_image_and_reports_the_time_split() {
 }
 
 #[test]
+fn render_reference_writes_the_f64_picture_and_refuses_a_variant() {
+    let dir = scratch("render-reference");
+    let scene = dir.join("one.nff");
+    std::fs::write(
+        &scene,
+        format!(
+            "{VIEW}l 2 3 -6\nf 1 0.5 0 1 0.3 20 0 1\ns 0 0 0 1.5\np 3\n-3 -2 2\n3 -2 2\n0 3 2\n"
+        ),
+    )
+    .unwrap_or_else(|e| panic!("{e}"));
+    let scene = scene.display().to_string();
+    let img = |name: &str| dir.join(name).display().to_string();
+    let out = rtprof(&[
+        "render",
+        &scene,
+        "--reference",
+        "--threads",
+        "2",
+        "-o",
+        &img("r2.png"),
+    ]);
+    let err = stderr(&out);
+    assert_eq!(out.status.code(), Some(0), "{err}");
+    assert!(
+        err.contains("f64 reference") && err.contains("tracing"),
+        "{err}"
+    );
+    // Deterministic: one thread or two, the same bytes.
+    let out = rtprof(&[
+        "render",
+        &scene,
+        "--reference",
+        "--threads",
+        "1",
+        "-o",
+        &img("r1.png"),
+    ]);
+    assert_eq!(out.status.code(), Some(0), "{}", stderr(&out));
+    assert_eq!(read(&dir.join("r1.png")), read(&dir.join("r2.png")));
+    // A large sphere and a triangle: the f32 tracer draws the same picture.
+    let out = rtprof(&["render", &scene, "-o", &img("base.png")]);
+    assert_eq!(out.status.code(), Some(0), "{}", stderr(&out));
+    let out = rtprof(&["compare", &img("r1.png"), &img("base.png"), "--json"]);
+    let json: serde_json::Value =
+        serde_json::from_slice(&out.stdout).unwrap_or_else(|e| panic!("{e}"));
+    assert!(json["rms"].as_f64().is_some_and(|rms| rms < 0.1), "{json}");
+    // The reference is no variant: both at once is a usage error.
+    let out = rtprof(&[
+        "render",
+        &scene,
+        "--reference",
+        "--variant",
+        "bvh",
+        "-o",
+        &img("x.png"),
+    ]);
+    let err = stderr(&out);
+    assert_eq!(out.status.code(), Some(2), "{err}");
+    assert!(
+        err.contains("--reference") && err.contains("--variant"),
+        "{err}"
+    );
+    assert_eq!(err.trim_end().lines().count(), 1, "{err}");
+    let help = rtprof(&["render", "--help"]);
+    assert!(String::from_utf8_lossy(&help.stdout).contains("--reference"));
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+#[test]
 fn compare_reports_metrics_of_two_images_and_of_variants() {
     let dir = scratch("compare");
     let scene = dir.join("one.nff");
@@ -499,6 +568,87 @@ fn compare_reports_metrics_of_two_images_and_of_variants() {
     assert_eq!(rows[1]["rms"], 0.0);
     assert_eq!(rows[1]["band"], rows[0]["band"]);
     assert_eq!(rows[2]["counts"]["rays"]["primary"], 32);
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+#[test]
+fn compare_against_the_f64_reference_gives_each_variant_its_error() {
+    let dir = scratch("compare-reference");
+    let out_dir = dir.join("images");
+    let out = rtprof(&[
+        "compare",
+        "spd:jacks",
+        "--variants",
+        "baseline,fast-sqrt",
+        "--reference",
+        "--size",
+        "24x24",
+        "--repeats",
+        "1",
+        "--json",
+        "-o",
+        &out_dir.display().to_string(),
+    ]);
+    assert_eq!(out.status.code(), Some(0), "{}", stderr(&out));
+    let json: serde_json::Value =
+        serde_json::from_slice(&out.stdout).unwrap_or_else(|e| panic!("{e}"));
+    assert!(
+        json["f64_reference"]["seconds"].as_f64().is_some(),
+        "{json}"
+    );
+    let rows = json["variants"].as_array().cloned().unwrap_or_default();
+    assert_eq!(rows.len(), 2);
+    let error = |i: usize, key: &str| rows[i]["vs_f64_reference"][key].clone();
+    // fast-sqrt's 6 % square roots move hits off the surfaces: further from the truth
+    // than the baseline.
+    let (base, fast) = (error(0, "rms").as_f64(), error(1, "rms").as_f64());
+    assert!(base.is_some_and(|b| fast.is_some_and(|f| f > b)), "{json}");
+    assert!(
+        error(1, "max_abs_diff").as_u64().is_some_and(|m| m > 0),
+        "{json}"
+    );
+    for name in [
+        "f64-reference.png",
+        "baseline-vs-f64.png",
+        "fast-sqrt-vs-f64.png",
+    ] {
+        assert!(out_dir.join(name).is_file(), "{name} missing");
+    }
+    // The table has the columns; without --reference neither the columns nor the key.
+    let table = rtprof(&[
+        "compare",
+        "spd:jacks",
+        "--variants",
+        "baseline",
+        "--reference",
+        "--size",
+        "16x16",
+        "--repeats",
+        "1",
+    ]);
+    let text = String::from_utf8_lossy(&table.stdout);
+    assert!(
+        text.contains("vs f64") && text.contains("f64 reference"),
+        "{text}"
+    );
+    let plain = rtprof(&[
+        "compare",
+        "spd:jacks",
+        "--variants",
+        "baseline",
+        "--size",
+        "16x16",
+        "--repeats",
+        "1",
+        "--json",
+    ]);
+    let json: serde_json::Value =
+        serde_json::from_slice(&plain.stdout).unwrap_or_else(|e| panic!("{e}"));
+    assert!(json.get("f64_reference").is_none());
+    assert!(json["variants"][0].get("vs_f64_reference").is_none());
+    // --reference needs --variants.
+    let out = rtprof(&["compare", "a.png", "b.png", "--reference"]);
+    assert_eq!(out.status.code(), Some(2), "{}", stderr(&out));
     std::fs::remove_dir_all(&dir).ok();
 }
 

@@ -1,6 +1,8 @@
 //! Variants side by side on one scene (`rtprof compare SCENE --variants A,B,…`): each
 //! measured by the variant job under the one timing policy, then compared with the
-//! first (the reference): speed-up, image error, counts.
+//! first (the reference): speed-up, image error, counts. With `--reference`, the f64
+//! reference renderer (the `reference` crate) renders the scene once more and each
+//! variant's image error is also given against that ground truth.
 
 use std::path::Path;
 
@@ -16,6 +18,7 @@ use tracer::{Counts, VariantSet};
 
 use crate::error::RunError;
 use crate::progress::Progress;
+use crate::reference_job::ImageError;
 use crate::staging::save_png;
 use crate::timing::TimingPolicy;
 use crate::variant_job::{RenderSetup, VariantMeasurement};
@@ -39,21 +42,41 @@ pub struct VariantRow {
     pub ssim: f64,
     pub max_abs_diff: u8,
     pub counts: Counts,
+    /// The image error against the f64 reference renderer (`--reference` only).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub vs_f64_reference: Option<ImageError>,
 }
 
 /// Measures every set in `sets` (the first is the reference) and compares them. With
 /// `out`, each variant's image and its heat map against the reference are written there.
+/// With `f64_reference`, the f64 reference renderer renders the scene too (once, in the
+/// same pool, before the variants), and every row gets its image error against that
+/// picture (written to `out` as `f64-reference.png`, with each variant's heat map
+/// against it as `<variant>-vs-f64.png`).
 pub fn compare_variants(
     setup: &RenderSetup<'_>,
     sets: &[VariantSet],
     policy: &TimingPolicy,
     out: Option<&Path>,
+    f64_reference: bool,
     progress: &dyn Progress,
 ) -> Result<VariantsReport, RunError> {
     let reference = sets.first().ok_or_else(|| {
         RunError::Input("no variants: name at least one (e.g. baseline,bvh)".into())
     })?;
-    let variants = variant_rows(setup, sets, policy, out, progress)?;
+    let truth = if f64_reference {
+        progress.begin("f64 reference", 0);
+        let truth = crate::reference_job::render_in(setup);
+        progress.end();
+        Some(truth?)
+    } else {
+        None
+    };
+    if let (Some(dir), Some(truth)) = (out, &truth) {
+        save_png(dir, "f64-reference.png", &truth.image)?;
+    }
+    let truth_image = truth.as_ref().map(|t| &t.image);
+    let variants = variant_rows(setup, sets, policy, out, truth_image, progress)?;
     Ok(VariantsReport {
         scene: setup.name.to_string(),
         width: setup.options.width,
@@ -63,6 +86,7 @@ pub fn compare_variants(
         repeats: policy.min_repeats,
         time_covers: "tracing",
         reference: reference.to_string(),
+        f64_reference: truth.map(|t| F64Reference { seconds: t.seconds }),
         variants,
     })
 }
@@ -72,6 +96,7 @@ fn variant_rows(
     sets: &[VariantSet],
     policy: &TimingPolicy,
     out: Option<&Path>,
+    truth: Option<&RgbImage>,
     progress: &dyn Progress,
 ) -> Result<Vec<VariantRow>, RunError> {
     progress.begin("variants", 0);
@@ -91,6 +116,16 @@ fn variant_rows(
             let heat = difference_heat_map(&reference.image, &m.image)?;
             save_png(dir, &format!("{}-diff.png", m.variants), &heat)?;
         }
+        let vs_f64_reference = match truth {
+            Some(truth) => {
+                if let Some(dir) = out {
+                    let heat = difference_heat_map(truth, &m.image)?;
+                    save_png(dir, &format!("{}-vs-f64.png", m.variants), &heat)?;
+                }
+                Some(ImageError::between(truth, &m.image)?)
+            }
+            None => None,
+        };
         let speedup = results::change::speedup(&reference.samples, &m.samples);
         rows.push(VariantRow {
             name: m.variants.to_string(),
@@ -110,6 +145,7 @@ fn variant_rows(
             ssim: metrics.ssim,
             max_abs_diff: metrics.max_abs_diff,
             counts: m.counts,
+            vs_f64_reference,
         });
     }
     Ok(rows)
@@ -127,15 +163,31 @@ pub struct VariantsReport {
     /// What `seconds` covers: tracing only (preprocessing is `preprocessing_seconds`).
     pub time_covers: &'static str,
     pub reference: String,
+    /// The f64 reference render, when asked (`--reference`).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub f64_reference: Option<F64Reference>,
     pub variants: Vec<VariantRow>,
+}
+
+/// The f64 reference render of a side-by-side run.
+#[derive(Serialize)]
+pub struct F64Reference {
+    /// Seconds of its one render (tracing, untimed by the policy: one run).
+    pub seconds: f64,
 }
 
 impl VariantsReport {
     /// The setting in one line: scene, size, threads, repeats, reference, threshold.
     pub fn heading(&self) -> String {
         let r = self;
+        let truth = r.f64_reference.as_ref().map_or(String::new(), |f| {
+            format!(
+                "; image error also against the f64 reference ({} s)",
+                format::fixed(f.seconds, 3)
+            )
+        });
         format!(
-            "{}: {}{}, {}, at least {}, timed interleaved, against {}; verdicts at a {} % noise threshold\n",
+            "{}: {}{}, {}, at least {}, timed interleaved, against {}; verdicts at a {} % noise threshold{truth}\n",
             r.scene,
             format::size(r.width, r.height),
             if r.spd { " (SPD)" } else { "" },
@@ -166,10 +218,18 @@ impl VariantsReport {
             Column::number("tests"),
             Column::text("rays"),
         ]);
+        let with_truth = self.f64_reference.is_some();
+        if with_truth {
+            t.columns.extend([
+                Column::number("RMS").detail("vs f64"),
+                Column::number("PSNR").detail("vs f64"),
+                Column::number("max").detail("vs f64"),
+            ]);
+        }
         let reference_rays = self.variants.first().map(|v| v.counts.rays);
         for v in &self.variants {
             let s = &v.seconds;
-            t.rows.push(vec![
+            let mut row = vec![
                 Cell::text(&v.name),
                 Cell::estimate(s.median, s.low, s.high),
                 Cell::ratio(v.speedup.median, Some([v.speedup.low, v.speedup.high])),
@@ -177,10 +237,7 @@ impl VariantsReport {
                     .map_or_else(|| Cell::text("reference").tone(Tone::Muted), Cell::verdict),
                 Cell::number(format::fixed(v.rms, 2), v.rms),
                 Cell::text(v.band.name()).tone(Tone::of_band(v.band)),
-                match v.psnr {
-                    Some(p) => Cell::number(format!("{} dB", format::fixed(p, 1)), p),
-                    None => Cell::text("∞"),
-                },
+                psnr_cell(v.psnr),
                 Cell::number(format::fixed(v.ssim, 4), v.ssim),
                 Cell::count(Self::tests(v)),
                 if Some(v.counts.rays) == reference_rays {
@@ -188,7 +245,18 @@ impl VariantsReport {
                 } else {
                     Cell::text("differ").tone(Tone::Warning)
                 },
-            ]);
+            ];
+            if with_truth {
+                row.extend(match &v.vs_f64_reference {
+                    Some(e) => [
+                        Cell::number(format::fixed(e.rms, 2), e.rms),
+                        psnr_cell(e.psnr),
+                        Cell::count(u64::from(e.max_abs_diff)),
+                    ],
+                    None => [Cell::dash(), Cell::dash(), Cell::dash()],
+                });
+            }
+            t.rows.push(row);
         }
         t
     }
@@ -231,12 +299,21 @@ impl VariantsReport {
             "primitive_tests",
             "primary_rays",
         ];
+        // The columns against the f64 reference only when it was rendered, so that the
+        // plain run's CSV keeps its columns.
+        let with_truth = self.f64_reference.is_some();
+        let truth_header = ["rms_vs_f64", "psnr_db_vs_f64", "max_abs_diff_vs_f64"];
+        let header: Vec<&str> = if with_truth {
+            header.iter().chain(&truth_header).copied().collect()
+        } else {
+            header.to_vec()
+        };
         let n = |x: f64| reports::text::csv_number(Some(x));
         let rows: Vec<Vec<String>> = self
             .variants
             .iter()
             .map(|v| {
-                vec![
+                let mut row = vec![
                     self.scene.clone(),
                     self.width.to_string(),
                     self.height.to_string(),
@@ -257,10 +334,27 @@ impl VariantsReport {
                     v.max_abs_diff.to_string(),
                     Self::tests(v).to_string(),
                     v.counts.rays.primary.to_string(),
-                ]
+                ];
+                if with_truth {
+                    let e = v.vs_f64_reference.as_ref();
+                    row.extend([
+                        reports::text::csv_number(e.map(|e| e.rms)),
+                        reports::text::csv_number(e.and_then(|e| e.psnr)),
+                        e.map_or(String::new(), |e| e.max_abs_diff.to_string()),
+                    ]);
+                }
+                row
             })
             .collect();
         reports::text::csv(&header, &rows)
+    }
+}
+
+/// A PSNR in dB, or ∞ for identical images.
+fn psnr_cell(psnr: Option<f64>) -> Cell {
+    match psnr {
+        Some(p) => Cell::number(format!("{} dB", format::fixed(p, 1)), p),
+        None => Cell::text("∞"),
     }
 }
 

@@ -12,6 +12,7 @@
 //!   what a time covers (tracing; preprocessing apart);
 //! - [`calibration`]: the fixed kernel timed between renders (the gate's yardstick);
 //! - [`render_job`]: one render with its phase times (`rtprof render`, `count`);
+//! - [`reference_job`]: one render by the f64 reference renderer (`render --reference`);
 //! - [`pixel_maps`]: per-sample records into per-pixel maps (NPY, PNG, JSON);
 //! - [`variant_catalogue`]: what each variant does and how accurate it is;
 //! - [`variant_job`]: one variant on one scene: counts, timed renders, picture;
@@ -64,6 +65,7 @@ pub mod profile_files;
 pub mod profile_job;
 pub mod progress;
 pub mod ray_rates;
+pub mod reference_job;
 pub mod render_job;
 pub mod report_files;
 pub mod scaling;

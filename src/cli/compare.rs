@@ -25,6 +25,11 @@ pub struct CompareArgs {
     /// e.g. baseline,bvh,bvh+fast-sqrt.
     #[arg(long, value_name = "A,B,…")]
     variants: Option<String>,
+    /// With --variants: also render the scene with the f64 reference renderer (the ground
+    /// truth, docs/reference.md) and give each variant's RMS, PSNR and largest error
+    /// against it.
+    #[arg(long, requires = "variants")]
+    reference: bool,
     /// Timed renders per variant (median and 95 % bootstrap interval).
     #[arg(long, value_name = "N", default_value_t = 3,
           value_parser = clap::value_parser!(u32).range(1..=1000))]
@@ -97,6 +102,7 @@ fn side_by_side(args: &CompareArgs, scene_arg: &Path, list: &str) -> Result<()> 
         &sets,
         &policy,
         args.output.as_deref(),
+        args.reference,
         &Bars::default(),
     )?;
     let format = if args.json { Format::Json } else { args.format };

@@ -1,8 +1,11 @@
-//! `rtprof render`: uncounted render to an image file.
+//! `rtprof render`: uncounted render to an image file, by the tracer or (with
+//! `--reference`) by the independent f64 reference renderer.
 
+use super::progress::Bars;
 use super::scene_args::{SceneArgs, ShadingFlags, named_after};
 use crate::startup;
 use anyhow::Result;
+use runner::reference_job::render_reference;
 use std::io::Write;
 use std::path::PathBuf;
 use tracer::NoCount;
@@ -17,6 +20,11 @@ pub struct RenderArgs {
     output: Option<PathBuf>,
     #[command(flatten)]
     shading: ShadingFlags,
+    /// Render with the f64 reference renderer instead of the tracer: brute force in double
+    /// precision, cancellation-free intersection tests, the same camera and shading rules
+    /// (docs/reference.md). The ground truth to compare variants with; slower than baseline.
+    #[arg(long, conflicts_with = "variant")]
+    reference: bool,
 }
 
 pub fn run(args: &RenderArgs) -> Result<()> {
@@ -26,6 +34,9 @@ pub fn run(args: &RenderArgs) -> Result<()> {
     };
     // Refuse a bad output name before spending the render time.
     ImageFormat::from_path(&output)?;
+    if args.reference {
+        return run_reference(args, &output);
+    }
     let run = args.scene.run::<NoCount>(args.shading.mode())?;
     startup::mark("render");
     startup::took("render.preprocessing", run.preprocessing);
@@ -40,6 +51,29 @@ pub fn run(args: &RenderArgs) -> Result<()> {
         output.display(),
         run.rendered.frame.width,
         run.rendered.frame.height
+    );
+    std::io::stderr().lock().write_all(report.as_bytes())?;
+    startup::mark("report");
+    Ok(())
+}
+
+/// `--reference`: the f64 reference render to `output`.
+fn run_reference(args: &RenderArgs, output: &std::path::Path) -> Result<()> {
+    let run = render_reference(
+        &args.scene.scene,
+        &args.scene.render.settings(),
+        args.shading.mode(),
+        &Bars::delayed(),
+    )?;
+    startup::mark("render");
+    write_image(output, &run.frame)?;
+    startup::mark("image");
+    let report = format!(
+        "{}\nwrote {} ({}x{})\n",
+        run.timing_report(&args.scene.scene),
+        output.display(),
+        run.frame.width,
+        run.frame.height
     );
     std::io::stderr().lock().write_all(report.as_bytes())?;
     startup::mark("report");

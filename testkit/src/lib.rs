@@ -1,7 +1,8 @@
 //! `testkit`: fixtures for tests of the results and their reports, kept out of
 //! library code. [`sample_results`] is a realistic synthetic suite run;
-//! [`write_sample_files`] writes the images and texts it refers to. Used only as a
-//! dev-dependency.
+//! [`write_sample_files`] writes the images and texts it refers to; [`far_sphere`] makes
+//! the small far spheres that f32 intersection tests get wrong, with their analytic pixel
+//! counts. Used only as a dev-dependency.
 
 // What user input can reach returns an error: no unwrap, expect or panic outside tests
 // (unit tests are cfg(test); integration tests, benches and examples are other crates).
@@ -10,6 +11,7 @@
     deny(clippy::unwrap_used, clippy::expect_used, clippy::panic)
 )]
 
+pub mod far_sphere;
 pub mod files;
 pub mod sample;
 pub mod temp_dir;
