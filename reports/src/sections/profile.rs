@@ -6,7 +6,7 @@ use crate::document::{
     Block, Builder, Cell, Column, Flamegraph, Inline, Preformatted, Section, Table, Tone,
 };
 use crate::format;
-use crate::results::{FlatRow, Profile, ProfileResult, ProfileView};
+use crate::results::{FlatRow, Profile, ProfileResult, ProfileView, Timer};
 
 /// Lines of a call graph a printed page shows before leaving the rest to the file.
 const CALLGRAPH_PRINT_LINES: u32 = 160;
@@ -176,7 +176,7 @@ fn view_text(view: ProfileView) -> &'static str {
     }
 }
 
-/// How a profile was sampled: samples taken and asked, renders, rate, per sample.
+/// How a profile was sampled: samples taken and asked, renders, rate, per sample, timer.
 fn sampling_text(profile: &Profile) -> String {
     let sampled = profile.samples as f64 * profile.seconds_per_sample;
     let mut text = format!(
@@ -195,6 +195,9 @@ fn sampling_text(profile: &Profile) -> String {
         );
     }
     text += "). ";
+    if let Some(timer) = profile.timer {
+        text += &format!("{}. ", timer_sentence(timer));
+    }
     text += &match profile.renders {
         Some(n) => format!(
             "{} sampled; calls are per render (exact, from the counters; identical for every render), blank where not counted. Shares carry their 95 % sampling interval; rows whose interval reaches 0 are marked as noise. ",
@@ -204,6 +207,18 @@ fn sampling_text(profile: &Profile) -> String {
     };
     text += view_text(profile.view);
     text
+}
+
+/// Which timer sent the samples and what that means for the rate.
+fn timer_sentence(timer: Timer) -> &'static str {
+    match timer {
+        Timer::PerfCpuClock => {
+            "Sampled with perf cpu-clock (a perf_event_open timer on each rendering thread, driven by high-resolution timers: it delivers the rate asked)"
+        }
+        Timer::Setitimer => {
+            "Sampled with setitimer (ITIMER_PROF, which fires on the kernel's tick: it delivers at most about the tick rate, whatever is asked)"
+        }
+    }
 }
 
 /// A share with its 95 % interval, or "noise" when the interval reaches 0.
