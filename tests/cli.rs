@@ -565,7 +565,10 @@ fn profile_says_which_timer_sampled_and_refuses_an_unknown_one() {
         .strip_prefix("sampled with setitimer: ")
         .and_then(|rest| rest.strip_suffix(" samples per CPU second (asked 1,000 Hz)"))
         .unwrap_or_else(|| panic!("{line}"));
-    let rate: u64 = rate.replace(',', "").parse().unwrap_or_else(|e| panic!("{line}: {e}"));
+    let rate: u64 = rate
+        .replace(',', "")
+        .parse()
+        .unwrap_or_else(|e| panic!("{line}: {e}"));
     assert!((1..=1100).contains(&rate), "{line}");
 
     let out = profile_with_sampler("setitimer", &dir.join("json"), true);
