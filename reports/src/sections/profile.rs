@@ -435,3 +435,33 @@ pub fn amdahl(b: &mut Builder) -> Section {
     }
     s
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The sample results' baseline profile, its timer set to `timer`.
+    fn profile_with(timer: Option<Timer>) -> Profile {
+        let results = testkit::sample::sample_results();
+        let mut profile = results
+            .profile
+            .map(|p| p.baseline)
+            .unwrap_or_else(|| panic!("the sample results have no profile"));
+        profile.timer = timer;
+        profile
+    }
+
+    #[test]
+    fn the_sampling_text_names_the_timer_when_the_file_does() {
+        let perf = sampling_text(&profile_with(Some(Timer::PerfCpuClock)));
+        assert!(perf.contains("Sampled with perf cpu-clock ("), "{perf}");
+        let setitimer = sampling_text(&profile_with(Some(Timer::Setitimer)));
+        assert!(
+            setitimer.contains("Sampled with setitimer ("),
+            "{setitimer}"
+        );
+        // Older files do not say: neither is claimed.
+        let unknown = sampling_text(&profile_with(None));
+        assert!(!unknown.contains("Sampled with"), "{unknown}");
+    }
+}
