@@ -682,6 +682,88 @@ fn variants_lists_every_variant_with_measured_sqrt_errors() {
     assert!((max - 0.060_660_17).abs() < 1e-6, "{max}");
 }
 
+/// `rtprof profile` on SPD rings at 24x18 with `RTPROF_SAMPLER` set to `sampler`.
+fn profile_with_sampler(sampler: &str, out_dir: &std::path::Path, json: bool) -> Output {
+    let rings = spd("rings");
+    let out_dir = out_dir.display().to_string();
+    let mut args = vec![
+        "profile",
+        &rings,
+        "--size",
+        "24x18",
+        "--threads",
+        "2",
+        "--min-samples",
+        "40",
+        "-o",
+        &out_dir,
+    ];
+    if json {
+        args.push("--json");
+    }
+    Command::new(env!("CARGO_BIN_EXE_rtprof"))
+        .env("RTPROF_SAMPLER", sampler)
+        .args(&args)
+        .output()
+        .unwrap_or_else(|e| panic!("cannot run rtprof: {e}"))
+}
+
+#[test]
+fn profile_says_which_timer_sampled_and_refuses_an_unknown_one() {
+    let dir = scratch("profile-timer");
+    let out = profile_with_sampler("setitimer", &dir.join("text"), false);
+    assert_eq!(out.status.code(), Some(0), "{}", stderr(&out));
+    let text = String::from_utf8_lossy(&out.stdout);
+    let line = text
+        .lines()
+        .find(|l| l.starts_with("sampled with "))
+        .unwrap_or_else(|| panic!("no timer line in\n{text}"));
+    // setitimer's own default rate is asked; the rate it got is a whole number.
+    let rate = line
+        .strip_prefix("sampled with setitimer: ")
+        .and_then(|rest| rest.strip_suffix(" samples per CPU second (asked 1,000 Hz)"))
+        .unwrap_or_else(|| panic!("{line}"));
+    let rate: u64 = rate
+        .replace(',', "")
+        .parse()
+        .unwrap_or_else(|e| panic!("{line}: {e}"));
+    assert!((1..=1100).contains(&rate), "{line}");
+
+    let out = profile_with_sampler("setitimer", &dir.join("json"), true);
+    assert_eq!(out.status.code(), Some(0), "{}", stderr(&out));
+    let json: serde_json::Value =
+        serde_json::from_slice(&out.stdout).unwrap_or_else(|e| panic!("{e}"));
+    assert_eq!(json["profile"]["timer"], "setitimer");
+    assert_eq!(json["profile"]["frequency"], 1000);
+    assert_eq!(json["frequency"], 1000);
+
+    let out = profile_with_sampler("fastest", &dir.join("junk"), false);
+    assert_ne!(out.status.code(), Some(0));
+    let err = stderr(&out);
+    assert!(
+        err.contains("RTPROF_SAMPLER=\"fastest\" names no timer: use auto, perf or setitimer"),
+        "{err}"
+    );
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+#[test]
+#[ignore = "needs perf_event_open"]
+fn profile_with_perf_asks_4000_hz_and_gets_at_least_1000() {
+    let dir = scratch("profile-perf");
+    let out = profile_with_sampler("perf", &dir, true);
+    assert_eq!(out.status.code(), Some(0), "{}", stderr(&out));
+    let json: serde_json::Value =
+        serde_json::from_slice(&out.stdout).unwrap_or_else(|e| panic!("{e}"));
+    let p = &json["profile"];
+    assert_eq!(p["timer"], "perf cpu-clock");
+    assert_eq!(p["frequency"], 4000);
+    let rate = p["samples"].as_f64().unwrap_or(0.0) / p["cpu_seconds"].as_f64().unwrap_or(1.0);
+    eprintln!("rtprof profile under perf: {rate:.0} samples per CPU second");
+    assert!(rate >= 1000.0, "{p}");
+    std::fs::remove_dir_all(&dir).ok();
+}
+
 #[test]
 fn profile_writes_both_views_exports_and_json_with_calls_per_render() {
     let dir = scratch("profile");
@@ -691,11 +773,12 @@ fn profile_writes_both_views_exports_and_json_with_calls_per_render() {
         "profile",
         &rings,
         "--size",
-        "40x30",
+        "20x15",
         "--threads",
         "1",
+        // Enough that a render is repeated also at 4,000 samples per CPU second.
         "--min-samples",
-        "150",
+        "400",
         "--diff-with",
         "bvh",
         "--json",
@@ -744,14 +827,14 @@ fn profile_writes_both_views_exports_and_json_with_calls_per_render() {
 
     let json: serde_json::Value =
         serde_json::from_slice(&out.stdout).unwrap_or_else(|e| panic!("{e}"));
-    let count = rtprof(&["count", &rings, "--size", "40x30", "--json"]);
+    let count = rtprof(&["count", &rings, "--size", "20x15", "--json"]);
     let counts: serde_json::Value =
         serde_json::from_slice(&count.stdout).unwrap_or_else(|e| panic!("{e}"));
     // The render is repeated to gather samples; calls stay those of one render.
     let renders = json["profile"]["renders"].as_u64().unwrap();
     assert!(
         renders > 1,
-        "a 40x30 render should need repeating: {renders}"
+        "a 20x15 render should need repeating: {renders}"
     );
     assert!(flat.contains(&format!("{renders} renders sampled; calls are per render")));
     let calls_of = |view: &str, name: &str| {

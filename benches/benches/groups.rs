@@ -16,7 +16,7 @@ use criterion::{Criterion, criterion_group, criterion_main};
 
 criterion_group! {
     name = groups;
-    config = Criterion::default().with_profiler(FlameProfiler::new(997));
+    config = Criterion::default().with_profiler(FlameProfiler::new(None));
     targets = bench_sqrt, bench_camera, bench_intersect, bench_shading, bench_accel, bench_frame
 }
 criterion_main!(groups);

@@ -1,5 +1,8 @@
 //! The in-process profiler criterion runs under `--profile-time N`: it samples the
-//! process with pprof (SIGPROF) while one benchmark iterates and, when it stops, writes
+//! benchmark with rtprof's sampler ([`analysis::profile::session::Sampling`]: pprof's
+//! SIGPROF handler, driven by a perf cpu-clock timer on the benchmark's thread or by
+//! setitimer, as `RTPROF_SAMPLER` and the machine allow) while one benchmark iterates
+//! and, when it stops, writes
 //! the stacks as `folded.txt` (Brendan Gregg's folded format, `a;b;c count`), as an
 //! interactive `flamegraph.svg`, and in the exports `rtprof profile` writes
 //! (`profile.pb.gz` for `go tool pprof`, `speedscope.json`), all into the benchmark's profile directory
@@ -18,7 +21,8 @@
 
 use analysis::profile::export::{PprofRun, pprof_profile_gz, speedscope_json};
 use analysis::profile::folded::{flamegraph_svg, folded};
-use analysis::profile::sampler::{process_cpu_time, root_first_names};
+use analysis::profile::sampler::{SampleOptions, root_first_names};
+use analysis::profile::session::Sampling;
 use analysis::profile::{Stack, StackSamples};
 use criterion::profiler::Profiler;
 use std::collections::BTreeMap;
@@ -26,28 +30,18 @@ use std::io::Write as _;
 use std::path::Path;
 use std::time::Duration;
 
-/// Frames unwinding from a signal handler must not walk through (it can deadlock);
-/// the same list as `rtprof profile` (pprof's advice).
-const BLOCKLIST: [&str; 4] = ["libc", "libgcc", "pthread", "vdso"];
-
 /// A criterion [`Profiler`] that draws a flamegraph of each profiled benchmark.
 pub struct FlameProfiler {
-    /// Samples per second asked of the kernel (it may deliver fewer).
-    frequency: i32,
+    /// Samples per CPU second asked of the timer; `None`: the timer's default (as
+    /// `rtprof profile`: 4,000 Hz under perf cpu-clock, 1,000 asked of setitimer).
+    frequency: Option<i32>,
     /// The running profile, between `start_profiling` and `stop_profiling`.
-    running: Option<Running>,
-}
-
-/// A profile being taken.
-struct Running {
-    guard: pprof::ProfilerGuard<'static>,
-    cpu_at_start: Duration,
+    running: Option<Sampling>,
 }
 
 impl FlameProfiler {
-    /// A profiler sampling at `frequency` Hz (a prime such as 997 keeps the samples
-    /// from locking onto a periodic loop).
-    pub fn new(frequency: i32) -> Self {
+    /// A profiler sampling at `frequency` Hz, or at the timer's default rate.
+    pub fn new(frequency: Option<i32>) -> Self {
         Self {
             frequency,
             running: None,
@@ -59,18 +53,14 @@ impl Profiler for FlameProfiler {
     fn start_profiling(&mut self, benchmark_id: &str, _benchmark_dir: &Path) {
         // A profile left over from a start without stop is dropped (its timer stops).
         self.running = None;
-        let cpu_at_start = process_cpu_time();
-        match pprof::ProfilerGuardBuilder::default()
-            .frequency(self.frequency)
-            .blocklist(&BLOCKLIST)
-            .build()
-        {
-            Ok(guard) => {
-                self.running = Some(Running {
-                    guard,
-                    cpu_at_start,
-                })
-            }
+        // Criterion iterates on this thread: under perf it is the one sampled.
+        let options = SampleOptions {
+            frequency: self.frequency,
+            min_samples: 0,
+            ..SampleOptions::timer_default()
+        };
+        match Sampling::start(&options) {
+            Ok(sampling) => self.running = Some(sampling),
             Err(e) => warn(benchmark_id, &format!("cannot start the profiler: {e}")),
         }
     }
@@ -79,15 +69,13 @@ impl Profiler for FlameProfiler {
         let Some(running) = self.running.take() else {
             return;
         };
-        let report = running.guard.report().build();
-        let cpu = process_cpu_time().saturating_sub(running.cpu_at_start);
         // Stop sampling before the files are written.
-        drop(running.guard);
-        let report = match report {
-            Ok(report) => report,
+        let stopped = match running.stop() {
+            Ok(stopped) => stopped,
             Err(e) => return warn(benchmark_id, &format!("cannot build the report: {e}")),
         };
-        let samples = stack_samples(&report, cpu);
+        let cpu = stopped.cpu;
+        let samples = stack_samples(&stopped.report, cpu);
         if samples.total() == 0 {
             return warn(
                 benchmark_id,
@@ -216,7 +204,7 @@ mod tests {
     #[test]
     fn a_stop_without_a_start_does_nothing() {
         let dir = std::env::temp_dir().join(format!("benches-flame-none-{}", std::process::id()));
-        FlameProfiler::new(997).stop_profiling("none", &dir);
+        FlameProfiler::new(None).stop_profiling("none", &dir);
         assert!(!dir.exists());
     }
 }

@@ -14,6 +14,7 @@ use std::collections::BTreeMap;
 use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
 
+pub use analysis::profile::timer::Timer;
 pub use analysis::{Band, Estimate, Verdict};
 
 use crate::bvh_quality::BvhQuality;
@@ -423,6 +424,11 @@ pub struct Profile {
     /// Samples the asked rate would have given in the sampled CPU time.
     #[serde(default)]
     pub samples_asked: Option<u64>,
+    /// The timer that sent the sampling signals ("perf cpu-clock": per-thread perf
+    /// events; "setitimer": the kernel's tick); `None` in files from before it was
+    /// recorded (setitimer then).
+    #[serde(default)]
+    pub timer: Option<Timer>,
     /// CPU seconds sampled (all threads).
     #[serde(default)]
     pub cpu_seconds: Option<f64>,

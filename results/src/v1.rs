@@ -287,6 +287,7 @@ fn profile(p: Profile, path: &str) -> Result<v2::Profile, ResultsError> {
         // Not recorded before /3: calls are totals over the sampled renders.
         renders: None,
         samples_asked: None,
+        timer: None,
         cpu_seconds: None,
         view: v2::ProfileView::Native,
         second_view: None,

@@ -26,6 +26,7 @@ fn profile(flat: Vec<FlatRow>) -> Profile {
         seconds_per_sample: 0.001,
         renders: Some(3),
         samples_asked: Some(4000),
+        timer: None,
         cpu_seconds: Some(1.0),
         view: ProfileView::Phases,
         flat,

@@ -137,6 +137,7 @@ pub fn save_profile(
         seconds_per_sample: p.seconds_per_sample(),
         renders: Some(p.renders),
         samples_asked: Some(p.samples_asked),
+        timer: Some(p.timer),
         cpu_seconds: Some(p.cpu_seconds),
         view: ProfileView::Phases,
         flat: phases.flat,
@@ -228,7 +229,7 @@ impl ProfileReport {
         let r = self;
         let p = &r.profile;
         let mut out = format!(
-            "{} {}x{}, variant {}, {} thread{}: {} render{} sampled; {} samples taken ({} asked at {} Hz; {:.0} per CPU second), {:.3} s CPU, {:.3} s wall, {} of CPU per sample\n",
+            "{} {}x{}, variant {}, {} thread{}: {} render{} sampled; {} samples taken ({} asked), {:.3} s CPU, {:.3} s wall, {} of CPU per sample\n{}\n",
             r.scene,
             r.width,
             r.height,
@@ -239,11 +240,10 @@ impl ProfileReport {
             if p.renders == 1 { "" } else { "s" },
             p.samples,
             p.samples_asked,
-            r.frequency,
-            p.effective_rate(),
             p.cpu_seconds,
             p.wall_seconds,
             reports::format::seconds(p.seconds_per_sample()),
+            p.timer_text(),
         );
         if let Some(o) = &r.overhead {
             out += &o.to_text();

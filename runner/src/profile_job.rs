@@ -24,8 +24,10 @@ use analysis::profile::flat::{FlatProfile, flat_profile};
 use analysis::profile::folded::{folded, under_one_root};
 use analysis::profile::gprof::{CallGraph, call_graph};
 use analysis::profile::names::{BareMethods, display_name};
-use analysis::profile::sampler::{RepeatedError, SampleOptions, sample_repeated};
+use analysis::profile::perf_clock::WorkThreads;
+use analysis::profile::sampler::{RepeatedError, SampleOptions, effective_rate, sample_repeated};
 use analysis::profile::tally::ProfileInput;
+use analysis::profile::timer::Timer;
 use analysis::profile::{CallCounts, Stack, StackSamples};
 use results::ProfileView;
 use serde::Serialize;
@@ -73,9 +75,12 @@ pub struct VariantProfile {
     /// render, seconds cover them all.
     pub renders: u64,
     /// SIGPROF signals taken, and the number the asked rate would have given in the
-    /// sampled CPU time (the kernel delivers fewer at high rates).
+    /// sampled CPU time (setitimer delivers fewer at high rates).
     pub samples: u64,
     pub samples_asked: u64,
+    /// The timer that sent the signals, and the rate asked of it (Hz of CPU time).
+    pub timer: Timer,
+    pub frequency: i32,
     pub cpu_seconds: f64,
     pub wall_seconds: f64,
     /// Wall seconds of each sampled render (phases recorded, sampler running).
@@ -92,7 +97,17 @@ impl VariantProfile {
 
     /// Samples per CPU second actually taken.
     pub fn effective_rate(&self) -> f64 {
-        self.samples as f64 / self.cpu_seconds.max(1e-9)
+        effective_rate(self.samples, self.cpu_seconds)
+    }
+
+    /// "sampled with perf cpu-clock: 3,987 samples per CPU second (asked 4,000 Hz)".
+    pub fn timer_text(&self) -> String {
+        format!(
+            "sampled with {}: {} samples per CPU second (asked {} Hz)",
+            self.timer,
+            reports::format::count(self.effective_rate().round() as u64),
+            reports::format::count(u64::try_from(self.frequency).unwrap_or(0)),
+        )
     }
 }
 
@@ -131,6 +146,7 @@ pub struct ProfileReport {
     pub width: u32,
     pub height: u32,
     pub threads: usize,
+    /// The rate asked of the profile's timer, Hz (the variant profiles say which timer).
     pub frequency: i32,
     pub min_samples: u64,
     /// With --measure-overhead.
@@ -144,8 +160,9 @@ pub struct ProfileJob<'a> {
     pub scene: &'a Scene,
     pub options: RenderOptions,
     pub pool: &'a rayon::ThreadPool,
-    /// Sampling rate asked of the kernel, Hz.
-    pub frequency: i32,
+    /// Sampling rate asked of the timer, Hz of CPU time; `None`: the timer's default
+    /// (4,000 for perf cpu-clock, 1,000 for setitimer).
+    pub frequency: Option<i32>,
     /// The scene's name in messages and the root of the folded stacks.
     pub name: &'a str,
     /// Samples to gather at least (renders are repeated until there are).
@@ -183,7 +200,7 @@ impl ProfileJob<'_> {
             width: self.options.width,
             height: self.options.height,
             threads: self.pool.current_num_threads(),
-            frequency: self.frequency,
+            frequency: profile.frequency,
             min_samples: self.min_samples,
             overhead,
             profile,
@@ -207,11 +224,17 @@ impl ProfileJob<'_> {
             .counts()
             .ok_or_else(|| RunError::Profile("the counted render returned no counts".into()))?;
         progress.message(&format!("sampling {set}"));
+        // The render runs on the pool's threads: under perf each gets its own timer.
+        let open_on_workers = |open: &(dyn Fn() + Sync)| {
+            self.pool.broadcast(|_| open());
+        };
         let options = SampleOptions {
+            frequency: self.frequency,
+            threads: Some(WorkThreads(&open_on_workers)),
             min_samples: self.min_samples,
             max_runs: MAX_RENDERS,
             probe: Some(tracer::phase_stack_key),
-            ..SampleOptions::new(self.frequency)
+            ..SampleOptions::timer_default()
         };
         let render_seconds = RefCell::new(Vec::new());
         let run = sample_repeated(
@@ -259,6 +282,8 @@ impl ProfileJob<'_> {
             renders,
             samples: run.signals,
             samples_asked: run.samples_asked,
+            timer: run.timer,
+            frequency: run.frequency,
             cpu_seconds: cpu,
             wall_seconds: run.wall.as_secs_f64(),
             render_seconds: render_seconds.into_inner(),

@@ -24,11 +24,13 @@ pub struct ProfileArgs {
     diff_with: Option<String>,
     #[command(flatten)]
     render: RenderFlags,
-    /// Sampling rate asked of the kernel, Hz (it may deliver fewer; times use the
-    /// measured CPU time per sample).
-    #[arg(long, default_value_t = 1000, value_name = "HZ",
+    /// Sampling rate asked of the timer, Hz of CPU time [default: 4000 with the perf
+    /// cpu-clock timer, 1000 with setitimer, which delivers at most the kernel's tick
+    /// rate; times use the measured CPU time per sample]. RTPROF_SAMPLER=auto|perf|setitimer
+    /// picks the timer (auto: perf where perf_event_open works).
+    #[arg(long, value_name = "HZ",
           value_parser = clap::value_parser!(i32).range(10..=10_000))]
-    frequency: i32,
+    frequency: Option<i32>,
     /// Samples to gather at least: a fast render is repeated until there are (calls
     /// stay per render).
     #[arg(long, default_value_t = DEFAULT_MIN_SAMPLES, value_name = "N",

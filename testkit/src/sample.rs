@@ -965,6 +965,7 @@ fn sample_profile(
         amdahl,
         renders: Some(1),
         samples_asked: Some((total / seconds_per_sample).round() as u64),
+        timer: Some(results::Timer::PerfCpuClock),
         cpu_seconds: Some(total),
         view: ProfileView::Native,
         second_view: None,

@@ -1,8 +1,9 @@
 //! Profiles: call stacks sampled while a render runs, and what is made of them —
 //! gprof's flat profile ([`flat`]) and call graph ([`gprof`]) with sampling errors
 //! ([`share_interval`]), folded stacks and flamegraphs, Amdahl projections, exports
-//! to pprof and speedscope ([`export`]). The sampler produces [`StackSamples`];
-//! everything else reads it.
+//! to pprof and speedscope ([`export`]). The sampler ([`sampler`], one run at a time
+//! as a [`session`], its signals from the [`timer`] of [`perf_clock`] or setitimer)
+//! produces [`StackSamples`]; everything else reads it.
 
 pub mod amdahl;
 pub mod export;
@@ -12,9 +13,12 @@ pub mod gprof;
 #[cfg(any(test, feature = "gprof-text"))]
 pub mod gprof_text;
 pub mod names;
+pub mod perf_clock;
 pub mod sampler;
+pub mod session;
 pub mod share_interval;
 pub mod tally;
+pub mod timer;
 
 use serde::{Deserialize, Serialize};
 use std::collections::BTreeMap;

@@ -1,4 +1,5 @@
-//! The sampling profiler: SIGPROF at a chosen rate (pprof) while the profiled work runs,
+//! The sampling profiler: SIGPROF at a chosen rate while the profiled work runs, from
+//! per-thread perf cpu-clock events or pprof's setitimer ([`super::timer`]),
 //! stacks resolved with the binary's debug info (so inlined functions keep their own
 //! frames), cleaned into [`StackSamples`]; and, from the same signals, the phase the
 //! interrupted thread was in (a [`PhaseProbe`]), so that attribution need not depend on
@@ -6,10 +7,11 @@
 //!
 //! - Only the work is sampled: the profiler starts right before it and the report
 //!   is taken right after, so parsing and start-up do not show.
-//! - Seconds per sample = process CPU time spent in the work / samples taken. The
-//!   kernel delivers fewer signals than asked for at high rates, so 1/frequency would
-//!   misstate every time in the profile; [`SampledRun::samples_asked`] keeps what was
-//!   asked so a report can state both.
+//! - Seconds per sample = process CPU time spent in the work / samples taken. setitimer
+//!   delivers fewer signals than asked for at high rates (the kernel's tick), so
+//!   1/frequency would misstate every time in the profile; [`SampledRun::samples_asked`]
+//!   keeps what was asked and [`SampledRun::timer`] which timer ran, so a report can
+//!   state both.
 //! - Frames above the outermost frame of the profiled code (thread start, rayon's
 //!   scheduler, `main`) are dropped, and so are foreign frames between profiled ones
 //!   (rayon's joins). Below the innermost profiled frame, foreign Rust frames (inlined
@@ -23,6 +25,9 @@
 //!   are process-wide): a second concurrent run gets [`ProfileError::Busy`].
 
 use super::names::clean_symbol;
+use super::perf_clock::WorkThreads;
+use super::session::Sampling;
+use super::timer::{Timer, TimerChoice};
 use super::{Stack, StackSamples};
 use std::collections::BTreeMap;
 use std::sync::atomic::{AtomicBool, AtomicU64, AtomicUsize, Ordering};
@@ -71,9 +76,16 @@ pub const DEFAULT_MAX_WALL: Duration = Duration::from_secs(120);
 
 /// How to sample.
 #[derive(Clone, Copy, Debug)]
-pub struct SampleOptions {
-    /// Sampling rate asked of the kernel, Hz (of process CPU time).
-    pub frequency: i32,
+pub struct SampleOptions<'a> {
+    /// Sampling rate asked of the timer, Hz of CPU time; `None`: the timer's default
+    /// ([`Timer::default_frequency`]).
+    pub frequency: Option<i32>,
+    /// Which timer; `None`: as `RTPROF_SAMPLER` says (auto when unset).
+    pub timer: Option<TimerChoice>,
+    /// The threads besides the calling one that run the work: each gets its own perf
+    /// event. `None`: the work runs on the calling thread (setitimer samples the whole
+    /// process either way).
+    pub threads: Option<WorkThreads<'a>>,
     /// Repeat until at least this many signals were seen ([`sample_repeated`]).
     pub min_samples: u64,
     /// ... but at most this many runs,
@@ -84,11 +96,21 @@ pub struct SampleOptions {
     pub probe: Option<PhaseProbe>,
 }
 
-impl SampleOptions {
+impl SampleOptions<'_> {
     /// `frequency` Hz, the default minimum and caps, no probe.
     pub fn new(frequency: i32) -> Self {
         SampleOptions {
-            frequency,
+            frequency: Some(frequency),
+            ..SampleOptions::timer_default()
+        }
+    }
+
+    /// The timer's own default rate, the default minimum and caps, no probe.
+    pub fn timer_default() -> Self {
+        SampleOptions {
+            frequency: None,
+            timer: None,
+            threads: None,
             min_samples: DEFAULT_MIN_SAMPLES,
             max_runs: DEFAULT_MAX_RUNS,
             max_wall: DEFAULT_MAX_WALL,
@@ -145,12 +167,32 @@ pub struct SampledRun<T> {
     /// a few fewer (pprof skips signals that land in blocklisted libraries).
     pub signals: u64,
     /// Samples asked for: frequency x CPU seconds, rounded. Taken / asked shows how
-    /// far the kernel fell short of the rate.
+    /// far the timer fell short of the rate.
     pub samples_asked: u64,
+    /// The timer that sent the signals.
+    pub timer: Timer,
+    /// The rate asked of it, Hz of CPU time.
+    pub frequency: i32,
     /// Wall time of the closure.
     pub wall: Duration,
     /// Process CPU time (user + system, all threads) during the closure.
     pub cpu: Duration,
+}
+
+impl<T> SampledRun<T> {
+    /// Signals per CPU second of the work: the rate the timer delivered.
+    pub fn effective_rate(&self) -> f64 {
+        effective_rate(self.signals, self.cpu.as_secs_f64())
+    }
+}
+
+/// Samples per CPU second (0 for no CPU time).
+pub fn effective_rate(samples: u64, cpu_seconds: f64) -> f64 {
+    if cpu_seconds > 0.0 {
+        samples as f64 / cpu_seconds
+    } else {
+        0.0
+    }
 }
 
 /// The process's resource use so far, if the kernel tells.
@@ -237,6 +279,8 @@ pub fn sample_repeated<E>(
             phase_keys_dropped: run.phase_keys_dropped,
             signals: run.signals,
             samples_asked: run.samples_asked,
+            timer: run.timer,
+            frequency: run.frequency,
             wall: run.wall,
             cpu: run.cpu,
         },
@@ -270,29 +314,13 @@ fn sample_unchecked<T>(
     is_profiled: impl Fn(&str) -> bool,
     work: impl FnOnce(&LiveSamples) -> T,
 ) -> Result<SampledRun<T>, ProfileError> {
-    let _busy = BusyFlag::take()?;
-    let guard = pprof::ProfilerGuardBuilder::default()
-        .frequency(options.frequency)
-        // Unwinding through these from a signal handler can deadlock (pprof's advice).
-        .blocklist(&["libc", "libgcc", "pthread", "vdso"])
-        .build()
-        .map_err(|e| ProfileError::Start(e.to_string()))?;
-    // Declared after `guard`, so on unwinding it is dropped (pprof's handler put
-    // back) before pprof's profiler stops.
-    let handler = PhaseHandler::install(options.probe)?;
-    let cpu_start = process_cpu_time();
-    let start = Instant::now();
+    let sampling = Sampling::start(options)?;
     let output = work(&LiveSamples { _private: () });
-    let wall = start.elapsed();
-    let cpu = process_cpu_time().saturating_sub(cpu_start);
-    let phases = handler.finish()?;
-    let report = guard
-        .report()
-        .build()
-        .map_err(|e| ProfileError::Report(e.to_string()))?;
-    drop(guard);
-
-    let merged = clean_stacks(&report, is_profiled);
+    let stopped = sampling.stop()?;
+    let (cpu, wall) = (stopped.cpu, stopped.wall);
+    let report = &stopped.report;
+    let phases = stopped.phases;
+    let merged = clean_stacks(report, is_profiled);
     let total: u64 = merged.values().sum();
     Ok(SampledRun {
         output,
@@ -310,7 +338,9 @@ fn sample_unchecked<T>(
         phase_keys: phases.keys,
         phase_keys_dropped: phases.dropped,
         signals: phases.signals,
-        samples_asked: (f64::from(options.frequency.max(0)) * cpu.as_secs_f64()).round() as u64,
+        samples_asked: (f64::from(stopped.frequency.max(0)) * cpu.as_secs_f64()).round() as u64,
+        timer: stopped.timer,
+        frequency: stopped.frequency,
         wall,
         cpu,
     })
@@ -351,12 +381,12 @@ fn clean_stacks(
 }
 
 /// Held while a sampling run is under way; released on drop (also on a panic).
-struct BusyFlag;
+pub(super) struct BusyFlag;
 
 static BUSY: AtomicBool = AtomicBool::new(false);
 
 impl BusyFlag {
-    fn take() -> Result<Self, ProfileError> {
+    pub(super) fn take() -> Result<Self, ProfileError> {
         BUSY.compare_exchange(false, true, Ordering::AcqRel, Ordering::Acquire)
             .map(|_| BusyFlag)
             .map_err(|_| ProfileError::Busy)
@@ -397,22 +427,22 @@ static PREVIOUS_HANDLER: AtomicUsize = AtomicUsize::new(0);
 static PREVIOUS_SIGINFO: AtomicBool = AtomicBool::new(false);
 
 /// What the phase handler recorded over one run.
-struct PhaseCounts {
-    keys: BTreeMap<u64, u64>,
-    dropped: u64,
-    signals: u64,
+pub(crate) struct PhaseCounts {
+    pub(crate) keys: BTreeMap<u64, u64>,
+    pub(crate) dropped: u64,
+    pub(crate) signals: u64,
 }
 
 /// Our SIGPROF handler, installed over pprof's for the run; puts pprof's back on
 /// `finish` or drop.
-struct PhaseHandler {
+pub(super) struct PhaseHandler {
     /// pprof's action, restored as it was.
     previous: libc::sigaction,
     restored: bool,
 }
 
 impl PhaseHandler {
-    fn install(probe: Option<PhaseProbe>) -> Result<Self, ProfileError> {
+    pub(super) fn install(probe: Option<PhaseProbe>) -> Result<Self, ProfileError> {
         for (key, count) in KEYS.iter().zip(&KEY_COUNTS) {
             key.store(0, Ordering::Relaxed);
             count.store(0, Ordering::Relaxed);
@@ -459,7 +489,7 @@ impl PhaseHandler {
 
     /// Stops recording, waits out handlers still running, puts pprof's handler back
     /// and reads the table.
-    fn finish(mut self) -> Result<PhaseCounts, ProfileError> {
+    pub(super) fn finish(mut self) -> Result<PhaseCounts, ProfileError> {
         self.restore()?;
         let mut keys = BTreeMap::new();
         for (key, count) in KEYS.iter().zip(&KEY_COUNTS) {

@@ -6,7 +6,7 @@ use crate::document::{
     Block, Builder, Cell, Column, Flamegraph, Inline, Preformatted, Section, Table, Tone,
 };
 use crate::format;
-use crate::results::{FlatRow, Profile, ProfileResult, ProfileView};
+use crate::results::{FlatRow, Profile, ProfileResult, ProfileView, Timer};
 
 /// Lines of a call graph a printed page shows before leaving the rest to the file.
 const CALLGRAPH_PRINT_LINES: u32 = 160;
@@ -176,7 +176,7 @@ fn view_text(view: ProfileView) -> &'static str {
     }
 }
 
-/// How a profile was sampled: samples taken and asked, renders, rate, per sample.
+/// How a profile was sampled: samples taken and asked, renders, rate, per sample, timer.
 fn sampling_text(profile: &Profile) -> String {
     let sampled = profile.samples as f64 * profile.seconds_per_sample;
     let mut text = format!(
@@ -195,6 +195,9 @@ fn sampling_text(profile: &Profile) -> String {
         );
     }
     text += "). ";
+    if let Some(timer) = profile.timer {
+        text += &format!("{}. ", timer_sentence(timer));
+    }
     text += &match profile.renders {
         Some(n) => format!(
             "{} sampled; calls are per render (exact, from the counters; identical for every render), blank where not counted. Shares carry their 95 % sampling interval; rows whose interval reaches 0 are marked as noise. ",
@@ -204,6 +207,18 @@ fn sampling_text(profile: &Profile) -> String {
     };
     text += view_text(profile.view);
     text
+}
+
+/// Which timer sent the samples and what that means for the rate.
+fn timer_sentence(timer: Timer) -> &'static str {
+    match timer {
+        Timer::PerfCpuClock => {
+            "Sampled with perf cpu-clock (a perf_event_open timer on each rendering thread, driven by high-resolution timers: it delivers the rate asked)"
+        }
+        Timer::Setitimer => {
+            "Sampled with setitimer (ITIMER_PROF, which fires on the kernel's tick: it delivers at most about the tick rate, whatever is asked)"
+        }
+    }
 }
 
 /// A share with its 95 % interval, or "noise" when the interval reaches 0.
@@ -419,4 +434,34 @@ pub fn amdahl(b: &mut Builder) -> Section {
         s.blocks.push(Block::Table(t));
     }
     s
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The sample results' baseline profile, its timer set to `timer`.
+    fn profile_with(timer: Option<Timer>) -> Profile {
+        let results = testkit::sample::sample_results();
+        let mut profile = results
+            .profile
+            .map(|p| p.baseline)
+            .unwrap_or_else(|| panic!("the sample results have no profile"));
+        profile.timer = timer;
+        profile
+    }
+
+    #[test]
+    fn the_sampling_text_names_the_timer_when_the_file_does() {
+        let perf = sampling_text(&profile_with(Some(Timer::PerfCpuClock)));
+        assert!(perf.contains("Sampled with perf cpu-clock ("), "{perf}");
+        let setitimer = sampling_text(&profile_with(Some(Timer::Setitimer)));
+        assert!(
+            setitimer.contains("Sampled with setitimer ("),
+            "{setitimer}"
+        );
+        // Older files do not say: neither is claimed.
+        let unknown = sampling_text(&profile_with(None));
+        assert!(!unknown.contains("Sampled with"), "{unknown}");
+    }
 }
