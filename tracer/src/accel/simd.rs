@@ -20,7 +20,7 @@
 
 use super::{Intersector, cpu_has_avx2_fma, intersect_primitive, occluded_by_cones_and_planars};
 use crate::counter::{Counter, Phase, Stat};
-use crate::primitives::quick_miss_margin;
+use crate::primitives::{quick_miss_margin, sphere_may_hit};
 use crate::ray::{Hit, PrimKind, PrimRef, Ray};
 use crate::scene::Scene;
 
@@ -303,8 +303,7 @@ fn sphere_pass<C: Counter>(
             let (vx, vy, vz) = (ox - l.cx[i], oy - l.cy[i], oz - l.cz[i]);
             half_b[i] = dx * vx + dy * vy + dz * vz;
             let oo = vx * vx + vy * vy + vz * vz;
-            let textbook = half_b[i] * half_b[i] - (oo - l.radius_sq[i]);
-            passed[i] = textbook >= -quick_miss_margin(oo);
+            passed[i] = sphere_may_hit(half_b[i], oo, l.radius_sq[i]);
             any_passed |= passed[i];
         }
         let live = live_lanes(k, count);

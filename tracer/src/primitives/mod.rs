@@ -62,6 +62,19 @@ pub(crate) fn quick_miss_margin(scale: f32) -> f32 {
     scale * QUICK_MISS_FRACTION
 }
 
+/// The sphere test's first stage: whether the thesis's discriminant
+/// `b² - (|Voc|² - r²)` (`b = R·Voc`) may show a hit, i.e. lies above
+/// `-`[`quick_miss_margin`]`(|Voc|²)`. Rearranged as `b² + r² ≥ (1 - 2⁻¹⁶) |Voc|²`, it
+/// takes as many operations as the thesis's test of the discriminant's sign, so a
+/// certain miss costs what it did. `1 - 2⁻¹⁶` is exact in f32, and either arrangement's
+/// rounding (a few ulps of `|Voc|²`) is far inside the margin. A zero radius
+/// (`r² = -inf`) and a NaN say no. Every path (scalar, lanes, packs) calls this one
+/// function, so their decisions agree bit for bit.
+#[inline(always)]
+pub(crate) fn sphere_may_hit(half_b: f32, oo: f32, radius_sq: f32) -> bool {
+    half_b * half_b + radius_sq >= oo * (1.0 - QUICK_MISS_FRACTION)
+}
+
 /// The two roots of `a t² + 2 half_b t + c = 0` in ascending order, given the square
 /// root of the discriminant `half_b² - a c`. `a` must not be zero.
 #[inline(always)]

@@ -6,14 +6,15 @@
 //! in two stages (Haines, Günther and Akenine-Möller, "Precision Improvements for
 //! Ray/Sphere Intersection", Ray Tracing Gems, 2019, ch. 7):
 //! 1. the thesis's discriminant, trusted only to say "certainly a miss" when it lies
-//!    below [`quick_miss_margin`] (most tests end here, at the thesis's cost);
+//!    below a margin of `|Voc|²/2¹⁶` ([`sphere_may_hit`]; most tests end here, at
+//!    the thesis's cost);
 //! 2. otherwise `r² - |Voc - (R·Voc) R|²`, the squared radius less the squared distance
 //!    from the centre to the ray, computed from the perpendicular vector: no
 //!    cancellation. The roots stay `-(R·Voc) ± √disc`: the near root of a sphere ahead
 //!    adds two terms of one sign, and the far root is needed only from inside or on the
 //!    surface, where `|R·Voc| ≤ r`, so neither cancels more than the inputs' rounding.
 
-use super::{quick_miss_margin, test_radius_sq};
+use super::{sphere_may_hit, test_radius_sq};
 use crate::counter::{Counter, Stat};
 use crate::ray::Ray;
 use crate::vec3::Vec3;
@@ -70,7 +71,7 @@ impl Sphere {
         let half_b = c.dot(ray.dir, voc);
         let oo = c.dot(voc, voc);
         // Stage 1. A zero-radius sphere (radius² = -inf, see `test_radius_sq`) ends here.
-        if !(half_b * half_b - (oo - self.radius_sq) >= -quick_miss_margin(oo)) {
+        if !sphere_may_hit(half_b, oo, self.radius_sq) {
             return None;
         }
         // Stage 2: the centre's offset across the ray.

@@ -24,7 +24,7 @@ use super::{Aabb, Bvh, BvhBuilder, Node};
 use crate::accel::{Intersector, cpu_has_avx2_fma, intersect_primitive};
 use crate::counter::{Counter, Phase, Stat};
 use crate::huge_pages;
-use crate::primitives::quick_miss_margin;
+use crate::primitives::sphere_may_hit;
 use crate::ray::{Hit, PrimKind, PrimRef, Ray};
 use crate::scene::Scene;
 use glam::Vec3A;
@@ -650,8 +650,7 @@ fn sphere_pack<C: Counter, const FROM_EYE: bool>(
         let (vx, vy, vz) = (ox - pack.cx[i], oy - pack.cy[i], oz - pack.cz[i]);
         half_b[i] = dx * vx + dy * vy + dz * vz;
         let oo = vx * vx + vy * vy + vz * vz;
-        let textbook = half_b[i] * half_b[i] - (oo - pack.radius_sq[i]);
-        passed[i] = textbook >= -quick_miss_margin(oo);
+        passed[i] = sphere_may_hit(half_b[i], oo, pack.radius_sq[i]);
         any_passed |= passed[i];
     }
     let n = u64::from(live);
