@@ -203,10 +203,15 @@ fn spd_scenes_render_as_brute_force_does() {
                 if same_rays { "equal" } else { "differ" },
                 embree.memory_bytes() / 1024
             );
-            // Native mode's picture differs where rtprof's quadric tests round:
-            // reported, not required to match.
             if mode == EmbreeMode::Exact && (error > 0.5 || !same_rays) {
                 failures.push(format!("{name}: {:?} vs {:?}", base.rays, ours.rays));
+            }
+            // Native mode's spheres are Embree's own arithmetic, which rounds apart from
+            // rtprof's in the last bits (so its rays may differ); with both computing the
+            // discriminant without cancellation, its sphere pictures agree (balls, all
+            // spheres: before the two-stage tests it differed on small far spheres).
+            if mode == EmbreeMode::Native && name == "balls" && error > 0.5 {
+                failures.push(format!("{name}: Native rms {error:.3} > 0.5"));
             }
         }
         eprintln!("{line}");
