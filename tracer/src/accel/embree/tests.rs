@@ -208,9 +208,10 @@ fn spd_scenes_render_as_brute_force_does() {
             }
             // Native mode's spheres are Embree's own arithmetic, which rounds apart from
             // rtprof's in the last bits (so its rays may differ); with both computing the
-            // discriminant without cancellation, its sphere pictures agree (balls, all
-            // spheres: before the two-stage tests it differed on small far spheres).
-            if mode == EmbreeMode::Native && name == "balls" && error > 0.5 {
+            // discriminant without cancellation, its pictures agree (before the two-stage
+            // tests it differed on small far spheres; at 32×32 now: balls 0.07, lattice
+            // 0.11, shells 0.04, the rest 0).
+            if mode == EmbreeMode::Native && error > 0.5 {
                 failures.push(format!("{name}: Native rms {error:.3} > 0.5"));
             }
         }
