@@ -65,7 +65,10 @@ fn every_f32_structure_draws_the_far_spheres_as_the_analytic_count() {
             let drawn = rendered.counts().map_or(0, |c| c.rays.primary_hit);
             println!("r = {r}: {structure} draws {drawn} of {want} pixels");
             let off = (drawn as f64 - want as f64).abs() / want as f64;
-            assert!(off <= 0.02, "r = {r}: {structure} draws {drawn}, analytic {want}");
+            assert!(
+                off <= 0.02,
+                "r = {r}: {structure} draws {drawn}, analytic {want}"
+            );
             masks.push(far_sphere::drawn_mask(&rendered.frame));
         }
         assert!(
