@@ -1,5 +1,5 @@
-//! `reference`: an independent brute-force Whitted renderer in f64, the ground truth
-//! that the f32 tracer and its variants are judged by.
+//! `reference`: an independent Whitted renderer in f64, the ground truth that the f32
+//! tracer and its variants are judged by.
 //!
 //! It reads the tracer's parsed [`tracer::Scene`] (its numbers converted to f64, the
 //! derived f32 values such as axes, lengths and plane normals recomputed from the
@@ -8,8 +8,11 @@
 //! its own maths: every intersection test, the camera and the shading are written here
 //! from the formulas, in f64, in forms that do not cancel for small or far objects
 //! (Haines et al., *Ray Tracing Gems* ch. 7, and the perpendicular forms for cylinders
-//! and cones, [`primitives`]). It shares no code with the tracer's renderer; the output
-//! is the tracer's [`tracer::Frame`], so the image metrics compare the two directly.
+//! and cones, [`primitives`]). Its queries walk its own hierarchy of f64 boxes
+//! ([`bvh`]), which only culls: the picture is the brute-force walk's over every
+//! primitive ([`Walk::BruteForce`]), bit for bit (tested). It shares no code with the
+//! tracer's renderer; the output is the tracer's [`tracer::Frame`], so the image
+//! metrics compare the two directly.
 //! `docs/reference.md` has the maths and the cost.
 //!
 //! ```
@@ -33,6 +36,7 @@
 // `!(x > y)` is written on purpose: unlike `x <= y` it also rejects NaN.
 #![allow(clippy::neg_cmp_op_on_partial_ord)]
 
+pub mod bvh;
 pub mod camera;
 pub mod error;
 pub mod primitives;
@@ -45,3 +49,4 @@ pub mod shading;
 pub use error::ReferenceError;
 pub use render::render;
 pub use scene::RefScene;
+pub use shading::Walk;

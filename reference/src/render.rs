@@ -5,7 +5,7 @@
 use crate::camera::Camera;
 use crate::error::ReferenceError;
 use crate::scene::RefScene;
-use crate::shading::{Color, Shader};
+use crate::shading::{Color, Shader, Walk};
 use glam::DVec3;
 use rayon::prelude::*;
 use tracer::{Frame, RenderOptions, Rgb, Sampling, Scene};
@@ -26,6 +26,17 @@ pub fn render_converted(
     options: &RenderOptions,
     progress: &(dyn Fn(u64) + Sync),
 ) -> Result<Frame, ReferenceError> {
+    render_walking(scene, options, Walk::Bvh, progress)
+}
+
+/// [`render_converted`] with the queries walking as `walk` says (the picture is the
+/// same either way; the brute-force walk is the definition tests hold the BVH to).
+pub fn render_walking(
+    scene: &RefScene,
+    options: &RenderOptions,
+    walk: Walk,
+    progress: &(dyn Fn(u64) + Sync),
+) -> Result<Frame, ReferenceError> {
     let limits = &options.limits;
     limits
         .check_size(u64::from(options.width), u64::from(options.height))
@@ -35,7 +46,7 @@ pub fn render_converted(
         .map_err(ReferenceError::Limits)?;
     let camera = Camera::new(&scene.view, options.width, options.height, options.sampling)
         .map_err(ReferenceError::Camera)?;
-    let shader = Shader::new(scene, options.mode, options.max_depth);
+    let shader = Shader::new(scene, options.mode, options.max_depth, walk);
     let (columns, rows) = camera.grid();
     let trace_row = |row: u32| {
         let samples: Vec<Color> = (0..columns)

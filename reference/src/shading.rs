@@ -1,5 +1,6 @@
 //! Whitted shading in f64 by the tracer's rules (README, "SPD rules as implemented"),
-//! with every query a brute-force walk over all primitives.
+//! every query answered by the [`crate::bvh`] (which only culls) or, on request, by a
+//! brute-force walk over all primitives ([`Walk`]): the same hits either way.
 //!
 //! Colour = ambient + Σ over lights reached by a shadow ray of (Lambert + Phong
 //! highlight) + Ks × reflected + T × refracted, to the maximum depth with the eye ray at
@@ -24,6 +25,7 @@
 //! light with the primitive's own normal (not turned toward the viewer), gray, the
 //! background where it is negative, nothing else.
 
+use crate::bvh::Bvh;
 use crate::primitives::Shape;
 use crate::ray::{Hit, Ray};
 use crate::scene::{Material, Object, RefScene};
@@ -45,11 +47,22 @@ pub fn luminance(c: Color) -> f64 {
     0.299 * c.x + 0.587 * c.y + 0.114 * c.z
 }
 
+/// How queries find the primitives a ray meets.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Walk {
+    /// Through the f64 bounding volume hierarchy (the default).
+    Bvh,
+    /// Every primitive, in scene order: the definition the hierarchy is tested against.
+    BruteForce,
+}
+
 /// Traces rays through a scene.
 pub struct Shader<'s> {
     scene: &'s RefScene,
     mode: ShadingMode,
     max_depth: u32,
+    /// `None`: the brute-force walk.
+    bvh: Option<Bvh>,
 }
 
 /// A hit's surface as shading sees it.
@@ -65,16 +78,20 @@ struct Surface {
 }
 
 impl<'s> Shader<'s> {
-    pub fn new(scene: &'s RefScene, mode: ShadingMode, max_depth: u32) -> Self {
+    pub fn new(scene: &'s RefScene, mode: ShadingMode, max_depth: u32, walk: Walk) -> Self {
         Self {
             scene,
             mode,
             max_depth,
+            bvh: (walk == Walk::Bvh).then(|| Bvh::build(&scene.objects)),
         }
     }
 
     /// The closest primitive hit by `ray` at `t > 0` (ties: the first in scene order).
     pub fn closest(&self, ray: &Ray) -> Option<(&'s Object, Hit)> {
+        if let Some(bvh) = &self.bvh {
+            return bvh.closest(&self.scene.objects, ray);
+        }
         let mut best: Option<(&'s Object, Hit)> = None;
         let mut reach = f64::INFINITY;
         for object in &self.scene.objects {
@@ -88,6 +105,9 @@ impl<'s> Shader<'s> {
 
     /// Whether any primitive lies on `ray` at `0 < t < reach`.
     pub fn occluded(&self, ray: &Ray, reach: f64) -> bool {
+        if let Some(bvh) = &self.bvh {
+            return bvh.occluded(&self.scene.objects, ray, reach);
+        }
         self.scene
             .objects
             .iter()

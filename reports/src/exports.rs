@@ -45,6 +45,9 @@ pub fn variants_csv(results: &Results) -> String {
         "psnr_db",
         "ssim",
         "max_abs_diff",
+        "rms_vs_f64",
+        "psnr_db_vs_f64",
+        "max_abs_diff_vs_f64",
     ];
     header.extend(counters.iter().map(|c| c.as_str()));
     let n = |x: Option<f64>| text::csv_number(x);
@@ -52,6 +55,7 @@ pub fn variants_csv(results: &Results) -> String {
     for s in &results.scenes {
         for v in &s.variants {
             let q = v.quality.as_ref();
+            let truth = v.vs_f64_reference.as_ref();
             let [low, high] = v
                 .speedup_interval
                 .map_or([None, None], |[l, h]| [Some(l), Some(h)]);
@@ -84,6 +88,9 @@ pub fn variants_csv(results: &Results) -> String {
                 n(q.and_then(|q| q.psnr)),
                 n(q.map(|q| q.ssim)),
                 q.map_or(String::new(), |q| q.max_abs_diff.to_string()),
+                n(truth.map(|q| q.rms)),
+                n(truth.and_then(|q| q.psnr)),
+                truth.map_or(String::new(), |q| q.max_abs_diff.to_string()),
             ];
             row.extend(
                 counters
@@ -248,7 +255,8 @@ mod tests {
             .flat_map(|s| &s.variants)
             .flat_map(|v| v.counts.keys())
             .collect();
-        assert_eq!(header.len(), 19 + counters.len());
+        assert_eq!(header.len(), 22 + counters.len());
         assert!(header.contains(&"ops.dot") && header.contains(&"verdict"));
+        assert!(header.contains(&"rms_vs_f64"));
     }
 }

@@ -3,14 +3,14 @@
 //! Each sentence is computed, never canned: the profile's top function and its share,
 //! the fastest variant (geometric-mean speed-up over the scenes it ran on) and its worst
 //! image error, the variants whose images leave the thesis's "visually identical" band,
-//! the range of hardware-over-software speed-ups, whether the thesis design fits the
+//! baseline's own error against the f64 reference renderer, the range of hardware-over-software speed-ups, whether the thesis design fits the
 //! validated device and what runs out, the model's worst error against table 8, and
 //! failures. A sentence whose data is missing is left out.
 
 use hwmodel::device::{FitState, headroom_warning, resources_above_headroom};
 
 use crate::charts::short_name;
-use crate::format::{join_list, percent_of};
+use crate::format::{self, join_list, percent_of};
 use crate::results::{
     Band, CriterionEstimate, DeviceUse, HwColumn, HwRow, InstructionCount, Results, VariantName,
 };
@@ -21,6 +21,7 @@ pub fn headline_findings(results: &Results) -> Vec<String> {
         profile_finding(results),
         fastest_variant_finding(results),
         quality_finding(results),
+        truth_finding(results),
         hardware_speedup_finding(results),
         device_finding(results),
         model_error_finding(results),
@@ -193,6 +194,47 @@ fn quality_finding(results: &Results) -> Option<String> {
             join_list(&leaving)
         )
     })
+}
+
+/// How far baseline (and the variant furthest from it) is from the f64 reference's
+/// picture: the error every other image metric inherits.
+pub fn truth_finding(results: &Results) -> Option<String> {
+    // (scene, variant, RMS against the truth), finite only.
+    let errors: Vec<(&str, &VariantName, f64)> = results
+        .scenes
+        .iter()
+        .flat_map(|s| {
+            s.variants.iter().filter_map(move |v| {
+                let q = v.vs_f64_reference.as_ref()?;
+                q.rms
+                    .is_finite()
+                    .then_some((s.name.as_str(), &v.variant, q.rms))
+            })
+        })
+        .collect();
+    let baseline: Vec<&(&str, &VariantName, f64)> =
+        errors.iter().filter(|e| e.1.is_reference()).collect();
+    let worst_base = baseline.iter().max_by(|a, b| a.2.total_cmp(&b.2))?;
+    let exact = baseline.iter().filter(|e| e.2 == 0.0).count();
+    let furthest = errors
+        .iter()
+        .filter(|e| !e.1.is_reference())
+        .max_by(|a, b| a.2.total_cmp(&b.2))
+        .map(|(scene, variant, rms)| {
+            format!(
+                "; the variant furthest from it is {variant} (RMS {} on {scene})",
+                format::fixed(*rms, 2)
+            )
+        })
+        .unwrap_or_default();
+    Some(format!(
+        "Against the independent f64 reference renderer, {}'s pictures are at most RMS {} off (on {}), and the same to the 8-bit level on {} of {}{furthest}.",
+        worst_base.1,
+        format::fixed(worst_base.2, 2),
+        worst_base.0,
+        exact,
+        format::plural(baseline.len(), "scene"),
+    ))
 }
 
 fn hardware_speedup_finding(results: &Results) -> Option<String> {
@@ -636,6 +678,47 @@ mod tests {
         assert_eq!(measured_span(&r), " (measured 2026-11-21 10:00 UTC)");
         r.criterion.clear();
         assert_eq!(measured_span(&r), "");
+    }
+
+    #[test]
+    fn the_truth_finding_names_baselines_worst_scene_and_the_furthest_variant() {
+        let mut r = sample_results();
+        // Hand-set errors against the f64 reference: baseline 0 everywhere but 0.75 on
+        // the second scene; one variant at 3.5 on the first.
+        for (i, scene) in r.scenes.iter_mut().enumerate() {
+            for v in &mut scene.variants {
+                let rms = match (i, v.variant.is_reference()) {
+                    (1, true) => 0.75,
+                    (0, false) if v.variant.as_str() == "fast-sqrt" => 3.5,
+                    _ => 0.0,
+                };
+                if let Some(q) = v.vs_f64_reference.as_mut() {
+                    q.rms = rms;
+                }
+            }
+        }
+        let scenes = r
+            .scenes
+            .iter()
+            .filter(|s| s.variants.iter().any(|v| v.variant.is_reference()))
+            .count();
+        let said = truth_finding(&r).unwrap();
+        let second = &r.scenes[1].name;
+        let first = &r.scenes[0].name;
+        assert_eq!(
+            said,
+            format!(
+                "Against the independent f64 reference renderer, baseline's pictures are at most RMS 0.75 off (on {second}), and the same to the 8-bit level on {} of {scenes} scenes; the variant furthest from it is fast-sqrt (RMS 3.50 on {first}).",
+                scenes - 1
+            )
+        );
+        // Without the reference, no sentence.
+        for scene in &mut r.scenes {
+            for v in &mut scene.variants {
+                v.vs_f64_reference = None;
+            }
+        }
+        assert_eq!(truth_finding(&r), None);
     }
 
     #[test]

@@ -231,6 +231,20 @@ pub struct SceneResult {
     /// Per-pixel maps of the variants that wrote them (suite option `pixel_stats`).
     #[serde(default)]
     pub pixel_maps: Vec<VariantPixelMaps>,
+    /// The independent f64 reference renderer's picture of the scene, the ground truth
+    /// each variant's [`VariantResult::vs_f64_reference`] is measured against (suite
+    /// option `f64_reference`). `None` when it did not run, and in older files.
+    #[serde(default)]
+    pub f64_reference: Option<F64Reference>,
+}
+
+/// The f64 reference's render of a scene, at the scene's size, sampling and shading.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize, JsonSchema)]
+pub struct F64Reference {
+    /// The image, relative to results.json.
+    pub image: String,
+    /// Wall time of the one render (hierarchy build and tracing), seconds.
+    pub seconds: f64,
 }
 
 /// Ray counts a reference publishes for a scene (the SPD's `Readme.txt` table).
@@ -312,6 +326,11 @@ pub struct VariantResult {
     pub heat_map: Option<String>,
     /// Image metrics against baseline (None for baseline itself).
     pub quality: Option<Quality>,
+    /// Image metrics against the f64 reference's picture ([`SceneResult::f64_reference`]),
+    /// baseline's own included: how far each picture is from the truth, not only from
+    /// baseline's. `None` when the reference did not run, and in older files.
+    #[serde(default)]
+    pub vs_f64_reference: Option<Quality>,
     /// Gray histogram (256 bins) of the image; empty when there is no image.
     pub histogram: Vec<u64>,
     /// `accel.lanes_active / accel.lanes_issued` for the SIMD batches (`simd` only).
@@ -516,6 +535,8 @@ pub enum FailedPart {
     Hardware,
     /// The profile of the heaviest scene.
     Profile,
+    /// The f64 reference's render of the scene.
+    F64Reference,
 }
 
 impl std::fmt::Display for FailedPart {
@@ -525,6 +546,7 @@ impl std::fmt::Display for FailedPart {
             FailedPart::Variant(name) => write!(f, "{name}"),
             FailedPart::Hardware => f.write_str("hardware"),
             FailedPart::Profile => f.write_str("profile"),
+            FailedPart::F64Reference => f.write_str("f64 reference"),
         }
     }
 }

@@ -320,6 +320,7 @@ fn variant_result(v: VariantResult, path: &str) -> Result<v2::VariantResult, Res
         image: v.image,
         heat_map: v.heat_map,
         quality,
+        vs_f64_reference: None,
         histogram: v.histogram,
         lane_utilization: None,
         efficiency: None,
@@ -364,6 +365,7 @@ fn scene(s: SceneResult, path: &str) -> Result<v2::SceneResult, ResultsError> {
         memory: None,
         bvh_quality: Vec::new(),
         pixel_maps: Vec::new(),
+        f64_reference: None,
     })
 }
 

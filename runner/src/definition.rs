@@ -54,6 +54,10 @@ pub struct SuiteDef {
     /// Whether the heaviest scene is profiled (default: yes).
     #[serde(default = "yes")]
     pub profile: bool,
+    /// Whether every scene is also rendered once by the f64 reference renderer, each
+    /// variant's picture measured against it (default: yes).
+    #[serde(default = "yes")]
+    pub f64_reference: bool,
     /// Scenes (by their name in results, e.g. `balls4`, `rings-small`) whose baseline,
     /// simd and bvh renders also write per-pixel maps.
     #[serde(default)]

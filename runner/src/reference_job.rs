@@ -81,7 +81,7 @@ impl ReferenceRender {
         let eye_rays = u64::from(self.frame.width) * u64::from(self.frame.height);
         let secs = self.tracing.as_secs_f64().max(1e-9);
         format!(
-            "{}: {}, f64 reference (brute force)\npreprocessing {} s (parse + conversion), tracing {} s on {}\n{} pixels, {} pixels/s",
+            "{}: {}, f64 reference\npreprocessing {} s (parse + conversion), tracing {} s (with its BVH) on {}\n{} pixels, {} pixels/s",
             input,
             self.scene.summary(),
             fixed(self.preprocessing.as_secs_f64(), 3),

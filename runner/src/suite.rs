@@ -1,5 +1,6 @@
 //! The suite: every scene of a definition with every variant (counts, timed renders,
-//! images and their error against the reference), the hardware model and emulator
+//! images and their error against the reference variant and the f64 reference
+//! renderer's picture), the hardware model and emulator
 //! where the scene allows, and a profile of the heaviest scene; collected into one
 //! [`Results`]. A failing scene or variant is recorded and skipped; the rest stands.
 
@@ -11,8 +12,9 @@ use std::time::Instant;
 use analysis::{Band, compare, difference_heat_map, gray_histogram};
 use hwmodel::hw_scene::HwScene;
 use results::{
-    Calibration, Efficiency, FailedPart, Failure, MachinePeak, ProfileResult, Results, SCHEMA,
-    SceneHardware, SceneResult, Shard, SuiteInfo, VariantName, VariantResult, slug,
+    Calibration, Efficiency, F64Reference, FailedPart, Failure, MachinePeak, ProfileResult,
+    Results, SCHEMA, SceneHardware, SceneResult, Shard, SuiteInfo, VariantName, VariantResult,
+    slug,
 };
 use tracer::{BvhBuilder, RenderOptions, Sampling, Scene, ShadingMode, VariantSet, parse_nff};
 
@@ -28,6 +30,7 @@ use crate::pool::thread_pool;
 use crate::profile_job::ProfileJob;
 use crate::progress::Progress;
 use crate::ray_rates::ray_rates;
+use crate::reference_job;
 use crate::scenes::{SceneSpec, extra_scenes, resolve_scene};
 use crate::staging::save_png;
 use crate::variant_job::{RenderSetup, VariantMeasurement};
@@ -397,6 +400,7 @@ impl SceneRunner<'_> {
             .map(|name| VariantSet::parse(name))
             .collect::<Result<_, _>>()?;
         let measured = setup.measure_all(&sets, &self.def.timing(), true, &doing)?;
+        let truth = self.f64_reference(spec, &setup, &doing, failures)?;
         let mut variants: Vec<VariantResult> = Vec::new();
         let mut reference: Option<analysis::RgbImage> = None;
         let memory = memory_use(&scene, &measured.variants);
@@ -408,7 +412,11 @@ impl SceneRunner<'_> {
             .and_then(|(_, m)| m.as_ref().ok())
             .map(|m| (m.counts, m.time.median));
         for (name, outcome) in names.iter().zip(measured.variants) {
-            match outcome.and_then(|m| self.variant_result(spec, &scene, m, reference.as_ref())) {
+            let result = outcome.and_then(|m| {
+                let truth = truth.as_ref().map(|(_, image)| image);
+                self.variant_result(spec, &scene, m, reference.as_ref(), truth)
+            });
+            match result {
                 Ok((v, image)) => {
                     if v.variant.is_reference() {
                         reference = Some(image);
@@ -470,6 +478,7 @@ impl SceneRunner<'_> {
             memory,
             bvh_quality,
             pixel_maps,
+            f64_reference: truth.map(|(t, _)| t),
         };
         results::change::fill_scene_speedups(&mut result, results::NOISE_THRESHOLD);
         Ok(result)
@@ -569,13 +578,47 @@ impl SceneRunner<'_> {
         Ok(all)
     }
 
-    /// One measured variant: its image saved, compared with the reference's.
+    /// The f64 reference's picture of the scene (suite option `f64_reference`), saved
+    /// beside the variants' images; a failure is recorded and the scene goes on.
+    fn f64_reference(
+        &self,
+        spec: &SceneSpec,
+        setup: &RenderSetup,
+        doing: &dyn Fn(&str),
+        failures: &mut Vec<Failure>,
+    ) -> Result<Option<(F64Reference, analysis::RgbImage)>, RunError> {
+        if !self.def.f64_reference {
+            return Ok(None);
+        }
+        doing("f64 reference");
+        let rendered = reference_job::render_in(setup).and_then(|picture| {
+            let path = format!("images/{}-f64-reference.png", slug(&spec.name));
+            let image = save_png(self.ctx.out, &path, &picture.image)?;
+            let truth = F64Reference {
+                image,
+                seconds: picture.seconds,
+            };
+            Ok((truth, picture.image))
+        });
+        match rendered {
+            Ok(truth) => Ok(Some(truth)),
+            Err(RunError::Stopped) => Err(RunError::Stopped),
+            Err(e) => {
+                failures.push(failure(Some(&spec.name), FailedPart::F64Reference, &e));
+                Ok(None)
+            }
+        }
+    }
+
+    /// One measured variant: its image saved, compared with the reference variant's
+    /// and with the f64 reference's (`truth`).
     fn variant_result(
         &self,
         spec: &SceneSpec,
         scene: &Scene,
         m: VariantMeasurement,
         reference: Option<&analysis::RgbImage>,
+        truth: Option<&analysis::RgbImage>,
     ) -> Result<(VariantResult, analysis::RgbImage), RunError> {
         let variant = VariantName::of(&m.variants);
         let out = self.ctx.out;
@@ -593,6 +636,10 @@ impl SceneRunner<'_> {
                 (Some(quality(&c)), Some(heat_rel))
             }
             _ => (None, None),
+        };
+        let vs_f64_reference = match truth {
+            Some(truth) => Some(crate::collect::quality(&compare(truth, &m.image)?)),
+            None => None,
         };
         let histogram = gray_histogram(&m.image).to_vec();
         let lanes = &m.counts.accel;
@@ -622,6 +669,7 @@ impl SceneRunner<'_> {
                 image: Some(image_rel),
                 heat_map,
                 quality,
+                vs_f64_reference,
                 histogram,
                 lane_utilization,
                 efficiency,

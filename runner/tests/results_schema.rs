@@ -2,7 +2,8 @@
 //! validates against the checked-in JSON Schema (`docs/results.schema.json`); the
 //! same value with a required field removed, or a value of the wrong type, does not.
 //! The same run's analysis fields (roofline, rays per second, SIMD lanes, BVH quality,
-//! per-pixel maps) are checked against independent expectations.
+//! per-pixel maps, error against the f64 reference) are checked against independent
+//! expectations.
 
 use std::path::PathBuf;
 use std::sync::atomic::AtomicBool;
@@ -124,10 +125,34 @@ fn flops_by_hand(counts: &std::collections::BTreeMap<String, u64>) -> u64 {
 }
 
 /// Roofline, ray rates, lanes, BVH quality and per-pixel maps of the tiny suite.
+/// A PNG the suite wrote, as the image metrics read images.
+fn read_png(path: &std::path::Path) -> analysis::RgbImage {
+    let rgb = image::open(path)
+        .unwrap_or_else(|e| panic!("{}: {e}", path.display()))
+        .to_rgb8();
+    analysis::RgbImage::new(rgb.width(), rgb.height(), rgb.into_raw()).unwrap()
+}
+
 fn analysis_fields_hold(results: &Results, out: &std::path::Path) {
     let peak = results.peak.as_ref().expect("the suite measures the peaks");
     assert!(peak.peak_gflops > 0.0 && peak.bandwidth_gbs > 0.0 && peak.cache_bandwidth_gbs > 0.0);
     for scene in &results.scenes {
+        // The f64 reference's picture is on disk, and each variant's error against it
+        // is the error of its own PNG against that picture (recomputed here); bvh and
+        // simd give baseline's picture, so their error is baseline's.
+        let truth = scene.f64_reference.as_ref().expect("the f64 reference ran");
+        let truth_image = read_png(&out.join(&truth.image));
+        let base_truth = scene.variants[0].vs_f64_reference.clone();
+        for v in &scene.variants {
+            let q = v
+                .vs_f64_reference
+                .as_ref()
+                .expect("error against the f64 reference");
+            let image = read_png(&out.join(v.image.as_ref().unwrap()));
+            let again = analysis::compare(&truth_image, &image).unwrap();
+            assert_eq!(q.rms, again.rms, "{} {}", scene.name, v.variant);
+            assert_eq!(Some(q), base_truth.as_ref(), "{} {}", scene.name, v.variant);
+        }
         for v in &scene.variants {
             let what = format!("{} {}", scene.name, v.variant);
             let e = v.efficiency.as_ref().expect("efficiency");

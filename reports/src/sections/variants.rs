@@ -41,7 +41,7 @@ pub fn variants(b: &mut Builder) -> Section {
         return s.empty("No scene has a variant result (see Failures).");
     }
     s.blocks.push(Block::text(format!(
-        "Time: {}, the median of the timed repeats with its 95 % bootstrap interval. Speed-up: baseline median / variant median, with its 95 % bootstrap interval; the variants were timed interleaved with baseline. Verdict: faster or slower only when the speed-up exceeds the noise threshold of {} and its interval excludes 1×, else within noise (the same rule as the regression gate). RMS, PSNR, SSIM: the image against baseline (PSNR ∞: identical); the band is the thesis's table 2. Count columns: baseline's exact count, and each variant's change from it; the last column names the other counters that changed.",
+        "Time: {}, the median of the timed repeats with its 95 % bootstrap interval. Speed-up: baseline median / variant median, with its 95 % bootstrap interval; the variants were timed interleaved with baseline. Verdict: faster or slower only when the speed-up exceeds the noise threshold of {} and its interval excludes 1×, else within noise (the same rule as the regression gate). RMS, PSNR, SSIM: the image against baseline (PSNR ∞: identical); the band is the thesis's table 2. RMS vs f64: the image against the independent f64 reference renderer's picture (docs/reference.md), baseline's own included. Count columns: baseline's exact count, and each variant's change from it; the last column names the other counters that changed.",
         time_covers(r.suite.timing.covers),
         format::percent(
             r.suite.noise_threshold.unwrap_or(crate::results::NOISE_THRESHOLD) * 100.0,
@@ -95,6 +95,7 @@ fn variant_table(scene: &SceneResult, base: Option<&VariantResult>) -> Table {
         Column::number("PSNR"),
         Column::number("SSIM"),
         Column::number("max diff"),
+        Column::number("RMS vs f64").detail("reference"),
     ]);
     columns.extend(MAIN_COUNTERS.iter().map(|(_, name)| Column::number(*name)));
     columns.push(Column::text("other count changes").grow());
@@ -123,6 +124,15 @@ fn variant_table(scene: &SceneResult, base: Option<&VariantResult>) -> Table {
             None => Cell::dash(),
         });
         row.extend(quality_cells(v));
+        row.push(match &v.vs_f64_reference {
+            Some(q) => Cell::number(format::fixed(q.rms, 2), q.rms)
+                .tone(Tone::of_band(q.band))
+                .hover(format!(
+                    "against the f64 reference renderer's picture: largest difference {}",
+                    q.max_abs_diff
+                )),
+            None => Cell::dash(),
+        });
         for (key, _) in MAIN_COUNTERS {
             row.push(counter_cell(v, base, key));
         }
