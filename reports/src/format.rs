@@ -70,6 +70,17 @@ pub fn significant(v: f64) -> String {
     fixed(v, three_digit_decimals(v))
 }
 
+/// A non-negative quantity with three significant digits below 1000 and as a grouped
+/// integer from 1000 up: "3.27", "15.6", "13,530".
+pub fn quantity(v: f64) -> String {
+    if v.is_finite() && v.abs() >= 999.5 {
+        let n = count(v.abs().round() as u64);
+        if v < 0.0 { format!("-{n}") } else { n }
+    } else {
+        significant(v)
+    }
+}
+
 /// The unit a time of `s` seconds is printed in: its name and the factor from seconds.
 /// Values that round up to the next unit take it (999.96 µs is "1.00 ms").
 pub fn time_unit(s: f64) -> (&'static str, f64) {
@@ -327,6 +338,16 @@ mod tests {
         assert_eq!(count(114_480), "114,480");
         assert_eq!(count(1_234_567), "1,234,567");
         assert_eq!(count(u64::MAX), "18,446,744,073,709,551,615");
+    }
+
+    #[test]
+    fn quantities_keep_three_digits_then_group_integers() {
+        assert_eq!(quantity(3.2734), "3.27");
+        assert_eq!(quantity(15.59), "15.6");
+        assert_eq!(quantity(999.4), "999");
+        assert_eq!(quantity(999.6), "1,000");
+        assert_eq!(quantity(13_530.43), "13,530");
+        assert_eq!(quantity(-2_500.0), "-2,500");
     }
 
     #[test]

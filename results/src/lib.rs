@@ -27,6 +27,7 @@ pub mod pixel_stats;
 mod read;
 pub mod scaling;
 pub mod schema;
+pub mod thesis_profile;
 pub mod timing_policy;
 pub mod v1;
 pub mod validate;

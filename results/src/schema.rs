@@ -451,6 +451,11 @@ pub struct Profile {
     /// CPU seconds sampled (all threads).
     #[serde(default)]
     pub cpu_seconds: Option<f64>,
+    /// Exact counts of one render of the profiled frame, flattened (`ops.dot`,
+    /// `rays.primary`, …): the calls of every operation, timed or not. Empty in older
+    /// files.
+    #[serde(default)]
+    pub counts: BTreeMap<String, u64>,
     /// The view of `flat`, the texts and the flamegraph (`/2` files: native).
     #[serde(default)]
     pub view: ProfileView,

@@ -289,6 +289,7 @@ fn profile(p: Profile, path: &str) -> Result<v2::Profile, ResultsError> {
         samples_asked: None,
         timer: None,
         cpu_seconds: None,
+        counts: Default::default(),
         view: v2::ProfileView::Native,
         second_view: None,
         exports: Vec::new(),

@@ -28,6 +28,7 @@ fn profile(flat: Vec<FlatRow>) -> Profile {
         samples_asked: Some(4000),
         timer: None,
         cpu_seconds: Some(1.0),
+        counts: Default::default(),
         view: ProfileView::Phases,
         flat,
         flat_text: "flat-baseline.txt".into(),

@@ -51,9 +51,15 @@ pub struct SuiteDef {
     /// emulator (default: yes).
     #[serde(default = "yes")]
     pub hardware: bool,
-    /// Whether the heaviest scene is profiled (default: yes).
+    /// Whether a scene is profiled (default: yes).
     #[serde(default = "yes")]
     pub profile: bool,
+    /// The scene profiled (an entry as in `scenes`, e.g. `spd:rings`, the thesis's
+    /// table 6), at `profile_size`, with baseline and the fastest variant that kept its
+    /// picture on the suite's run of the same scene (`NAME` or `NAME-small`); unset:
+    /// the suite's heaviest scene.
+    #[serde(default)]
+    pub profile_scene: Option<String>,
     /// Whether every scene is also rendered once by the f64 reference renderer, each
     /// variant's picture measured against it (default: yes).
     #[serde(default = "yes")]

@@ -139,6 +139,7 @@ pub fn save_profile(
         samples_asked: Some(p.samples_asked),
         timer: Some(p.timer),
         cpu_seconds: Some(p.cpu_seconds),
+        counts: crate::collect::count_map(&p.counts),
         view: ProfileView::Phases,
         flat: phases.flat,
         flat_text: phases.flat_text,

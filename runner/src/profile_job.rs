@@ -85,6 +85,9 @@ pub struct VariantProfile {
     pub wall_seconds: f64,
     /// Wall seconds of each sampled render (phases recorded, sampler running).
     pub render_seconds: Vec<f64>,
+    /// Exact counts of one render.
+    #[serde(skip)]
+    pub counts: Counts,
     pub phases: ViewProfile,
     pub native: ViewProfile,
 }
@@ -287,6 +290,7 @@ impl ProfileJob<'_> {
             cpu_seconds: cpu,
             wall_seconds: run.wall.as_secs_f64(),
             render_seconds: render_seconds.into_inner(),
+            counts,
             phases,
             native,
         })

@@ -40,6 +40,8 @@ pub struct Suite {
     pub def: SuiteDef,
     pub quick: bool,
     pub scenes: Vec<SceneSpec>,
+    /// The scene to profile when the definition names one (`profile_scene`).
+    pub profile_scene: Option<SceneSpec>,
     /// The share of the scenes this run holds ([`Suite::with_shard`]); `None`: all.
     pub shard: Option<Shard>,
 }
@@ -118,10 +120,17 @@ impl Suite {
         if let Some(dir) = extra_dir {
             scenes.extend(extra_scenes(dir, (def.extra_size[0], def.extra_size[1]))?);
         }
+        let profile_size = (def.profile_size[0], def.profile_size[1]);
+        let profile_scene = def
+            .profile_scene
+            .as_deref()
+            .map(|entry| resolve_scene(entry, profile_size, base_dir))
+            .transpose()?;
         Ok(Suite {
             def,
             quick,
             scenes,
+            profile_scene,
             shard: None,
         })
     }
@@ -214,7 +223,12 @@ impl Suite {
 
         ctx.progress.begin("profile", 0);
         ctx.progress.message("heaviest scene");
-        let profile = match runner.run_profile(&self.scenes, &scenes) {
+        // A named profile scene is profiled once: by the whole run, or by shard 1.
+        let named = match self.shard {
+            Some(shard) if shard.index != 1 => None,
+            _ => self.profile_scene.as_ref(),
+        };
+        let profile = match runner.run_profile(&self.scenes, &scenes, named) {
             Ok(p) => p,
             Err(RunError::Stopped) => {
                 ctx.progress.end();
@@ -319,6 +333,25 @@ fn efficiency(
         roof_gflops: Some(roof),
         fraction_of_roof: (roof > 0.0).then(|| achieved / roof),
     }
+}
+
+/// The fastest variant of `scene` whose picture stays visually identical to the
+/// reference variant's.
+fn best_kept_picture(scene: &SceneResult) -> Option<VariantName> {
+    scene
+        .variants
+        .iter()
+        .filter(|v| !v.variant.is_reference())
+        .filter(|v| {
+            v.quality
+                .as_ref()
+                .is_some_and(|q| q.band == Band::VisuallyIdentical)
+        })
+        .max_by(|a, b| {
+            let s = |v: &VariantResult| v.speedup.unwrap_or(f64::NEG_INFINITY);
+            s(a).total_cmp(&s(b))
+        })
+        .map(|v| v.variant.clone())
 }
 
 /// What the scene's renders held: the scene, the largest structure a variant built and
@@ -716,15 +749,25 @@ impl SceneRunner<'_> {
         })
     }
 
-    /// Profiles the heaviest scene: the reference and the fastest variant whose picture
-    /// stays visually identical.
+    /// Profiles the named scene (`profile_scene`: in a shard other than the first,
+    /// nothing) or else the heaviest: the reference and the fastest variant whose
+    /// picture stays visually identical on the suite's run of the same scene.
     fn run_profile(
         &self,
         specs: &[SceneSpec],
         results: &[SceneResult],
+        named: Option<&SceneSpec>,
     ) -> Result<Option<ProfileResult>, RunError> {
-        if !self.def.profile {
+        if !self.def.profile || (self.def.profile_scene.is_some() && named.is_none()) {
             return Ok(None);
+        }
+        if let Some(spec) = named {
+            let small = format!("{}-small", spec.name);
+            let ran = results
+                .iter()
+                .filter(|s| s.name == spec.name || s.name == small)
+                .max_by_key(|s| s.variants.len());
+            return self.profile_spec(spec, ran.and_then(best_kept_picture));
         }
         let reference = |s: &SceneResult| {
             let v = s.variants.iter().find(|v| v.variant.is_reference())?;
@@ -744,23 +787,19 @@ impl SceneRunner<'_> {
         else {
             return Ok(None);
         };
-        let best = heaviest
-            .variants
-            .iter()
-            .filter(|v| !v.variant.is_reference())
-            .filter(|v| {
-                v.quality
-                    .as_ref()
-                    .is_some_and(|q| q.band == Band::VisuallyIdentical)
-            })
-            .max_by(|a, b| {
-                let s = |v: &VariantResult| v.speedup.unwrap_or(f64::NEG_INFINITY);
-                s(a).total_cmp(&s(b))
-            })
-            .map(|v| v.variant.clone());
+        let best = best_kept_picture(heaviest);
         let Some(spec) = specs.iter().find(|s| s.name == heaviest.name) else {
             return Ok(None);
         };
+        self.profile_spec(spec, best)
+    }
+
+    /// Profiles `spec` at the profile size: baseline and `best`.
+    fn profile_spec(
+        &self,
+        spec: &SceneSpec,
+        best: Option<VariantName>,
+    ) -> Result<Option<ProfileResult>, RunError> {
         let scene = parse_nff(&spec.text, &spec.source).map_err(|e| RunError::Scene {
             scene: spec.name.clone(),
             message: e.to_string(),

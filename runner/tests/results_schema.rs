@@ -25,6 +25,7 @@ variants = ["baseline", "bvh", "simd"]
 scenes = ["balls4", "cylinder2"]
 pixel_stats = ["balls4"]
 extra_size = [32, 24]
+profile_scene = "one-sphere"
 profile_size = [32, 24]
 profile_frequency = 1000
 profile_samples = 20
@@ -76,6 +77,13 @@ fn a_fresh_results_file_validates_against_the_checked_in_schema() {
         assert_eq!(scene.variants.len(), 3, "{}", scene.name);
         assert_eq!((scene.width, scene.height), (32, 24));
     }
+    // The named profile scene, though not among the suite's scenes, with its counts:
+    // one sphere, so every eye ray runs a sphere test (and shadow rays more).
+    let profile = results.profile.as_ref().expect("a profile");
+    assert_eq!(profile.scene, "one-sphere");
+    let counts = &profile.baseline.counts;
+    assert_eq!(counts["rays.primary"], 32 * 24);
+    assert!(counts["tests.sphere.tests"] >= counts["rays.primary"]);
     let value = serde_json::to_value(&results).unwrap();
     let validator = validator();
     let found = errors(&validator, &value);

@@ -340,6 +340,8 @@ fn definition(request: &JobRequest, catalogue: &Catalogue) -> Result<(SuiteDef, 
         hardware: request.runs(Part::Hardware),
         profile: request.runs(Part::Profile),
         f64_reference: true,
+        // The job's one scene is the heaviest.
+        profile_scene: None,
         pixel_stats: Vec::new(),
         spd: None,
         quick: None,

@@ -979,6 +979,7 @@ fn sample_profile(
         samples_asked: Some((total / seconds_per_sample).round() as u64),
         timer: Some(results::Timer::PerfCpuClock),
         cpu_seconds: Some(total),
+        counts,
         view: ProfileView::Native,
         second_view: None,
         exports: Vec::new(),

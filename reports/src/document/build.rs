@@ -14,8 +14,9 @@ use crate::sections;
 /// several runs, and first: a report of several runs opens with what changed. The
 /// ray-rates, roofline, pixel-maps and bvh-quality sections come only with results
 /// that hold their data.
-pub const SECTIONS: [(&str, &str); 20] = [
+pub const SECTIONS: [(&str, &str); 21] = [
     ("comparison", "What changed between the runs"),
+    ("answers", "Answers"),
     ("summary", "Summary"),
     ("profile", "Flat profile and call graph"),
     ("profile-charts", "Calls and self time per function"),
@@ -71,6 +72,7 @@ pub fn build(runs: &[Run]) -> Option<Document> {
         sections_out.push(sections::comparison::comparison(&mut b));
     }
     for section in [
+        Some(sections::answers::answers(&mut b)),
         Some(sections::summary::summary(&mut b)),
         Some(sections::profile::profile(&mut b)),
         Some(sections::profile::profile_charts(&mut b)),

@@ -3,6 +3,7 @@
 //!
 //! | file | sections |
 //! |---|---|
+//! | `answers.rs` | answers (where the time goes, what the optimizations buy and cost) |
 //! | `summary.rs` | summary (findings, machine, scenes, runs) |
 //! | `profile.rs` | profile, profile-charts, flamegraphs, amdahl |
 //! | `variants.rs` | variants |
@@ -24,6 +25,7 @@
 //! [`Section`]: crate::document::Section
 
 pub(crate) mod access;
+pub mod answers;
 pub(crate) mod benchmarks;
 pub(crate) mod bvh_quality;
 pub(crate) mod closing;

@@ -29,7 +29,7 @@ pub fn profile(b: &mut Builder) -> Section {
     });
     s.blocks.push(Block::Paragraph {
         content: vec![
-            Inline::text("Sampled profile of the heaviest scene of the run, "),
+            Inline::text("Sampled profile of "),
             Inline::strong(&p.scene),
             Inline::text(format!(
                 " at {}: the baseline{best} in the layout of gprof.",
@@ -51,7 +51,7 @@ pub fn profile(b: &mut Builder) -> Section {
         } else {
             s.blocks.push(Block::Table(
                 flat_table(&profile.flat, profile.renders).caption(format!(
-                    "Table 6 (thesis): flat profile of {}, {}",
+                    "Flat profile of {}, {}, in the layout of table 6",
                     p.scene, profile.variant
                 )),
             ));
