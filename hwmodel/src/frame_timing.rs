@@ -64,11 +64,108 @@ pub fn frame_timing(
     }
 }
 
+/// The thesis's clock, Hz (50 MHz).
+pub const THESIS_CLOCK_HZ: f64 = 50e6;
+
+/// The hardware-over-software gains the thesis measured at its ends (ch. 7, fig. 50):
+/// (scene, primitives, gain). Its software's frame time is the gain times eq. 49's.
+pub const THESIS_GAIN_ENDS: [(&str, u64, f64); 2] = [("cylinder4", 1, 18.0), ("balls6", 7, 4.6)];
+
+/// Up to which primitive count the pipeline renders a frame faster than a software
+/// whose frame time grows linearly with the primitives.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+pub enum BreakEven {
+    /// Not even for one primitive.
+    Never,
+    /// For every count from 1 up to and including this one.
+    UpTo(u64),
+    /// For every count: the software grows as fast or faster per primitive.
+    Always,
+}
+
+/// Where `pipeline` at `clock_hz` stops beating a software that takes `fixed_s +
+/// per_primitive_s × n` seconds a `width`×`height` frame.
+///
+/// The pipeline's frame is `(W·H·3·⌈n/K⌉ + fill) / f` ([`frame_timing`]): constant over
+/// each block of K counts, so within a block it is furthest ahead at the block's last
+/// count, n = jK. Block j is won when `j·(3WH/f − b·K) < a − fill/f`; with a positive
+/// bracket the won blocks are j < (a − fill/f) / (3WH/f − bK), and the last count won
+/// is K times the last such j.
+pub fn break_even(
+    pipeline: &Pipeline,
+    width: u32,
+    height: u32,
+    clock_hz: f64,
+    fixed_s: f64,
+    per_primitive_s: f64,
+) -> BreakEven {
+    let k = f64::from(pipeline.design.units.max(1));
+    let block_s = 3.0 * f64::from(width) * f64::from(height) / clock_hz;
+    let fill_s = (pipeline.fill_cycles() - 3) as f64 / clock_hz;
+    let slope = block_s - per_primitive_s * k;
+    let headroom = fixed_s - fill_s;
+    if slope <= 0.0 {
+        // The software loses ground every block: once ahead, the pipeline stays ahead.
+        return if slope < 0.0 || headroom > 0.0 {
+            BreakEven::Always
+        } else {
+            BreakEven::Never
+        };
+    }
+    let blocks = (headroom / slope).ceil() - 1.0;
+    // NaN (a NaN input) reads as never.
+    if blocks.is_nan() || blocks < 1.0 {
+        return BreakEven::Never;
+    }
+    BreakEven::UpTo((blocks * k) as u64)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
     use crate::design::Design;
     use crate::library::Library;
+
+    #[test]
+    fn the_break_even_is_eq_49_against_the_software_line() {
+        let lib = Library::cyclone_iv_e();
+        let thesis = Pipeline::build(&lib, &Design::thesis());
+        let fill = (thesis.fill_cycles() - 3) as f64 / 50e6;
+        // Eq. 49: 0.018432 s a primitive at 640×480. A software of 0.1 s + 0.004 s a
+        // primitive is beaten while 0.018432 n + fill < 0.1 + 0.004 n, i.e. up to
+        // n < (0.1 - fill) / 0.014432 = 6.93 - ε: 6 primitives.
+        assert!(((0.1 - fill) / 0.014432 - 6.929).abs() < 1e-3);
+        assert_eq!(
+            break_even(&thesis, 640, 480, 50e6, 0.1, 0.004),
+            BreakEven::UpTo(6)
+        );
+        // A fixed cost below one primitive's frame: never.
+        assert_eq!(
+            break_even(&thesis, 640, 480, 50e6, 0.01, 0.004),
+            BreakEven::Never
+        );
+        // Software slower per primitive than the pipeline: every count.
+        assert_eq!(
+            break_even(&thesis, 640, 480, 50e6, 0.01, 0.02),
+            BreakEven::Always
+        );
+        // K = 4: blocks of four counts cost 0.018432 s each; against 0.1 s + 0.001 s a
+        // primitive, block j is won while j (0.018432 - 0.004) < 0.1 - fill: j ≤ 6,
+        // so up to 24 primitives.
+        let four = Pipeline::build(
+            &lib,
+            &Design {
+                units: 4,
+                ..Design::thesis()
+            },
+        );
+        let fill4 = (four.fill_cycles() - 3) as f64 / 50e6;
+        assert!(((0.1 - fill4) / 0.014432) > 6.0 && ((0.1 - fill4) / 0.014432) < 7.0);
+        assert_eq!(
+            break_even(&four, 640, 480, 50e6, 0.1, 0.001),
+            BreakEven::UpTo(24)
+        );
+    }
 
     #[test]
     fn pacing_is_three_cycles_per_primitive_per_unit() {

@@ -62,6 +62,16 @@ pub struct HardwareResult {
     pub devices: Vec<DeviceUse>,
 }
 
+/// A software variant's time on the hardware's job (diffuse-only gray, the scene's
+/// size), on one thread and on `threads`.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize, JsonSchema)]
+pub struct SoftwarePeer {
+    pub variant: crate::VariantName,
+    pub one_thread: Estimate,
+    pub all_threads: Estimate,
+    pub threads: u32,
+}
+
 /// The FPGA model and emulator on one scene.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize, JsonSchema)]
 pub struct SceneHardware {
@@ -73,6 +83,10 @@ pub struct SceneHardware {
     pub software_seconds: Estimate,
     /// Software seconds / hardware seconds.
     pub speedup: f64,
+    /// rtprof's fastest structure on the same job, one thread and every thread (the
+    /// break-even against the pipeline). `None` in older files.
+    #[serde(default)]
+    pub peer: Option<SoftwarePeer>,
     /// RMS between the emulator's image and the software's diffuse-only render.
     pub emulator_rms: f64,
     /// The thesis's band for `emulator_rms`.

@@ -339,6 +339,7 @@ fn scene(s: SceneResult, path: &str) -> Result<v2::SceneResult, ResultsError> {
             fits: h.fits,
             software_seconds: h.software_seconds,
             speedup: h.speedup,
+            peer: None,
             emulator_rms: h.emulator_rms,
             emulator_image: h.emulator_image,
             software_image: h.software_image,

@@ -18,15 +18,35 @@ use tracer::{NoCount, RenderOptions, Sampling, Scene, ShadingMode, VariantSet, r
 use crate::error::RunError;
 use crate::timing::{Measured, TimingPolicy, measure};
 
-/// The thesis's clock, Hz.
-pub const THESIS_CLOCK_HZ: f64 = 50e6;
+pub use hwmodel::frame_timing::THESIS_CLOCK_HZ;
 
 /// The software's time on the hardware's job: `scene` at `size`, baseline variant,
 /// diffuse-only gray shading, on `pool`.
 pub fn software_time(
     scene: &Scene,
     name: &str,
+    size: (u32, u32),
+    pool: &rayon::ThreadPool,
+    policy: &TimingPolicy,
+    stop: &AtomicBool,
+) -> Result<Measured<tracer::VariantRender<NoCount>>, RunError> {
+    variant_time(
+        scene,
+        name,
+        size,
+        &VariantSet::default(),
+        pool,
+        policy,
+        stop,
+    )
+}
+
+/// The time of `set` on the hardware's job (diffuse-only gray at `size`) on `pool`.
+pub fn variant_time(
+    scene: &Scene,
+    name: &str,
     (width, height): (u32, u32),
+    set: &VariantSet,
     pool: &rayon::ThreadPool,
     policy: &TimingPolicy,
     stop: &AtomicBool,
@@ -37,12 +57,15 @@ pub fn software_time(
         Sampling::PixelCenters,
         ShadingMode::DiffuseOnly,
     );
-    let set = VariantSet::default();
     measure(policy, stop, || {
-        pool.install(|| render_variant::<NoCount>(scene, &options, &set, &|_| {}))
+        pool.install(|| render_variant::<NoCount>(scene, &options, set, &|_| {}))
             .map_err(|e| RunError::render(name, &e))
     })
 }
+
+/// The software peer the pipeline is also set against: rtprof's variant with every
+/// structure (BVH, SIMD lanes, packets), which keeps baseline's picture.
+pub const PEER_VARIANT: &str = "bvh+simd+packets";
 
 /// The model and emulator on one scene, beside the software.
 pub struct HardwareMeasurement {
@@ -50,6 +73,11 @@ pub struct HardwareMeasurement {
     pub timing: FrameTiming,
     pub fits: bool,
     pub software: Measured<tracer::VariantRender<NoCount>>,
+    /// [`PEER_VARIANT`] on the same job: on one thread, and on every thread of the
+    /// suite's pool (with their number).
+    pub peer_one_thread: Measured<tracer::VariantRender<NoCount>>,
+    pub peer_all_threads: Measured<tracer::VariantRender<NoCount>>,
+    pub peer_threads: usize,
     pub emulator_image: RgbImage,
     pub software_image: RgbImage,
     /// Emulator against software.
@@ -58,12 +86,14 @@ pub struct HardwareMeasurement {
 
 /// Runs the hardware job on `scene` at `size` with the thesis design at 50 MHz on the
 /// EP4CE115.
+#[allow(clippy::too_many_arguments)] // the job's inputs: scene, size, two pools, policy, stop
 pub fn run_hardware(
     scene: &Scene,
     hw: &HwScene,
     name: &str,
     size: (u32, u32),
     pool: &rayon::ThreadPool,
+    all_threads: &rayon::ThreadPool,
     policy: &TimingPolicy,
     stop: &AtomicBool,
 ) -> Result<HardwareMeasurement, RunError> {
@@ -79,6 +109,9 @@ pub fn run_hardware(
     let emulated = hwmodel::emulator::render(hw, width, height);
     let emulator_image = RgbImage::new(width, height, emulated.to_rgb8())?;
     let software = software_time(scene, name, size, pool, policy, stop)?;
+    let peer = VariantSet::parse(PEER_VARIANT)?;
+    let peer_one_thread = variant_time(scene, name, size, &peer, pool, policy, stop)?;
+    let peer_all_threads = variant_time(scene, name, size, &peer, all_threads, policy, stop)?;
     let frame = &software.last.rendered.frame;
     let software_image = RgbImage::new(frame.width, frame.height, frame.to_rgb8())?;
     let comparison = compare(&software_image, &emulator_image)?;
@@ -87,6 +120,9 @@ pub fn run_hardware(
         timing,
         fits,
         software,
+        peer_one_thread,
+        peer_all_threads,
+        peer_threads: all_threads.current_num_threads(),
         emulator_image,
         software_image,
         comparison,

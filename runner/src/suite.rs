@@ -725,6 +725,7 @@ impl SceneRunner<'_> {
             &spec.name,
             spec.size,
             self.one_thread,
+            self.pool,
             &self.def.hardware_timing(),
             self.ctx.stop,
         )?;
@@ -737,6 +738,12 @@ impl SceneRunner<'_> {
             seconds: m.timing.seconds,
             fits: m.fits,
             speedup: software_seconds.median / m.timing.seconds,
+            peer: Some(results::SoftwarePeer {
+                variant: VariantName::parse(crate::hardware_job::PEER_VARIANT)?,
+                one_thread: m.peer_one_thread.time,
+                all_threads: m.peer_all_threads.time,
+                threads: m.peer_threads as u32,
+            }),
             software_seconds,
             emulator_rms: m.comparison.rms,
             emulator_band: m.comparison.band,

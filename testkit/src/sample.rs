@@ -465,6 +465,20 @@ fn sample_variant(s: &SceneSpec, variant: &str, base_median: f64) -> VariantResu
     }
 }
 
+/// The sample's software peer on the hardware's job, one thread: fixed seconds and
+/// seconds per primitive.
+pub const SAMPLE_PEER_FIXED_S: f64 = 0.002;
+pub const SAMPLE_PEER_PER_PRIMITIVE_S: f64 = 0.0005;
+
+/// A time measured without spread.
+fn exact(seconds: f64) -> results::Estimate {
+    results::Estimate {
+        median: seconds,
+        low: seconds,
+        high: seconds,
+    }
+}
+
 fn sample_scene_hardware(s: &SceneSpec, base_median: f64) -> SceneHardware {
     let n = s.primitives();
     let cycles = u64::from(s.width) * u64::from(s.height) * 3 * n + HW_FILL_CYCLES;
@@ -479,6 +493,19 @@ fn sample_scene_hardware(s: &SceneSpec, base_median: f64) -> SceneHardware {
         fits: true,
         software_seconds,
         speedup: software_seconds.median / seconds,
+        // The peer grows linearly with the primitives, exactly, so that the break-even
+        // can be computed by hand: 2 ms + 0.5 ms a primitive on one thread at the
+        // sample's size, half that on its two threads.
+        peer: Some(results::SoftwarePeer {
+            // A valid name (reports' tests check it arrives as written).
+            variant: VariantName::parse("bvh+simd+packets")
+                .unwrap_or_else(|_| VariantName::reference()),
+            one_thread: exact(SAMPLE_PEER_FIXED_S + SAMPLE_PEER_PER_PRIMITIVE_S * n as f64),
+            all_threads: exact(
+                (SAMPLE_PEER_FIXED_S + SAMPLE_PEER_PER_PRIMITIVE_S * n as f64) / 2.0,
+            ),
+            threads: 2,
+        }),
         emulator_rms,
         emulator_band: Band::of(emulator_rms),
         emulator_image: Some(image_path(s.name, "emulator")),
