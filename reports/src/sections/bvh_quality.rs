@@ -81,56 +81,124 @@ fn prediction_sentence(scene: &str, trees: &[BvhQuality]) -> Option<String> {
     Some(sentences.join(" "))
 }
 
-/// One comparison: `best` has the lower SAH cost than `other`; the EPO, the measured
-/// nodes per ray and the time either follow it or not.
+/// How two figures compare as printed: figures that print the same are the same to
+/// the reader, whatever their last bits.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Printed {
+    Lower,
+    Same,
+    Higher,
+}
+
+fn printed(a: f64, b: f64, text: fn(f64) -> String) -> Printed {
+    if text(a) == text(b) {
+        Printed::Same
+    } else if a < b {
+        Printed::Lower
+    } else {
+        Printed::Higher
+    }
+}
+
+/// One comparison: `best` has the SAH cost no higher than `other`'s; the EPO, the
+/// measured nodes per ray and the time either follow it or not. Figures that print the
+/// same are called the same, never "lower" or "faster".
 fn compare(scene: &str, best: &BvhQuality, other: &BvhQuality) -> String {
-    let pair = |a: f64, b: f64, text: fn(f64) -> String| format!("{} against {}", text(a), text(b));
-    let epo_agrees = best.epo <= other.epo;
-    let mut text = format!(
-        "On {scene}, {} has the lower SAH cost ({})",
-        best.builder,
-        pair(best.sah_cost, other.sah_cost, format::significant),
-    );
-    text += &if epo_agrees {
+    let pair = |a: f64, b: f64, text: fn(f64) -> String| match printed(a, b, text) {
+        Printed::Same => text(a),
+        _ => format!("{} against {}", text(a), text(b)),
+    };
+    let sig: fn(f64) -> String = format::significant;
+    let secs: fn(f64) -> String = format::seconds;
+    let sah = printed(best.sah_cost, other.sah_cost, sig);
+    let epo = printed(best.epo, other.epo, sig);
+    let mut text = if sah == Printed::Same {
         format!(
-            " and the lower EPO ({}) than {}",
-            pair(best.epo, other.epo, format::significant),
-            other.builder
+            "On {scene}, {} and {} have the same SAH cost ({})",
+            best.builder,
+            other.builder,
+            sig(best.sah_cost)
         )
     } else {
         format!(
-            " than {}, but not the lower EPO ({})",
-            other.builder,
-            pair(best.epo, other.epo, format::significant)
+            "On {scene}, {} has the lower SAH cost ({}) than {}",
+            best.builder,
+            pair(best.sah_cost, other.sah_cost, sig),
+            other.builder
         )
     };
-    let nodes = (best.measured_nodes_per_ray, other.measured_nodes_per_ray);
-    let time = (best.trace_seconds, other.trace_seconds);
-    let fewer_nodes = nodes.0 <= nodes.1;
-    let faster = time.0 <= time.1;
-    let nodes_text = format!(
-        "visits {} nodes per ray ({})",
-        if fewer_nodes { "fewer" } else { "more" },
-        pair(nodes.0, nodes.1, format::significant)
-    );
-    let time_text = format!(
-        "traces {} ({})",
-        if faster { "faster" } else { "slower" },
-        pair(time.0, time.1, format::seconds)
-    );
-    text += &match (fewer_nodes, faster) {
-        (true, true) => {
-            format!("; it also {nodes_text} and {time_text}: the metrics predict the measurement.")
-        }
-        (false, false) => format!(
-            "; yet it {nodes_text} and {time_text}: here the metrics do not predict the measurement."
+    text += &match epo {
+        Printed::Same => format!(" and the same EPO ({})", sig(best.epo)),
+        Printed::Lower if sah == Printed::Same => format!(
+            " and {} has the lower EPO ({})",
+            best.builder,
+            pair(best.epo, other.epo, sig)
         ),
-        (false, true) => format!(
-            "; it {time_text}, but {nodes_text}: here the metrics do not predict the nodes visited."
+        Printed::Lower => format!(" and the lower EPO ({})", pair(best.epo, other.epo, sig)),
+        Printed::Higher => format!(
+            ", but not the lower EPO ({})",
+            pair(best.epo, other.epo, sig)
         ),
-        (true, false) => {
-            format!("; it {nodes_text}, but {time_text}: here the metrics do not predict the time.")
-        }
+    };
+    let nodes = printed(
+        best.measured_nodes_per_ray,
+        other.measured_nodes_per_ray,
+        sig,
+    );
+    let time = printed(best.trace_seconds, other.trace_seconds, secs);
+    let nodes_text = match nodes {
+        Printed::Same => format!(
+            "as many nodes per ray ({})",
+            sig(best.measured_nodes_per_ray)
+        ),
+        order => format!(
+            "{} nodes per ray ({})",
+            if order == Printed::Lower {
+                "fewer"
+            } else {
+                "more"
+            },
+            pair(
+                best.measured_nodes_per_ray,
+                other.measured_nodes_per_ray,
+                sig
+            )
+        ),
+    };
+    let time_text = match time {
+        Printed::Same => format!("as fast ({})", secs(best.trace_seconds)),
+        order => format!(
+            "{} ({})",
+            if order == Printed::Lower {
+                "faster"
+            } else {
+                "slower"
+            },
+            pair(best.trace_seconds, other.trace_seconds, secs)
+        ),
+    };
+    if sah == Printed::Same {
+        return format!(
+            "{text}; {} visits {nodes_text} and traces {time_text}: the metrics do not tell the two apart.",
+            best.builder
+        );
+    }
+    text += &match (nodes, time) {
+        (Printed::Lower, Printed::Lower) => format!(
+            "; it also visits {nodes_text} and traces {time_text}: the metrics predict the measurement."
+        ),
+        (Printed::Higher, Printed::Higher) => format!(
+            "; yet it visits {nodes_text} and traces {time_text}: here the metrics do not predict the measurement."
+        ),
+        (Printed::Lower, _) => format!(
+            "; it visits {nodes_text}, but traces {time_text}: here the metrics do not predict the time."
+        ),
+        (_, Printed::Lower) => format!(
+            "; it traces {time_text}, but visits {nodes_text}: here the metrics do not predict the nodes visited."
+        ),
+        _ => format!(
+            "; it visits {nodes_text} and traces {time_text}: the measurement does not follow the metrics."
+        ),
     };
     text
 }
@@ -260,4 +328,56 @@ fn single_table(scenes: &[&SceneResult]) -> Table {
         ]);
     }
     t
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use testkit::sample::sample_results;
+
+    fn a_tree() -> BvhQuality {
+        sample_results()
+            .scenes
+            .iter()
+            .flat_map(|s| s.bvh_quality.iter())
+            .next()
+            .cloned()
+            .unwrap()
+    }
+
+    #[test]
+    fn two_equal_trees_are_called_the_same_never_lower() {
+        let a = a_tree();
+        let mut b = a.clone();
+        b.builder = "midpoint".into();
+        let said = compare("balls", &a, &b);
+        assert!(said.contains("have the same SAH cost"), "{said}");
+        assert!(said.contains("the same EPO"), "{said}");
+        assert!(said.contains("as many nodes per ray"), "{said}");
+        assert!(said.contains("as fast"), "{said}");
+        assert!(!said.contains("against"), "{said}");
+        assert!(!said.contains("lower"), "{said}");
+    }
+
+    #[test]
+    fn differing_trees_are_compared_with_both_figures() {
+        let a = a_tree();
+        let mut b = a.clone();
+        b.builder = "midpoint".into();
+        b.sah_cost = a.sah_cost * 1.5;
+        b.epo = a.epo * 1.5;
+        b.measured_nodes_per_ray = a.measured_nodes_per_ray * 1.5;
+        b.trace_seconds = a.trace_seconds * 1.5;
+        let said = compare("balls", &a, &b);
+        assert!(said.contains("has the lower SAH cost ("), "{said}");
+        assert!(said.contains(&format!(
+            "{} against {}",
+            format::significant(a.sah_cost),
+            format::significant(b.sah_cost)
+        )));
+        assert!(
+            said.ends_with("the metrics predict the measurement."),
+            "{said}"
+        );
+    }
 }
