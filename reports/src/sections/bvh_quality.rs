@@ -112,33 +112,33 @@ fn compare(scene: &str, best: &BvhQuality, other: &BvhQuality) -> String {
     let secs: fn(f64) -> String = format::seconds;
     let sah = printed(best.sah_cost, other.sah_cost, sig);
     let epo = printed(best.epo, other.epo, sig);
+    let epo_pair = pair(best.epo, other.epo, sig);
     let mut text = if sah == Printed::Same {
+        let epo_text = match epo {
+            Printed::Same => format!(" and the same EPO ({epo_pair})"),
+            Printed::Lower => format!(", and {} has the lower EPO ({epo_pair})", best.builder),
+            Printed::Higher => format!(", and {} has the lower EPO ({epo_pair})", other.builder),
+        };
         format!(
-            "On {scene}, {} and {} have the same SAH cost ({})",
+            "On {scene}, {} and {} have the same SAH cost ({}){epo_text}",
             best.builder,
             other.builder,
             sig(best.sah_cost)
         )
     } else {
-        format!(
-            "On {scene}, {} has the lower SAH cost ({}) than {}",
-            best.builder,
-            pair(best.sah_cost, other.sah_cost, sig),
-            other.builder
-        )
-    };
-    text += &match epo {
-        Printed::Same => format!(" and the same EPO ({})", sig(best.epo)),
-        Printed::Lower if sah == Printed::Same => format!(
-            " and {} has the lower EPO ({})",
-            best.builder,
-            pair(best.epo, other.epo, sig)
-        ),
-        Printed::Lower => format!(" and the lower EPO ({})", pair(best.epo, other.epo, sig)),
-        Printed::Higher => format!(
-            ", but not the lower EPO ({})",
-            pair(best.epo, other.epo, sig)
-        ),
+        let sah_pair = pair(best.sah_cost, other.sah_cost, sig);
+        let (b, o) = (&best.builder, &other.builder);
+        match epo {
+            Printed::Lower => format!(
+                "On {scene}, {b} has the lower SAH cost ({sah_pair}) and the lower EPO ({epo_pair}) than {o}"
+            ),
+            Printed::Same => format!(
+                "On {scene}, {b} has the lower SAH cost ({sah_pair}) than {o} and the same EPO ({epo_pair})"
+            ),
+            Printed::Higher => format!(
+                "On {scene}, {b} has the lower SAH cost ({sah_pair}) than {o}, but not the lower EPO ({epo_pair})"
+            ),
+        }
     };
     let nodes = printed(
         best.measured_nodes_per_ray,
