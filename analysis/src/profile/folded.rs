@@ -151,7 +151,7 @@ pub struct DifferentialSvgs {
 /// frame titles are changes in share of the samples (each profile normalized to the
 /// other's total, so runs of different lengths compare); the subtitle states the
 /// whole render's absolute change per render, e.g. `whole render: 12.0 ms → 4.00 ms
-/// per render (-8.00 ms, 0.333x)`.
+/// per render (-8.00 ms, speed-up 3.00×)`.
 pub fn differential_svgs(
     before: &DiffSide<'_>,
     after: &DiffSide<'_>,
@@ -179,12 +179,13 @@ pub fn differential_svgs(
     Ok(DifferentialSvgs { grown, shrunk })
 }
 
-/// `whole render: 12.0 ms → 4.00 ms per render (-8.00 ms, 0.333x)`.
+/// `whole render: 12.0 ms → 4.00 ms per render (-8.00 ms, speed-up 3.00×)`.
 fn render_change(before: f64, after: f64) -> String {
     let delta = after - before;
     let sign = if delta < 0.0 { "-" } else { "+" };
     let ratio = if before > 0.0 {
-        format!(", {:.3}x", after / before)
+        // A speed-up, as × means everywhere in rtprof: old time over new time.
+        format!(", speed-up {:.2}\u{d7}", before / after)
     } else {
         String::new()
     };
@@ -330,7 +331,8 @@ mod tests {
         assert_eq!(b, "B (20 samples, 20.00%; +60.00%)");
         assert_eq!(rgb(b_fill).0, 255);
         // Both state the whole render's change: 12 ms -> 4 ms, -8 ms, 1/3.
-        let change = "whole render: 12.0 ms \u{2192} 4.00 ms per render (-8.00 ms, 0.333x)";
+        let change =
+            "whole render: 12.0 ms \u{2192} 4.00 ms per render (-8.00 ms, speed-up 3.00\u{d7})";
         assert!(svgs.grown.contains(change) && svgs.shrunk.contains(change));
         assert!(
             svgs.grown.contains("what grew") && svgs.shrunk.contains("what shrank or vanished")
