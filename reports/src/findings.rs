@@ -387,8 +387,28 @@ fn model_error_finding(results: &Results) -> Option<String> {
     let latency = latency_worst
         .map(|l| format!("; its latencies are within {l:.1} % of the thesis"))
         .unwrap_or_default();
+    // Figures the model has where the thesis has none have no percentage: named apart.
+    let in_kind: Vec<String> = hardware
+        .blocks
+        .iter()
+        .flat_map(|r| {
+            let thesis = r.thesis;
+            r.model.columns().into_iter().filter_map(move |(c, m)| {
+                (thesis?.get(c) == 0 && m > 0)
+                    .then(|| format!("{} {} {}", r.name, format::count(m), c.label()))
+            })
+        })
+        .collect();
+    let in_kind = if in_kind.is_empty() {
+        String::new()
+    } else {
+        format!(
+            "; where table 8 has none the model has some: {}",
+            join_list(&in_kind)
+        )
+    };
     Some(format!(
-        "The hardware model's worst error against table 8 is {error:+.1} % ({block}, {}){latency}.",
+        "The hardware model's worst error against table 8 is {error:+.1} % ({block}, {}){latency}{in_kind}.",
         column.label()
     ))
 }

@@ -98,8 +98,9 @@ pub(super) const RESOURCES: [&str; 4] =
     ["logic elements", "9-bit multipliers", "memory bits", "PLLs"];
 
 /// A device's name (marked when its figures are not validated) and its use of each of
-/// [`RESOURCES`] in % of the device. Multipliers count the demand, including those the
-/// fitter builds in logic.
+/// [`RESOURCES`] in % of the device. Multipliers count the device's elements used (at
+/// most all of them): those beyond the device are built in logic and counted in the
+/// logic elements, so the bars and the fit verdict agree.
 pub(super) fn device_shares(d: &DeviceUse) -> (String, [f64; 4]) {
     let pct = |used: u64, capacity: u64| {
         if capacity == 0 {
@@ -115,7 +116,7 @@ pub(super) fn device_shares(d: &DeviceUse) -> (String, [f64; 4]) {
     };
     let shares = [
         pct(d.le, d.le_capacity),
-        pct(d.mult.saturating_add(d.soft_mult_elements), d.mult_capacity),
+        pct(d.mult.min(d.mult_capacity), d.mult_capacity),
         pct(d.mem_bits, d.mem_capacity),
         pct(u64::from(d.plls), u64::from(d.pll_capacity)),
     ];

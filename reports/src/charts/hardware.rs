@@ -158,7 +158,7 @@ pub fn device_utilization_chart(results: &Results) -> Option<Chart> {
                 hardware.family
             ),
             format!(
-                "Share of each device's logic elements, 9-bit multipliers (demand, counting those the fitter builds in logic), memory bits and PLLs; above the dashed 100 % line the resource runs out; logic elements or memory bits above the grey {ROUTING_HEADROOM_PERCENT} % line fit on paper only (the routing-headroom rule)."
+                "Share of each device's logic elements, 9-bit multiplier elements (all in use means the rest is built in logic, counted in the logic elements), memory bits and PLLs; above the dashed 100 % line the resource runs out; logic elements or memory bits above the grey {ROUTING_HEADROOM_PERCENT} % line fit on paper only (the routing-headroom rule)."
             ),
         ),
         Categories::fitted(labels, 0.0, "device"),

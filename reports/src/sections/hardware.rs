@@ -24,20 +24,25 @@ pub fn hw_table(rows: &[HwRow]) -> Table {
         for (column, model) in row.model.columns() {
             let thesis = row.thesis.map(|t| t.get(column));
             let error = row.error_pct.as_ref().and_then(|e| e.get(column));
+            // Where the thesis has none and the model some, no percentage exists: the
+            // two differ in kind, which is coloured as the worst error band.
+            let differs_in_kind = thesis == Some(0) && model > 0;
             let detail = match (thesis, error) {
                 (Some(t), Some(e)) => {
                     format!("/ {} ({})", format::count(t), format::signed_change(e, 1))
                 }
-                (Some(t), None) => format!("/ {} (—)", format::count(t)),
+                (Some(0), None) if differs_in_kind => "/ 0 (the thesis has none)".to_string(),
+                (Some(t), None) => format!("/ {} ({})", format::count(t), format::DASH),
                 // The IP-core rows are table 7's own figures: the model's input.
                 (None, _) if row.kind == HwRowKind::IpCore => "(thesis input)".to_string(),
                 (None, _) => "(no thesis figure)".to_string(),
             };
-            cells.push(
-                Cell::count(model)
-                    .detail(detail)
-                    .tone(Tone::of_error(error)),
-            );
+            let tone = if differs_in_kind {
+                Tone::Bad
+            } else {
+                Tone::of_error(error)
+            };
+            cells.push(Cell::count(model).detail(detail).tone(tone));
         }
         t.rows.push(cells);
     }
@@ -281,6 +286,28 @@ pub fn sw_hw(b: &mut Builder) -> Section {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn a_figure_the_thesis_does_not_have_is_coloured_not_dashed() {
+        let mut hw = testkit::sample_results().hardware.expect("hardware");
+        let row = &mut hw.blocks[0];
+        // The thesis has no memory bits in this block; the model has 4,320.
+        row.thesis.as_mut().unwrap().mem_bits = 0;
+        row.model.mem_bits = 4_320;
+        if let Some(e) = row.error_pct.as_mut() {
+            e.mem_bits = None;
+        }
+        let t = hw_table(&hw.blocks[..1]);
+        let mem = HwColumn::ALL
+            .iter()
+            .position(|c| *c == HwColumn::MemBits)
+            .unwrap()
+            + 2;
+        let cell = &t.rows[0][mem];
+        assert_eq!(cell.text, "4,320");
+        assert_eq!(cell.detail.as_deref(), Some("/ 0 (the thesis has none)"));
+        assert_eq!(cell.tone, Tone::Bad);
+    }
 
     #[test]
     fn a_device_row_marks_logic_above_the_routing_headroom() {
