@@ -393,10 +393,11 @@ fn model_error_finding(results: &Results) -> Option<String> {
         .iter()
         .flat_map(|r| {
             let thesis = r.thesis;
-            r.model.columns().into_iter().filter_map(move |(c, m)| {
-                (thesis?.get(c) == 0 && m > 0)
-                    .then(|| format!("{} {} {}", r.name, format::count(m), c.label()))
-            })
+            r.model
+                .columns()
+                .into_iter()
+                .filter(move |&(c, m)| thesis.is_some_and(|t| t.get(c) == 0) && m > 0)
+                .map(move |(c, m)| format!("{} {} {}", r.name, format::count(m), c.label()))
         })
         .collect();
     let in_kind = if in_kind.is_empty() {
