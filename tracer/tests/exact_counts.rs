@@ -28,7 +28,7 @@ fn one_pixel_one_sphere_one_light_counts_by_hand() {
     // u × w (cross), two pitch scalings.
     // Eye ray: two scale, two add, one normalize.
     // Sphere test: sub, two dot (first stage; b = -5, |Voc|² = 25, so its discriminant
-    // 25 + 1 - 25 = 1 is above 25/2⁸ and kept: no second stage); sqrt (hit).
+    // 25 - (25 - 1) = 1 is above 25/2⁸ and kept: no second stage); sqrt (hit).
     // Hit body: point (scale + add), normal (sub + normalize), facing test (dot).
     // Shadow-ray origin offset: scale + add.
     // Light: to_light (sub), N·L (dot), |L|² (dot), sqrt, L / |L| (scale).

@@ -309,8 +309,8 @@ fn sphere_pass<C: Counter>(
             let (vx, vy, vz) = (ox - l.cx[i], oy - l.cy[i], oz - l.cz[i]);
             half_b[i] = dx * vx + dy * vy + dz * vz;
             let oo = vx * vx + vy * vy + vz * vz;
-            passed[i] = sphere_may_hit(half_b[i], oo, l.radius_sq[i]);
             disc[i] = sphere_first_disc(half_b[i], oo, l.radius_sq[i]);
+            passed[i] = sphere_may_hit(disc[i], oo);
             second[i] = passed[i] && !first_stage_suffices(disc[i], 1.0, oo);
             any_passed |= passed[i];
             any_second |= second[i];
@@ -632,7 +632,7 @@ mod tests {
         // cylinder. Only the inside-only sphere and cylinder around the origin pass it
         // (the small ones are 0.5 or more from the ray, against radii of 0.4 and 0.3,
         // far outside its margin), and the ray passes through their middle: Voc =
-        // (0, -10, 0) and (0, -10, 1), b/2 = -10, discriminants 100 + 36 - 100 = 36
+        // (0, -10, 0) and (0, -10, 1), b/2 = -10, discriminants 100 - (100 - 36) = 36
         // and 100 - (101 - 1 - 49) = 49, far above |Voc|²/2⁸, so no second stage.
         assert_eq!(c.get(Stat::Sub), 30);
         assert_eq!((c.get(Stat::Scale), c.get(Stat::Cross)), (0, 0));

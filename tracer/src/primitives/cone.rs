@@ -124,11 +124,13 @@ impl Cone {
                 let g = c.sub(radial, axial);
                 let normal_to_both = c.cross(voc, ray.dir);
                 let triple = c.dot(self.axis, normal_to_both);
-                c.dot(g, g) - triple * triple
+                let exact = c.dot(g, g) - triple * triple;
+                // (A kept first stage is positive: no test.)
+                if !(exact > 0.0) {
+                    return None;
+                }
+                exact
             };
-            if !(disc > 0.0) {
-                return None;
-            }
             ordered_roots(a, half_b, c.sqrt(disc))
         };
         for t in roots {

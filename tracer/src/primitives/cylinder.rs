@@ -94,11 +94,13 @@ impl Cylinder {
         } else {
             let normal_to_both = c.cross(voc, ray.dir);
             let triple = c.dot(self.axis, normal_to_both);
-            a * self.radius_sq - triple * triple
+            let exact = a * self.radius_sq - triple * triple;
+            // (A kept first stage is positive: no test.)
+            if !(exact > 0.0) {
+                return None;
+            }
+            exact
         };
-        if !(disc > 0.0) {
-            return None;
-        }
         let root = c.sqrt(disc);
         let roots = ordered_roots(a, half_b, root);
         // With a > 0 the smaller root enters the infinite cylinder (outside wall) and

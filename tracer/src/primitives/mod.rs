@@ -62,17 +62,15 @@ pub(crate) fn quick_miss_margin(scale: f32) -> f32 {
     scale * QUICK_MISS_FRACTION
 }
 
-/// The sphere test's first stage: whether the thesis's discriminant
-/// `b² - (|Voc|² - r²)` (`b = R·Voc`) may show a hit, i.e. lies above
-/// `-`[`quick_miss_margin`]`(|Voc|²)`. Rearranged as `b² + r² ≥ (1 - 2⁻¹⁶) |Voc|²`, it
-/// takes as many operations as the thesis's test of the discriminant's sign, so a
-/// certain miss costs what it did. `1 - 2⁻¹⁶` is exact in f32, and either arrangement's
-/// rounding (a few ulps of `|Voc|²`) is far inside the margin. A zero radius
-/// (`r² = -inf`) and a NaN say no. Every path (scalar, lanes, packs) calls this one
-/// function, so their decisions agree bit for bit.
+/// The sphere test's first stage: whether the thesis's discriminant `disc`
+/// ([`sphere_first_disc`]) may show a hit, i.e. lies above
+/// `-`[`quick_miss_margin`]`(|Voc|²)`. Either side's rounding (a few ulps of `|Voc|²`)
+/// is far inside the margin. A zero radius (`r² = -inf`, so `disc = -inf`) and a NaN
+/// say no. Every path (scalar, lanes, packs) calls this one function, so their
+/// decisions agree bit for bit.
 #[inline(always)]
-pub(crate) fn sphere_may_hit(half_b: f32, oo: f32, radius_sq: f32) -> bool {
-    half_b * half_b + radius_sq >= oo * (1.0 - QUICK_MISS_FRACTION)
+pub(crate) fn sphere_may_hit(disc: f32, oo: f32) -> bool {
+    disc >= -quick_miss_margin(oo)
 }
 
 /// `2⁻⁸`: see [`first_stage_suffices`].
@@ -80,8 +78,9 @@ const TRUSTED_FRACTION: f32 = 1.0 / 256.0;
 
 /// Whether a quadric test's first-stage (the thesis's) discriminant `disc` of
 /// `a t² + 2 half_b t + c = 0` is accurate enough to take the roots from, so that the
-/// second stage can be skipped: `disc a² ≥ 2⁻⁸ scale`, `scale` as for
-/// [`quick_miss_margin`].
+/// second stage can be skipped: `disc a² > 2⁻⁸ scale`, `scale` as for
+/// [`quick_miss_margin`]. Strictly greater, so a kept `disc` is positive (even where
+/// the product underflows) and the caller needs no test of its sign.
 ///
 /// Error bound (ε = 2⁻²⁴, first order): the first stage's `disc` is off by at most
 /// `δ = k ε scale + 2 ε disc`, with `k ≈ 12` for the sphere (7 from `(R·Voc)²`, 3 from
@@ -98,14 +97,16 @@ const TRUSTED_FRACTION: f32 = 1.0 / 256.0;
 /// choices, and thus their pictures, agree bit for bit.
 #[inline(always)]
 pub(crate) fn first_stage_suffices(disc: f32, a: f32, scale: f32) -> bool {
-    disc * (a * a) >= scale * TRUSTED_FRACTION
+    disc * (a * a) > scale * TRUSTED_FRACTION
 }
 
-/// The sphere test's first-stage discriminant `(R·Voc)² + r² - |Voc|²`, in the order of
-/// [`sphere_may_hit`]'s comparison (whose sum it shares), for [`first_stage_suffices`].
+/// The sphere test's first-stage (the thesis's) discriminant `(R·Voc)² - (|Voc|² - r²)`,
+/// for [`sphere_may_hit`] and [`first_stage_suffices`]. In this order `|Voc|² - r²` is
+/// ready with `(R·Voc)²`, so a kept discriminant's square root waits for no more
+/// operations than in the thesis's test.
 #[inline(always)]
 pub(crate) fn sphere_first_disc(half_b: f32, oo: f32, radius_sq: f32) -> f32 {
-    (half_b * half_b + radius_sq) - oo
+    half_b * half_b - (oo - radius_sq)
 }
 
 /// The two roots of `a t² + 2 half_b t + c = 0` in ascending order, given the square

@@ -76,23 +76,24 @@ impl Sphere {
         let half_b = c.dot(ray.dir, voc);
         let oo = c.dot(voc, voc);
         // Stage 1. A zero-radius sphere (radius² = -inf, see `test_radius_sq`) ends here.
-        if !sphere_may_hit(half_b, oo, self.radius_sq) {
+        let quick = sphere_first_disc(half_b, oo, self.radius_sq);
+        if !sphere_may_hit(quick, oo) {
             return None;
         }
-        let quick = sphere_first_disc(half_b, oo, self.radius_sq);
         let disc = if first_stage_suffices(quick, 1.0, oo) {
             quick
         } else {
             // Stage 2: the centre's offset across the ray.
             let along = c.scale(ray.dir, half_b);
             let across = c.sub(voc, along);
-            self.radius_sq - c.dot(across, across)
+            let exact = self.radius_sq - c.dot(across, across);
+            // A tangent ray (disc = 0) is never hit: it has no area that a pixel could
+            // see, and the normal would be undefined. (A kept first stage is positive.)
+            if exact <= 0.0 {
+                return None;
+            }
+            exact
         };
-        // A tangent ray (disc = 0) is never hit: it has no area that a pixel could see,
-        // and the normal would be undefined.
-        if disc <= 0.0 {
-            return None;
-        }
         let root = c.sqrt(disc);
         let near = -half_b - root;
         let far = -half_b + root;
@@ -283,7 +284,7 @@ mod tests {
             f32::INFINITY,
             &mut c,
         );
-        // b = R·Voc = -8, |Voc|² = 64: the first stage's b² + r² - |Voc|² = 4 is above
+        // b = R·Voc = -8, |Voc|² = 64: the first stage's b² - (|Voc|² - r²) = 4 is above
         // 64/2⁸, so it is kept and the second stage does not run.
         assert_eq!(
             (

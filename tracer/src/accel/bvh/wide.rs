@@ -654,8 +654,8 @@ fn sphere_pack<C: Counter, const FROM_EYE: bool>(
         let (vx, vy, vz) = (ox - pack.cx[i], oy - pack.cy[i], oz - pack.cz[i]);
         half_b[i] = dx * vx + dy * vy + dz * vz;
         let oo = vx * vx + vy * vy + vz * vz;
-        passed[i] = sphere_may_hit(half_b[i], oo, pack.radius_sq[i]);
         disc[i] = sphere_first_disc(half_b[i], oo, pack.radius_sq[i]);
+        passed[i] = sphere_may_hit(disc[i], oo);
         second[i] = passed[i] && !first_stage_suffices(disc[i], 1.0, oo);
         any_passed |= passed[i];
         any_second |= second[i];
@@ -959,7 +959,7 @@ mod tests {
             (16, 4)
         );
         // Each sphere meets the ray but is small as seen from 20 away (the first
-        // stage's discriminant b² + r² - |Voc|² ≈ 1 is below |Voc|²/2⁸ ≈ 1.56), so each
+        // stage's discriminant b² - (|Voc|² - r²) ≈ 1 is below |Voc|²/2⁸ ≈ 1.56), so each
         // runs both stages of the test: `sub` and two `dot`, then `scale`, `sub`, `dot`.
         assert_eq!(
             (
