@@ -27,19 +27,21 @@ fn one_pixel_one_sphere_one_light_counts_by_hand() {
     // Camera set-up: at - from (sub), normalize w, w × up (cross), normalize u,
     // u × w (cross), two pitch scalings.
     // Eye ray: two scale, two add, one normalize.
-    // Sphere test: sub, two dot (first stage); scale, sub, dot (second stage); sqrt (hit).
+    // Sphere test: sub, two dot (first stage; b = -5, |Voc|² = 25, so its discriminant
+    // 25 - (25 - 1) = 1 is above 25/2⁸ and kept: no second stage); sqrt (hit).
     // Hit body: point (scale + add), normal (sub + normalize), facing test (dot).
     // Shadow-ray origin offset: scale + add.
     // Light: to_light (sub), N·L (dot), |L|² (dot), sqrt, L / |L| (scale).
-    // Shadow test against the sphere: both stages (sub, two dot; scale, sub, dot: the
-    // ray starts on the sphere, within the first stage's margin) and sqrt (the line meets
-    // the sphere behind the ray's origin), no hit.
-    assert_eq!(c.ops.sub, 1 + (1 + 1) + 1 + 1 + (1 + 1));
-    assert_eq!(c.ops.dot, (2 + 1) + 1 + 2 + (2 + 1));
+    // Shadow test against the sphere: the first stage only (sub, two dot: from just
+    // outside (0, 0, -1) towards the light b ≈ 0.87 and |Voc|² ≈ 1, so its discriminant
+    // ≈ 0.76 is kept) and sqrt (the line meets the sphere behind the ray's origin), no
+    // hit.
+    assert_eq!(c.ops.sub, 1 + 1 + 1 + 1 + 1);
+    assert_eq!(c.ops.dot, 2 + 1 + 2 + 2);
     assert_eq!(c.ops.sqrt, 1 + 1 + 1);
     assert_eq!(c.ops.normalize, 2 + 1 + 1);
     assert_eq!(c.ops.cross, 2);
-    assert_eq!(c.ops.scale, 2 + (2 + 1) + 1 + 1 + 1 + 1);
+    assert_eq!(c.ops.scale, 2 + 2 + 1 + 1 + 1);
     assert_eq!(c.ops.add, 2 + 1 + 1);
     assert_eq!(c.ops.pow, 0, "Ks = 0: no highlight");
     assert_eq!(

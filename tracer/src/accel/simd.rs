@@ -13,14 +13,17 @@
 //! lane utilization, low when a scene has fewer primitives of a kind than lanes. Every
 //! lane holding a primitive counts one test with the operations of the scalar test
 //! (its first stage's `sub` and `dot`s; the second stage's operations where the first
-//! did not rule out a hit; a `sqrt` where the discriminant is positive), and a hit where
+//! neither ruled out a hit nor was accurate enough to keep; a `sqrt` where the
+//! discriminant is positive), and a hit where
 //! its intersection lies inside the query's reach, as brute force counts them (so
 //! closest-hit queries count the same tests and hits as `baseline`; a shadow query
 //! stops after the chunk where it found a blocker, brute force after the blocker).
 
 use super::{Intersector, cpu_has_avx2_fma, intersect_primitive, occluded_by_cones_and_planars};
 use crate::counter::{Counter, Phase, Stat};
-use crate::primitives::{quick_miss_margin, sphere_may_hit};
+use crate::primitives::{
+    first_stage_suffices, quick_miss_margin, sphere_first_disc, sphere_may_hit,
+};
 use crate::ray::{Hit, PrimKind, PrimRef, Ray};
 use crate::scene::Scene;
 
@@ -298,13 +301,19 @@ fn sphere_pass<C: Counter>(
         // trusted for certain misses). Most chunks miss entirely and stop here.
         let mut half_b = [0.0f32; LANES];
         let mut passed = [false; LANES];
-        let mut any_passed = false;
+        // The first stage's discriminant, and whether it is kept (see the scalar test).
+        let mut disc = [0.0f32; LANES];
+        let mut second = [false; LANES];
+        let (mut any_passed, mut any_second) = (false, false);
         for i in 0..LANES {
             let (vx, vy, vz) = (ox - l.cx[i], oy - l.cy[i], oz - l.cz[i]);
             half_b[i] = dx * vx + dy * vy + dz * vz;
             let oo = vx * vx + vy * vy + vz * vz;
-            passed[i] = sphere_may_hit(half_b[i], oo, l.radius_sq[i]);
+            disc[i] = sphere_first_disc(half_b[i], oo, l.radius_sq[i]);
+            passed[i] = sphere_may_hit(disc[i], oo);
+            second[i] = passed[i] && !first_stage_suffices(disc[i], 1.0, oo);
             any_passed |= passed[i];
+            any_second |= second[i];
         }
         let live = live_lanes(k, count);
         if C::ENABLED {
@@ -313,19 +322,26 @@ fn sphere_pass<C: Counter>(
         if !any_passed {
             continue;
         }
-        // Step 2: the second stage (the discriminant from the centre's offset across
-        // the ray, as the scalar test computes it), the roots and the query's reach,
-        // branch-free per lane.
+        // Step 2: the second stage where the first was not kept (the discriminant from
+        // the centre's offset across the ray, as the scalar test computes it), skipped
+        // when no lane needs it.
+        if any_second {
+            for i in 0..LANES {
+                let (vx, vy, vz) = (ox - l.cx[i], oy - l.cy[i], oz - l.cz[i]);
+                let (ax, ay, az) = (
+                    vx - dx * half_b[i],
+                    vy - dy * half_b[i],
+                    vz - dz * half_b[i],
+                );
+                let exact = l.radius_sq[i] - (ax * ax + ay * ay + az * az);
+                disc[i] = if second[i] { exact } else { disc[i] };
+            }
+        }
+        // Step 3: the roots and the query's reach, branch-free per lane.
         let mut t = [f32::INFINITY; LANES];
         let mut disc_positive = [false; LANES];
         for i in 0..LANES {
-            let (vx, vy, vz) = (ox - l.cx[i], oy - l.cy[i], oz - l.cz[i]);
-            let (ax, ay, az) = (
-                vx - dx * half_b[i],
-                vy - dy * half_b[i],
-                vz - dz * half_b[i],
-            );
-            let disc = l.radius_sq[i] - (ax * ax + ay * ay + az * az);
+            let disc = disc[i];
             disc_positive[i] = passed[i] && disc > 0.0;
             let root = C::sqrt_kernel(disc.max(0.0));
             let near = -half_b[i] - root;
@@ -340,7 +356,7 @@ fn sphere_pass<C: Counter>(
             };
         }
         if C::ENABLED {
-            let second = passed[..live].iter().filter(|&&p| p).count() as u64;
+            let second = second[..live].iter().filter(|&&p| p).count() as u64;
             c.tally_n(Stat::Scale, second);
             c.tally_n(Stat::Sub, second);
             c.tally_n(Stat::Dot, second);
@@ -376,7 +392,10 @@ fn cylinder_pass<C: Counter>(
         let mut a = [0.0f32; LANES];
         let mut half_b = [0.0f32; LANES];
         let mut passed = [false; LANES];
-        let mut any_passed = false;
+        // The first stage's discriminant, and whether it is kept (see the scalar test).
+        let mut disc = [0.0f32; LANES];
+        let mut second = [false; LANES];
+        let (mut any_passed, mut any_second) = (false, false);
         for i in 0..LANES {
             let (vx, vy, vz) = (ox - l.bx[i], oy - l.by[i], oz - l.bz[i]);
             rv[i] = dx * l.ax[i] + dy * l.ay[i] + dz * l.az[i];
@@ -386,9 +405,11 @@ fn cylinder_pass<C: Counter>(
             a[i] = 1.0 - rv[i] * rv[i];
             half_b[i] = ro - rv[i] * ov[i];
             let cc = oo - ov[i] * ov[i] - l.radius_sq[i];
-            let textbook = half_b[i] * half_b[i] - a[i] * cc;
-            passed[i] = textbook >= -quick_miss_margin(oo) && a[i] > 0.0;
+            disc[i] = half_b[i] * half_b[i] - a[i] * cc;
+            passed[i] = disc[i] >= -quick_miss_margin(oo) && a[i] > 0.0;
+            second[i] = passed[i] && !first_stage_suffices(disc[i], a[i], oo);
             any_passed |= passed[i];
+            any_second |= second[i];
         }
         let live = live_lanes(k, count);
         if C::ENABLED {
@@ -397,17 +418,25 @@ fn cylinder_pass<C: Counter>(
         if !any_passed {
             continue;
         }
-        // Step 2: the second stage (a r² - (V·(Voc × R))², as the scalar test computes
-        // it), the roots, the query's reach and the axial bounds, branch-free per lane.
+        // Step 2: the second stage where the first was not kept (a r² - (V·(Voc × R))²,
+        // as the scalar test computes it), skipped when no lane needs it.
+        if any_second {
+            for i in 0..LANES {
+                let (vx, vy, vz) = (ox - l.bx[i], oy - l.by[i], oz - l.bz[i]);
+                // Voc × R in the order of the scalar test's cross product.
+                let (nx, ny, nz) = (vy * dz - dy * vz, vz * dx - dz * vx, vx * dy - dx * vy);
+                let triple = l.ax[i] * nx + l.ay[i] * ny + l.az[i] * nz;
+                let exact = a[i] * l.radius_sq[i] - triple * triple;
+                disc[i] = if second[i] { exact } else { disc[i] };
+            }
+        }
+        // Step 3: the roots, the query's reach and the axial bounds, branch-free per
+        // lane.
         let mut t = [f32::INFINITY; LANES];
         let mut m_at = [0.0f32; LANES];
         let mut disc_positive = [false; LANES];
         for i in 0..LANES {
-            let (vx, vy, vz) = (ox - l.bx[i], oy - l.by[i], oz - l.bz[i]);
-            // Voc × R in the order of the scalar test's cross product.
-            let (nx, ny, nz) = (vy * dz - dy * vz, vz * dx - dz * vx, vx * dy - dx * vy);
-            let triple = l.ax[i] * nx + l.ay[i] * ny + l.az[i] * nz;
-            let disc = a[i] * l.radius_sq[i] - triple * triple;
+            let disc = disc[i];
             disc_positive[i] = passed[i] && disc > 0.0;
             let root = C::sqrt_kernel(disc.max(0.0));
             let near = (-half_b[i] - root) / a[i];
@@ -432,7 +461,7 @@ fn cylinder_pass<C: Counter>(
             };
         }
         if C::ENABLED {
-            let second = passed[..live].iter().filter(|&&p| p).count() as u64;
+            let second = second[..live].iter().filter(|&&p| p).count() as u64;
             c.tally_n(Stat::Cross, second);
             c.tally_n(Stat::Dot, second);
             count_roots_and_hits(c, live, &disc_positive, &t, Stat::CylinderHit);
@@ -600,12 +629,27 @@ mod tests {
         assert_eq!(c.get(Stat::SphereTest), 19);
         assert_eq!(c.get(Stat::CylinderTest), 11);
         // The first stage: one `sub` per live lane, two `dot` per sphere, four per
-        // cylinder. The second runs only where the ray passes near: the inside-only
-        // sphere and cylinder around the origin (the small ones are 0.5 or more from
-        // the ray, against radii of 0.4 and 0.3, far outside the first stage's margin).
-        assert_eq!(c.get(Stat::Sub), 30 + 1);
-        assert_eq!((c.get(Stat::Scale), c.get(Stat::Cross)), (1, 1));
-        assert_eq!(c.get(Stat::Dot), 19 * 2 + 11 * 4 + 1 + 1);
+        // cylinder. Only the inside-only sphere and cylinder around the origin pass it
+        // (the small ones are 0.5 or more from the ray, against radii of 0.4 and 0.3,
+        // far outside its margin), and the ray passes through their middle: Voc =
+        // (0, -10, 0) and (0, -10, 1), b/2 = -10, discriminants 100 - (100 - 36) = 36
+        // and 100 - (101 - 1 - 49) = 49, far above |Voc|²/2⁸, so no second stage.
+        assert_eq!(c.get(Stat::Sub), 30);
+        assert_eq!((c.get(Stat::Scale), c.get(Stat::Cross)), (0, 0));
+        assert_eq!(c.get(Stat::Dot), 19 * 2 + 11 * 4);
         assert_eq!(c.get(Stat::Intersect), 1);
+        // Near the big sphere's rim, at x = 5.99: its discriminant 36 - 5.99² ≈ 0.12 is
+        // below (100 + 5.99²)/2⁸ ≈ 0.53, so its second stage runs (scale, sub, dot);
+        // the cylinder's 100 - (136.88 - 1 - 49) ≈ 13.1 is still kept.
+        let rim: Ray = Ray {
+            origin: Vec3::new(5.99, -10.0, 0.0),
+            dir: Vec3::new(0.0, 1.0, 0.0),
+        };
+        let mut c = Count::default();
+        let brute = BruteForce::new(&scene).closest_hit(&rim, 0.0, &mut NoCount);
+        assert_eq!(simd.closest_hit(&rim, 0.0, &mut c), brute);
+        assert_eq!(c.get(Stat::Sub), 30 + 1);
+        assert_eq!((c.get(Stat::Scale), c.get(Stat::Cross)), (1, 0));
+        assert_eq!(c.get(Stat::Dot), 19 * 2 + 11 * 4 + 1);
     }
 }

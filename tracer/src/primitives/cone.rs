@@ -8,15 +8,17 @@
 //! zero or negative (rays steeper than the cone's half-angle), so roots are ordered
 //! explicitly. The outward normal is `normalize((P - Q) - k r(m) V)`.
 //!
-//! As for the sphere and the cylinder, that discriminant only screens out certain
-//! misses ([`quick_miss_margin`]). Past that it is computed without cancellation: with
+//! As for the sphere and the cylinder, that discriminant screens out certain misses
+//! ([`quick_miss_margin`]) and is used as it is only when clearly positive
+//! ([`first_stage_suffices`], with the margin's scale). Otherwise it is computed
+//! without cancellation: with
 //! `u`, `w` the parts of `Voc` and `R` across the axis and `s0 = rb + k (Voc·V)`,
 //! `s1 = k (R·V)` the radius terms, `(b/2)² - a c = |s0 w - s1 u|² - |u × w|²`, where
 //! `s0 w - s1 u = s0 R - s1 Voc - (s0 (R·V) - s1 (Voc·V)) V` and `|u × w| = |V·(Voc × R)|`
 //! (the cylinder's identity), both squares of vectors computed directly.
 
 use super::cylinder::{AxialTerms, unit_axis};
-use super::{GeometryError, ordered_roots, quick_miss_margin};
+use super::{GeometryError, first_stage_suffices, ordered_roots, quick_miss_margin};
 use crate::counter::{Counter, Stat};
 use crate::ray::Ray;
 use crate::vec3::Vec3;
@@ -76,9 +78,9 @@ impl Cone {
 
     /// First visible intersection in `(t_min, t_max)` as `(t, m)`.
     ///
-    /// Counts one `sub` and four `dot`; past the first stage three `scale`, two `sub`,
-    /// one `cross` and two `dot` more, and when the ray meets the infinite cone one
-    /// `sqrt`.
+    /// Counts one `sub` and four `dot`; when the second stage runs (a hit near the rim
+    /// or a near miss) three `scale`, two `sub`, one `cross` and two `dot` more; and
+    /// when the ray meets the infinite cone one `sqrt`.
     #[inline(always)]
     pub fn intersect<C: Counter, const FROM_EYE: bool>(
         &self,
@@ -108,20 +110,27 @@ impl Cone {
         } else {
             // The cancelling terms are bounded by w² (|Voc|² + rb²) (|a| ≤ w, |c| ≤ 2 w (…)).
             let scale = w * w * (oo + rb * rb);
-            if !(half_b * half_b - a * cc >= -quick_miss_margin(scale)) {
+            let quick = half_b * half_b - a * cc;
+            if !(quick >= -quick_miss_margin(scale)) {
                 return None;
             }
-            let (s0, s1) = (rb + k * ov, k * rv);
-            let (dir_part, offset_part) = (c.scale(ray.dir, s0), c.scale(voc, s1));
-            let radial = c.sub(dir_part, offset_part);
-            let axial = c.scale(self.axis, s0 * rv - s1 * ov);
-            let g = c.sub(radial, axial);
-            let normal_to_both = c.cross(voc, ray.dir);
-            let triple = c.dot(self.axis, normal_to_both);
-            let disc = c.dot(g, g) - triple * triple;
-            if !(disc > 0.0) {
-                return None;
-            }
+            let disc = if first_stage_suffices(quick, a, scale) {
+                quick
+            } else {
+                let (s0, s1) = (rb + k * ov, k * rv);
+                let (dir_part, offset_part) = (c.scale(ray.dir, s0), c.scale(voc, s1));
+                let radial = c.sub(dir_part, offset_part);
+                let axial = c.scale(self.axis, s0 * rv - s1 * ov);
+                let g = c.sub(radial, axial);
+                let normal_to_both = c.cross(voc, ray.dir);
+                let triple = c.dot(self.axis, normal_to_both);
+                let exact = c.dot(g, g) - triple * triple;
+                // (A kept first stage is positive: no test.)
+                if !(exact > 0.0) {
+                    return None;
+                }
+                exact
+            };
             ordered_roots(a, half_b, c.sqrt(disc))
         };
         for t in roots {
@@ -169,7 +178,7 @@ impl Cone {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::counter::NoCount;
+    use crate::counter::{Count, NoCount};
 
     fn ray(o: [f32; 3], d: [f32; 3]) -> Ray {
         Ray {
@@ -202,6 +211,25 @@ mod tests {
             (x + h).abs() < 1e-6 && y.abs() < 1e-6 && (z - h).abs() < 1e-6,
             "n = {n:?}"
         );
+    }
+
+    #[test]
+    fn the_second_stage_runs_only_when_the_first_is_not_clearly_positive() {
+        // The 45° cone: k = -1, weight 2, rb = 1; rays along +x at z = 0.5 (radius 0.5)
+        // from x0: Voc = (x0, 0, 0.5), a = 1, b/2 = x0, c = x0² + 0.25 - 0.5 + 1 - 1, so
+        // the first stage's discriminant is 0.25 against a scale of 4 (x0² + 1.25).
+        let count = |x0: f32| {
+            let mut c = Count::default();
+            let hit =
+                pointed().intersect(&ray([x0, 0.0, 0.5], [1.0, 0.0, 0.0]), 0.0, 100.0, &mut c);
+            assert_eq!(hit, Some((-0.5 - x0, 0.5)));
+            [Stat::Sub, Stat::Dot, Stat::Scale, Stat::Cross, Stat::Sqrt].map(|s| c.get(s))
+        };
+        // x0 = -1.5: 0.25 ≥ 14/2⁸, kept.
+        assert_eq!(count(-1.5), [1, 4, 0, 0, 1]);
+        // x0 = -5: 0.25 < 105/2⁸, recomputed: s0 R, s1 Voc, their difference, the axial
+        // part and its removal, Voc × R, V·(Voc × R) and |g|².
+        assert_eq!(count(-5.0), [1 + 2, 4 + 2, 3, 1, 1]);
     }
 
     #[test]

@@ -3,12 +3,15 @@
 //! bounded by `0 < m < |Ct - Cb|` with `m = d (R·V) + Voc·V`; `N = normalize(P - (Cb + m V))`.
 //!
 //! As for the sphere, the thesis's discriminant `(b/2)² - a c` cancels for a thin or far
-//! cylinder, so it only screens out certain misses ([`quick_miss_margin`]); past that,
-//! Lagrange's identity gives it without cancellation: with `u` and `w` the parts of
-//! `Voc` and `R` across the axis, `(u·w)² - |w|²|u|² = -|u × w|²`, and `u × w` lies along
-//! the axis with length `|V·(Voc × R)|`, so `disc = a r² - (V·(Voc × R))²`.
+//! cylinder, so it screens out certain misses ([`quick_miss_margin`]) and is used as it
+//! is only when clearly positive ([`first_stage_suffices`]: `disc a² ≥ |Voc|²/2⁸`).
+//! Otherwise Lagrange's identity gives it without cancellation: with `u` and `w` the
+//! parts of `Voc` and `R` across the axis, `(u·w)² - |w|²|u|² = -|u × w|²`, and `u × w`
+//! lies along the axis with length `|V·(Voc × R)|`, so `disc = a r² - (V·(Voc × R))²`.
 
-use super::{GeometryError, ordered_roots, quick_miss_margin, test_radius_sq};
+use super::{
+    GeometryError, first_stage_suffices, ordered_roots, quick_miss_margin, test_radius_sq,
+};
 use crate::counter::{Counter, NoCount, Stat};
 use crate::ray::Ray;
 use crate::vec3::Vec3;
@@ -58,8 +61,9 @@ impl Cylinder {
 
     /// First visible intersection in `(t_min, t_max)` as `(t, m)`.
     ///
-    /// Counts one `sub` and four `dot`; past the first stage one `cross` and one `dot`
-    /// more, and when the ray meets the infinite cylinder one `sqrt`.
+    /// Counts one `sub` and four `dot`; when the second stage runs (a hit near the rim
+    /// or a near miss) one `cross` and one `dot` more; and when the ray meets the
+    /// infinite cylinder one `sqrt`.
     #[inline(always)]
     pub fn intersect<C: Counter, const FROM_EYE: bool>(
         &self,
@@ -81,15 +85,22 @@ impl Cylinder {
         let cc = oo - ov * ov - self.radius_sq;
         // a = 0: the ray runs parallel to the axis and never crosses the wall. A zero
         // radius (radius² = -inf) gives -inf or NaN: never hit.
-        if !(half_b * half_b - a * cc >= -quick_miss_margin(oo)) || a <= 0.0 {
+        let quick = half_b * half_b - a * cc;
+        if !(quick >= -quick_miss_margin(oo)) || a <= 0.0 {
             return None;
         }
-        let normal_to_both = c.cross(voc, ray.dir);
-        let triple = c.dot(self.axis, normal_to_both);
-        let disc = a * self.radius_sq - triple * triple;
-        if !(disc > 0.0) {
-            return None;
-        }
+        let disc = if first_stage_suffices(quick, a, oo) {
+            quick
+        } else {
+            let normal_to_both = c.cross(voc, ray.dir);
+            let triple = c.dot(self.axis, normal_to_both);
+            let exact = a * self.radius_sq - triple * triple;
+            // (A kept first stage is positive: no test.)
+            if !(exact > 0.0) {
+                return None;
+            }
+            exact
+        };
         let root = c.sqrt(disc);
         let roots = ordered_roots(a, half_b, root);
         // With a > 0 the smaller root enters the infinite cylinder (outside wall) and
@@ -186,13 +197,26 @@ mod tests {
     fn hits_side_wall_at_hand_computed_distance() {
         let cyl = z_cylinder(1.0);
         // From x = -5 at height z = 1 along +x: wall at x = -1, t = 4, m = 1.
+        let mut c = Count::default();
         let hit = cyl.intersect(
             &ray([-5.0, 0.0, 1.0], [1.0, 0.0, 0.0]),
             0.0,
             f32::INFINITY,
-            &mut NoCount,
+            &mut c,
         );
         assert_eq!(hit, Some((4.0, 1.0)));
+        // Voc = (-5, 0, 1): a = 1, b/2 = -5, c = 26 - 1 - 1, so the first stage's
+        // discriminant 25 - 24 = 1 is above |Voc|²/2⁸ = 26/256 and is kept: no `cross`,
+        // no fifth `dot`.
+        assert_eq!(
+            (
+                c.get(Stat::Sub),
+                c.get(Stat::Dot),
+                c.get(Stat::Cross),
+                c.get(Stat::Sqrt)
+            ),
+            (1, 4, 0, 1)
+        );
         let n = cyl.normal(Vec3::new(-1.0, 0.0, 1.0), 1.0, &mut NoCount);
         assert_eq!(n.to_array(), [-1.0, 0.0, 0.0]);
     }
@@ -261,7 +285,8 @@ mod tests {
                 c.get(Stat::Sqrt)
             ),
             (1, 5, 1, 1),
-            "Voc, R·V, Voc·V, R·Voc, Voc·Voc; then V·(Voc × R); one sqrt"
+            "Voc, R·V, Voc·V, R·Voc, Voc·Voc; then (the first stage's 81 - 80.75 is below \
+             |Voc|²/2⁸ = 89/256) V·(Voc × R); one sqrt"
         );
         assert_eq!(
             (c.get(Stat::CylinderTest), c.get(Stat::CylinderHit)),

@@ -5,16 +5,21 @@
 //! the order of `r²`, so a sphere of radius 0.1 at distance 1000 is noise. The test runs
 //! in two stages (Haines, Günther and Akenine-Möller, "Precision Improvements for
 //! Ray/Sphere Intersection", Ray Tracing Gems, 2019, ch. 7):
-//! 1. the thesis's discriminant, trusted only to say "certainly a miss" when it lies
-//!    below a margin of `|Voc|²/2¹⁶` ([`sphere_may_hit`]; most tests end here, at
-//!    the thesis's cost);
-//! 2. otherwise `r² - |Voc - (R·Voc) R|²`, the squared radius less the squared distance
-//!    from the centre to the ray, computed from the perpendicular vector: no
-//!    cancellation. The roots stay `-(R·Voc) ± √disc`: the near root of a sphere ahead
-//!    adds two terms of one sign, and the far root is needed only from inside or on the
-//!    surface, where `|R·Voc| ≤ r`, so neither cancels more than the inputs' rounding.
+//! 1. the thesis's discriminant, trusted to say "certainly a miss" when it lies below
+//!    a margin of `|Voc|²/2¹⁶` ([`sphere_may_hit`]; most tests end here, at the
+//!    thesis's cost), and kept as it is when it lies above `|Voc|²/2⁸`
+//!    ([`first_stage_suffices`]: then it is accurate to well under the secondary rays'
+//!    offset, and a hit costs only the `sqrt` more);
+//! 2. in between (a ray near the rim, or a small or far sphere: the discriminant is at
+//!    most `r²`), `r² - |Voc - (R·Voc) R|²`, the squared radius less the squared
+//!    distance from the centre to the ray, computed from the perpendicular vector: no
+//!    cancellation.
+//!
+//! The roots stay `-(R·Voc) ± √disc`: the near root of a sphere ahead adds two terms of
+//! one sign, and the far root is needed only from inside or on the surface, where
+//! `|R·Voc| ≤ r`, so neither cancels more than the inputs' rounding.
 
-use super::{sphere_may_hit, test_radius_sq};
+use super::{first_stage_suffices, sphere_first_disc, sphere_may_hit, test_radius_sq};
 use crate::counter::{Counter, Stat};
 use crate::ray::Ray;
 use crate::vec3::Vec3;
@@ -55,9 +60,9 @@ impl Sphere {
 
     /// Distance to the first visible intersection in `(t_min, t_max)`.
     ///
-    /// Counts one `sub` and two `dot`; past the first stage (a hit or a near miss) one
-    /// `scale`, one `sub` and one `dot` more, and when the ray meets the sphere's
-    /// supporting quadric one `sqrt`.
+    /// Counts one `sub` and two `dot`; when the second stage runs (a hit near the rim
+    /// or a near miss) one `scale`, one `sub` and one `dot` more; and when the ray
+    /// meets the sphere one `sqrt`.
     #[inline(always)]
     pub fn intersect<C: Counter, const FROM_EYE: bool>(
         &self,
@@ -71,18 +76,24 @@ impl Sphere {
         let half_b = c.dot(ray.dir, voc);
         let oo = c.dot(voc, voc);
         // Stage 1. A zero-radius sphere (radius² = -inf, see `test_radius_sq`) ends here.
-        if !sphere_may_hit(half_b, oo, self.radius_sq) {
+        let quick = sphere_first_disc(half_b, oo, self.radius_sq);
+        if !sphere_may_hit(quick, oo) {
             return None;
         }
-        // Stage 2: the centre's offset across the ray.
-        let along = c.scale(ray.dir, half_b);
-        let across = c.sub(voc, along);
-        let disc = self.radius_sq - c.dot(across, across);
-        // A tangent ray (disc = 0) is never hit: it has no area that a pixel could see,
-        // and the normal would be undefined.
-        if disc <= 0.0 {
-            return None;
-        }
+        let disc = if first_stage_suffices(quick, 1.0, oo) {
+            quick
+        } else {
+            // Stage 2: the centre's offset across the ray.
+            let along = c.scale(ray.dir, half_b);
+            let across = c.sub(voc, along);
+            let exact = self.radius_sq - c.dot(across, across);
+            // A tangent ray (disc = 0) is never hit: it has no area that a pixel could
+            // see, and the normal would be undefined. (A kept first stage is positive.)
+            if exact <= 0.0 {
+                return None;
+            }
+            exact
+        };
         let root = c.sqrt(disc);
         let near = -half_b - root;
         let far = -half_b + root;
@@ -230,9 +241,16 @@ mod tests {
         let textbook = half_b * half_b - (NoCount.dot(voc, voc) - 0.01);
         assert_eq!(textbook, 0.0);
         // Hand-computed: offset 0.05 meets the sphere at z = 1000 - √(0.01 - 0.0025).
+        // The first stage's discriminant (0) is far below 10⁶/2⁸: the second stage
+        // runs, (R·Voc) R, Voc - (R·Voc) R and its square.
+        let mut c = Count::default();
         let t = s
-            .intersect(&along_z(0.05), 0.0, f32::INFINITY, &mut NoCount)
+            .intersect(&along_z(0.05), 0.0, f32::INFINITY, &mut c)
             .unwrap_or(f32::NAN);
+        assert_eq!(
+            (c.get(Stat::Sub), c.get(Stat::Dot), c.get(Stat::Scale)),
+            (2, 3, 1)
+        );
         let expected = 1000.0 - 0.0075f64.sqrt();
         assert!(
             (f64::from(t) - expected).abs() < 1e-4,
@@ -266,6 +284,8 @@ mod tests {
             f32::INFINITY,
             &mut c,
         );
+        // b = R·Voc = -8, |Voc|² = 64: the first stage's b² - (|Voc|² - r²) = 4 is above
+        // 64/2⁸, so it is kept and the second stage does not run.
         assert_eq!(
             (
                 c.get(Stat::Sub),
@@ -273,8 +293,8 @@ mod tests {
                 c.get(Stat::Scale),
                 c.get(Stat::Sqrt)
             ),
-            (2, 3, 1, 1),
-            "hit: O - C, R·Voc and Voc·Voc; then (R·Voc) R, Voc - (R·Voc) R and its square; one sqrt"
+            (1, 2, 0, 1),
+            "hit: O - C, R·Voc and Voc·Voc; one sqrt"
         );
         assert_eq!((c.get(Stat::SphereTest), c.get(Stat::SphereHit)), (1, 1));
 

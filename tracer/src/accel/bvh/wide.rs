@@ -24,7 +24,7 @@ use super::{Aabb, Bvh, BvhBuilder, Node};
 use crate::accel::{Intersector, cpu_has_avx2_fma, intersect_primitive};
 use crate::counter::{Counter, Phase, Stat};
 use crate::huge_pages;
-use crate::primitives::sphere_may_hit;
+use crate::primitives::{first_stage_suffices, sphere_first_disc, sphere_may_hit};
 use crate::ray::{Hit, PrimKind, PrimRef, Ray};
 use crate::scene::Scene;
 use glam::Vec3A;
@@ -624,9 +624,10 @@ fn min_or_second(a: f32, b: f32) -> f32 {
 
 /// The closest sphere of a pack closer than `closer_than` as `(t, lane)` (with `any`:
 /// the first lane found), testing `live` lanes against the query's reach
-/// `(t_min, reach)`. The arithmetic is the scalar sphere test's, both stages, in the same
-/// order, so the distances are the same bit for bit; on equal distances the lowest lane
-/// wins, as the scalar loop keeps the first of equal hits.
+/// `(t_min, reach)`. The arithmetic is the scalar sphere test's (both stages and the
+/// choice between them) in the same order, so the distances are the same bit for bit;
+/// on equal distances the lowest lane wins, as the scalar loop keeps the first of
+/// equal hits.
 #[inline(always)]
 #[allow(clippy::too_many_arguments)]
 fn sphere_pack<C: Counter, const FROM_EYE: bool>(
@@ -645,13 +646,19 @@ fn sphere_pack<C: Counter, const FROM_EYE: bool>(
     // The first stage (the thesis's discriminant, trusted for certain misses).
     let mut half_b = [0.0f32; WIDTH];
     let mut passed = [false; WIDTH];
-    let mut any_passed = false;
+    // The first stage's discriminant, and whether it is kept (see the scalar test).
+    let mut disc = [0.0f32; WIDTH];
+    let mut second = [false; WIDTH];
+    let (mut any_passed, mut any_second) = (false, false);
     for i in 0..WIDTH {
         let (vx, vy, vz) = (ox - pack.cx[i], oy - pack.cy[i], oz - pack.cz[i]);
         half_b[i] = dx * vx + dy * vy + dz * vz;
         let oo = vx * vx + vy * vy + vz * vz;
-        passed[i] = sphere_may_hit(half_b[i], oo, pack.radius_sq[i]);
+        disc[i] = sphere_first_disc(half_b[i], oo, pack.radius_sq[i]);
+        passed[i] = sphere_may_hit(disc[i], oo);
+        second[i] = passed[i] && !first_stage_suffices(disc[i], 1.0, oo);
         any_passed |= passed[i];
+        any_second |= second[i];
     }
     let n = u64::from(live);
     let live = live as usize;
@@ -668,17 +675,25 @@ fn sphere_pack<C: Counter, const FROM_EYE: bool>(
     if !any_passed {
         return None;
     }
-    // The second stage: the centre's offset across the ray.
+    // The second stage where the first was not kept: the centre's offset across the
+    // ray (skipped when no lane needs it).
+    if any_second {
+        for i in 0..WIDTH {
+            let (vx, vy, vz) = (ox - pack.cx[i], oy - pack.cy[i], oz - pack.cz[i]);
+            let (ax, ay, az) = (
+                vx - dx * half_b[i],
+                vy - dy * half_b[i],
+                vz - dz * half_b[i],
+            );
+            let exact = pack.radius_sq[i] - (ax * ax + ay * ay + az * az);
+            disc[i] = if second[i] { exact } else { disc[i] };
+        }
+    }
+    // The roots and the query's reach.
     let mut t = [f32::INFINITY; WIDTH];
     let mut disc_positive = [false; WIDTH];
     for i in 0..WIDTH {
-        let (vx, vy, vz) = (ox - pack.cx[i], oy - pack.cy[i], oz - pack.cz[i]);
-        let (ax, ay, az) = (
-            vx - dx * half_b[i],
-            vy - dy * half_b[i],
-            vz - dz * half_b[i],
-        );
-        let disc = pack.radius_sq[i] - (ax * ax + ay * ay + az * az);
+        let disc = disc[i];
         disc_positive[i] = passed[i] && disc > 0.0;
         let root = C::sqrt_kernel(disc.max(0.0));
         let near = -half_b[i] - root;
@@ -693,7 +708,7 @@ fn sphere_pack<C: Counter, const FROM_EYE: bool>(
         };
     }
     if C::ENABLED {
-        let second = passed[..live].iter().filter(|&&p| p).count() as u64;
+        let second = second[..live].iter().filter(|&&p| p).count() as u64;
         c.tally_n(Stat::Scale, second);
         c.tally_n(Stat::Sub, second);
         c.tally_n(Stat::Dot, second);
@@ -943,8 +958,9 @@ mod tests {
             (c.get(Stat::LanesIssued), c.get(Stat::LanesActive)),
             (16, 4)
         );
-        // Each sphere meets the ray, so each runs both stages of the test: `sub` and
-        // two `dot`, then `scale`, `sub` and `dot`.
+        // Each sphere meets the ray but is small as seen from 20 away (the first
+        // stage's discriminant b² - (|Voc|² - r²) ≈ 1 is below |Voc|²/2⁸ ≈ 1.56), so each
+        // runs both stages of the test: `sub` and two `dot`, then `scale`, `sub`, `dot`.
         assert_eq!(
             (
                 c.get(Stat::SphereTest),

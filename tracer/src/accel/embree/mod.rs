@@ -652,8 +652,10 @@ impl From<Aabb> for RTCBounds {
 /// in [`EmbreeMode::Exact`].
 ///
 /// The tests' first stage computes `b² - c` from terms of size `|O - C|²` and assumes
-/// `|dir| = 1`; a hit is decided by the second stage, which has no such error, so this
-/// bound (of the first stage's error) is conservative.
+/// `|dir| = 1`; a hit is decided by the second stage, which has no such error, or by
+/// the first where its discriminant is far above that error (so the ray certainly
+/// crosses the true quadric and its box), so this bound (of the first stage's error)
+/// is conservative.
 /// Their discriminant is off by up to about `γ |O - C|²` with `γ = 8 ε`: in units of
 /// the rounding `u = ε/2`, 7 from `(R·Voc)²`, 4 from `Voc·Voc - r²`, 4 from
 /// `|dir|² - 1` of a normalized f32 vector. A hit can then be reported up to
