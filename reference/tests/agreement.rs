@@ -4,8 +4,8 @@
 //!
 //! The bounds are the measured RMS rounded up, not a loose common one: a change in
 //! either renderer that moves a picture shows. Where the f32 tracer is known wrong (its
-//! `b² - c` sphere discriminant on small far spheres, issue 35) the bound is wider and
-//! says so; those should tighten to RMS ≤ 1 once the robust f32 tests land.
+//! `b² - c` sphere discriminant on small far spheres, issue 35) the bound was wider;
+//! with the robust f32 tests only lattice keeps one (its thin cylinders' silhouettes).
 
 use analysis::{RgbImage, compare};
 use std::path::PathBuf;
@@ -75,10 +75,9 @@ const EXACT: f64 = 0.1;
 fn reference_and_baseline_agree_on_spd_scenes() {
     // (scene, RMS bound). Measured today (32×32): see docs/reference.md.
     let cases = [
-        // Small spheres of the sphereflake: a few silhouette and shadow-edge pixels where
-        // the f32 and f64 distances round to different sides (issue 35: 5.395 before the
-        // two-stage quadric tests, 0.465 after).
-        (Source::File("balls"), 0.6),
+        // Small spheres of the sphereflake (issue 35: 5.395 before the two-stage quadric
+        // tests, 0.465 with them, 0.048 once a clearly positive first stage is kept).
+        (Source::File("balls"), EXACT),
         (Source::File("gears"), EXACT),
         (Source::File("jacks"), EXACT),
         // Spheres and cylinders of radius 0.02-0.05 at distance ~6 (0.906 before, 0.272).
