@@ -442,7 +442,7 @@ pub fn optimization_sentence(lines: &[VariantLine]) -> String {
         .filter(|l| l.has_cost())
         .map(|l| {
             let worst = l.worst.map_or_else(String::new, |(band, rms)| {
-                format!("worst RMS {} ({band})", format::fixed(rms, 1))
+                format!("worst RMS {}, {band}", format::fixed(rms, 1))
             });
             let rays = if l.rays_changed > 0 {
                 format!(
