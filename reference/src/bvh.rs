@@ -135,18 +135,17 @@ impl Bvh {
         Bvh { nodes, order }
     }
 
-    /// The closest hit at `0 < t` (ties: the first object in scene order), as the
-    /// brute-force walk finds it.
-    pub fn closest<'o>(&self, objects: &'o [Object], ray: &Ray) -> Option<(&'o Object, Hit)> {
-        let mut best: Option<(usize, Hit)> = None;
+    /// Walks the leaves whose boxes `ray` meets within `reach()` (asked again before
+    /// each node, as a closest-hit query shortens it), handing each leaf's object
+    /// indices to `leaf`; stops when `leaf` says so.
+    fn walk(&self, ray: &Ray, reach: impl Fn() -> f64, mut leaf: impl FnMut(&[u32]) -> bool) {
         let mut stack: Vec<usize> = Vec::with_capacity(64);
         if !self.nodes.is_empty() {
             stack.push(0);
         }
         while let Some(at) = stack.pop() {
             let node = self.nodes[at];
-            let reach = best.map_or(f64::INFINITY, |(_, h)| h.t);
-            if !node.bounds.meets(ray, reach) {
+            if !node.bounds.meets(ray, reach()) {
                 continue;
             }
             if node.count == 0 {
@@ -155,9 +154,21 @@ impl Bvh {
                 continue;
             }
             let first = node.first as usize;
-            for &index in &self.order[first..first + node.count as usize] {
+            if leaf(&self.order[first..first + node.count as usize]) {
+                return;
+            }
+        }
+    }
+
+    /// The closest hit at `0 < t` (ties: the first object in scene order), as the
+    /// brute-force walk finds it.
+    pub fn closest<'o>(&self, objects: &'o [Object], ray: &Ray) -> Option<(&'o Object, Hit)> {
+        let best: std::cell::Cell<Option<(usize, Hit)>> = std::cell::Cell::new(None);
+        let reach = || best.get().map_or(f64::INFINITY, |(_, h)| h.t);
+        self.walk(ray, reach, |indices| {
+            for &index in indices {
                 let index = index as usize;
-                let (reach, tie_wins) = match best {
+                let (reach, tie_wins) = match best.get() {
                     None => (f64::INFINITY, false),
                     Some((b, h)) => (h.t, index < b),
                 };
@@ -165,43 +176,31 @@ impl Bvh {
                 // the tie, as it would have come first in the brute-force walk.
                 let limit = if tie_wins { reach.next_up() } else { reach };
                 if let Some(hit) = objects[index].shape.intersect(ray, 0.0, limit) {
-                    best = Some((index, hit));
+                    best.set(Some((index, hit)));
                 }
             }
-        }
-        best.map(|(i, h)| (&objects[i], h))
+            false
+        });
+        best.get().map(|(i, h)| (&objects[i], h))
     }
 
     /// Whether any object lies on `ray` at `0 < t < reach`.
     pub fn occluded(&self, objects: &[Object], ray: &Ray, reach: f64) -> bool {
-        let mut stack: Vec<usize> = Vec::with_capacity(64);
-        if !self.nodes.is_empty() {
-            stack.push(0);
-        }
-        while let Some(at) = stack.pop() {
-            let node = self.nodes[at];
-            if !node.bounds.meets(ray, reach) {
-                continue;
-            }
-            if node.count == 0 {
-                stack.push(node.first as usize);
-                stack.push(at + 1);
-                continue;
-            }
-            let first = node.first as usize;
-            if self.order[first..first + node.count as usize]
-                .iter()
-                .any(|&i| {
+        let mut found = false;
+        self.walk(
+            ray,
+            || reach,
+            |indices| {
+                found = indices.iter().any(|&i| {
                     objects[i as usize]
                         .shape
                         .intersect(ray, 0.0, reach)
                         .is_some()
-                })
-            {
-                return true;
-            }
-        }
-        false
+                });
+                found
+            },
+        );
+        found
     }
 }
 
