@@ -12,6 +12,7 @@
 //!   shading) built from those, for a [`design::Design`] (the thesis's or a what-if);
 //! - [`device`]: devices and fit (utilization, the multiplier rule, the largest K);
 //! - [`frame_timing`]: frame timing (one pixel every 3·⌈n/K⌉ cycles plus the fill);
+//! - [`optimizations`]: the thesis's optimizations costed in cycles and resources;
 //! - [`table`]: the model next to the thesis's tables 7 and 8 with percentage errors;
 //! - [`hw_scene`], [`emulator`], [`mif`]: the scene as the hardware holds it, the image
 //!   it computes, and its Memory Initialization File;
@@ -39,4 +40,5 @@ pub mod graph_eval;
 pub mod hw_scene;
 pub mod library;
 pub mod mif;
+pub mod optimizations;
 pub mod table;

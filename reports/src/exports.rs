@@ -1,17 +1,15 @@
 //! The run's tables for other tools, written beside the reports by `rtprof report` and
 //! `rtprof suite`: `variants.csv` (every scene × variant with plain numbers and every
 //! counter, for a spreadsheet or pandas) and `summary.md` (one page of Markdown: what
-//! changed, the headline findings, each variant's verdicts; for a pull request or a CI
-//! job summary). The numbers and verdicts are the report's own.
+//! changed, the report's three answers with their tables, the other findings; for a
+//! pull request or a CI job summary). The numbers and verdicts are the report's own.
 
 use std::collections::BTreeSet;
 
 use crate::Run;
-use crate::document::{Cell, Column, Table, Tone};
-use crate::findings::{geometric_mean, headline_findings};
-use crate::format;
+use crate::findings::headline_findings;
 use crate::gate_text;
-use crate::results::{Results, VariantName, Verdict};
+use crate::results::{Results, SceneResult, Verdict};
 use crate::sections::comparison::gate_against;
 use crate::sections::summary::run_pairs;
 use crate::text;
@@ -19,8 +17,14 @@ use crate::text;
 /// Every scene × variant of a run, one CSV row each: times in seconds, the speed-up
 /// with its interval and verdict, image metrics, and every counter as its own column.
 pub fn variants_csv(results: &Results) -> String {
-    let counters: BTreeSet<&String> = results
-        .scenes
+    scenes_csv(&results.scenes)
+}
+
+/// The CSV of some scenes' variants: one row per scene and variant, one column per
+/// counter any of them has. The one writer of variant rows: `variants.csv` and `rtprof
+/// compare --format csv` both write through it.
+pub fn scenes_csv(scenes: &[SceneResult]) -> String {
+    let counters: BTreeSet<&String> = scenes
         .iter()
         .flat_map(|s| &s.variants)
         .flat_map(|v| v.counts.keys())
@@ -52,7 +56,7 @@ pub fn variants_csv(results: &Results) -> String {
     header.extend(counters.iter().map(|c| c.as_str()));
     let n = |x: Option<f64>| text::csv_number(x);
     let mut rows = Vec::new();
-    for s in &results.scenes {
+    for s in scenes {
         for v in &s.variants {
             let q = v.quality.as_ref();
             let truth = v.vs_f64_reference.as_ref();
@@ -104,73 +108,9 @@ pub fn variants_csv(results: &Results) -> String {
 }
 
 /// One variant's verdicts over the scenes.
-struct VariantLine {
-    variant: VariantName,
-    speedups: Vec<f64>,
-    verdicts: [usize; 3],
-    worst_rms: Option<f64>,
-}
-
-/// Per variant: geometric-mean speed-up, how many scenes were faster / within noise /
-/// slower, and the worst image error.
-fn variant_table(results: &Results) -> Table {
-    let mut lines: Vec<VariantLine> = Vec::new();
-    for v in results.scenes.iter().flat_map(|s| &s.variants) {
-        if v.variant.is_reference() {
-            continue;
-        }
-        let i = match lines.iter().position(|l| l.variant == v.variant) {
-            Some(i) => i,
-            None => {
-                lines.push(VariantLine {
-                    variant: v.variant.clone(),
-                    speedups: Vec::new(),
-                    verdicts: [0; 3],
-                    worst_rms: None,
-                });
-                lines.len() - 1
-            }
-        };
-        let line = &mut lines[i];
-        line.speedups.extend(v.speedup);
-        if let Some(verdict) = v.verdict {
-            let slot = Verdict::ALL.iter().position(|x| *x == verdict).unwrap_or(2);
-            line.verdicts[slot] += 1;
-        }
-        if let Some(q) = &v.quality {
-            line.worst_rms = Some(line.worst_rms.map_or(q.rms, |w: f64| w.max(q.rms)));
-        }
-    }
-    let mut t = Table::new(vec![
-        Column::text("variant"),
-        Column::number("geometric-mean speed-up"),
-        Column::number("faster"),
-        Column::number("within noise"),
-        Column::number("slower"),
-        Column::number("worst RMS"),
-    ]);
-    for l in &lines {
-        let mean = geometric_mean(l.speedups.iter().copied()).map_or(f64::NAN, |m| m.0);
-        let [faster, slower, noise] = l.verdicts;
-        t.rows.push(vec![
-            Cell::text(l.variant.as_str()),
-            Cell::number(format::speedup(mean), mean),
-            Cell::count(faster as u64),
-            Cell::count(noise as u64),
-            Cell::count(slower as u64).tone(if slower > 0 { Tone::Bad } else { Tone::Muted }),
-            Cell::number(
-                l.worst_rms
-                    .map_or(format::DASH.to_string(), |r| format::fixed(r, 1)),
-                l.worst_rms.unwrap_or(f64::NAN),
-            ),
-        ]);
-    }
-    t
-}
-
 /// A one-page Markdown summary of `runs` (the first in detail): what changed against
-/// the first run when there are several, the headline findings, each variant's
-/// verdicts, the failures and the files.
+/// the first run when there are several, the report's three answers (the same model
+/// as its first page), the other findings, the failures and the files.
 pub fn summary_markdown(runs: &[Run]) -> String {
     let Some(main) = runs.first() else {
         return String::new();
@@ -204,26 +144,29 @@ pub fn summary_markdown(runs: &[Run]) -> String {
             out.push('\n');
         }
     }
+    // The report's first page: the same three answers, sentences and tables.
+    out += "## Answers\n\n";
+    for answer in crate::sections::answers::three_answers(r) {
+        out += &format!("### {}\n\n", answer.question);
+        out += answer.sentence.as_deref().unwrap_or(answer.why_none);
+        out += "\n\n";
+        if let Some(warning) = &answer.warning {
+            out += &format!("> {warning}\n\n");
+        }
+        if let Some(table) = &answer.table {
+            if let Some(caption) = &table.caption {
+                out += &format!("*{caption}*\n\n");
+            }
+            out += &text::markdown(table);
+            out.push('\n');
+        }
+    }
     let findings = headline_findings(r);
     if !findings.is_empty() {
-        out += "## Headline findings\n\n";
+        out += "## Other findings\n\n";
         for f in findings {
             out += &format!("- {f}\n");
         }
-        out.push('\n');
-    }
-    if r.scenes.iter().any(|s| s.variants.len() > 1) {
-        out += &format!(
-            "## Variants against baseline\n\nVerdicts per scene: faster or slower only beyond the noise threshold of {} with a 95 % interval that excludes 1×.\n\n",
-            format::percent(
-                r.suite
-                    .noise_threshold
-                    .unwrap_or(crate::results::NOISE_THRESHOLD)
-                    * 100.0,
-                0
-            )
-        );
-        out += &text::markdown(&variant_table(r));
         out.push('\n');
     }
     if !r.failures.is_empty() {

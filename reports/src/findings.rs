@@ -32,6 +32,20 @@ pub fn headline_findings(results: &Results) -> Vec<String> {
     .collect()
 }
 
+/// The hardware chapter's opening: how close the model is to the thesis, whether the
+/// design fits, and the software-against-hardware speed-ups.
+pub fn hardware_finding(results: &Results) -> Option<String> {
+    let parts: Vec<String> = [
+        model_error_finding(results),
+        device_finding(results),
+        hardware_speedup_finding(results),
+    ]
+    .into_iter()
+    .flatten()
+    .collect();
+    (!parts.is_empty()).then(|| parts.join(" "))
+}
+
 /// Geometric mean of the finite positive values, with how many there were.
 pub fn geometric_mean(values: impl IntoIterator<Item = f64>) -> Option<(f64, usize)> {
     let logs: Vec<f64> = values

@@ -41,7 +41,12 @@ pub fn render(doc: &Document) -> String {
         out: String::with_capacity(1 << 20),
     };
     page.head();
+    let mut in_appendix = false;
     for section in &doc.sections {
+        if section.appendix && !in_appendix {
+            in_appendix = true;
+            page.push("<h1 id=\"appendix\" class=\"part\">Appendix</h1>\n");
+        }
         page.section(section);
     }
     page.foot();
@@ -185,16 +190,29 @@ impl Page<'_> {
                 escape(notice)
             );
         }
+        // The main body's chapters, then the appendix's sections.
         self.push("<nav><ol>");
-        for s in &doc.sections {
-            let _ = write!(
-                self.out,
-                "<li><a href=\"#{}\">{}</a></li>",
-                escape(&s.id),
-                escape(&s.heading)
-            );
+        for s in doc.sections.iter().filter(|s| !s.appendix) {
+            self.nav_item(s);
         }
-        self.push("</ol></nav>\n<main>\n");
+        self.push("</ol>");
+        if doc.sections.iter().any(|s| s.appendix) {
+            self.push("<details><summary>Appendix</summary><ol type=\"A\">");
+            for s in doc.sections.iter().filter(|s| s.appendix) {
+                self.nav_item(s);
+            }
+            self.push("</ol></details>");
+        }
+        self.push("</nav>\n<main>\n");
+    }
+
+    fn nav_item(&mut self, s: &Section) {
+        let _ = write!(
+            self.out,
+            "<li><a href=\"#{}\">{}</a></li>",
+            escape(&s.id),
+            escape(&s.heading)
+        );
     }
 
     fn foot(&mut self) {
@@ -229,7 +247,11 @@ impl Page<'_> {
                 detail,
                 anchor,
             } => {
-                let tag = if *level <= 2 { "h3" } else { "h4" };
+                let tag = match level {
+                    0..=2 => "h3",
+                    3 => "h4",
+                    _ => "h5",
+                };
                 let id = anchor
                     .as_ref()
                     .map_or_else(String::new, |a| format!(" id=\"{}\"", escape(a)));

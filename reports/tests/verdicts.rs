@@ -119,13 +119,13 @@ fn every_verdict_label_reaches_every_format() {
     assert!(text.contains("changed: ops.dot: "), "{text}");
     assert!(markdown.contains("**slower**"));
     assert!(markdown.starts_with("### ❌ regression gate FAILED"));
-    // The variants section of one run labels speed-ups by the same rule.
+    // The per-scene variant tables of one run label speed-ups by the same rule.
     let one = document::build(&[run("old", sample_results())]).expect("document");
     let variants = one
         .sections
         .iter()
-        .find(|s| s.id == "variants")
-        .expect("variants section");
+        .find(|s| s.id == "variants-by-scene")
+        .expect("variants-by-scene section");
     let labels: Vec<&str> = variants
         .blocks
         .iter()

@@ -11,8 +11,10 @@ use analysis::{
     Band, Comparison, Estimate, P3Histograms, RgbImage, compare, difference_heat_map,
     p3_histograms, to_p3,
 };
-use reports::document::{Cell, Column, Table, Tone};
+use reports::document::Table;
 use reports::format;
+use reports::sections::variants::{Detail, scene_table};
+use results::{Quality, SceneResult, VariantName, VariantResult};
 use serde::Serialize;
 use tracer::{Counts, VariantSet};
 
@@ -45,6 +47,15 @@ pub struct VariantRow {
     /// The image error against the f64 reference renderer (`--reference` only).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub vs_f64_reference: Option<ImageError>,
+    /// The timed renders' seconds (the CSV's repeats).
+    #[serde(skip)]
+    pub samples: Vec<f64>,
+    /// `name`, as results record a variant.
+    #[serde(skip)]
+    pub variant: VariantName,
+    /// The image error against the f64 reference, as the suite's results hold it.
+    #[serde(skip)]
+    pub vs_f64_quality: Option<Quality>,
 }
 
 /// Measures every set in `sets` (the first is the reference) and compares them. With
@@ -79,6 +90,7 @@ pub fn compare_variants(
     let variants = variant_rows(setup, sets, policy, out, truth_image, progress)?;
     Ok(VariantsReport {
         scene: setup.name.to_string(),
+        primitives: setup.scene.primitive_count() as u64,
         width: setup.options.width,
         height: setup.options.height,
         spd: setup.options.sampling == tracer::Sampling::SpdCorners,
@@ -116,15 +128,18 @@ fn variant_rows(
             let heat = difference_heat_map(&reference.image, &m.image)?;
             save_png(dir, &format!("{}-diff.png", m.variants), &heat)?;
         }
-        let vs_f64_reference = match truth {
+        let (vs_f64_reference, vs_f64_quality) = match truth {
             Some(truth) => {
                 if let Some(dir) = out {
                     let heat = difference_heat_map(truth, &m.image)?;
                     save_png(dir, &format!("{}-vs-f64.png", m.variants), &heat)?;
                 }
-                Some(ImageError::between(truth, &m.image)?)
+                (
+                    Some(ImageError::between(truth, &m.image)?),
+                    Some(crate::collect::quality(&compare(truth, &m.image)?)),
+                )
             }
-            None => None,
+            None => (None, None),
         };
         let speedup = results::change::speedup(&reference.samples, &m.samples);
         rows.push(VariantRow {
@@ -146,6 +161,9 @@ fn variant_rows(
             max_abs_diff: metrics.max_abs_diff,
             counts: m.counts,
             vs_f64_reference,
+            samples: m.samples.clone(),
+            variant: VariantName::of(&m.variants),
+            vs_f64_quality,
         });
     }
     Ok(rows)
@@ -155,6 +173,7 @@ fn variant_rows(
 #[derive(Serialize)]
 pub struct VariantsReport {
     pub scene: String,
+    pub primitives: u64,
     pub width: u32,
     pub height: u32,
     pub spd: bool,
@@ -198,67 +217,69 @@ impl VariantsReport {
         )
     }
 
-    /// Primitive tests of all kinds in a row's counts.
-    fn tests(v: &VariantRow) -> u64 {
-        let t = &v.counts.tests;
-        t.sphere.tests + t.cylinder.tests + t.cone.tests + t.polygon.tests + t.patch.tests
+    /// The rows as the suite's results model holds a scene, so that the table and the
+    /// CSV are the report's own ([`reports::sections::variants::scene_table`],
+    /// [`reports::exports::scenes_csv`]).
+    pub fn scene_result(&self) -> SceneResult {
+        let variants = self
+            .variants
+            .iter()
+            .map(|v| VariantResult {
+                variant: v.variant.clone(),
+                time: v.seconds,
+                samples: v.samples.clone(),
+                cpu_samples: Vec::new(),
+                preprocessing_seconds: Some(v.preprocessing_seconds),
+                speedup: Some(v.speedup.median).filter(|s| s.is_finite()),
+                speedup_interval: v
+                    .speedup
+                    .median
+                    .is_finite()
+                    .then_some([v.speedup.low, v.speedup.high]),
+                verdict: v.verdict,
+                counts: crate::collect::count_map(&v.counts),
+                image: None,
+                heat_map: None,
+                quality: Some(Quality {
+                    rms: v.rms,
+                    band: v.band,
+                    psnr: v.psnr,
+                    ssim: v.ssim,
+                    max_abs_diff: u32::from(v.max_abs_diff),
+                }),
+                vs_f64_reference: v.vs_f64_quality.clone(),
+                histogram: Vec::new(),
+                lane_utilization: None,
+                efficiency: None,
+                ray_rates: None,
+            })
+            .collect();
+        SceneResult {
+            name: self.scene.clone(),
+            source: self.scene.clone(),
+            family: results::SceneFamily::Other,
+            primitives: self.primitives,
+            primitive_counts: Default::default(),
+            width: self.width,
+            height: self.height,
+            spd: self.spd,
+            variants,
+            hardware: None,
+            calibration: None,
+            published: None,
+            memory: None,
+            bvh_quality: Vec::new(),
+            pixel_maps: Vec::new(),
+            f64_reference: None,
+        }
     }
 
-    /// The rows as a document table (the terminal and Markdown forms).
+    /// The rows as a document table (the terminal and Markdown forms): the report's
+    /// per-scene table, compact.
     pub fn table(&self) -> Table {
-        let mut t = Table::new(vec![
-            Column::text("variant"),
-            Column::number("time").detail("[95 % interval]"),
-            Column::number("speed-up").detail("[95 % interval]"),
-            Column::text("verdict"),
-            Column::number("RMS"),
-            Column::text("band"),
-            Column::number("PSNR"),
-            Column::number("SSIM"),
-            Column::number("tests"),
-            Column::text("rays"),
-        ]);
-        let with_truth = self.f64_reference.is_some();
-        if with_truth {
-            t.columns.extend([
-                Column::number("RMS").detail("vs f64"),
-                Column::number("PSNR").detail("vs f64"),
-                Column::number("max").detail("vs f64"),
-            ]);
-        }
-        let reference_rays = self.variants.first().map(|v| v.counts.rays);
-        for v in &self.variants {
-            let s = &v.seconds;
-            let mut row = vec![
-                Cell::text(&v.name),
-                Cell::estimate(s.median, s.low, s.high),
-                Cell::ratio(v.speedup.median, Some([v.speedup.low, v.speedup.high])),
-                v.verdict
-                    .map_or_else(|| Cell::text("reference").tone(Tone::Muted), Cell::verdict),
-                Cell::number(format::fixed(v.rms, 2), v.rms),
-                Cell::text(v.band.name()).tone(Tone::of_band(v.band)),
-                psnr_cell(v.psnr),
-                Cell::number(format::fixed(v.ssim, 4), v.ssim),
-                Cell::count(Self::tests(v)),
-                if Some(v.counts.rays) == reference_rays {
-                    Cell::text("same")
-                } else {
-                    Cell::text("differ").tone(Tone::Warning)
-                },
-            ];
-            if with_truth {
-                row.extend(match &v.vs_f64_reference {
-                    Some(e) => [
-                        Cell::number(format::fixed(e.rms, 2), e.rms),
-                        psnr_cell(e.psnr),
-                        Cell::count(u64::from(e.max_abs_diff)),
-                    ],
-                    None => [Cell::dash(), Cell::dash(), Cell::dash()],
-                });
-            }
-            t.rows.push(row);
-        }
-        t
+        let scene = self.scene_result();
+        let base = scene.variants.first();
+        scene_table(&scene, base, Detail::Compact)
     }
 
     /// The table the command prints.
@@ -275,86 +296,9 @@ impl VariantsReport {
         )
     }
 
-    /// One CSV row per variant, seconds in full.
+    /// One CSV row per variant, seconds in full: the writer of `variants.csv`.
     pub fn to_csv(&self) -> String {
-        let header = [
-            "scene",
-            "width",
-            "height",
-            "threads",
-            "variant",
-            "median_s",
-            "low_s",
-            "high_s",
-            "preprocessing_s",
-            "speedup",
-            "speedup_low",
-            "speedup_high",
-            "verdict",
-            "rms",
-            "band",
-            "psnr_db",
-            "ssim",
-            "max_abs_diff",
-            "primitive_tests",
-            "primary_rays",
-        ];
-        // The columns against the f64 reference only when it was rendered, so that the
-        // plain run's CSV keeps its columns.
-        let with_truth = self.f64_reference.is_some();
-        let truth_header = ["rms_vs_f64", "psnr_db_vs_f64", "max_abs_diff_vs_f64"];
-        let header: Vec<&str> = if with_truth {
-            header.iter().chain(&truth_header).copied().collect()
-        } else {
-            header.to_vec()
-        };
-        let n = |x: f64| reports::text::csv_number(Some(x));
-        let rows: Vec<Vec<String>> = self
-            .variants
-            .iter()
-            .map(|v| {
-                let mut row = vec![
-                    self.scene.clone(),
-                    self.width.to_string(),
-                    self.height.to_string(),
-                    self.threads.to_string(),
-                    v.name.clone(),
-                    n(v.seconds.median),
-                    n(v.seconds.low),
-                    n(v.seconds.high),
-                    n(v.preprocessing_seconds),
-                    n(v.speedup.median),
-                    n(v.speedup.low),
-                    n(v.speedup.high),
-                    v.verdict.map_or("reference", |x| x.label()).to_string(),
-                    n(v.rms),
-                    v.band.name().to_string(),
-                    reports::text::csv_number(v.psnr),
-                    n(v.ssim),
-                    v.max_abs_diff.to_string(),
-                    Self::tests(v).to_string(),
-                    v.counts.rays.primary.to_string(),
-                ];
-                if with_truth {
-                    let e = v.vs_f64_reference.as_ref();
-                    row.extend([
-                        reports::text::csv_number(e.map(|e| e.rms)),
-                        reports::text::csv_number(e.and_then(|e| e.psnr)),
-                        e.map_or(String::new(), |e| e.max_abs_diff.to_string()),
-                    ]);
-                }
-                row
-            })
-            .collect();
-        reports::text::csv(&header, &rows)
-    }
-}
-
-/// A PSNR in dB, or ∞ for identical images.
-fn psnr_cell(psnr: Option<f64>) -> Cell {
-    match psnr {
-        Some(p) => Cell::number(format!("{} dB", format::fixed(p, 1)), p),
-        None => Cell::text("∞"),
+        reports::exports::scenes_csv(&[self.scene_result()])
     }
 }
 

@@ -385,6 +385,9 @@ fn failure(scene: Option<&str>, part: FailedPart, e: &RunError) -> Failure {
     }
 }
 
+/// A variant's result and its picture, or why there is none.
+type VariantOutcome = Result<(VariantResult, analysis::RgbImage), RunError>;
+
 struct SceneRunner<'a> {
     def: &'a SuiteDef,
     ctx: &'a RunContext<'a>,
@@ -435,7 +438,6 @@ impl SceneRunner<'_> {
         let measured = setup.measure_all(&sets, &self.def.timing(), true, &doing)?;
         let truth = self.f64_reference(spec, &setup, &doing, failures)?;
         let mut variants: Vec<VariantResult> = Vec::new();
-        let mut reference: Option<analysis::RgbImage> = None;
         let memory = memory_use(&scene, &measured.variants);
         // The `bvh` variant's counts and time, for the BVH quality of a large frame.
         let bvh_measured = names
@@ -444,18 +446,47 @@ impl SceneRunner<'_> {
             .find(|(name, _)| name.as_str() == "bvh")
             .and_then(|(_, m)| m.as_ref().ok())
             .map(|m| (m.counts, m.time.median));
-        for (name, outcome) in names.iter().zip(measured.variants) {
-            let result = outcome.and_then(|m| {
-                let truth = truth.as_ref().map(|(_, image)| image);
-                self.variant_result(spec, &scene, m, reference.as_ref(), truth)
-            });
+        // The reference variant's picture first (the others are compared with it), then
+        // every other variant's images, metrics and files on the pool, in parallel:
+        // nothing renders meanwhile, and each is a second of single-threaded work on a
+        // large frame (PNG encoding, SSIM, heat maps).
+        let truth_image = truth.as_ref().map(|(_, image)| image);
+        let mut outcomes: Vec<Option<VariantOutcome>> =
+            (0..measured.variants.len()).map(|_| None).collect();
+        let mut pending: Vec<(usize, Result<VariantMeasurement, RunError>)> =
+            measured.variants.into_iter().enumerate().collect();
+        let reference_at = pending.iter().position(|(_, m)| {
+            m.as_ref()
+                .is_ok_and(|m| VariantName::of(&m.variants).is_reference())
+        });
+        let mut reference: Option<analysis::RgbImage> = None;
+        if let Some(at) = reference_at {
+            let (index, m) = pending.remove(at);
+            let result = m.and_then(|m| self.variant_result(spec, &scene, m, None, truth_image));
+            if let Ok((_, image)) = &result {
+                reference = Some(image.clone());
+            }
+            outcomes[index] = Some(result);
+        }
+        let done: Vec<(usize, VariantOutcome)> = self.pool.install(|| {
+            use rayon::prelude::*;
+            pending
+                .into_par_iter()
+                .map(|(index, m)| {
+                    let result = m.and_then(|m| {
+                        self.variant_result(spec, &scene, m, reference.as_ref(), truth_image)
+                    });
+                    (index, result)
+                })
+                .collect()
+        });
+        for (index, result) in done {
+            outcomes[index] = Some(result);
+        }
+        for (name, outcome) in names.iter().zip(outcomes) {
+            let Some(result) = outcome else { continue };
             match result {
-                Ok((v, image)) => {
-                    if v.variant.is_reference() {
-                        reference = Some(image);
-                    }
-                    variants.push(v);
-                }
+                Ok((v, _)) => variants.push(v),
                 Err(RunError::Stopped) => return Err(RunError::Stopped),
                 Err(e) => {
                     // The suite's variant names were checked when it was read.

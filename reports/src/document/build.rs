@@ -10,49 +10,130 @@ use crate::charts::{self, Chart};
 use crate::gallery::{self, Picture};
 use crate::sections;
 
-/// The report's sections: id and heading, in order. The comparison comes only with
-/// several runs, and first: a report of several runs opens with what changed. The
-/// ray-rates, roofline, pixel-maps and bvh-quality sections come only with results
-/// that hold their data.
-pub const SECTIONS: [(&str, &str); 21] = [
-    ("comparison", "What changed between the runs"),
-    ("answers", "Answers"),
-    ("summary", "Summary"),
-    ("profile", "Flat profile and call graph"),
-    ("profile-charts", "Calls and self time per function"),
-    ("flamegraphs", "Flamegraphs"),
+/// Where a section stands: the main body, the appendix, or folded into a chapter of
+/// the main body as one of its parts (a sub-heading with the section's id as anchor).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Part {
+    Main,
+    /// Inside the chapter with this id.
+    Within(&'static str),
+    Appendix,
+}
+
+/// The report's sections: id, heading and part, in order. The main body answers first
+/// and then has four chapters (profile, variants, hardware, images); what supports
+/// them (per-scene tables, rates, rooflines, maps, SPD statistics, benchmarks) is the
+/// appendix. The comparison comes only with several runs, and first: a report of
+/// several runs opens with what changed. The ray-rates, roofline, pixel-maps and
+/// bvh-quality sections come only with results that hold their data.
+pub const SECTIONS: [(&str, &str, Part); 26] = [
+    ("comparison", "What changed between the runs", Part::Main),
+    ("answers", "Answers", Part::Main),
+    ("profile", "Profile: where the time goes", Part::Main),
+    ("profile-flat", "Flat profile", Part::Within("profile")),
+    (
+        "profile-charts",
+        "Calls and self time per function",
+        Part::Within("profile"),
+    ),
+    ("flamegraphs", "Flamegraphs", Part::Within("profile")),
     (
         "amdahl",
         "Amdahl's law: what speeding up a function would give",
+        Part::Within("profile"),
     ),
-    ("variants", "Optimization variants"),
-    ("ray-rates", "Rays per second and where the time goes"),
+    (
+        "variants",
+        "Variants: what each optimization buys and costs",
+        Part::Main,
+    ),
+    ("hardware", "Hardware: the FPGA pipeline", Part::Main),
+    (
+        "hardware-tables",
+        "The model against tables 7 and 8",
+        Part::Within("hardware"),
+    ),
+    (
+        "hw-optimizations",
+        "The thesis's optimizations in cycles and logic",
+        Part::Within("hardware"),
+    ),
+    (
+        "device-utilization",
+        "Device utilization",
+        Part::Within("hardware"),
+    ),
+    (
+        "sw-hw",
+        "Software against hardware",
+        Part::Within("hardware"),
+    ),
+    (
+        "images",
+        "Images: what the variants change in the picture",
+        Part::Main,
+    ),
+    (
+        "summary",
+        "All findings, the machine and the scenes",
+        Part::Appendix,
+    ),
+    (
+        "variants-by-scene",
+        "Variants scene by scene",
+        Part::Appendix,
+    ),
+    (
+        "profile-details",
+        "Profile details: call graphs, native symbols, the best variant",
+        Part::Appendix,
+    ),
+    (
+        "ray-rates",
+        "Rays per second and where the time goes",
+        Part::Appendix,
+    ),
     (
         "roofline",
         "Roofline: attained GFLOP/s against the machine's peaks",
+        Part::Appendix,
     ),
-    ("images", "Images, difference heat maps and histograms"),
-    ("pixel-maps", "Per-pixel maps of the work"),
-    ("hardware-tables", "Hardware model: tables 7 and 8"),
-    ("device-utilization", "Device utilization"),
-    ("sw-hw", "Software against hardware"),
-    ("time-vs-primitives", "Render time against primitive count"),
-    ("spd", "SPD scene statistics"),
+    ("pixel-maps", "Per-pixel maps of the work", Part::Appendix),
+    (
+        "time-vs-primitives",
+        "Render time against primitive count",
+        Part::Appendix,
+    ),
+    ("spd", "SPD scene statistics", Part::Appendix),
     (
         "bvh-quality",
         "BVH quality: predicted against measured cost",
+        Part::Appendix,
     ),
-    ("criterion", "Micro-benchmarks: time and instructions"),
-    ("failures", "Failures"),
-    ("reproduce", "How to reproduce"),
+    (
+        "criterion",
+        "Micro-benchmarks: time and instructions",
+        Part::Appendix,
+    ),
+    ("failures", "Failures", Part::Appendix),
+    ("reproduce", "How to reproduce", Part::Appendix),
 ];
 
 /// The heading of section `id` (the id itself when it is not one of [`SECTIONS`]).
 pub fn heading_of(id: &str) -> &str {
     SECTIONS
         .iter()
-        .find(|(sid, _)| *sid == id)
-        .map_or(id, |(_, heading)| heading)
+        .find(|(sid, _, _)| *sid == id)
+        .map_or(id, |(_, heading, _)| heading)
+}
+
+/// The part of the report section `id` stands in ([`Part::Main`] when it is not one of
+/// [`SECTIONS`]).
+pub fn part_of(id: &str) -> Part {
+    SECTIONS
+        .iter()
+        .find(|(sid, _, _)| *sid == id)
+        .map_or(Part::Main, |(_, _, part)| *part)
 }
 
 /// The study the report reproduces.
@@ -72,20 +153,19 @@ pub fn build(runs: &[Run]) -> Option<Document> {
         sections_out.push(sections::comparison::comparison(&mut b));
     }
     for section in [
+        // The main body: the answers, then the four chapters.
         Some(sections::answers::answers(&mut b)),
-        Some(sections::summary::summary(&mut b)),
         Some(sections::profile::profile(&mut b)),
-        Some(sections::profile::profile_charts(&mut b)),
-        Some(sections::profile::flamegraphs(&mut b)),
-        Some(sections::profile::amdahl(&mut b)),
         Some(sections::variants::variants(&mut b)),
+        Some(sections::hardware::hardware(&mut b)),
+        Some(sections::images::images(&mut b)),
+        // The appendix.
+        Some(sections::summary::summary(&mut b)),
+        Some(sections::variants::variants_by_scene(&mut b)),
+        sections::profile::profile_details(&mut b),
         sections::ray_rates::ray_rates(&mut b),
         sections::roofline::roofline(&mut b),
-        Some(sections::images::images(&mut b)),
         sections::pixel_maps::pixel_maps(&mut b),
-        Some(sections::hardware::hardware_tables(&mut b)),
-        Some(sections::hardware::device_utilization(&mut b)),
-        Some(sections::hardware::sw_hw(&mut b)),
         Some(sections::scaling::time_vs_primitives(&mut b)),
         Some(sections::scaling::spd(&mut b)),
         sections::bvh_quality::bvh_quality(&mut b),
@@ -155,6 +235,7 @@ impl<'a> Builder<'a> {
             heading: heading_of(id).to_string(),
             thesis: thesis.map(str::to_string),
             short: false,
+            appendix: part_of(id) == Part::Appendix,
             blocks: Vec::new(),
         }
     }

@@ -15,7 +15,7 @@ pub mod tone;
 
 pub use assets::{Asset, AssetKind, Assets};
 pub(crate) use build::Builder;
-pub use build::{SECTIONS, build, heading_of};
+pub use build::{Part, SECTIONS, build, heading_of, part_of};
 pub use tone::Tone;
 
 use serde::Serialize;
@@ -57,6 +57,8 @@ pub struct Section {
     pub thesis: Option<String>,
     /// Short sections may share a printed page with the one before.
     pub short: bool,
+    /// In the appendix (see [`Part`]): after the main body, lettered.
+    pub appendix: bool,
     pub blocks: Vec<Block>,
 }
 
@@ -485,6 +487,28 @@ impl Section {
     /// Adds a paragraph of plain text.
     pub fn text(&mut self, text: impl Into<String>) {
         self.blocks.push(Block::text(text));
+    }
+
+    /// Takes in `part` as one part of this chapter: its heading becomes a sub-heading
+    /// anchored at its id (links to it still land), its thesis line a note, and its
+    /// own headings move one level down.
+    pub fn absorb(&mut self, part: Section) {
+        self.blocks.push(Block::Heading {
+            level: 2,
+            text: part.heading,
+            detail: None,
+            anchor: Some(part.id),
+        });
+        if let Some(thesis) = part.thesis {
+            self.blocks
+                .push(Block::note(Tone::Muted, format!("Thesis: {thesis}")));
+        }
+        for mut block in part.blocks {
+            if let Block::Heading { level, .. } = &mut block {
+                *level = (*level + 1).min(4);
+            }
+            self.blocks.push(block);
+        }
     }
 
     /// The section with only a note saying why it is empty.

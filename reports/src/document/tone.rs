@@ -92,6 +92,25 @@ impl Tone {
     }
 
     /// The tone's name, as the template and the style sheet know it.
+    /// How bad a tone is: 0 for good, neutral and muted, then fair, warning, bad.
+    pub fn severity(self) -> u8 {
+        match self {
+            Tone::Good | Tone::Neutral | Tone::Muted => 0,
+            Tone::Fair => 1,
+            Tone::Warning => 2,
+            Tone::Bad => 3,
+        }
+    }
+
+    /// The worse of two tones (see [`Tone::severity`]; the first on a tie).
+    pub fn worse(self, other: Tone) -> Tone {
+        if other.severity() > self.severity() {
+            other
+        } else {
+            self
+        }
+    }
+
     pub fn name(self) -> &'static str {
         match self {
             Tone::Neutral => "neutral",

@@ -29,55 +29,80 @@ pub fn answers(b: &mut Builder) -> Section {
         "answers",
         Some("the questions of ch. 8: bottleneck, optimizations, hardware"),
     );
-    let r = b.results();
-    s.blocks.push(Block::heading("Where the time goes"));
-    match r.profile.as_ref() {
-        Some(p) => {
-            let rows = table6_rows(&p.baseline);
-            s.blocks.push(Block::text(time_sentence(&p.scene, &p.baseline, &rows)));
-            if !is_thesis_scene(&p.scene) {
-                s.blocks.push(Block::note(
-                    Tone::Warning,
-                    format!(
-                        "The profile is of {}, not of the thesis's {TABLE_6_SCENE}: the rows below compare different scenes.",
-                        p.scene
-                    ),
-                ));
-            }
-            s.blocks.push(Block::Table(table6_table(&rows).caption(format!(
-                "{} at {} (baseline) against table 6 ({TABLE_6_SCENE}); calls per eye ray make the two frame sizes comparable",
-                p.scene,
-                format::size(p.width, p.height)
-            ))));
+    for answer in three_answers(b.results()) {
+        s.blocks.push(Block::heading(answer.question));
+        match answer.sentence {
+            Some(sentence) => s.blocks.push(Block::text(sentence)),
+            None => s.blocks.push(Block::empty(answer.why_none)),
         }
-        None => s.blocks.push(Block::empty(
-            "No profile in this run: the suite ran without profiling, or the profile failed (see Failures).",
-        )),
-    }
-    s.blocks
-        .push(Block::heading("What each optimization buys and costs"));
-    let lines = variant_lines(r);
-    if lines.is_empty() {
-        s.blocks.push(Block::empty(
-            "No variant ran beside the reference variant on any scene.",
-        ));
-    } else {
-        let families = families_present(r);
-        s.blocks.push(Block::text(optimization_sentence(&lines)));
-        s.blocks
-            .push(Block::Table(variants_table(&lines, &families)));
-    }
-    s.blocks.push(Block::heading("Would the FPGA pay off?"));
-    match fpga_answer(r) {
-        Some(answer) => {
-            s.blocks.push(Block::text(answer.sentence()));
-            s.blocks.push(Block::Table(break_even_table(&answer)));
+        if let Some(warning) = answer.warning {
+            s.blocks.push(Block::note(Tone::Warning, warning));
         }
-        None => s.blocks.push(Block::empty(
-            "No break-even: the run timed rtprof's peer variant on the hardware's job on fewer than two primitive counts of the thesis's test bench.",
-        )),
+        if let Some(table) = answer.table {
+            s.blocks.push(Block::Table(table));
+        }
     }
     s
+}
+
+/// One of the three answers: its question, the sentence written from the data and its
+/// table, or why there is none.
+#[derive(Clone, Debug)]
+pub struct Answer {
+    pub question: &'static str,
+    pub sentence: Option<String>,
+    pub warning: Option<String>,
+    pub table: Option<Table>,
+    /// Why there is no answer (shown when `sentence` is `None`).
+    pub why_none: &'static str,
+}
+
+/// Where the time goes, what each optimization buys and costs, whether the FPGA pays
+/// off: the one model the report's first page and summary.md are written from.
+pub fn three_answers(r: &Results) -> [Answer; 3] {
+    let time = match r.profile.as_ref() {
+        Some(p) => {
+            let rows = table6_rows(&p.baseline);
+            Answer {
+                question: "Where the time goes",
+                sentence: Some(time_sentence(&p.scene, &p.baseline, &rows)),
+                warning: (!is_thesis_scene(&p.scene)).then(|| format!(
+                    "The profile is of {}, not of the thesis's {TABLE_6_SCENE}: the rows below compare different scenes.",
+                    p.scene
+                )),
+                table: Some(table6_table(&rows).caption(format!(
+                    "{} at {} (baseline) against table 6 ({TABLE_6_SCENE}); calls per eye ray make the two frame sizes comparable",
+                    p.scene,
+                    format::size(p.width, p.height)
+                ))),
+                why_none: "",
+            }
+        }
+        None => Answer {
+            question: "Where the time goes",
+            sentence: None,
+            warning: None,
+            table: None,
+            why_none: "No profile in this run: the suite ran without profiling, or the profile failed (see Failures).",
+        },
+    };
+    let lines = variant_lines(r);
+    let optimizations = Answer {
+        question: "What each optimization buys and costs",
+        sentence: (!lines.is_empty()).then(|| optimization_sentence(&lines)),
+        warning: None,
+        table: (!lines.is_empty()).then(|| variants_table(&lines, &families_present(r))),
+        why_none: "No variant ran beside the reference variant on any scene.",
+    };
+    let answer = fpga_answer(r);
+    let fpga = Answer {
+        question: "Would the FPGA pay off?",
+        sentence: answer.as_ref().map(FpgaAnswer::sentence),
+        warning: None,
+        table: answer.as_ref().map(break_even_table),
+        why_none: "No break-even: the run timed rtprof's peer variant on the hardware's job on fewer than two primitive counts of the thesis's test bench.",
+    };
+    [time, optimizations, fpga]
 }
 
 /// Whether a profiled scene is the thesis's (SPD rings).
@@ -314,20 +339,7 @@ impl VariantLine {
         } else {
             Tone::Fair
         };
-        [band, rays, Tone::Fair]
-            .into_iter()
-            .max_by_key(|t| tone_rank(*t))
-            .unwrap_or(Tone::Fair)
-    }
-}
-
-/// Worse tones rank higher.
-fn tone_rank(t: Tone) -> u8 {
-    match t {
-        Tone::Good | Tone::Neutral | Tone::Muted => 0,
-        Tone::Fair => 1,
-        Tone::Warning => 2,
-        Tone::Bad => 3,
+        band.worse(rays).worse(Tone::Fair)
     }
 }
 

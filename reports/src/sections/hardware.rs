@@ -1,4 +1,4 @@
-//! The hardware sections: the model against the thesis's tables 7 and 8, the device
+//! The hardware chapter: the model against the thesis's tables 7 and 8, the device
 //! fit, and software against hardware on each scene.
 //!
 //! [`hw_table`] is public: `rtprof hw table` prints the same table model as text.
@@ -47,6 +47,125 @@ pub fn hw_table(rows: &[HwRow]) -> Table {
         t.rows.push(cells);
     }
     t
+}
+
+/// The hardware chapter: its finding, then the model against tables 7 and 8, the
+/// thesis's optimizations costed, the device fit, and software against hardware.
+pub fn hardware(b: &mut Builder) -> Section {
+    let mut s = b.section("hardware", None);
+    let r = b.results();
+    if r.hardware.is_none() && r.scenes.iter().all(|s| s.hardware.is_none()) {
+        return s.empty("No hardware model in this run.");
+    }
+    if let Some(text) = crate::findings::hardware_finding(r) {
+        s.text(text);
+    }
+    s.absorb(hardware_tables(b));
+    s.absorb(optimizations(b));
+    s.absorb(device_utilization(b));
+    s.absorb(sw_hw(b));
+    s
+}
+
+/// The scene the optimizations are costed on: the test bench's largest (7 primitives,
+/// the fit's scene too) at the thesis's 640×480.
+pub const COSTED_SCENE: (u64, u32, u32) = (7, 640, 480);
+
+/// The thesis's optimizations costed in the pipeline's cycles and the device's logic
+/// (see [`hwmodel::optimizations`]), on the validated device.
+pub fn optimizations(b: &mut Builder) -> Section {
+    let mut s = b.section(
+        "hw-optimizations",
+        Some("ch. 8.3's proposals (fast sqrt, orthographic camera, sqrt-free shading, parallel units), never costed in hardware"),
+    );
+    let lib = hwmodel::library::Library::cyclone_iv_e();
+    let Some(device) = lib.devices.iter().find(|d| d.validated).cloned() else {
+        return s.empty("The operator library has no validated device to cost the designs on.");
+    };
+    let (n, width, height) = COSTED_SCENE;
+    let rows = hwmodel::optimizations::thesis_optimizations(
+        &lib,
+        &device,
+        n,
+        width,
+        height,
+        hwmodel::frame_timing::THESIS_CLOCK_HZ,
+    );
+    if let Some(text) = optimizations_sentence(&rows, &device.name) {
+        s.text(text);
+    }
+    s.blocks
+        .push(Block::Table(optimizations_table(&rows, &device.name)));
+    s
+}
+
+/// What the logic-saving optimizations buy: fill cycles and logic, and the frame only
+/// through more units.
+pub fn optimizations_sentence(
+    rows: &[hwmodel::optimizations::OptimizationCost],
+    device: &str,
+) -> Option<String> {
+    let thesis = rows.first()?;
+    let saving = rows.iter().find(|r| {
+        r.design.fast_sqrt && r.design.ortho && r.design.no_rsqrt_shading && r.design.units == 1
+    })?;
+    let most = rows.last()?;
+    let (n, width, height) = COSTED_SCENE;
+    let le_saved = thesis.used.le as f64 - saving.used.le as f64;
+    Some(format!(
+        "At {n} primitives and {}, the thesis's pipeline takes {} a frame on the {device}. Its three logic-saving optimizations together free {} logic elements ({} of the design's) and shorten the fill by {} cycles, but the frame only by {}: a frame is one pixel every 3 cycles per primitive per unit, which they do not change. What they buy is room for more intersection units; {} units take the frame to {}.",
+        format::size(width, height),
+        format::seconds(thesis.frame_seconds),
+        format::count(le_saved.max(0.0) as u64),
+        format::percent(le_saved / thesis.used.le.max(1) as f64 * 100.0, 0),
+        format::count(thesis.fill_cycles.saturating_sub(saving.fill_cycles)),
+        format::seconds(thesis.frame_seconds - saving.frame_seconds),
+        most.design.units,
+        format::seconds(most.frame_seconds),
+    ))
+}
+
+/// The designs side by side: cycles, frame time, logic, multipliers, memory, fit.
+pub fn optimizations_table(
+    rows: &[hwmodel::optimizations::OptimizationCost],
+    device: &str,
+) -> Table {
+    let mut t = Table::new(vec![
+        Column::text("design"),
+        Column::number("fill").detail("cycles"),
+        Column::number("per pixel").detail("cycles"),
+        Column::number("frame"),
+        Column::number("logic elements").detail("change"),
+        Column::number("9-bit multipliers").detail("asked"),
+        Column::number("memory bits"),
+        Column::text(format!("fits the {device}")),
+    ]);
+    let Some(thesis) = rows.first() else {
+        return t;
+    };
+    for r in rows {
+        let change = (r.used.le as f64 / thesis.used.le.max(1) as f64 - 1.0) * 100.0;
+        let (fits, tone) = match r.state {
+            FitState::Fits => ("yes", Tone::Good),
+            FitState::FitsOnPaper => ("on paper only", Tone::Warning),
+            FitState::DoesNotFit => ("no", Tone::Bad),
+        };
+        t.rows.push(vec![
+            Cell::text(&r.label),
+            Cell::count(r.fill_cycles),
+            Cell::count(r.cycles_per_pixel),
+            Cell::number(format::seconds(r.frame_seconds), r.frame_seconds),
+            Cell::count(r.used.le).detail(format::signed_change(change, 1)),
+            Cell::count(r.used.mult).detail(format::count(r.multipliers_asked)),
+            Cell::count(r.used.mem_bits),
+            Cell::text(fits).tone(tone),
+        ]);
+    }
+    t.caption(format!(
+        "Each design at {} primitives, {}, 50 MHz; logic elements include multipliers built in logic when the device's run out",
+        COSTED_SCENE.0,
+        format::size(COSTED_SCENE.1, COSTED_SCENE.2)
+    ))
 }
 
 pub fn hardware_tables(b: &mut Builder) -> Section {
@@ -286,6 +405,62 @@ pub fn sw_hw(b: &mut Builder) -> Section {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use hwmodel::library::Resources;
+    use hwmodel::optimizations::OptimizationCost;
+
+    fn row(label: &str, design: hwmodel::design::Design, fill: u64, le: u64) -> OptimizationCost {
+        let per_pixel = 3 * 7_u64.div_ceil(u64::from(design.units));
+        let cycles = 640 * 480 * per_pixel + fill;
+        OptimizationCost {
+            label: label.to_string(),
+            design,
+            fill_cycles: fill,
+            cycles_per_pixel: per_pixel,
+            frame_cycles: cycles,
+            frame_seconds: cycles as f64 / 50e6,
+            used: Resources {
+                le,
+                ..Resources::default()
+            },
+            multipliers_asked: 0,
+            state: FitState::Fits,
+        }
+    }
+
+    #[test]
+    fn the_optimizations_sentence_is_a_hand_computation() {
+        let thesis = hwmodel::design::Design::thesis();
+        let saving = hwmodel::design::Design {
+            fast_sqrt: true,
+            ortho: true,
+            no_rsqrt_shading: true,
+            ..thesis
+        };
+        let rows = [
+            row("thesis", thesis, 324, 100_000),
+            row("the three together", saving, 224, 75_000),
+            row(
+                "2 units",
+                hwmodel::design::Design { units: 2, ..thesis },
+                330,
+                140_000,
+            ),
+        ];
+        let said = optimizations_sentence(&rows, "EP4CE115").unwrap_or_default();
+        // 640·480·21 + 324 = 6,451,524 cycles at 50 MHz: 129.03 ms; 25,000 LEs are
+        // 25 % of 100,000; the fill shortens by 100 cycles, which is 2 µs of the frame;
+        // two units: 640·480·12 + 330 = 3,686,730 cycles, 73.7 ms.
+        assert!(said.contains("takes 129 ms a frame"), "{said}");
+        assert!(
+            said.contains("free 25,000 logic elements (25 % of the design's)"),
+            "{said}"
+        );
+        assert!(
+            said.contains("shorten the fill by 100 cycles, but the frame only by 2.00 µs"),
+            "{said}"
+        );
+        assert!(said.contains("2 units take the frame to 73.7 ms"), "{said}");
+    }
 
     #[test]
     fn a_figure_the_thesis_does_not_have_is_coloured_not_dashed() {

@@ -1,5 +1,6 @@
-//! The images section: for a few scenes, every variant's image above its difference
-//! heat map, then the scene's gray histograms.
+//! The images chapter: which variants change the picture, and for a few scenes each
+//! of those variants' image above its difference heat map, then the scene's gray
+//! histograms. Variants that keep baseline's picture bit for bit are named, not shown.
 
 use super::GRID_COLUMNS;
 use crate::charts;
@@ -17,42 +18,86 @@ pub fn images(b: &mut Builder) -> Section {
     if r.scenes.iter().all(|s| s.variants.is_empty()) {
         return s.empty("No images: no scene produced a result.");
     }
-    s.text("For each scene: one column per variant, its image above its difference heat map against baseline (the brighter, the larger the difference), then the gray-level histograms (log scale; the tall bar is usually the background).");
+    let (changed, same) = picture_changers(r);
+    s.text(if changed.is_empty() {
+        "Every variant renders baseline's picture bit for bit on every scene: there is nothing to show here.".to_string()
+    } else {
+        format!(
+            "{} change the picture; {}. Below, for the scenes where the differences are largest and the largest scenes: baseline and each variant that changed the picture there, its image above its difference heat map against baseline (black: equal; white: the largest difference of that map, in gray levels under it), then the gray-level histograms (log scale; the tall bar is usually the background).",
+            format::join_list(&changed),
+            if same.is_empty() {
+                "every variant changes it somewhere".to_string()
+            } else {
+                format!(
+                    "{} render baseline's picture bit for bit on every scene, so they are not shown",
+                    format::join_list(&same)
+                )
+            }
+        )
+    });
+    if changed.is_empty() {
+        return s;
+    }
     let omitted = gallery::omitted_scenes(r);
     if !omitted.is_empty() {
         s.blocks.push(Block::note(
             Tone::Muted,
             format!(
-                "Shown: the scene with the largest difference and the largest scenes. The images of the other {} ({}) are in images/ next to this report; the variants table has their metrics.",
-                omitted.len(),
+                "Not shown: {} ({}); their images are in images/ next to this report and their metrics in the appendix's tables.",
+                format::plural(omitted.len(), "scene"),
                 omitted.join(", ")
             ),
         ));
     }
     for scene in gallery::showcase_scenes(r) {
+        let shown: Vec<VariantResult> = scene
+            .variants
+            .iter()
+            .filter(|v| {
+                v.variant.is_reference() || v.quality.as_ref().is_some_and(|q| q.max_abs_diff > 0)
+            })
+            .cloned()
+            .collect();
+        if shown.len() < 2 {
+            continue;
+        }
         s.blocks.push(Block::heading(&scene.name));
-        let columns = scene.variants.len().min(GRID_COLUMNS);
-        for chunk in scene.variants.chunks(GRID_COLUMNS) {
+        let columns = shown.len().min(GRID_COLUMNS);
+        for chunk in shown.chunks(GRID_COLUMNS) {
             s.blocks
                 .push(Block::ImageGrid(grid(b, scene, chunk, columns)));
         }
-        match charts::scene_histograms(r, scene) {
-            Some(chart) => {
-                let id = format!("{}-{}", chart.id, crate::slug(&scene.name));
-                let figure = b.figure_at(id, chart, 6.0);
-                s.blocks.push(figure);
-            }
-            None => s.blocks.push(Block::empty(
-                "No histogram: baseline has no gray histogram for this scene.",
-            )),
+        if let Some(chart) = charts::scene_histograms(r, scene) {
+            let id = format!("{}-{}", chart.id, crate::slug(&scene.name));
+            let figure = b.figure_at(id, chart, 6.0);
+            s.blocks.push(figure);
         }
     }
-    if let Some(figure) = b.chart("histogram", 9.0) {
-        s.blocks
-            .push(Block::heading("The largest difference of the run"));
-        s.blocks.push(figure);
-    }
+    // The run's largest difference is the first scene shown above, with its
+    // histograms: the chart of it alone would repeat them.
+    let _ = b.chart("histogram", 9.0);
     s
+}
+
+/// The variants whose picture differs from the reference variant's on some scene, and
+/// those whose pictures are all equal to it, in first-seen order.
+pub fn picture_changers(r: &crate::results::Results) -> (Vec<String>, Vec<String>) {
+    let mut changed: Vec<String> = Vec::new();
+    let mut seen: Vec<String> = Vec::new();
+    for v in r.scenes.iter().flat_map(|s| s.variants.iter()) {
+        if v.variant.is_reference() {
+            continue;
+        }
+        let name = v.variant.to_string();
+        if !seen.contains(&name) {
+            seen.push(name.clone());
+        }
+        if v.quality.as_ref().is_some_and(|q| q.max_abs_diff > 0) && !changed.contains(&name) {
+            changed.push(name);
+        }
+    }
+    let same = seen.into_iter().filter(|n| !changed.contains(n)).collect();
+    (changed, same)
 }
 
 /// Two rows of `columns`: the variants' images, then their heat maps.
@@ -92,10 +137,9 @@ fn grid(
         });
     }
     for v in variants {
+        // The reference variant has no difference to map: its tile stays empty.
         let visual = if v.variant.is_reference() {
-            Visual::Placeholder {
-                text: "reference image: no heat map".to_string(),
-            }
+            Visual::Empty
         } else {
             match &v.heat_map {
                 Some(path) => b.picture(
@@ -108,8 +152,12 @@ fn grid(
                 },
             }
         };
-        let caption = match visual {
-            Visual::Placeholder { .. } => String::new(),
+        let caption = match (&visual, &v.quality) {
+            (Visual::Empty, _) => String::new(),
+            (_, Some(q)) => format!(
+                "{} − baseline · white = {} levels",
+                v.variant, q.max_abs_diff
+            ),
             _ => format!("{} − baseline", v.variant),
         };
         heat_maps.push(Tile {

@@ -3,15 +3,15 @@
 //!
 //! | file | sections |
 //! |---|---|
-//! | `answers.rs` | answers (where the time goes, what the optimizations buy and cost) |
+//! | `answers.rs` | answers (where the time goes, what the optimizations buy and cost, whether the FPGA pays off) |
+//! | `profile.rs` | the profile chapter (flat profile, charts, flamegraphs, Amdahl); profile-details |
+//! | `variants.rs` | the variants chapter (the scene × variant matrix); variants-by-scene |
+//! | `hardware.rs` | the hardware chapter (tables 7 and 8, the optimizations costed, device fit, software against hardware) |
+//! | `images.rs` | the images chapter |
 //! | `summary.rs` | summary (findings, machine, scenes, runs) |
-//! | `profile.rs` | profile, profile-charts, flamegraphs, amdahl |
-//! | `variants.rs` | variants |
 //! | `ray_rates.rs` | ray-rates |
 //! | `roofline.rs` | roofline |
-//! | `images.rs` | images |
 //! | `pixel_maps.rs` | pixel-maps |
-//! | `hardware.rs` | hardware-tables, device-utilization, sw-hw |
 //! | `scaling.rs` | time-vs-primitives, spd |
 //! | `bvh_quality.rs` | bvh-quality |
 //! | `benchmarks.rs` | criterion |
@@ -31,14 +31,14 @@ pub(crate) mod bvh_quality;
 pub(crate) mod closing;
 pub(crate) mod comparison;
 pub mod hardware;
-pub(crate) mod images;
+pub mod images;
 pub(crate) mod pixel_maps;
 pub(crate) mod profile;
 pub(crate) mod ray_rates;
 pub(crate) mod roofline;
 pub(crate) mod scaling;
 pub(crate) mod summary;
-pub(crate) mod variants;
+pub mod variants;
 
 /// Pictures per row of an image grid (A4 and a laptop screen both fit six).
 pub(crate) const GRID_COLUMNS: usize = 6;

@@ -16,6 +16,10 @@ fn profiles(p: &ProfileResult) -> impl Iterator<Item = &Profile> {
     std::iter::once(&p.baseline).chain(p.best.iter())
 }
 
+/// The profile chapter: the baseline's profile of the suite's profile scene (the
+/// thesis's SPD rings by default): its finding, the flat profile in the phases view,
+/// the calls and self-time charts, the flamegraph and the differential one, and the
+/// Amdahl table. Everything else a profile holds is in [`profile_details`].
 pub fn profile(b: &mut Builder) -> Section {
     let mut s = b.section(
         "profile",
@@ -24,41 +28,54 @@ pub fn profile(b: &mut Builder) -> Section {
     let Some(p) = &b.results().profile else {
         return s.empty("No profile in this run: the suite ran without profiling, or the profile failed (see Failures).");
     };
-    let best = p.best.as_ref().map_or_else(String::new, |x| {
-        format!(" and the best variant, {},", x.variant)
-    });
+    if let Some(text) = headline(&p.baseline) {
+        s.blocks.push(Block::text(text));
+    }
     s.blocks.push(Block::Paragraph {
         content: vec![
             Inline::text("Sampled profile of "),
             Inline::strong(&p.scene),
             Inline::text(format!(
-                " at {}: the baseline{best} in the layout of gprof.",
-                format::size(p.width, p.height)
+                " at {}, baseline, in the layout of gprof; the call graph, the native symbols{} are in ",
+                format::size(p.width, p.height),
+                p.best.as_ref().map_or_else(String::new, |x| format!(
+                    " and the best variant ({})",
+                    x.variant
+                )),
             )),
+            Inline::Link {
+                text: "the appendix".to_string(),
+                target: "profile-details".to_string(),
+            },
+            Inline::text("."),
         ],
     });
-    if let Some(text) = headline(&p.baseline) {
-        s.blocks.push(Block::text(text));
+    if let Some(warning) = sample_warning(&p.baseline) {
+        s.blocks.push(Block::note(Tone::Warning, warning));
     }
+    let mut flat = b.section("profile-flat", None);
+    flat.blocks.push(Block::text(sampling_text(&p.baseline)));
+    flat.blocks.extend(flat_blocks(b, &p.scene, &p.baseline));
+    s.absorb(flat);
+    s.absorb(profile_charts(b));
+    s.absorb(flamegraphs(b));
+    s.absorb(amdahl(b));
+    s
+}
+
+/// The profile's detail, for the appendix: the call graphs, the best variant's flat
+/// profile, the native-symbol views and their flamegraphs, the best variant's Amdahl
+/// table. `None` without a profile.
+pub fn profile_details(b: &mut Builder) -> Option<Section> {
+    let p = b.results().profile.as_ref()?;
+    let mut s = b.section("profile-details", None);
+    s.text(format!(
+        "The rest of the profile of {} at {}: the call graphs in gprof's layout, the profile of the best variant, and the same samples by native symbol.",
+        p.scene,
+        format::size(p.width, p.height)
+    ));
     for profile in profiles(p) {
-        s.blocks
-            .push(Block::heading(format!("Flat profile: {}", profile.variant)));
-        s.blocks.push(Block::text(sampling_text(profile)));
-        if profile.flat.is_empty() {
-            s.blocks.push(Block::empty(
-                "The flat profile has no rows (no samples landed in the tracer).",
-            ));
-        } else {
-            s.blocks.push(Block::Table(
-                flat_table(&profile.flat, profile.renders).caption(format!(
-                    "Flat profile of {}, {}, in the layout of table 6",
-                    p.scene, profile.variant
-                )),
-            ));
-        }
-        s.blocks
-            .push(flat_text_block(b, &profile.flat_text, "flat profile"));
-        s.blocks.push(Block::subheading(format!(
+        s.blocks.push(Block::heading(format!(
             "Call graph: {} (fig. 53)",
             profile.variant
         )));
@@ -78,6 +95,17 @@ pub fn profile(b: &mut Builder) -> Section {
             ),
         });
     }
+    if let Some(best) = &p.best {
+        s.blocks
+            .push(Block::heading(format!("Flat profile: {}", best.variant)));
+        s.blocks.push(Block::text(sampling_text(best)));
+        s.blocks.extend(flat_blocks(b, &p.scene, best));
+        s.blocks.extend(amdahl_blocks(&p.scene, best));
+    } else {
+        s.blocks.push(Block::empty(
+            "Only the baseline was profiled (no best variant).",
+        ));
+    }
     for profile in profiles(p) {
         let Some(native) = &profile.second_view else {
             continue;
@@ -87,23 +115,90 @@ pub fn profile(b: &mut Builder) -> Section {
             profile.variant
         )));
         s.blocks.push(Block::text(
-            "The same samples attributed to the functions the binary's debug info names at each sample. Inlining decides what shows here: a test inlined into its caller is counted as the caller. The phase view above does not depend on it.",
+            "The same samples attributed to the functions the binary's debug info names at each sample. Inlining decides what shows here: a test inlined into its caller is counted as the caller. The phase view does not depend on it. Rows marked as rtprof's phase markers are the profiler's own instrumentation, which an unprofiled render does not run; `Counter::` rows are the operations themselves (the maths is written as methods of the counter trait, whose tally is a no-op when not counting); rows whose share is within sampling noise are left out (they are in the file).",
         ));
         s.blocks.push(Block::Table(
-            flat_table(&native.flat, profile.renders).caption(format!(
+            native_table(&native.flat, profile.renders).caption(format!(
                 "Native flat profile of {}, {}",
                 p.scene, profile.variant
             )),
         ));
         s.blocks
             .push(flat_text_block(b, &native.flat_text, "native flat profile"));
-    }
-    if p.best.is_none() {
-        s.blocks.push(Block::empty(
-            "Only the baseline was profiled (no best variant).",
+        let title = format!(
+            "Flamegraph of {}, {} (native symbols)",
+            p.scene, profile.variant
+        );
+        s.blocks.push(flame_block(
+            b,
+            &native.flame_svg,
+            title,
+            view_text(ProfileView::Native).to_string(),
         ));
     }
-    s
+    if let (Some(shrunk), Some(best)) = (&p.diff_shrunk_flame_svg, &p.best) {
+        let title = format!(
+            "What shrank or vanished in {}, {} to {}",
+            p.scene, p.baseline.variant, best.variant
+        );
+        s.blocks.push(flame_block(b, shrunk, title, format!(
+            "Frames of the baseline profile, coloured by the change to {}: blue shrank or vanished, red grew.",
+            best.variant
+        )));
+    }
+    Some(s)
+}
+
+/// A profile's flat table (or why there is none) and its gprof-layout text.
+fn flat_blocks(b: &Builder, scene: &str, profile: &Profile) -> Vec<Block> {
+    let table = if profile.flat.is_empty() {
+        Block::empty("The flat profile has no rows (no samples landed in the tracer).")
+    } else {
+        Block::Table(flat_table(&profile.flat, profile.renders).caption(format!(
+            "Flat profile of {scene}, {}, in the layout of table 6",
+            profile.variant
+        )))
+    };
+    vec![
+        table,
+        flat_text_block(b, &profile.flat_text, "flat profile"),
+    ]
+}
+
+/// Fewer samples than this make a profile's shares too coarse to rank close rows.
+pub const ENOUGH_SAMPLES: u64 = 2_000;
+
+/// A warning when a profile is short of samples or got far fewer than it asked,
+/// with the widest 95 % interval of its shares.
+pub fn sample_warning(profile: &Profile) -> Option<String> {
+    let asked = profile.samples_asked.unwrap_or(profile.samples);
+    let short = profile.samples < ENOUGH_SAMPLES;
+    let starved = asked > 0 && (profile.samples as f64) < 0.5 * asked as f64;
+    if !short && !starved {
+        return None;
+    }
+    let mut text = format!(
+        "Few samples: {} of the {} asked",
+        format::count(profile.samples),
+        format::count(asked)
+    );
+    text += if starved {
+        " (the timer delivered fewer than half: a tick-driven timer or a busy machine)."
+    } else {
+        "."
+    };
+    let widest = profile
+        .flat
+        .iter()
+        .filter_map(|row| row.self_interval.map(|[lo, hi]| (hi - lo) / 2.0))
+        .fold(f64::NAN, f64::max);
+    if widest.is_finite() {
+        text += &format!(
+            " The shares' 95 % intervals are up to ±{} points wide: read rows closer than that as equal.",
+            format::fixed(widest, 1)
+        );
+    }
+    Some(text)
 }
 
 /// A flamegraph file as a block with its title and caption.
@@ -324,6 +419,8 @@ pub fn profile_charts(b: &mut Builder) -> Section {
     s
 }
 
+/// The flamegraphs part of the profile chapter: the baseline's phases, and the
+/// differential graph to the best variant.
 pub fn flamegraphs(b: &mut Builder) -> Section {
     let mut s = b.section(
         "flamegraphs",
@@ -333,23 +430,13 @@ pub fn flamegraphs(b: &mut Builder) -> Section {
         return s.empty("No profile in this run, so no flamegraphs.");
     };
     s.text("Each box is a function; its width is its share of the samples, the boxes above it are its callees. In the HTML report, hover a frame for its name and share, click to zoom.");
-    for profile in profiles(p) {
-        let views = std::iter::once((profile.view, &profile.flame_svg))
-            .chain(profile.second_view.iter().map(|v| (v.view, &v.flame_svg)));
-        for (view, svg) in views {
-            let title = format!(
-                "Flamegraph of {}, {} ({})",
-                p.scene,
-                profile.variant,
-                match view {
-                    ProfileView::Phases => "phases",
-                    ProfileView::Native => "native symbols",
-                }
-            );
-            s.blocks
-                .push(flame_block(b, svg, title, view_text(view).to_string()));
-        }
-    }
+    let title = format!("Flamegraph of {}, {}", p.scene, p.baseline.variant);
+    s.blocks.push(flame_block(
+        b,
+        &p.baseline.flame_svg,
+        title,
+        view_text(p.baseline.view).to_string(),
+    ));
     match (&p.diff_flame_svg, &p.best) {
         (Some(diff), best) => {
             let to = best
@@ -360,17 +447,8 @@ pub fn flamegraphs(b: &mut Builder) -> Section {
                 p.scene, p.baseline.variant
             );
             s.blocks.push(flame_block(b, diff, title, format!(
-                "Frames of the {to} profile, coloured by the change from baseline: red grew, blue shrank. Frames that vanished are not drawn here: see the next graph."
+                "Frames of the {to} profile, coloured by the change from baseline: red grew, blue shrank. Frames that vanished are in the appendix's graph of what shrank."
             )));
-            if let Some(shrunk) = &p.diff_shrunk_flame_svg {
-                let title = format!(
-                    "What shrank or vanished in {}, {} to {to}",
-                    p.scene, p.baseline.variant
-                );
-                s.blocks.push(flame_block(b, shrunk, title, format!(
-                    "Frames of the baseline profile, coloured by the change to {to}: blue shrank or vanished, red grew."
-                )));
-            }
         }
         (None, _) => s.blocks.push(Block::empty(
             "No differential flamegraph: only one variant was profiled.",
@@ -379,6 +457,7 @@ pub fn flamegraphs(b: &mut Builder) -> Section {
     s
 }
 
+/// The Amdahl part of the profile chapter: the baseline's table.
 pub fn amdahl(b: &mut Builder) -> Section {
     let mut s = b.section(
         "amdahl",
@@ -392,48 +471,95 @@ pub fn amdahl(b: &mut Builder) -> Section {
     s.text(
         "The whole run's speed-up if one function became 2×, 10× or infinitely faster: alone (its self time) and with everything it calls (its inclusive time). Rows are the functions with the most inclusive time, leaving out what stands for the whole render (threads' roots such as `sample row`, frames on at least 99.5 % of the samples). The first row can be a caller whose share is the work it calls; the headline's bottleneck is the most time in one function itself.",
     );
-    for profile in profiles(p) {
-        s.blocks
-            .push(Block::heading(format!("{} · {}", p.scene, profile.variant)));
-        if profile.amdahl.is_empty() {
-            s.blocks
-                .push(Block::empty("The profile has no Amdahl rows."));
-            continue;
-        }
-        let mut t = Table::new(vec![
-            Column::text("function").grow(),
-            Column::number("self share"),
-            Column::number("alone 2×"),
-            Column::number("alone free"),
-            Column::number("inclusive share"),
-            Column::number("with callees 2×"),
-            Column::number("with callees 10×"),
-            Column::number("with callees free"),
-        ])
-        .sortable();
-        let limit =
-            |x: f64| Cell::number(format::speedup(x), if x.is_finite() { x } else { f64::MAX });
-        for a in &profile.amdahl {
-            let mut row = vec![
-                Cell::text(short_name(&a.name)).code().hover(&a.name),
-                Cell::number(format::percent(a.fraction * 100.0, 1), a.fraction),
-                Cell::number(format::speedup(a.speedup_2x), a.speedup_2x),
-                limit(a.speedup_limit),
-            ];
-            match &a.inclusive {
-                Some(i) => row.extend([
-                    Cell::number(format::percent(i.fraction * 100.0, 1), i.fraction),
-                    Cell::number(format::speedup(i.speedup_2x), i.speedup_2x),
-                    Cell::number(format::speedup(i.speedup_10x), i.speedup_10x),
-                    limit(i.speedup_limit),
-                ]),
-                None => row.extend((0..4).map(|_| Cell::dash())),
-            }
-            t.rows.push(row);
-        }
-        s.blocks.push(Block::Table(t));
-    }
+    s.blocks.extend(amdahl_blocks(&p.scene, &p.baseline));
     s
+}
+
+/// One profile's Amdahl table, under a heading naming it.
+fn amdahl_blocks(scene: &str, profile: &Profile) -> Vec<Block> {
+    let mut blocks = vec![Block::subheading(format!(
+        "Amdahl's law: {scene} · {}",
+        profile.variant
+    ))];
+    if profile.amdahl.is_empty() {
+        blocks.push(Block::empty("The profile has no Amdahl rows."));
+        return blocks;
+    }
+    let mut t = Table::new(vec![
+        Column::text("function").grow(),
+        Column::number("self share"),
+        Column::number("alone 2×"),
+        Column::number("alone free"),
+        Column::number("inclusive share"),
+        Column::number("with callees 2×"),
+        Column::number("with callees 10×"),
+        Column::number("with callees free"),
+    ])
+    .sortable();
+    let limit = |x: f64| Cell::number(format::speedup(x), if x.is_finite() { x } else { f64::MAX });
+    for a in &profile.amdahl {
+        let mut row = vec![
+            Cell::text(short_name(&a.name)).code().hover(&a.name),
+            Cell::number(format::percent(a.fraction * 100.0, 1), a.fraction),
+            Cell::number(format::speedup(a.speedup_2x), a.speedup_2x),
+            limit(a.speedup_limit),
+        ];
+        match &a.inclusive {
+            Some(i) => row.extend([
+                Cell::number(format::percent(i.fraction * 100.0, 1), i.fraction),
+                Cell::number(format::speedup(i.speedup_2x), i.speedup_2x),
+                Cell::number(format::speedup(i.speedup_10x), i.speedup_10x),
+                limit(i.speedup_limit),
+            ]),
+            None => row.extend((0..4).map(|_| Cell::dash())),
+        }
+        t.rows.push(row);
+    }
+    blocks.push(Block::Table(t));
+    blocks
+}
+
+/// Native symbols that are rtprof's own instrumentation (the phase markers the
+/// profile reads), not the tracer's work: an unprofiled render does not run them.
+pub const INSTRUMENTATION: [&str; 2] = ["PhaseGuard", "enter_phase"];
+
+/// Whether a native symbol is rtprof's own instrumentation (see [`INSTRUMENTATION`]).
+pub fn is_instrumentation(name: &str) -> bool {
+    INSTRUMENTATION.iter().any(|mark| name.contains(mark))
+}
+
+/// The native flat profile without the rows within sampling noise (their count in
+/// the caption's last row), rtprof's own instrumentation labelled.
+fn native_table(flat: &[FlatRow], renders: Option<u64>) -> Table {
+    let kept: Vec<FlatRow> = flat.iter().filter(|r| !r.noise).cloned().collect();
+    let left_out = flat.len() - kept.len();
+    let mut t = flat_table(&kept, renders);
+    for row in &mut t.rows {
+        let Some(name) = row.last_mut() else {
+            continue;
+        };
+        if is_instrumentation(&name.text) {
+            name.detail = Some("rtprof's phase markers (only when profiling)".to_string());
+            name.tone = Tone::Muted;
+        } else if name.text.contains("Counter::") {
+            // The maths the tracer does is written as methods of the counter trait
+            // (uncounted: no tally), so debug info names them after it.
+            name.detail = Some("the operation itself, written in the counter trait".to_string());
+        }
+    }
+    if left_out > 0 {
+        let columns = t.columns.len() as u32;
+        t.rows.push(vec![
+            Cell::text(format!(
+                "{} more {} within sampling noise (in the file)",
+                left_out,
+                if left_out == 1 { "row" } else { "rows" }
+            ))
+            .tone(Tone::Muted)
+            .span(columns),
+        ]);
+    }
+    t
 }
 
 #[cfg(test)]
