@@ -12,6 +12,10 @@ use crate::device::{FitState, demand, fit, largest_units};
 use crate::frame_timing::frame_timing;
 use crate::library::{DeviceSpec, Library, Resources};
 
+/// The thesis's test bench's largest scene (balls7, cylinder7, both7): the primitive
+/// count designs are fitted and costed at, as the thesis's tables are.
+pub const BENCH_PRIMITIVES: u64 = 7;
+
 /// One design, costed.
 #[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct OptimizationCost {

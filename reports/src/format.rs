@@ -326,6 +326,16 @@ pub fn join_list(items: &[String]) -> String {
     }
 }
 
+/// A PDF's length: "report.pdf: 48 pages, of which the main body (answers and
+/// chapters) 16".
+pub fn pdf_pages(total: usize, main_body: usize) -> String {
+    format!(
+        "report.pdf: {} pages, of which the main body (answers and chapters) {}",
+        count(total as u64),
+        count(main_body as u64)
+    )
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

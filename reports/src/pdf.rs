@@ -44,13 +44,25 @@ pub const TEMPLATE: &str = include_str!("../templates/report.typ");
 
 /// Renders the report of `runs` (one run, or several side by side) to PDF bytes.
 pub fn render_pdf(runs: &[Run]) -> Result<Vec<u8>, PdfError> {
+    render_pdf_counted(runs).map(|(pdf, _)| pdf)
+}
+
+/// [`render_pdf`], with how many pages the PDF has and how many of them are the main
+/// body.
+pub fn render_pdf_counted(runs: &[Run]) -> Result<(Vec<u8>, PageCount), PdfError> {
     let doc = document::build(runs).ok_or(PdfError::NoRuns)?;
-    render(&doc)
+    render_counted(&doc.for_print())
 }
 
 /// Typesets a document to PDF bytes, leaving out the assets typst rejects.
 pub fn render(doc: &Document) -> Result<Vec<u8>, PdfError> {
-    let first_error = match typeset(doc).and_then(|d| export(&d)) {
+    render_counted(doc).map(|(pdf, _)| pdf)
+}
+
+/// [`render`], with the page count.
+fn render_counted(doc: &Document) -> Result<(Vec<u8>, PageCount), PdfError> {
+    let counted = |d: PagedDocument| export(&d).map(|pdf| (pdf, page_count(&d)));
+    let first_error = match typeset(doc).and_then(counted) {
         Ok(pdf) => return Ok(pdf),
         Err(err) => err,
     };
@@ -65,7 +77,7 @@ pub fn render(doc: &Document) -> Result<Vec<u8>, PdfError> {
             &rejected,
             "could not be typeset here; it is in the HTML report",
         );
-        if let Ok(pdf) = typeset(&pruned).and_then(|d| export(&d)) {
+        if let Ok(pdf) = typeset(&pruned).and_then(counted) {
             return Ok(pdf);
         }
     }
@@ -75,9 +87,7 @@ pub fn render(doc: &Document) -> Result<Vec<u8>, PdfError> {
     bare.notices.push(format!(
         "Figures and images are left out of this PDF because typst could not typeset them ({first_error}). The HTML report has them."
     ));
-    typeset(&bare)
-        .and_then(|d| export(&d))
-        .map_err(|_| first_error)
+    typeset(&bare).and_then(counted).map_err(|_| first_error)
 }
 
 /// The data typst gets: the document as JSON (without the assets' bytes).
@@ -110,6 +120,29 @@ pub fn typeset(doc: &Document) -> Result<PagedDocument, PdfError> {
         .compile_with_input(inputs)
         .output
         .map_err(|err| PdfError::Typeset(describe(&err)))
+}
+
+/// How long a typeset report is: all its pages, and those before the appendix.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct PageCount {
+    pub total: usize,
+    /// Pages of the answers and the chapters (all of them without an appendix).
+    pub main_body: usize,
+}
+
+/// The page count of a typeset document (the template labels the appendix's heading
+/// `appendix`; the main body ends on the page before it).
+pub fn page_count(typeset: &PagedDocument) -> PageCount {
+    let total = typeset.pages().len();
+    let introspector = typeset.introspector();
+    let appendix_page = typst::foundations::Label::new(typst::utils::PicoStr::intern("appendix"))
+        .and_then(|label| introspector.query_label(label).ok())
+        .and_then(|heading| heading.location())
+        .and_then(|location| introspector.page(location));
+    PageCount {
+        total,
+        main_body: appendix_page.map_or(total, |page| page.get() - 1),
+    }
 }
 
 /// The level-1 headings of a typeset document: the label the template gave each (the

@@ -215,6 +215,58 @@ fn every_section_is_in_the_html_and_the_typeset_pdf() {
         .filter(|(label, _)| wanted.iter().any(|(id, _)| id == label))
         .collect();
     assert_eq!(found, wanted);
+    // The main body ends where the appendix's heading begins a page.
+    let pages = reports::pdf::page_count(&typeset);
+    assert!(
+        pages.main_body >= 1 && pages.main_body < pages.total,
+        "{pages:?}"
+    );
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+#[test]
+fn the_main_body_is_the_answers_and_four_chapters_then_the_appendix() {
+    let dir = temp_dir("parts");
+    let doc = document::build(&[sample_run(&dir, "bench-1")]).expect("document");
+    let main: Vec<&str> = doc
+        .sections
+        .iter()
+        .filter(|s| !s.appendix)
+        .map(|s| s.id.as_str())
+        .collect();
+    assert_eq!(
+        main,
+        ["answers", "profile", "variants", "hardware", "images"]
+    );
+    // Nothing of the main body comes after the appendix begins.
+    let first_appendix = doc
+        .sections
+        .iter()
+        .position(|s| s.appendix)
+        .expect("an appendix");
+    assert!(doc.sections[first_appendix..].iter().all(|s| s.appendix));
+    // A chapter's parts are anchored headings inside it, so that links still land.
+    let profile = doc.section("profile").expect("profile chapter");
+    for part in ["profile-flat", "profile-charts", "flamegraphs", "amdahl"] {
+        assert!(
+            profile.blocks.iter().any(|b| matches!(b,
+                Block::Heading { anchor: Some(a), level: 2, .. } if a == part)),
+            "{part} in the profile chapter"
+        );
+    }
+    // The per-scene tables are the HTML's: the printed document keeps a pointer.
+    let printed = doc.for_print();
+    let by_scene = printed
+        .section("variants-by-scene")
+        .expect("variants-by-scene");
+    assert!(!by_scene.blocks.iter().any(|b| matches!(b, Block::Table(_))));
+    assert!(
+        doc.section("variants-by-scene")
+            .expect("variants-by-scene")
+            .blocks
+            .iter()
+            .any(|b| matches!(b, Block::Table(_)))
+    );
     let _ = std::fs::remove_dir_all(&dir);
 }
 

@@ -2,6 +2,7 @@
 //! report.html, report.pdf, variants.csv and summary.md written from them (each
 //! atomically), with results.json for a new run.
 
+use reports::pdf::PageCount;
 use std::path::{Path, PathBuf};
 
 use reports::Run;
@@ -66,8 +67,8 @@ impl Pdf {
 }
 
 /// Writes report.html, report.pdf (unless `pdf` says not), variants.csv (the first
-/// run's) and summary.md for `runs` into `dir`.
-pub fn write_reports(runs: &[Run], dir: &Path, pdf: Pdf) -> Result<(), RunError> {
+/// run's) and summary.md for `runs` into `dir`; the PDF's page count when it wrote one.
+pub fn write_reports(runs: &[Run], dir: &Path, pdf: Pdf) -> Result<Option<PageCount>, RunError> {
     if let Some(main) = runs.first() {
         let csv = reports::exports::variants_csv(&main.results);
         crate::staging::save(dir, "variants.csv", csv.as_bytes())?;
@@ -77,7 +78,8 @@ pub fn write_reports(runs: &[Run], dir: &Path, pdf: Pdf) -> Result<(), RunError>
     let failed = |what: &str, message: String| RunError::Report(format!("{what}: {message}"));
     // The two documents are independent: typeset the PDF while the HTML is built.
     let (html, typeset) = std::thread::scope(|scope| {
-        let typeset = (pdf == Pdf::Write).then(|| scope.spawn(|| reports::pdf::render_pdf(runs)));
+        let typeset =
+            (pdf == Pdf::Write).then(|| scope.spawn(|| reports::pdf::render_pdf_counted(runs)));
         (reports::html::render_html(runs), typeset.map(|t| t.join()))
     });
     let html = html.map_err(|e| failed("cannot build report.html", e.to_string()))?;
@@ -85,9 +87,9 @@ pub fn write_reports(runs: &[Run], dir: &Path, pdf: Pdf) -> Result<(), RunError>
     write_atomically(&html_path, html.as_bytes())
         .map_err(|e| RunError::io("write", &html_path, &e))?;
     let Some(typeset) = typeset else {
-        return pdf.remove_stale(dir);
+        return pdf.remove_stale(dir).map(|()| None);
     };
-    let pdf = typeset
+    let (pdf, pages) = typeset
         .map_err(|_| {
             failed(
                 "typesetting report.pdf failed",
@@ -96,11 +98,13 @@ pub fn write_reports(runs: &[Run], dir: &Path, pdf: Pdf) -> Result<(), RunError>
         })?
         .map_err(|e| failed("cannot build report.pdf", e.to_string()))?;
     let pdf_path = dir.join("report.pdf");
-    write_atomically(&pdf_path, &pdf).map_err(|e| RunError::io("write", &pdf_path, &e))
+    write_atomically(&pdf_path, &pdf).map_err(|e| RunError::io("write", &pdf_path, &e))?;
+    Ok(Some(pages))
 }
 
-/// Writes one run's results.json and reports into `dir`.
-pub fn write_run(results: &Results, dir: &Path, pdf: Pdf) -> Result<(), RunError> {
+/// Writes one run's results.json and reports into `dir`; the PDF's page count when it
+/// wrote one.
+pub fn write_run(results: &Results, dir: &Path, pdf: Pdf) -> Result<Option<PageCount>, RunError> {
     let json = serde_json::to_string_pretty(results)
         .map_err(|e| RunError::Report(format!("cannot serialize results.json: {e}")))?;
     crate::staging::save(dir, "results.json", json.as_bytes())?;

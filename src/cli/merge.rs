@@ -40,10 +40,13 @@ pub fn run(args: &MergeArgs) -> Result<()> {
     let staging = Staging::create(&args.output)?;
     merged.copy_files(staging.dir())?;
     let pdf = args.pdf.choice();
-    runner::report_files::write_run(&merged.results, staging.dir(), pdf)?;
+    let pages = runner::report_files::write_run(&merged.results, staging.dir(), pdf)?;
     staging.publish(&args.output)?;
     pdf.remove_stale(&args.output)?;
     eprint!("{}", merged.summary(&args.output, pdf));
+    if let Some(p) = pages {
+        eprintln!("{}", reports::format::pdf_pages(p.total, p.main_body));
+    }
     match Suite::failures_message(&merged.results) {
         Some(message) => Err(Outcome::new(Outcome::PARTS_FAILED, message).into()),
         None => Ok(()),

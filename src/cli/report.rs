@@ -81,7 +81,7 @@ pub fn run(args: &ReportArgs) -> Result<()> {
     };
     std::fs::create_dir_all(&dir).with_context(|| format!("cannot create {}", dir.display()))?;
     let pdf = args.pdf.choice();
-    write_reports(&runs, &dir, pdf)?;
+    let pages = write_reports(&runs, &dir, pdf)?;
     let plural = if runs.len() == 1 { "" } else { "s" };
     eprintln!(
         "wrote {}/{{{}, variants.csv, summary.md}} from {} run{plural}",
@@ -89,5 +89,8 @@ pub fn run(args: &ReportArgs) -> Result<()> {
         pdf.documents(),
         runs.len()
     );
+    if let Some(p) = pages {
+        eprintln!("{}", reports::format::pdf_pages(p.total, p.main_body));
+    }
     Ok(())
 }

@@ -103,7 +103,7 @@ pub fn run(args: &SuiteArgs) -> Result<()> {
     };
     args.benchmarks.add_to(&mut results, true)?;
     let pdf = args.pdf.choice();
-    runner::report_files::write_run(&results, staging.dir(), pdf)?;
+    let pages = runner::report_files::write_run(&results, staging.dir(), pdf)?;
     let total = suite.scenes.len();
     if stop.load(std::sync::atomic::Ordering::SeqCst) {
         return Err(interrupted(&args.output, total, total));
@@ -112,6 +112,9 @@ pub fn run(args: &SuiteArgs) -> Result<()> {
     pdf.remove_stale(&args.output)?;
     let seconds = started.elapsed().as_secs_f64();
     eprint!("{}", suite.summary(&results, seconds, &args.output, pdf));
+    if let Some(p) = pages {
+        eprintln!("{}", reports::format::pdf_pages(p.total, p.main_body));
+    }
     if let Some(old) = old {
         let gate = args.gate.gate(&old, &results)?;
         let text = super::gate::render(&gate, super::Format::Text)?;

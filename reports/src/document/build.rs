@@ -236,6 +236,7 @@ impl<'a> Builder<'a> {
             thesis: thesis.map(str::to_string),
             short: false,
             appendix: part_of(id) == Part::Appendix,
+            html_only: false,
             blocks: Vec::new(),
         }
     }

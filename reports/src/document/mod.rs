@@ -59,6 +59,9 @@ pub struct Section {
     pub short: bool,
     /// In the appendix (see [`Part`]): after the main body, lettered.
     pub appendix: bool,
+    /// Too long for paper (tables of every scene): the PDF shows only its opening
+    /// paragraph and a pointer to the HTML report.
+    pub html_only: bool,
     pub blocks: Vec<Block>,
 }
 
@@ -519,6 +522,25 @@ impl Section {
 }
 
 impl Document {
+    /// The document as the PDF prints it: each [`Section::html_only`] section keeps
+    /// its first paragraph and says where the rest is.
+    pub fn for_print(&self) -> Document {
+        let mut doc = self.clone();
+        for section in doc.sections.iter_mut().filter(|s| s.html_only) {
+            let opening = section
+                .blocks
+                .iter()
+                .find(|b| matches!(b, Block::Paragraph { .. }))
+                .cloned();
+            section.blocks = opening.into_iter().collect();
+            section.blocks.push(Block::note(
+                Tone::Neutral,
+                "This section is in the HTML report (report.html), and its figures are in variants.csv and results.json: its tables, one per scene, would take dozens of printed pages.",
+            ));
+        }
+        doc
+    }
+
     /// The section with this id.
     pub fn section(&self, id: &str) -> Option<&Section> {
         self.sections.iter().find(|s| s.id == id)

@@ -11,7 +11,7 @@
 //! The computations are plain functions of the results (tested by hand); the section
 //! only lays them out.
 
-use crate::document::{Block, Builder, Cell, Column, Section, Table, Tone};
+use crate::document::{Block, Builder, Cell, Column, Inline, Section, Table, Tone};
 use crate::findings::geometric_mean;
 use crate::format;
 use crate::results::thesis_profile::{TABLE_6, TABLE_6_EYE_RAYS, TABLE_6_SCENE};
@@ -29,12 +29,27 @@ pub fn answers(b: &mut Builder) -> Section {
         "answers",
         Some("the questions of ch. 8: bottleneck, optimizations, hardware"),
     );
-    for answer in three_answers(b.results()) {
-        s.blocks.push(Block::heading(answer.question));
-        match answer.sentence {
-            Some(sentence) => s.blocks.push(Block::text(sentence)),
-            None => s.blocks.push(Block::empty(answer.why_none)),
+    let answers = three_answers(b.results());
+    // The three sentences first, so that the first screen (or page) holds all three
+    // answers; then each answer's table under its question.
+    for answer in &answers {
+        s.blocks.push(Block::Paragraph {
+            content: vec![
+                Inline::strong(if answer.question.ends_with('?') {
+                    answer.question.to_string()
+                } else {
+                    format!("{}:", answer.question)
+                }),
+                Inline::text(" "),
+                Inline::text(answer.sentence.as_deref().unwrap_or(answer.why_none)),
+            ],
+        });
+    }
+    for answer in answers {
+        if answer.warning.is_none() && answer.table.is_none() {
+            continue;
         }
+        s.blocks.push(Block::heading(answer.question));
         if let Some(warning) = answer.warning {
             s.blocks.push(Block::note(Tone::Warning, warning));
         }
@@ -49,6 +64,7 @@ pub fn answers(b: &mut Builder) -> Section {
 /// table, or why there is none.
 #[derive(Clone, Debug)]
 pub struct Answer {
+    /// The question, as a heading: "Where the time goes", "Would the FPGA pay off?".
     pub question: &'static str,
     pub sentence: Option<String>,
     pub warning: Option<String>,
@@ -572,6 +588,8 @@ pub struct DesignRow {
     pub fits: bool,
     /// Seconds a primitive adds to the frame (eq. 49 over K).
     pub per_primitive: f64,
+    /// The frame of the test bench's largest scene (eq. 49 with the fill).
+    pub bench_frame: f64,
     pub one_core: BreakEven,
     pub all_cores: BreakEven,
 }
@@ -636,7 +654,7 @@ pub fn fpga_answer(r: &Results) -> Option<FpgaAnswer> {
     };
     // The fit counts memory for the test bench's largest scene at the frame (as the
     // hardware tables do: 7 primitives).
-    let fit_n = 7;
+    let fit_n = hwmodel::optimizations::BENCH_PRIMITIVES;
     let most = |lib: &Library, device: &hwmodel::library::DeviceSpec, design: &Design| {
         largest_units(lib, device, design, fit_n, width, height).unwrap_or(1)
     };
@@ -700,6 +718,14 @@ pub fn fpga_answer(r: &Results) -> Option<FpgaAnswer> {
                 per_primitive: 3.0 * f64::from(width) * f64::from(height)
                     / f64::from(units)
                     / THESIS_CLOCK_HZ,
+                bench_frame: hwmodel::frame_timing::frame_timing(
+                    &pipeline,
+                    fit_n,
+                    width,
+                    height,
+                    THESIS_CLOCK_HZ,
+                )
+                .seconds,
                 one_core: line(&one_core),
                 all_cores: line(&all_cores),
             }
@@ -775,16 +801,27 @@ impl FpgaAnswer {
                 format::seconds(l.per_primitive)
             )
         };
+        // Equal verdicts are said once.
+        let verdict = if thesis.one_core == thesis.all_cores {
+            format!(
+                "{} against one core or all cores",
+                faster_text(thesis.one_core)
+            )
+        } else {
+            format!(
+                "{} against one core and {} against all cores",
+                faster_text(thesis.one_core),
+                faster_text(thesis.all_cores)
+            )
+        };
         let mut text = format!(
-            "At 50 MHz the thesis's pipeline adds {} a primitive to a {frame} frame (eq. 49); rtprof's {} takes {} on one core here ({} on {}), fitted over {} of the thesis's test bench. So the pipeline {} against one core and {} against all cores.",
+            "At 50 MHz the thesis's pipeline adds {} a primitive to a {frame} frame (eq. 49); rtprof's {} takes {} on one core here ({} on {}), fitted over {} of the thesis's test bench. So the pipeline {verdict}.",
             format::seconds(thesis.per_primitive),
             self.peer,
             line(&self.one_core),
             line(&self.all_cores),
             format::plural(self.threads as usize, "core"),
             format::plural(self.one_core.scenes, "scene"),
-            faster_text(thesis.one_core),
-            faster_text(thesis.all_cores),
         );
         if reach(best.one_core) > reach(thesis.one_core) {
             text.push_str(&format!(
@@ -829,6 +866,10 @@ fn break_even_table(a: &FpgaAnswer) -> Table {
         Column::number("K"),
         Column::text("fits"),
         Column::number("per primitive").detail(format::size(a.width, a.height)),
+        Column::number("frame").detail(format!(
+            "{} primitives",
+            hwmodel::optimizations::BENCH_PRIMITIVES
+        )),
         Column::text("faster than one core"),
         Column::text(format!("faster than {} cores", a.threads)),
     ])
@@ -856,6 +897,7 @@ fn break_even_table(a: &FpgaAnswer) -> Table {
                 Cell::text("no").tone(Tone::Bad)
             },
             Cell::number(format::seconds(d.per_primitive), d.per_primitive),
+            Cell::number(format::seconds(d.bench_frame), d.bench_frame),
             cell(d.one_core),
             cell(d.all_cores),
         ]);

@@ -69,7 +69,7 @@ pub fn hardware(b: &mut Builder) -> Section {
 
 /// The scene the optimizations are costed on: the test bench's largest (7 primitives,
 /// the fit's scene too) at the thesis's 640×480.
-pub const COSTED_SCENE: (u64, u32, u32) = (7, 640, 480);
+pub const COSTED_SCENE: (u64, u32, u32) = (hwmodel::optimizations::BENCH_PRIMITIVES, 640, 480);
 
 /// The thesis's optimizations costed in the pipeline's cycles and the device's logic
 /// (see [`hwmodel::optimizations`]), on the validated device.

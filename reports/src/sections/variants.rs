@@ -260,6 +260,7 @@ pub fn variants_by_scene(b: &mut Builder) -> Section {
         "variants-by-scene",
         Some("ch. 8.3's proposed optimizations, each measured on every scene (the thesis tried them on one sphere)"),
     );
+    s.html_only = true;
     let r = b.results();
     if r.scenes.iter().all(|s| s.variants.is_empty()) {
         return s.empty("No scene has a variant result (see Failures).");
