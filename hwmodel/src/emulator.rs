@@ -287,15 +287,18 @@ pub fn pixel_gray(scene: &HwScene, dir: V3) -> u8 {
 
 /// The image the hardware computes for `scene` on a `width` × `height` screen.
 pub fn render(scene: &HwScene, width: u32, height: u32) -> HwImage {
+    use rayon::prelude::*;
     let rays = PrimaryRays::new(scene, width, height);
-    let mut pixels = Vec::with_capacity(width as usize * height as usize);
-    // The screen iterator: columns within rows, top row first.
-    for row in 0..height {
-        let row_base = rays.row_base(row);
-        for column in 0..width {
-            pixels.push(pixel_gray(scene, rays.direction(row_base, column)));
-        }
-    }
+    // The screen iterator's order (columns within rows, top row first); each pixel is
+    // computed on its own, so the rows run in parallel (on the caller's rayon pool) and
+    // the picture is the same on any number of threads.
+    let pixels: Vec<u8> = (0..height)
+        .into_par_iter()
+        .flat_map_iter(|row| {
+            let row_base = rays.row_base(row);
+            (0..width).map(move |column| pixel_gray(scene, rays.direction(row_base, column)))
+        })
+        .collect();
     HwImage {
         width,
         height,

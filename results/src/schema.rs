@@ -236,6 +236,11 @@ pub struct SceneResult {
     /// option `f64_reference`). `None` when it did not run, and in older files.
     #[serde(default)]
     pub f64_reference: Option<F64Reference>,
+    /// Worker threads of this scene's renders when not the suite's (`suite.threads`):
+    /// the SPD's small frames render on one thread (`[spd] small_on_one_thread`).
+    /// `None`: the suite's, and in older files.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub threads: Option<u32>,
 }
 
 /// The f64 reference's render of a scene, at the scene's size, sampling and shading.

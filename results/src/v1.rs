@@ -368,6 +368,7 @@ fn scene(s: SceneResult, path: &str) -> Result<v2::SceneResult, ResultsError> {
         bvh_quality: Vec::new(),
         pixel_maps: Vec::new(),
         f64_reference: None,
+        threads: None,
     })
 }
 

@@ -120,6 +120,7 @@ fn run(baseline_s: f64, bvh_s: f64, kernel_s: f64, dots: u64) -> Results {
             bvh_quality: Vec::new(),
             pixel_maps: Vec::new(),
             f64_reference: None,
+            threads: None,
         }],
         profile: None,
         hardware: None,

@@ -271,6 +271,7 @@ impl VariantsReport {
             bvh_quality: Vec::new(),
             pixel_maps: Vec::new(),
             f64_reference: None,
+            threads: None,
         }
     }
 

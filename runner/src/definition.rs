@@ -89,6 +89,12 @@ pub struct SpdDef {
     pub full_size: [u32; 2],
     /// The variants of the accelerated run (none of them brute force).
     pub full_variants: Vec<String>,
+    /// Whether the every-variant run renders on one thread. Its frame is small, so an
+    /// accelerated render there lasts about a millisecond, and on several threads part
+    /// of that is waking the workers: its speed-up would measure the threads as much as
+    /// the structure. On one thread every variant's time is its work alone.
+    #[serde(default)]
+    pub small_on_one_thread: bool,
 }
 
 /// Overrides for `--quick`.

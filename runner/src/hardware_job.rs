@@ -106,7 +106,7 @@ pub fn run_hardware(
         .devices
         .first()
         .is_some_and(|device| fit(&lib, device, demand(&lib, &pipeline, n, width, height)).fits);
-    let emulated = hwmodel::emulator::render(hw, width, height);
+    let emulated = all_threads.install(|| hwmodel::emulator::render(hw, width, height));
     let emulator_image = RgbImage::new(width, height, emulated.to_rgb8())?;
     let software = software_time(scene, name, size, pool, policy, stop)?;
     let peer = VariantSet::parse(PEER_VARIANT)?;

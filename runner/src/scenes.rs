@@ -24,6 +24,9 @@ pub struct SceneSpec {
     pub variants: Option<Vec<String>>,
     /// Whether the suite may pick it as the heaviest scene to profile.
     pub profile_candidate: bool,
+    /// Rendered on one thread rather than the suite's (the SPD's small frames: see
+    /// [`crate::definition::SpdDef::small_on_one_thread`]).
+    pub one_thread: bool,
     /// What the entry named (`None` for a file found in a `--scenes` directory).
     pub input: Option<SceneInput>,
 }
@@ -49,6 +52,7 @@ impl SceneSpec {
             size: (def.size[0], def.size[1]),
             spd_sampling: false,
             variants: None,
+            one_thread: def.small_on_one_thread,
             ..full.clone()
         };
         Ok([full, small])
@@ -79,6 +83,7 @@ pub fn resolve_scene(entry: &str, size: (u32, u32), base: &Path) -> Result<Scene
         spd_sampling: false,
         variants: None,
         profile_candidate: true,
+        one_thread: false,
         input: Some(input),
     })
 }
@@ -121,6 +126,7 @@ pub fn extra_scenes(dir: &Path, size: (u32, u32)) -> Result<Vec<SceneSpec>, RunE
                 spd_sampling: false,
                 variants: None,
                 profile_candidate: true,
+                one_thread: false,
                 input: None,
             })
         })

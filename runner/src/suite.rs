@@ -415,11 +415,17 @@ impl SceneRunner<'_> {
             Sampling::PixelCenters
         };
         let options = RenderOptions::new(width, height, sampling, ShadingMode::Color);
+        // The scene's renders run on its pool (the SPD's small frames on one thread).
+        let pool = if spec.one_thread {
+            self.one_thread
+        } else {
+            self.pool
+        };
         let setup = RenderSetup {
             scene: &scene,
             name: &spec.name,
             options: &options,
-            pool: self.pool,
+            pool,
             stop: self.ctx.stop,
         };
         let doing = |what: &str| {
@@ -543,6 +549,7 @@ impl SceneRunner<'_> {
             bvh_quality,
             pixel_maps,
             f64_reference: truth.map(|(t, _)| t),
+            threads: spec.one_thread.then_some(1),
         };
         results::change::fill_scene_speedups(&mut result, results::NOISE_THRESHOLD);
         Ok(result)
@@ -616,7 +623,7 @@ impl SceneRunner<'_> {
                     scene: &spec.name,
                     variant: &set.to_string(),
                     sampling: setup.options.sampling,
-                    threads: self.pool.current_num_threads(),
+                    threads: setup.pool.current_num_threads(),
                     clock_resolution_ns: tracer::pixel_stats::clock_resolution().as_secs_f64()
                         * 1e9,
                 };

@@ -828,6 +828,7 @@ fn sample_scene(s: &SceneSpec, failed: &[(&str, &str)]) -> SceneResult {
             image: image_path(s.name, "f64-reference"),
             seconds: 3.0 * base_median,
         }),
+        threads: None,
     }
 }
 

@@ -164,7 +164,7 @@ pub fn kinds(scene: &SceneResult) -> String {
 pub fn scene_line(scene: &SceneResult) -> String {
     let kinds = kinds(scene);
     format!(
-        "{} · {}{} · {} · {}{}",
+        "{} · {}{} · {} · {}{}{}",
         scene.family.name(),
         format::kind_count(scene.primitives, "primitives"),
         if kinds.is_empty() {
@@ -174,7 +174,11 @@ pub fn scene_line(scene: &SceneResult) -> String {
         },
         format::size(scene.width, scene.height),
         scene.source,
-        if scene.spd { " · SPD sampling" } else { "" }
+        if scene.spd { " · SPD sampling" } else { "" },
+        scene.threads.map_or_else(String::new, |n| format!(
+            " · {}",
+            format::plural(n as usize, "thread")
+        ))
     )
 }
 

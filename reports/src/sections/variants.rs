@@ -143,8 +143,12 @@ fn matrix(r: &crate::results::Results, lines: &[answers::VariantLine]) -> Table 
         t.rows.push(head);
         for scene in scenes {
             let base = access::reference(r, scene);
+            let name = Cell::text(&scene.name).hover(scene_line(scene));
             let mut row = vec![
-                Cell::text(&scene.name).hover(scene_line(scene)),
+                match scene.threads {
+                    Some(n) => name.detail(format::plural(n as usize, "thread")),
+                    None => name,
+                },
                 match base {
                     Some(v) => Cell::estimate(v.time.median, v.time.low, v.time.high),
                     None => Cell::dash(),
