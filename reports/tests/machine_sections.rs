@@ -83,97 +83,199 @@ fn variant<'a>(scene: &'a SceneResult, name: &str) -> &'a VariantResult {
         .unwrap_or_else(|| panic!("no {name}"))
 }
 
+/// The share of the roof a sentence gives `variant`: the `P` of `{variant} ({kind}
+/// code) attains … : P of its roof`.
+fn stated_share<'t>(text: &'t str, variant: &str) -> &'t str {
+    let at = text
+        .find(&format!(", {variant} ("))
+        .or_else(|| text.find(&format!("On rings, {variant} (")))
+        .unwrap_or_else(|| panic!("{variant} not in: {text}"));
+    let rest = &text[at..];
+    let from = rest.find(": ").expect("a share") + 2;
+    let to = rest.find(" of its roof").expect("of its roof");
+    &rest[from..to]
+}
+
+/// The text in parentheses of a table cell: `17.4 (58.6 %)` gives `58.6 %`.
+fn cell_share(cell: &str) -> &str {
+    cell.split_once(" (")
+        .and_then(|(_, rest)| rest.strip_suffix(')'))
+        .unwrap_or_else(|| panic!("no share in {cell}"))
+}
+
+/// The table cell of `scene` and `variant`.
+fn cell<'t>(t: &'t Table, scene: &str, variant: &str) -> &'t str {
+    let column = titles(t)
+        .iter()
+        .position(|c| *c == variant)
+        .unwrap_or_else(|| panic!("no column {variant}"));
+    let row = t
+        .rows
+        .iter()
+        .find(|row| row[0].text == scene)
+        .unwrap_or_else(|| panic!("no row {scene}"));
+    &row[column].text
+}
+
 #[test]
-fn the_roofline_states_the_peak_and_the_fastest_variants_distance_to_its_roof() {
+fn the_roofline_states_each_share_on_one_basis_in_the_sentence_and_the_table() {
     let dir = TempDir::new("machine-roofline").expect("temp dir");
     let r = sample_results();
     let doc = document_of(r.clone(), dir.path());
     let s = section(&doc, "roofline");
     let text = prose(s);
-
-    // rings is the profiled scene: its baseline against the peak.
+    let t = tables(s)[0];
     let peak = r.peak.as_ref().expect("peak");
+    let scalar_peak = peak
+        .scalar_peak_gflops
+        .expect("the sample has a scalar peak");
+    assert!(
+        text.contains("149 GFLOP/s in SIMD lanes by the FMA kernel (AVX2+FMA, 8 lanes × 10 chains) and 29.7 GFLOP/s in scalar instructions (scalar FMA, 1 lane × 10 chains)"),
+        "{text}"
+    );
+
+    // rings is the profiled scene: baseline (scalar code) and the fastest variant.
     let scene = rings(&r);
-    let base = variant(scene, "baseline")
-        .efficiency
-        .as_ref()
-        .expect("efficiency");
-    let of_peak =
-        base.flops as f64 / variant(scene, "baseline").time.median / 1e9 / peak.peak_gflops * 100.0;
-    let expected = format!(
-        "On rings, baseline attains {} GFLOP/s",
-        format::significant(base.achieved_gflops)
-    );
-    assert!(text.contains(&expected), "{expected} not in: {text}");
-    let expected = format!("{} of the 149 GFLOP/s peak", format::percent(of_peak, 1));
-    assert!(text.contains(&expected), "{expected} not in: {text}");
-
-    // Its records came from the caches: it attains more than DRAM could feed.
-    let base_intensity = base.flops as f64 / base.bytes_moved as f64;
-    let dram = peak.peak_gflops.min(peak.bandwidth_gbs * base_intensity);
-    assert!(base.achieved_gflops > dram);
-    let expected = format!(
-        "above the {} GFLOP/s DRAM alone could feed it",
-        format::significant(dram)
-    );
-    assert!(text.contains(&expected), "{expected} not in: {text}");
-
-    // The fastest variant on rings (least median time), and its share of its roof:
-    // attained over min(peak, L1 bandwidth × intensity), the cache-aware roof.
     let fastest = scene
         .variants
         .iter()
         .min_by(|a, b| a.time.median.total_cmp(&b.time.median))
         .expect("variants");
-    let e = fastest.efficiency.as_ref().expect("efficiency");
-    let intensity = e.flops as f64 / e.bytes_moved as f64;
-    let roof = peak.peak_gflops.min(peak.cache_bandwidth_gbs * intensity);
-    let share = e.achieved_gflops / roof * 100.0;
-    assert!(share < 100.0, "the sample's points are under their roofs");
-    let bound = if intensity < peak.peak_gflops / peak.cache_bandwidth_gbs {
-        "bandwidth"
-    } else {
-        "compute"
-    };
+    for (v, comma) in [(variant(scene, "baseline"), ""), (fastest, ",")] {
+        let e = v.efficiency.as_ref().expect("efficiency");
+        // By hand, from the counts and the time: attained over the lower of the
+        // compute peak of its code and the L1 bandwidth times its intensity.
+        let attained = e.flops as f64 / v.time.median / 1e9;
+        let intensity = e.flops as f64 / e.bytes_moved as f64;
+        let simd_code = v.variant.as_str().contains("simd");
+        let compute = if simd_code {
+            peak.peak_gflops
+        } else {
+            scalar_peak
+        };
+        let fed = peak.cache_bandwidth_gbs * intensity;
+        let roof = compute.min(fed);
+        let share = attained / roof * 100.0;
+        assert!(share < 100.0, "the sample's points are under their roofs");
+        let roof_text = if fed < compute {
+            format!(
+                "the L1 bandwidth roof of {} GFLOP/s at that intensity",
+                format::significant(roof)
+            )
+        } else {
+            format!(
+                "the {} peak of {} GFLOP/s",
+                if simd_code { "SIMD" } else { "scalar" },
+                format::significant(roof)
+            )
+        };
+        let expected = format!(
+            "{} ({} code){comma} attains {} GFLOP/s at {} flop/byte: {} of its roof, {roof_text}",
+            v.variant,
+            if simd_code { "SIMD" } else { "scalar" },
+            format::significant(attained),
+            format::significant(intensity),
+            format::percent(share, 1)
+        );
+        assert!(text.contains(&expected), "{expected} not in: {text}");
+        // The sentence's share of this render is the table's.
+        let in_table = cell(t, "rings", v.variant.as_str());
+        assert_eq!(
+            stated_share(&text, v.variant.as_str()),
+            cell_share(in_table)
+        );
+        assert_eq!(
+            in_table,
+            format!(
+                "{} ({})",
+                format::significant(attained),
+                format::percent(share, 1)
+            )
+        );
+    }
+
+    // Its records came from the caches: baseline attains more than DRAM could feed.
+    let base = variant(scene, "baseline")
+        .efficiency
+        .as_ref()
+        .expect("efficiency");
+    let dram = peak
+        .peak_gflops
+        .min(peak.bandwidth_gbs * base.flops as f64 / base.bytes_moved as f64);
+    assert!(base.achieved_gflops > dram);
     let expected = format!(
-        "the fastest variant, {}, attains {} GFLOP/s at {} flop/byte, {} of its {bound} roof of {} GFLOP/s",
-        fastest.variant,
-        format::significant(e.achieved_gflops),
-        format::significant(intensity),
-        format::percent(share, 1),
-        format::significant(roof)
+        "and above the {} GFLOP/s DRAM alone could feed it",
+        format::significant(dram)
     );
     assert!(text.contains(&expected), "{expected} not in: {text}");
     assert!(text.contains("counted vector operations only, a lower bound"));
+    // No share on another basis: neither of the SIMD peak for scalar code nor of
+    // "the bandwidth roof" without its level.
+    assert!(!text.contains("of the 149 GFLOP/s peak"), "{text}");
 
-    // The chart and the table of every point, with its roof.
+    // The chart, and one row per scene, one column per variant of the suite.
     assert!(
         s.blocks
             .iter()
             .any(|b| matches!(b, Block::Figure(f) if f.id == "roofline"))
     );
-    // One row per scene, one column per variant of the suite.
-    let t = tables(s)[0];
     let variants: Vec<&str> = r.suite.variants.iter().map(|v| v.as_str()).collect();
     let mut expected_titles = vec!["scene"];
     expected_titles.extend(&variants);
     assert_eq!(titles(t), expected_titles);
     assert_eq!(t.rows.len(), r.scenes.len());
-    let row = t
-        .rows
-        .iter()
-        .find(|row| row[0].text == "rings")
-        .expect("rings' row");
-    let column = 1 + variants
-        .iter()
-        .position(|v| *v == fastest.variant.as_str())
-        .expect("the fastest variant's column");
-    let cell = format!(
-        "{} ({})",
-        format::significant(e.achieved_gflops),
-        format::percent(share, 1)
+    // simd (SIMD code) is held to the SIMD roof in every row.
+    for scene in &r.scenes {
+        let v = variant(scene, "simd");
+        let e = v.efficiency.as_ref().expect("efficiency");
+        let roof = peak
+            .peak_gflops
+            .min(peak.cache_bandwidth_gbs * e.arithmetic_intensity);
+        assert_eq!(
+            cell_share(cell(t, &scene.name, "simd")),
+            format::percent(e.achieved_gflops / roof * 100.0, 1),
+            "{}",
+            scene.name
+        );
+    }
+}
+
+#[test]
+fn a_file_without_the_scalar_peak_sets_every_point_against_the_simd_roof_and_says_so() {
+    let dir = TempDir::new("machine-no-scalar").expect("temp dir");
+    let mut r = sample_results();
+    let peak = r.peak.as_mut().expect("peak");
+    peak.scalar_peak_gflops = None;
+    peak.scalar_kernel = None;
+    let peak = peak.clone();
+    let doc = document_of(r.clone(), dir.path());
+    let s = section(&doc, "roofline");
+    let text = prose(s);
+    assert!(
+        text.contains("this file has no scalar peak, so scalar code is set against this one too"),
+        "{text}"
     );
-    assert_eq!(row[column].text, cell);
+    let base = variant(rings(&r), "baseline");
+    let e = base.efficiency.as_ref().expect("efficiency");
+    let roof = peak
+        .peak_gflops
+        .min(peak.cache_bandwidth_gbs * e.arithmetic_intensity);
+    let share = format::percent(e.achieved_gflops / roof * 100.0, 1);
+    assert_eq!(stated_share(&text, "baseline"), share);
+    assert_eq!(cell_share(cell(tables(s)[0], "rings", "baseline")), share);
+    // The chart draws the roofs it has and says which one is missing.
+    let Some(Block::Figure(f)) = s
+        .blocks
+        .iter()
+        .find(|b| matches!(b, Block::Figure(f) if f.id == "roofline"))
+    else {
+        panic!("no roofline chart");
+    };
+    assert!(
+        f.caption.contains("This file has no scalar peak"),
+        "{}",
+        f.caption
+    );
 }
 
 #[test]
@@ -190,7 +292,7 @@ fn without_the_peaks_the_roofline_has_no_roof() {
     );
     let text = prose(s);
     assert!(
-        text.contains("On rings, baseline attains") && !text.contains("% of the"),
+        text.contains("On rings, baseline (scalar code) attains") && !text.contains("% of"),
         "{text}"
     );
     // The attained GFLOP/s alone, without a share of a roof.

@@ -1,5 +1,7 @@
-//! The machine's roofs for the roofline model: a floating-point peak (a chain of fused
-//! multiply-adds, independent enough to fill both FMA pipes) and two bandwidths, the
+//! The machine's roofs for the roofline model: two floating-point peaks (chains of fused
+//! multiply-adds, independent enough to fill both FMA pipes, once in SIMD lanes and
+//! once one lane wide in scalar instructions, the roof of code that does not use the
+//! lanes, as Intel Advisor draws both) and two bandwidths, the
 //! STREAM triad over arrays far larger than the caches (DRAM) and over arrays that stay
 //! in L1 (the cache-aware roofline's top memory roof), all on every thread of the
 //! renders' pool, in AVX2 where the processor has it (as the tracer's `simd` runs).
@@ -44,10 +46,11 @@ impl PeakPlan {
     };
 }
 
-/// Measures both roofs on `pool`.
+/// Measures the roofs on `pool`.
 pub fn measure_peak(pool: &rayon::ThreadPool, plan: PeakPlan) -> MachinePeak {
     let threads = pool.current_num_threads();
     let (peak_gflops, fma_kernel) = fma_peak(pool, plan.fma_seconds);
+    let (scalar_peak_gflops, scalar_kernel) = scalar_peak(pool, plan.fma_seconds);
     let bandwidth_gbs = stream_bandwidth(pool, plan.stream_elements);
     let cache_bandwidth_gbs = l1_bandwidth(pool, plan.fma_seconds);
     MachinePeak {
@@ -57,10 +60,12 @@ pub fn measure_peak(pool: &rayon::ThreadPool, plan: PeakPlan) -> MachinePeak {
         threads: threads as u32,
         fma_kernel,
         stream_bytes: 3 * 4 * plan.stream_elements as u64,
+        scalar_peak_gflops: Some(scalar_peak_gflops),
+        scalar_kernel: Some(scalar_kernel),
     }
 }
 
-/// GFLOP/s of the FMA chains on every thread of `pool` and what they ran.
+/// GFLOP/s of the FMA chains in SIMD lanes on every thread of `pool` and what they ran.
 fn fma_peak(pool: &rayon::ThreadPool, seconds: f64) -> (f64, String) {
     let avx2 = has_avx2_fma();
     let kernel = if avx2 {
@@ -68,22 +73,53 @@ fn fma_peak(pool: &rayon::ThreadPool, seconds: f64) -> (f64, String) {
     } else {
         format!("portable multiply-add, {LANES} lanes × {CHAINS} chains")
     };
-    // Size the run from a short probe on one thread.
+    let flops_per_step = 2 * LANES * CHAINS;
+    let best = best_gflops(pool, seconds, flops_per_step, &|steps, seed| {
+        chains(steps, seed, avx2)
+    });
+    (best, kernel)
+}
+
+/// GFLOP/s of the same chains one lane wide, in scalar instructions (`vfmadd…ss`
+/// where the processor has FMA, a scalar multiply and add otherwise), on every thread
+/// of `pool`, and what they ran.
+fn scalar_peak(pool: &rayon::ThreadPool, seconds: f64) -> (f64, String) {
+    let fma = has_fma();
+    let kernel = if fma {
+        format!("scalar FMA, 1 lane × {CHAINS} chains")
+    } else {
+        format!("scalar multiply-add, 1 lane × {CHAINS} chains")
+    };
+    let best = best_gflops(pool, seconds, 2 * CHAINS, &|steps, seed| {
+        scalar_chains(steps, seed, fma)
+    });
+    (best, kernel)
+}
+
+/// The best GFLOP/s of [`REPEATS`] runs of `kernel` (`steps` from a seed, doing
+/// `flops_per_step` each) on every thread of `pool`, each run sized from a short
+/// probe on one thread to last about `seconds`.
+fn best_gflops(
+    pool: &rayon::ThreadPool,
+    seconds: f64,
+    flops_per_step: usize,
+    kernel: &(dyn Fn(u64, f32) -> f32 + Sync),
+) -> f64 {
     let probe = 20_000u64;
     let start = Instant::now();
-    black_box(chains(probe, 1.0, avx2));
+    black_box(kernel(probe, 1.0));
     let per_step = start.elapsed().as_secs_f64().max(1e-9) / probe as f64;
     let steps = ((seconds / per_step) as u64).max(probe);
     let mut best = 0.0f64;
     for _ in 0..REPEATS {
         let start = Instant::now();
-        let sums = pool.broadcast(|ctx| chains(steps, 1.0 + ctx.index() as f32, avx2));
+        let sums = pool.broadcast(|ctx| kernel(steps, 1.0 + ctx.index() as f32));
         let elapsed = start.elapsed().as_secs_f64();
         black_box(sums);
-        let flops = (2 * LANES * CHAINS) as f64 * steps as f64 * pool.current_num_threads() as f64;
+        let flops = flops_per_step as f64 * steps as f64 * pool.current_num_threads() as f64;
         best = best.max(flops / elapsed / 1e9);
     }
-    (best, kernel)
+    best
 }
 
 /// Runs `steps` of every chain from `seed`; the sum of the final values.
@@ -131,6 +167,79 @@ fn chains_avx2(steps: u64, seed: f32) -> f32 {
     // SAFETY: `lanes` holds 8 floats.
     unsafe { _mm256_storeu_ps(lanes.as_mut_ptr(), total) };
     lanes.iter().sum()
+}
+
+/// Runs `steps` of [`CHAINS`] scalar chains from `seed`; the sum of the final values.
+fn scalar_chains(steps: u64, seed: f32, fma: bool) -> f32 {
+    #[cfg(target_arch = "x86_64")]
+    {
+        if fma {
+            // SAFETY: the caller checked that the processor has FMA.
+            return unsafe { scalar_chains_fma(steps, seed) };
+        }
+        // SAFETY: every x86-64 processor has SSE.
+        unsafe { scalar_chains_sse(steps, seed) }
+    }
+    #[cfg(not(target_arch = "x86_64"))]
+    {
+        let _ = fma;
+        scalar_chains_portable(steps, seed)
+    }
+}
+
+/// The chains in `vfmadd…ss`: one lane of an XMM register each, written with the
+/// scalar intrinsics so that no optimiser packs them into vectors.
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "fma")]
+fn scalar_chains_fma(steps: u64, seed: f32) -> f32 {
+    use std::arch::x86_64::{__m128, _mm_cvtss_f32, _mm_fmadd_ss, _mm_set_ss};
+    let (a, b) = (_mm_set_ss(A), _mm_set_ss(B));
+    let mut x: [__m128; CHAINS] = [_mm_set_ss(seed); CHAINS];
+    for _ in 0..steps {
+        for chain in &mut x {
+            *chain = _mm_fmadd_ss(*chain, a, b);
+        }
+    }
+    x.iter().map(|&chain| _mm_cvtss_f32(chain)).sum()
+}
+
+/// The chains as a scalar multiply and add (SSE, every x86-64 has it).
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "sse")]
+fn scalar_chains_sse(steps: u64, seed: f32) -> f32 {
+    use std::arch::x86_64::{__m128, _mm_add_ss, _mm_cvtss_f32, _mm_mul_ss, _mm_set_ss};
+    let (a, b) = (_mm_set_ss(A), _mm_set_ss(B));
+    let mut x: [__m128; CHAINS] = [_mm_set_ss(seed); CHAINS];
+    for _ in 0..steps {
+        for chain in &mut x {
+            *chain = _mm_add_ss(_mm_mul_ss(*chain, a), b);
+        }
+    }
+    x.iter().map(|&chain| _mm_cvtss_f32(chain)).sum()
+}
+
+/// The chains in plain f32 (other architectures), kept in memory between steps.
+#[cfg(not(target_arch = "x86_64"))]
+fn scalar_chains_portable(steps: u64, seed: f32) -> f32 {
+    let mut x = [seed; CHAINS];
+    for _ in 0..steps {
+        for chain in &mut x {
+            *chain = *chain * A + B;
+        }
+        black_box(&mut x);
+    }
+    x.iter().sum()
+}
+
+fn has_fma() -> bool {
+    #[cfg(target_arch = "x86_64")]
+    {
+        std::arch::is_x86_feature_detected!("fma")
+    }
+    #[cfg(not(target_arch = "x86_64"))]
+    {
+        false
+    }
 }
 
 fn has_avx2_fma() -> bool {
@@ -258,6 +367,20 @@ mod tests {
     }
 
     #[test]
+    fn the_scalar_chains_do_the_steps_they_are_credited_with() {
+        let steps = 10_000;
+        let expected = CHAINS as f64 * closed_form(1.0, steps);
+        for fma in [false, has_fma()] {
+            let sum = f64::from(scalar_chains(steps, 1.0, fma));
+            assert!(
+                (sum / expected - 1.0).abs() < 1e-3,
+                "fma {fma}: {sum} vs {expected}"
+            );
+        }
+        assert!((f64::from(scalar_chains(steps / 2, 1.0, false)) - expected).abs() > 1e-3);
+    }
+
+    #[test]
     fn the_triad_computes_b_plus_s_c() {
         let (b, c) = ([1.0, 2.0, 3.0], [0.5, 0.25, 2.0]);
         let mut a = [0.0; 3];
@@ -278,6 +401,12 @@ mod tests {
             "{peak:?}"
         );
         assert!(peak.cache_bandwidth_gbs > 0.0, "{peak:?}");
+        // One lane against eight (four on a machine without AVX2, in the portable
+        // kernel's vectors at best): the scalar roof is the lower one.
+        let scalar = peak
+            .scalar_peak_gflops
+            .expect("the scalar peak is measured");
+        assert!(0.0 < scalar && scalar < peak.peak_gflops, "{peak:?}");
         let ridge = peak.ridge_intensity();
         assert!((peak.roof_gflops(ridge) - peak.peak_gflops).abs() < 1e-9 * peak.peak_gflops);
         assert!(peak.roof_gflops(ridge / 2.0) < peak.peak_gflops);
