@@ -434,13 +434,81 @@ fn the_bvh_section_says_where_the_metrics_do_not_predict_the_measurement() {
     );
 }
 
+/// Writes every map of `scene`'s variants as a NumPy file of the map's grid: values
+/// `value(variant, key, index)`.
+fn write_maps(dir: &Path, scene: &SceneResult, value: impl Fn(&str, &str, usize) -> u64) {
+    for maps in &scene.pixel_maps {
+        let n = (maps.columns * maps.rows) as usize;
+        for map in &maps.maps {
+            let values: Vec<u64> = (0..n)
+                .map(|i| value(maps.variant.as_str(), &map.key, i))
+                .collect();
+            let bytes = reports::npy::npy_bytes(maps.rows as usize, maps.columns as usize, &values)
+                .expect("npy");
+            let path = dir.join(&maps.directory).join(&map.npy);
+            std::fs::create_dir_all(path.parent().expect("parent")).expect("mkdir");
+            std::fs::write(path, bytes).expect("write");
+        }
+    }
+}
+
+/// The figures of a section, by id.
+fn figures(s: &Section) -> Vec<&document::Figure> {
+    s.blocks
+        .iter()
+        .filter_map(|b| match b {
+            Block::Figure(f) => Some(f),
+            _ => None,
+        })
+        .collect()
+}
+
+/// The pictures an SVG embeds, decoded.
+fn embedded_pngs(svg: &str) -> Vec<image::RgbImage> {
+    svg.split("href=\"data:image/png;base64,")
+        .skip(1)
+        .map(|rest| {
+            let data = rest.split('"').next().expect("quote");
+            image::load_from_memory(&unbase64(data))
+                .expect("a PNG")
+                .to_rgb8()
+        })
+        .collect()
+}
+
+fn unbase64(text: &str) -> Vec<u8> {
+    const ALPHABET: &[u8] = b"ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+    let mut out = Vec::new();
+    let (mut bits, mut held) = (0u32, 0u32);
+    for c in text.bytes().filter(|&c| c != b'=') {
+        bits = (bits << 6) | ALPHABET.iter().position(|&a| a == c).expect("base64") as u32;
+        held += 6;
+        if held >= 8 {
+            held -= 8;
+            out.push((bits >> held) as u8);
+        }
+    }
+    out
+}
+
 #[test]
-fn pixel_maps_stand_side_by_side_per_counter_and_missing_files_cost_their_tile() {
+fn pixel_maps_of_a_counter_share_one_scale_and_what_is_not_there_is_one_sentence() {
     let dir = TempDir::new("machine-maps").expect("temp dir");
     let r = sample_results();
     write_sample_files(dir.path()).expect("sample files");
-    // The maps of rings are lost: each tile must say so.
-    std::fs::remove_dir_all(dir.path().join("pixel-maps/rings")).expect("remove the maps");
+    let scene = rings(&r);
+    // Time: a ramp to 700 ns with baseline and to 470 ns with simd and bvh, so that
+    // a per-map scale would draw simd's 470 in baseline's 700's colour; the depth is
+    // 1 everywhere with every variant; other counters a ramp to 9.
+    let top = |variant: &str| if variant == "baseline" { 700 } else { 470 };
+    let n = (scene.pixel_maps[0].columns * scene.pixel_maps[0].rows) as usize;
+    write_maps(dir.path(), scene, |variant, key, i| match key {
+        "time.ns" => (i * top(variant) / (n - 1)) as u64,
+        "ray_tree.depth" => 1,
+        _ => (i % 10) as u64,
+    });
+    // simd's shadow rays are lost.
+    std::fs::remove_file(dir.path().join("pixel-maps/rings/simd/rays.shadow.npy")).expect("remove");
     let run = Run {
         label: "bench-1".to_string(),
         results: r.clone(),
@@ -448,66 +516,84 @@ fn pixel_maps_stand_side_by_side_per_counter_and_missing_files_cost_their_tile()
     };
     let doc = document::build(&[run]).expect("document");
     let s = section(&doc, "pixel-maps");
-    let scene = rings(&r);
+    let text = prose(s);
 
-    let grids = grids(s);
-    let labels: Vec<&str> = grids.iter().map(|g| g.row_labels[0].as_str()).collect();
+    // One figure per counter with a varying value, in row order; the depth is flat.
+    let ids: Vec<&str> = figures(s).iter().map(|f| f.id.as_str()).collect();
     assert_eq!(
-        labels,
+        ids,
         [
-            "time",
-            "sphere tests",
-            "cylinder tests",
-            "polygon tests",
-            "BVH nodes",
-            "shadow rays",
-            "ray-tree depth"
+            "pixel-maps-rings-time_ns",
+            "pixel-maps-rings-tests_sphere_tests",
+            "pixel-maps-rings-tests_cylinder_tests",
+            "pixel-maps-rings-tests_polygon_tests",
+            "pixel-maps-rings-accel_nodes_visited",
+            "pixel-maps-rings-rays_shadow",
         ]
     );
-    for g in &grids {
-        assert_eq!(g.columns, 3);
-        assert!(g.wide, "maps take the whole width");
-    }
-    // The suite's variant order: baseline, simd, bvh.
-    let order: Vec<&str> = r
-        .suite
-        .variants
-        .iter()
-        .map(|v| v.as_str())
-        .filter(|v| scene.pixel_maps.iter().any(|m| m.variant == *v))
-        .collect();
-    assert_eq!(order, ["baseline", "simd", "bvh"]);
-    let time = grids[0];
-    for (tile, name) in time.tiles.iter().zip(&order) {
-        assert!(
-            tile.caption
-                .starts_with(&format!("{name} · time.ns, ns per sample (min ")),
-            "{}",
-            tile.caption
-        );
-        // The map files are gone: each tile says so.
-        assert!(
-            matches!(&tile.visual, Visual::Missing { text } if text.contains(&format!("image missing: pixel-maps/rings/{name}/time.ns.png"))),
-            "{:?}",
-            tile.visual
-        );
-    }
-    // Only bvh traverses a tree.
-    let nodes = grids[4];
     assert!(
-        matches!(&nodes.tiles[0].visual, Visual::Placeholder { text } if text == "no BVH nodes with baseline")
+        text.contains("Not drawn because every sample of every variant holds the same value: the ray-tree depth is 1 everywhere."),
+        "{text}"
+    );
+    // What a variant did not count and what could not be read: one sentence each,
+    // no empty boxes.
+    assert!(
+        text.contains("Not drawn because not counted: no BVH nodes with baseline and simd."),
+        "{text}"
     );
     assert!(
-        matches!(&nodes.tiles[1].visual, Visual::Placeholder { text } if text == "no BVH nodes with simd")
+        text.contains("Not drawn because the raw values could not be read: simd's rays.shadow (pixel-maps/rings/simd/rays.shadow.npy: entity not found)."),
+        "{text}"
     );
-    assert!(
-        nodes.tiles[2]
-            .caption
-            .starts_with("bvh · accel.nodes_visited, nodes per sample")
-    );
+    assert!(grids(s).is_empty(), "no grids of tiles and placeholders");
 
-    // The busiest pixel's sphere tests (the most tested kind of baseline: the first of
-    // the largest maxima) and the clock.
+    // The time row: baseline, simd and bvh on one scale from 0 to 700 ns, its values
+    // once, beside the maps.
+    let time = figures(s)[0];
+    assert_eq!(time.title, "rings: time");
+    assert!(
+        time.caption
+            .contains("with baseline, simd and bvh, on one colour scale from 0 s to 700 ns"),
+        "{}",
+        time.caption
+    );
+    let Visual::Image(image) = &time.visual else {
+        panic!("the row is a picture");
+    };
+    let svg = String::from_utf8_lossy(&doc.assets.get(&image.asset).expect("asset").bytes);
+    for name in [
+        ">baseline<",
+        ">simd<",
+        ">bvh<",
+        ">ns per sample<",
+        ">700 ns<",
+        ">0 s<",
+    ] {
+        assert!(svg.contains(name), "{name} not in the row");
+    }
+    assert_eq!(svg.matches(">ns per sample<").count(), 1, "one scale a row");
+    assert!(svg.contains(">mean 350 ns, max 700 ns<") && svg.contains(">mean 235 ns, max 470 ns<"));
+    let maps = embedded_pngs(&svg);
+    assert_eq!(maps.len(), 3);
+    // The last sample: 700 ns with baseline, 470 with simd. On the shared scale
+    // simd's last sample is 470 / 700 of the way up, not at the top as on its own;
+    // the same value (the first sample, 0 ns) is the same colour in both.
+    let (width, height) = maps[0].dimensions();
+    let last = |p: &image::RgbImage| *p.get_pixel(width - 1, height - 1);
+    let first = |p: &image::RgbImage| *p.get_pixel(0, 0);
+    assert_eq!(first(&maps[0]), first(&maps[1]));
+    assert_ne!(last(&maps[0]), last(&maps[1]));
+    assert_eq!(
+        last(&maps[1]),
+        last(&maps[2]),
+        "simd and bvh both end at 470 ns"
+    );
+    // Viridis at 1 (yellow) and at 470 / 700 = 0.6714: between the keys at 0.6 (34,
+    // 168, 132) and 0.7 (67, 191, 113), 71.4 % of the way: 57.6, 184.4, 118.4.
+    assert_eq!(last(&maps[0]).0, [253, 231, 37]);
+    assert_eq!(last(&maps[1]).0, [58, 184, 118]);
+
+    // The busiest pixel's sphere tests and the clock, from the results.
     let max_of = |name: &str, key: &str| {
         scene
             .pixel_maps
@@ -517,7 +603,6 @@ fn pixel_maps_stand_side_by_side_per_counter_and_missing_files_cost_their_tile()
             .map(|x| x.max)
             .expect("map")
     };
-    let text = prose(s);
     let expected = format!(
         "On rings the busiest pixel makes {} sphere tests with baseline, against {} with simd and {} with bvh.",
         format::count(max_of("baseline", "tests.sphere.tests")),
@@ -529,45 +614,35 @@ fn pixel_maps_stand_side_by_side_per_counter_and_missing_files_cost_their_tile()
         text.contains("The time maps' clock ticks every 0.42 ns"),
         "{text}"
     );
+    let html = reports::html::render(&doc);
+    assert!(html.contains("id=\"chart-pixel-maps-rings-time_ns\""));
 }
 
 #[test]
-fn pixel_map_files_are_embedded_when_they_are_there() {
+fn pixel_maps_without_their_raw_values_say_so_in_one_sentence() {
+    // The sample's files: every map's NumPy file holds one value, not the grid.
     let dir = TempDir::new("machine-map-files").expect("temp dir");
-    let r = sample_results();
-    let maps = &rings(&r).pixel_maps[0];
-    let legend = reports::pixel_maps::Legend {
-        title: "time.ns".to_string(),
-        unit: "ns per sample".to_string(),
-        min: 0.0,
-        max: 10.0,
-    };
-    let values: Vec<f64> = (0..maps.columns * maps.rows)
-        .map(|i| f64::from(i % 11))
-        .collect();
-    let picture = reports::pixel_maps::false_colour(&values, maps.columns, maps.rows, &legend);
-    let path = dir.path().join(&maps.directory).join("time.ns.png");
-    std::fs::create_dir_all(path.parent().expect("parent")).expect("mkdir");
-    picture.save(&path).expect("png");
-    let doc = document_of(r.clone(), dir.path());
-    let tile = &grids(section(&doc, "pixel-maps"))[0].tiles[0];
-    let Visual::Image(image) = &tile.visual else {
-        panic!("not embedded: {:?}", tile.visual);
-    };
-    // Laid out at the file's size, embedded at most as wide as a small map is drawn
-    // (the PNG header's width: bytes 16 to 19, big-endian).
-    assert_eq!(
-        (image.width, image.height),
-        (f64::from(picture.width()), f64::from(picture.height()))
-    );
-    let png = &doc.assets.get(&image.asset).expect("asset").bytes;
-    let width = u32::from_be_bytes([png[16], png[17], png[18], png[19]]);
+    let doc = document_of(sample_results(), dir.path());
+    let s = section(&doc, "pixel-maps");
+    assert!(figures(s).is_empty());
+    let text = prose(s);
     assert!(
-        width <= reports::pixel_maps::MIN_WIDTH && width < picture.width(),
-        "{width}"
+        text.contains("Not drawn because the raw values could not be read: baseline's time.ns (pixel-maps/rings/baseline/time.ns.npy: 1×1 values, not the "),
+        "{text}"
     );
-    let html = reports::html::render(&doc);
-    assert!(html.contains("alt=\"rings baseline time.ns\""));
+    assert_eq!(
+        text.matches("Not drawn because the raw values could not be read")
+            .count(),
+        doc.sections
+            .iter()
+            .find(|s| s.id == "pixel-maps")
+            .map_or(0, |s| s
+                .blocks
+                .iter()
+                .filter(|b| matches!(b, Block::Heading { .. }))
+                .count()),
+        "one sentence a scene"
+    );
 }
 
 #[test]
