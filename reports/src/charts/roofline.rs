@@ -77,12 +77,11 @@ pub(super) fn roofline_with_scale(results: &Results) -> Option<(Chart, RooflineS
         return None;
     }
     let peak = machine_peak(results).cloned();
-    // The compute roofs' bends in view (where they meet the L1 roof); DRAM's slope may
-    // leave through the right edge, labelled there.
-    let ridges: Vec<f64> = peak
-        .iter()
-        .flat_map(|p| [p.ridge(CodeKind::Simd), p.ridge(CodeKind::Scalar)])
-        .collect();
+    // The SIMD roof's bend in view (where it meets the L1 roof), so that the L1 slope
+    // shows; the scalar roof's bend may lie left of the data (it then starts at the
+    // left edge), DRAM's right of it (its slope leaves through the right edge,
+    // labelled there).
+    let ridges: Vec<f64> = peak.iter().map(|p| p.ridge(CodeKind::Simd)).collect();
     // Each axis from the decade below the data (plotters labels a log axis from its
     // first power of ten on) to just past the data and the roofs' bends.
     let span = |values: Vec<f64>| -> Option<(f64, f64)> {
@@ -237,7 +236,7 @@ where
         colour: INK,
     }];
     if let Some(scalar) = peak.scalar_peak().filter(|s| *s < simd) {
-        let from = peak.ridge(CodeKind::Scalar);
+        let from = peak.ridge(CodeKind::Scalar).max(x_lo);
         plot.chart.draw_series(LineSeries::new(
             [(from, scalar), (x_hi, scalar)],
             SCALAR.stroke_width(2),
