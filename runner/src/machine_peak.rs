@@ -6,7 +6,10 @@
 //! in L1 (the cache-aware roofline's top memory roof), all on every thread of the
 //! renders' pool, in AVX2 where the processor has it (as the tracer's `simd` runs).
 //! Each runs a few times and keeps its best, as STREAM does: the roof is what the
-//! machine can do, not what it did while busy.
+//! machine can do, not what it did while busy. For the same reason the compute and L1
+//! kernels, which use each core's own units, are timed by the time their threads were
+//! on a core (the process's CPU time), not by the wall clock, which on a loaded machine
+//! counts the time other work held the cores ([`on_every_core`]).
 //!
 //! The kernels are written in intrinsics, the triad unrolled by hand, so that what they
 //! measure does not depend on the optimiser: this crate is built at opt-level 1 (the
@@ -17,6 +20,7 @@
 use std::hint::black_box;
 use std::time::Instant;
 
+use analysis::profile::sampler::process_cpu_time;
 use rayon::prelude::*;
 use results::MachinePeak;
 
@@ -118,14 +122,40 @@ fn best_gflops(
     let steps = ((seconds / per_step) as u64).max(probe);
     let mut best = 0.0f64;
     for _ in 0..REPEATS {
-        let start = Instant::now();
-        let sums = pool.broadcast(|ctx| kernel(steps, 1.0 + ctx.index() as f32));
-        let elapsed = start.elapsed().as_secs_f64();
+        let (sums, elapsed) = on_every_core(pool, |ctx| kernel(steps, 1.0 + ctx.index() as f32));
         black_box(sums);
         let flops = flops_per_step as f64 * steps as f64 * pool.current_num_threads() as f64;
         best = best.max(flops / elapsed / 1e9);
     }
     best
+}
+
+/// Runs `work` once on every thread of `pool`; its results and the seconds a thread
+/// spent on a core: the process's CPU time over the threads, at most the wall time.
+/// The compute and L1 kernels use each core's own units, so what a core does while it
+/// runs them is the machine's roof, even when other load (another process, a build)
+/// takes the cores away for part of the wall time: the wall time would count those
+/// gaps as the kernel's. (The DRAM triad, on a shared bus, keeps the wall time.)
+fn on_every_core<T: Send>(
+    pool: &rayon::ThreadPool,
+    work: impl Fn(rayon::BroadcastContext<'_>) -> T + Sync,
+) -> (Vec<T>, f64) {
+    let (cpu, start) = (process_cpu_time(), Instant::now());
+    let results = pool.broadcast(work);
+    let wall = start.elapsed().as_secs_f64();
+    let cpu = process_cpu_time().saturating_sub(cpu).as_secs_f64();
+    (
+        results,
+        on_core_seconds(wall, cpu, pool.current_num_threads()),
+    )
+}
+
+/// The seconds one of `threads` threads was on a core, from the wall time and the
+/// process's CPU time over that time: the CPU time's share, at most the wall time (a
+/// process clock that read nothing leaves the wall time).
+fn on_core_seconds(wall: f64, cpu: f64, threads: usize) -> f64 {
+    let share = cpu / threads.max(1) as f64;
+    if share > 0.0 { share.min(wall) } else { wall }
 }
 
 /// Runs `steps` of every chain from `seed`; the sum of the final values.
@@ -312,9 +342,8 @@ fn l1_bandwidth(pool: &rayon::ThreadPool, seconds: f64) -> f64 {
     let passes = ((seconds / per_pass) as u64).max(probe);
     let mut best = 0.0f64;
     for _ in 0..REPEATS {
-        let start = Instant::now();
-        black_box(pool.broadcast(|_| run(passes)));
-        let elapsed = start.elapsed().as_secs_f64();
+        let (sums, elapsed) = on_every_core(pool, |_| run(passes));
+        black_box(sums);
         let bytes = (12 * L1_ELEMENTS) as f64 * passes as f64 * pool.current_num_threads() as f64;
         best = best.max(bytes / elapsed / 1e9);
     }
@@ -431,6 +460,16 @@ mod tests {
         let mut a = [0.0; 3];
         triad(&mut a, &b, &c, 2.0);
         assert_eq!(a, [2.0, 2.5, 7.0]);
+    }
+
+    #[test]
+    fn a_kernel_is_timed_by_its_threads_time_on_a_core() {
+        // Two threads that were on a core for half of a second's wall time each.
+        assert_eq!(on_core_seconds(1.0, 1.0, 2), 0.5);
+        // Never longer than the wall time; without a CPU clock, the wall time.
+        assert_eq!(on_core_seconds(1.0, 3.0, 2), 1.0);
+        assert_eq!(on_core_seconds(1.0, 0.0, 2), 1.0);
+        assert_eq!(on_core_seconds(0.25, 0.5, 0), 0.25);
     }
 
     #[test]
