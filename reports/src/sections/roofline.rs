@@ -153,8 +153,14 @@ fn roof_name(j: &Judged, peak: &MachinePeak) -> String {
 /// is above it.
 fn share_clause(j: &Judged, peak: &MachinePeak) -> String {
     if j.share > 100.0 {
+        let why = if j.roof.bound == Bound::Compute(CodeKind::Scalar) {
+            // glam's Vec3A: a dot product's multiplies are one SSE instruction.
+            "the scalar kernel runs one lane, while scalar code's vector maths (glam's Vec3A) runs three SSE lanes wide"
+        } else {
+            "the kernels measured less than this render reached"
+        };
         format!(
-            ": {} of its roof, {}, above it, so the kernels measured less than this render reached",
+            ": {} of its roof, {}, above it: {why}",
             format::percent(j.share, 1),
             roof_name(j, peak)
         )
@@ -278,5 +284,47 @@ fn point_cell(v: &VariantResult, e: &Efficiency, peak: Option<&MachinePeak>) -> 
         cell.tone(Tone::Warning)
     } else {
         cell
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn peak() -> MachinePeak {
+        MachinePeak {
+            peak_gflops: 100.0,
+            bandwidth_gbs: 10.0,
+            cache_bandwidth_gbs: 200.0,
+            threads: 2,
+            fma_kernel: "AVX2+FMA, 8 lanes × 12 chains".to_string(),
+            stream_bytes: 1 << 20,
+            scalar_peak_gflops: Some(12.5),
+            scalar_kernel: Some("scalar FMA, 1 lane × 12 chains".to_string()),
+        }
+    }
+
+    #[test]
+    fn a_point_above_its_roof_says_why_it_can_be() {
+        let p = peak();
+        let scalar = Judged {
+            roof: p.roof(CodeKind::Scalar, 1.0),
+            code: CodeKind::Scalar,
+            share: 120.0,
+        };
+        assert_eq!(
+            share_clause(&scalar, &p),
+            ": 120.0 % of its roof, the scalar peak of 12.5 GFLOP/s, above it: the scalar kernel runs one lane, while scalar code's vector maths (glam's Vec3A) runs three SSE lanes wide"
+        );
+        // 0.1 flop/byte: L1 feeds 20 GFLOP/s, below the SIMD peak.
+        let simd = Judged {
+            roof: p.roof(CodeKind::Simd, 0.1),
+            code: CodeKind::Simd,
+            share: 50.0,
+        };
+        assert_eq!(
+            share_clause(&simd, &p),
+            ": 50.0 % of its roof, the L1 bandwidth roof of 20.0 GFLOP/s at that intensity"
+        );
     }
 }
