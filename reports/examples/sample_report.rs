@@ -1,6 +1,7 @@
 //! Writes the report of the synthetic sample run, to look at it: the sample's files,
-//! made-up pictures for its per-pixel maps (a pattern spread over each map's range,
-//! drawn as the runner draws maps), `report.html` and `report.pdf`.
+//! made-up per-pixel maps (a pattern spread over each map's range, as NumPy arrays,
+//! which the report draws, and drawn as the runner draws maps), `report.html` and
+//! `report.pdf`.
 //!
 //! `cargo run -p reports --example sample_report -- OUT_DIR`
 
@@ -24,15 +25,20 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             for map in &maps.maps {
                 // Concentric rings around the centre, from the map's minimum to its
                 // maximum.
-                let values: Vec<f64> = (0..rows)
+                let counts: Vec<u64> = (0..rows)
                     .flat_map(|y| (0..columns).map(move |x| (x, y)))
                     .map(|(x, y)| {
                         let dx = f64::from(x) - f64::from(columns) / 2.0;
                         let dy = f64::from(y) - f64::from(rows) / 2.0;
                         let wave = 0.5 + 0.5 * ((dx * dx + dy * dy).sqrt() / 9.0).sin();
-                        map.min as f64 + wave * wave * (map.max - map.min) as f64
+                        map.min + (wave * wave * (map.max - map.min) as f64).round() as u64
                     })
                     .collect();
+                let npy = reports::npy::npy_bytes(rows as usize, columns as usize, &counts)?;
+                let npy_path = dir.join(&maps.directory).join(&map.npy);
+                std::fs::create_dir_all(npy_path.parent().unwrap_or(&dir))?;
+                std::fs::write(npy_path, npy)?;
+                let values: Vec<f64> = counts.iter().map(|&v| v as f64).collect();
                 let legend = Legend {
                     title: map.key.clone(),
                     unit: map.unit.clone(),

@@ -8,8 +8,8 @@
 //! Renderers only lay the document out: [`html`] (one self-contained file), [`pdf`]
 //! (typst, with the template `templates/report.typ`) and [`text`] (tables on a
 //! terminal). Per-pixel counter maps leave as NumPy arrays ([`npy`]) and as
-//! false-colour pictures with a legend ([`pixel_maps`]). This crate never renders a
-//! scene.
+//! false-colour pictures with a legend ([`pixel_maps`]); flamegraph SVGs are made
+//! static for print by [`flame_static`]. This crate never renders a scene.
 
 // What user input can reach returns an error: no unwrap, expect or panic outside tests
 // (unit tests are cfg(test); integration tests, benches and examples are other crates).
@@ -22,6 +22,7 @@ pub mod charts;
 pub mod document;
 pub mod exports;
 pub mod findings;
+pub mod flame_static;
 pub mod format;
 pub mod fuzz_check;
 pub mod gallery;

@@ -1,6 +1,9 @@
 //! Per-pixel counter maps as false-colour PNGs with a legend, so that a reader sees
 //! where in the picture the work goes (which pixels visit the most tree nodes, trace
-//! the most rays) and how much, without other tools.
+//! the most rays) and how much, without other tools; and, for the report, a row of
+//! maps of one counter (one per variant) on one shared colour scale with its values
+//! beside them ([`shared_scale_row`]), so that the same colour is the same value in
+//! every map of the row.
 //!
 //! Each value goes linearly from the legend's `[min, max]` onto matplotlib's viridis
 //! scale: perceptually uniform (equal steps look equal), still ordered in grey and for
@@ -207,6 +210,223 @@ fn draw_legend(image: &mut RgbImage, top: u32, legend: &Legend) {
     let max_label_width = max_label.chars().count() as u32 * GLYPH;
     let max_label_x = (MARGIN + inner_width).saturating_sub(max_label_width);
     draw_text(image, max_label_x, labels_y, &max_label, TEXT);
+}
+
+/// The least and the greatest value that is a number across `maps`: the one scale
+/// that a row of maps of the same counter shares. `None` when no map has a number.
+pub fn shared_range<'v>(maps: impl IntoIterator<Item = &'v [f64]>) -> Option<(f64, f64)> {
+    let (lo, hi) = maps
+        .into_iter()
+        .flatten()
+        .filter(|v| !v.is_nan())
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), &v| {
+            (lo.min(v), hi.max(v))
+        });
+    (lo <= hi).then_some((lo, hi))
+}
+
+/// The false-colour picture of a `columns` x `rows` map alone, without a legend, on
+/// the scale from `min` to `max`, enlarged as [`false_colour`] enlarges (each sample a
+/// square), so that a renderer that smooths pictures still shows sharp samples.
+pub fn map_picture(values: &[f64], columns: u32, rows: u32, (min, max): (f64, f64)) -> RgbImage {
+    let factor = scale_factor(columns, rows);
+    let mut image = RgbImage::from_pixel(columns * factor, rows * factor, NO_DATA);
+    let pixels = (0..rows).flat_map(|row| (0..columns).map(move |column| (column, row)));
+    for ((column, row), index) in pixels.zip(0usize..) {
+        let colour = values
+            .get(index)
+            .map_or(NO_DATA, |&value| colour_of(value, min, max));
+        fill(
+            &mut image,
+            column * factor,
+            row * factor,
+            factor,
+            factor,
+            colour,
+        );
+    }
+    image
+}
+
+/// One map of a [`shared_scale_row`]: the name above it (the variant), its values row
+/// by row, and a note below it (its own mean and maximum, written by the caller).
+#[derive(Clone, Debug)]
+pub struct RowMap<'v> {
+    pub name: String,
+    pub values: &'v [f64],
+    pub note: String,
+}
+
+/// A map's width in a row, pixels (a tall map is narrower: no map is taller than
+/// [`ROW_MAP_MAX_HEIGHT`]).
+const ROW_MAP_WIDTH: f64 = 240.0;
+const ROW_MAP_MAX_HEIGHT: f64 = 240.0;
+/// Space between two maps, and between the last map and the colour bar.
+const ROW_GAP: f64 = 16.0;
+/// Text sizes of the row's names, notes and scale labels (CSS pixels).
+const ROW_TEXT_PX: f64 = 13.0;
+const ROW_NOTE_PX: f64 = 11.0;
+/// The colour bar's width and the room right of it for its values.
+const BAR_WIDTH: f64 = 14.0;
+/// Rough advance of one character of the row's sans-serif text, in ems.
+const CHAR_EM: f64 = 0.6;
+
+/// A row of maps of one counter, side by side, drawn on one colour scale from
+/// `scale.min` to `scale.max` (usually [`shared_range`] of the maps), with one colour
+/// bar right of the maps, outside them: the scale's unit above it, its values beside
+/// it (written by `label`). An SVG (the maps embedded as PNG) and its size in pixels.
+pub fn shared_scale_row(
+    maps: &[RowMap<'_>],
+    (columns, rows): (u32, u32),
+    scale: &Legend,
+    label: &dyn Fn(f64) -> String,
+) -> (String, (u32, u32)) {
+    let aspect = f64::from(rows.max(1)) / f64::from(columns.max(1));
+    let (map_width, map_height) = if ROW_MAP_WIDTH * aspect > ROW_MAP_MAX_HEIGHT {
+        (ROW_MAP_MAX_HEIGHT / aspect, ROW_MAP_MAX_HEIGHT)
+    } else {
+        (ROW_MAP_WIDTH, ROW_MAP_WIDTH * aspect)
+    };
+    let name_height = ROW_TEXT_PX + 8.0;
+    let note_height = ROW_NOTE_PX + 8.0;
+    let top = name_height;
+    // Counts get whole ticks: a map of levels 1 to 3 is marked 1, 2, 3, not 1.5.
+    let whole = maps
+        .iter()
+        .flat_map(|m| m.values)
+        .all(|v| v.fract() == 0.0 || v.is_nan());
+    let ticks = scale_ticks(scale.min, scale.max, map_height, whole);
+    let labels: Vec<(f64, String)> = ticks.iter().map(|&v| (v, label(v))).collect();
+    let label_width = labels
+        .iter()
+        .map(|(_, text)| text.chars().count() as f64 * ROW_NOTE_PX * CHAR_EM)
+        .fold(0.0, f64::max);
+    let unit_width = scale.unit.chars().count() as f64 * ROW_NOTE_PX * CHAR_EM;
+    let count = maps.len().max(1) as f64;
+    let bar_left = count * map_width + (count - 1.0) * ROW_GAP + ROW_GAP + 4.0;
+    let width = (bar_left + BAR_WIDTH + 6.0 + label_width)
+        .max(bar_left + unit_width)
+        .ceil()
+        + 4.0;
+    let height = (top + map_height + note_height).ceil();
+    let mut svg = format!(
+        "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"{width}\" height=\"{height}\" viewBox=\"0 0 {width} {height}\" font-family=\"sans-serif\"><rect width=\"{width}\" height=\"{height}\" fill=\"white\"/>"
+    );
+    let range = (scale.min, scale.max);
+    for (i, map) in maps.iter().enumerate() {
+        let x = i as f64 * (map_width + ROW_GAP);
+        let centre = x + map_width / 2.0;
+        svg += &format!(
+            "<text x=\"{centre:.1}\" y=\"{:.1}\" font-size=\"{ROW_TEXT_PX}\" text-anchor=\"middle\" fill=\"#282828\">{}</text>",
+            ROW_TEXT_PX,
+            escape(&map.name)
+        );
+        let picture = map_picture(map.values, columns, rows, range);
+        svg += &format!(
+            "<image x=\"{x:.1}\" y=\"{top:.1}\" width=\"{map_width:.1}\" height=\"{map_height:.1}\" preserveAspectRatio=\"none\" image-rendering=\"optimizeSpeed\" style=\"image-rendering:pixelated\" href=\"data:image/png;base64,{}\"/>",
+            crate::html::base64(&png_bytes(&picture))
+        );
+        svg += &format!(
+            "<text x=\"{centre:.1}\" y=\"{:.1}\" font-size=\"{ROW_NOTE_PX}\" text-anchor=\"middle\" fill=\"#444444\">{}</text>",
+            top + map_height + ROW_NOTE_PX + 4.0,
+            escape(&map.note)
+        );
+    }
+    // The colour bar: the scale's top (max) at the maps' top, its bottom (min) at
+    // their bottom, in one-pixel bands.
+    let steps = map_height.ceil().max(1.0) as usize;
+    for step in 0..steps {
+        let y = top + step as f64 * map_height / steps as f64;
+        let position = 1.0 - (step as f64 + 0.5) / steps as f64;
+        let Rgb([r, g, b]) = viridis(position);
+        svg += &format!(
+            "<rect x=\"{bar_left:.1}\" y=\"{y:.2}\" width=\"{BAR_WIDTH}\" height=\"{:.2}\" fill=\"rgb({r},{g},{b})\"/>",
+            map_height / steps as f64 + 0.05
+        );
+    }
+    svg += &format!(
+        "<rect x=\"{bar_left:.1}\" y=\"{top:.1}\" width=\"{BAR_WIDTH}\" height=\"{map_height:.1}\" fill=\"none\" stroke=\"#888888\" stroke-width=\"0.5\"/>"
+    );
+    svg += &format!(
+        "<text x=\"{bar_left:.1}\" y=\"{:.1}\" font-size=\"{ROW_NOTE_PX}\" fill=\"#282828\">{}</text>",
+        ROW_NOTE_PX,
+        escape(&scale.unit)
+    );
+    for (value, text) in &labels {
+        let y = top + map_height * (1.0 - bar_position(*value, scale.min, scale.max));
+        let right = bar_left + BAR_WIDTH;
+        svg += &format!(
+            "<line x1=\"{right:.1}\" y1=\"{y:.1}\" x2=\"{:.1}\" y2=\"{y:.1}\" stroke=\"#282828\" stroke-width=\"1\"/><text x=\"{:.1}\" y=\"{:.1}\" font-size=\"{ROW_NOTE_PX}\" fill=\"#282828\">{}</text>",
+            right + 3.0,
+            right + 5.0,
+            y + ROW_NOTE_PX * 0.35,
+            escape(text)
+        );
+    }
+    svg += "</svg>";
+    (svg, (width as u32, height as u32))
+}
+
+/// Where `value` stands on the bar from `min` (0) to `max` (1); the bottom when the
+/// range is empty.
+fn bar_position(value: f64, min: f64, max: f64) -> f64 {
+    scale_position(value, min, max).unwrap_or(0.0)
+}
+
+/// The values the colour bar marks: both ends, and the round values between them (1,
+/// 2 or 5 times a power of ten apart, about five in all; at least 1 apart when `whole`)
+/// that stand clear of the ends on a bar `height` pixels tall.
+fn scale_ticks(min: f64, max: f64, height: f64, whole: bool) -> Vec<f64> {
+    if !(min.is_finite() && max.is_finite()) || max <= min {
+        return if min.is_finite() {
+            vec![min]
+        } else {
+            Vec::new()
+        };
+    }
+    let span = max - min;
+    let rough = span / 4.0;
+    let decade = 10f64.powf(rough.log10().floor());
+    let step = [1.0, 2.0, 5.0, 10.0]
+        .iter()
+        .map(|m| m * decade)
+        .find(|s| *s >= rough)
+        .unwrap_or(10.0 * decade);
+    let step = if whole { step.max(1.0) } else { step };
+    // Two labels closer than this many pixels would overlap.
+    let clearance = span * (ROW_NOTE_PX + 2.0) / height.max(1.0);
+    let mut ticks = vec![min];
+    // Whole multiples of the step, each computed afresh (no sum drifting off 600).
+    let first = (min / step).ceil() as i64;
+    for k in first.. {
+        let value = k as f64 * step;
+        if value >= max {
+            break;
+        }
+        if value - min >= clearance && max - value >= clearance {
+            ticks.push(value);
+        }
+    }
+    ticks.push(max);
+    ticks
+}
+
+/// `picture` as PNG bytes (empty if encoding fails, which an in-memory RGB picture
+/// does not).
+fn png_bytes(picture: &RgbImage) -> Vec<u8> {
+    let mut out = std::io::Cursor::new(Vec::new());
+    match picture.write_to(&mut out, image::ImageFormat::Png) {
+        Ok(()) => out.into_inner(),
+        Err(_) => Vec::new(),
+    }
+}
+
+/// Text for an SVG element or attribute.
+fn escape(text: &str) -> String {
+    text.replace('&', "&amp;")
+        .replace('<', "&lt;")
+        .replace('>', "&gt;")
+        .replace('"', "&quot;")
 }
 
 /// `text` cut to `max_chars` characters, ending in "..." when cut.
@@ -484,5 +704,124 @@ mod tests {
         assert_eq!(*image.get_pixel(0, 3), TEXT);
         assert_eq!(*image.get_pixel(2, 3), TEXT);
         assert_eq!(*image.get_pixel(7, 3), WHITE);
+    }
+
+    /// The bytes of standard base64 (RFC 4648, padded).
+    fn unbase64(text: &str) -> Vec<u8> {
+        const ALPHABET: &[u8] = b"ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+        let mut out = Vec::new();
+        let (mut bits, mut held) = (0u32, 0u32);
+        for c in text.bytes().filter(|&c| c != b'=') {
+            let six = ALPHABET.iter().position(|&a| a == c).expect("base64") as u32;
+            bits = (bits << 6) | six;
+            held += 6;
+            if held >= 8 {
+                held -= 8;
+                out.push((bits >> held) as u8);
+            }
+        }
+        out
+    }
+
+    /// The PNG pictures a row's SVG embeds, decoded, in order.
+    fn embedded_pictures(svg: &str) -> Vec<RgbImage> {
+        svg.split("href=\"data:image/png;base64,")
+            .skip(1)
+            .map(|rest| {
+                let data = rest.split('"').next().expect("closing quote");
+                image::load_from_memory_with_format(&unbase64(data), image::ImageFormat::Png)
+                    .expect("a PNG")
+                    .to_rgb8()
+            })
+            .collect()
+    }
+
+    #[test]
+    fn maps_of_a_row_draw_the_same_value_in_the_same_colour() {
+        // Two 2 x 2 maps: the first reaches 10, the second 20; both hold a 5.
+        let first = [0.0, 5.0, 10.0, 10.0];
+        let second = [0.0, 5.0, 20.0, 15.0];
+        let range = shared_range([&first[..], &second[..]]).expect("a range");
+        assert_eq!(range, (0.0, 20.0));
+        let maps = [
+            RowMap {
+                name: "baseline".to_string(),
+                values: &first,
+                note: "max 10".to_string(),
+            },
+            RowMap {
+                name: "simd".to_string(),
+                values: &second,
+                note: "max 20".to_string(),
+            },
+        ];
+        let (svg, (width, height)) =
+            shared_scale_row(&maps, (2, 2), &legend(range.0, range.1), &|v| {
+                format::fixed(v, 0)
+            });
+        assert!(svg.starts_with("<svg") && svg.ends_with("</svg>"));
+        assert!(width > 2 * 240 && height > 240, "{width} x {height}");
+        let pictures = embedded_pictures(&svg);
+        assert_eq!(pictures.len(), 2);
+        // A 2 x 2 map is enlarged 192 times: sample (column, row) is the square at
+        // (192 column, 192 row).
+        let at = |p: &RgbImage, column: u32, row: u32| *p.get_pixel(192 * column, 192 * row);
+        // 5 is a quarter of the way up the shared scale in both maps.
+        let quarter = viridis(0.25);
+        assert_eq!(at(&pictures[0], 1, 0), quarter);
+        assert_eq!(at(&pictures[1], 1, 0), quarter);
+        // The first map's maximum (10) is the middle of the scale, not its top: only
+        // the second map's 20 takes the high colour.
+        assert_eq!(at(&pictures[0], 0, 1), viridis(0.5));
+        assert_ne!(at(&pictures[0], 0, 1), HIGH);
+        assert_eq!(at(&pictures[1], 0, 1), HIGH);
+        assert_eq!(at(&pictures[0], 0, 0), LOW);
+        // One colour bar, with the scale's ends and round values between them.
+        for label in [
+            "\">0<",
+            "\">5<",
+            "\">10<",
+            "\">15<",
+            "\">20<",
+            ">nodes per sample<",
+        ] {
+            assert!(svg.contains(label), "{label} not in the scale");
+        }
+        assert!(svg.contains(">baseline<") && svg.contains(">max 20<"));
+    }
+
+    #[test]
+    fn the_shared_range_skips_nan_and_needs_a_number() {
+        assert_eq!(
+            shared_range([&[3.0, f64::NAN][..], &[-1.0, 2.0][..]]),
+            Some((-1.0, 3.0))
+        );
+        assert_eq!(shared_range([&[f64::NAN][..], &[][..]]), None);
+    }
+
+    #[test]
+    fn the_colour_bar_marks_its_ends_and_round_values_clear_of_them() {
+        // 701 over 4 is about 175: steps of 200; 600 is 101 below the top, clear of
+        // it on a 240-pixel bar (a label needs 13 pixels, 38 of the scale).
+        assert_eq!(
+            scale_ticks(0.0, 701.0, 240.0, true),
+            [0.0, 200.0, 400.0, 600.0, 701.0]
+        );
+        // 1 to 5 levels: steps of 1.
+        assert_eq!(
+            scale_ticks(1.0, 5.0, 240.0, true),
+            [1.0, 2.0, 3.0, 4.0, 5.0]
+        );
+        // 1 to 3: steps of 0.5, unless the values are counts.
+        assert_eq!(
+            scale_ticks(1.0, 3.0, 240.0, false),
+            [1.0, 1.5, 2.0, 2.5, 3.0]
+        );
+        assert_eq!(scale_ticks(1.0, 3.0, 240.0, true), [1.0, 2.0, 3.0]);
+        // A round value too close to an end is left out: on a 50-pixel bar a label
+        // needs 1.35 of the scale, and 4 is 1.2 below 5.2.
+        assert_eq!(scale_ticks(0.0, 5.2, 50.0, false), [0.0, 2.0, 5.2]);
+        assert_eq!(scale_ticks(3.0, 3.0, 240.0, true), [3.0]);
+        assert!(scale_ticks(f64::NAN, 1.0, 240.0, true).is_empty());
     }
 }

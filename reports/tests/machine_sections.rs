@@ -83,97 +83,199 @@ fn variant<'a>(scene: &'a SceneResult, name: &str) -> &'a VariantResult {
         .unwrap_or_else(|| panic!("no {name}"))
 }
 
+/// The share of the roof a sentence gives `variant`: the `P` of `{variant} ({kind}
+/// code) attains … : P of its roof`.
+fn stated_share<'t>(text: &'t str, variant: &str) -> &'t str {
+    let at = text
+        .find(&format!(", {variant} ("))
+        .or_else(|| text.find(&format!("On rings, {variant} (")))
+        .unwrap_or_else(|| panic!("{variant} not in: {text}"));
+    let rest = &text[at..];
+    let from = rest.find(": ").expect("a share") + 2;
+    let to = rest.find(" of its roof").expect("of its roof");
+    &rest[from..to]
+}
+
+/// The text in parentheses of a table cell: `17.4 (58.6 %)` gives `58.6 %`.
+fn cell_share(cell: &str) -> &str {
+    cell.split_once(" (")
+        .and_then(|(_, rest)| rest.strip_suffix(')'))
+        .unwrap_or_else(|| panic!("no share in {cell}"))
+}
+
+/// The table cell of `scene` and `variant`.
+fn cell<'t>(t: &'t Table, scene: &str, variant: &str) -> &'t str {
+    let column = titles(t)
+        .iter()
+        .position(|c| *c == variant)
+        .unwrap_or_else(|| panic!("no column {variant}"));
+    let row = t
+        .rows
+        .iter()
+        .find(|row| row[0].text == scene)
+        .unwrap_or_else(|| panic!("no row {scene}"));
+    &row[column].text
+}
+
 #[test]
-fn the_roofline_states_the_peak_and_the_fastest_variants_distance_to_its_roof() {
+fn the_roofline_states_each_share_on_one_basis_in_the_sentence_and_the_table() {
     let dir = TempDir::new("machine-roofline").expect("temp dir");
     let r = sample_results();
     let doc = document_of(r.clone(), dir.path());
     let s = section(&doc, "roofline");
     let text = prose(s);
-
-    // rings is the profiled scene: its baseline against the peak.
+    let t = tables(s)[0];
     let peak = r.peak.as_ref().expect("peak");
+    let scalar_peak = peak
+        .scalar_peak_gflops
+        .expect("the sample has a scalar peak");
+    assert!(
+        text.contains("149 GFLOP/s in SIMD lanes by the FMA kernel (AVX2+FMA, 8 lanes × 10 chains) and 29.7 GFLOP/s in scalar instructions (scalar FMA, 1 lane × 10 chains)"),
+        "{text}"
+    );
+
+    // rings is the profiled scene: baseline (scalar code) and the fastest variant.
     let scene = rings(&r);
-    let base = variant(scene, "baseline")
-        .efficiency
-        .as_ref()
-        .expect("efficiency");
-    let of_peak =
-        base.flops as f64 / variant(scene, "baseline").time.median / 1e9 / peak.peak_gflops * 100.0;
-    let expected = format!(
-        "On rings, baseline attains {} GFLOP/s",
-        format::significant(base.achieved_gflops)
-    );
-    assert!(text.contains(&expected), "{expected} not in: {text}");
-    let expected = format!("{} of the 149 GFLOP/s peak", format::percent(of_peak, 1));
-    assert!(text.contains(&expected), "{expected} not in: {text}");
-
-    // Its records came from the caches: it attains more than DRAM could feed.
-    let base_intensity = base.flops as f64 / base.bytes_moved as f64;
-    let dram = peak.peak_gflops.min(peak.bandwidth_gbs * base_intensity);
-    assert!(base.achieved_gflops > dram);
-    let expected = format!(
-        "above the {} GFLOP/s DRAM alone could feed it",
-        format::significant(dram)
-    );
-    assert!(text.contains(&expected), "{expected} not in: {text}");
-
-    // The fastest variant on rings (least median time), and its share of its roof:
-    // attained over min(peak, L1 bandwidth × intensity), the cache-aware roof.
     let fastest = scene
         .variants
         .iter()
         .min_by(|a, b| a.time.median.total_cmp(&b.time.median))
         .expect("variants");
-    let e = fastest.efficiency.as_ref().expect("efficiency");
-    let intensity = e.flops as f64 / e.bytes_moved as f64;
-    let roof = peak.peak_gflops.min(peak.cache_bandwidth_gbs * intensity);
-    let share = e.achieved_gflops / roof * 100.0;
-    assert!(share < 100.0, "the sample's points are under their roofs");
-    let bound = if intensity < peak.peak_gflops / peak.cache_bandwidth_gbs {
-        "bandwidth"
-    } else {
-        "compute"
-    };
+    for (v, comma) in [(variant(scene, "baseline"), ""), (fastest, ",")] {
+        let e = v.efficiency.as_ref().expect("efficiency");
+        // By hand, from the counts and the time: attained over the lower of the
+        // compute peak of its code and the L1 bandwidth times its intensity.
+        let attained = e.flops as f64 / v.time.median / 1e9;
+        let intensity = e.flops as f64 / e.bytes_moved as f64;
+        let simd_code = v.variant.as_str().contains("simd");
+        let compute = if simd_code {
+            peak.peak_gflops
+        } else {
+            scalar_peak
+        };
+        let fed = peak.cache_bandwidth_gbs * intensity;
+        let roof = compute.min(fed);
+        let share = attained / roof * 100.0;
+        assert!(share < 100.0, "the sample's points are under their roofs");
+        let roof_text = if fed < compute {
+            format!(
+                "the L1 bandwidth roof of {} GFLOP/s at that intensity",
+                format::significant(roof)
+            )
+        } else {
+            format!(
+                "the {} peak of {} GFLOP/s",
+                if simd_code { "SIMD" } else { "scalar" },
+                format::significant(roof)
+            )
+        };
+        let expected = format!(
+            "{} ({} code){comma} attains {} GFLOP/s at {} flop/byte: {} of its roof, {roof_text}",
+            v.variant,
+            if simd_code { "SIMD" } else { "scalar" },
+            format::significant(attained),
+            format::significant(intensity),
+            format::percent(share, 1)
+        );
+        assert!(text.contains(&expected), "{expected} not in: {text}");
+        // The sentence's share of this render is the table's.
+        let in_table = cell(t, "rings", v.variant.as_str());
+        assert_eq!(
+            stated_share(&text, v.variant.as_str()),
+            cell_share(in_table)
+        );
+        assert_eq!(
+            in_table,
+            format!(
+                "{} ({})",
+                format::significant(attained),
+                format::percent(share, 1)
+            )
+        );
+    }
+
+    // Its records came from the caches: baseline attains more than DRAM could feed.
+    let base = variant(scene, "baseline")
+        .efficiency
+        .as_ref()
+        .expect("efficiency");
+    let dram = peak
+        .peak_gflops
+        .min(peak.bandwidth_gbs * base.flops as f64 / base.bytes_moved as f64);
+    assert!(base.achieved_gflops > dram);
     let expected = format!(
-        "the fastest variant, {}, attains {} GFLOP/s at {} flop/byte, {} of its {bound} roof of {} GFLOP/s",
-        fastest.variant,
-        format::significant(e.achieved_gflops),
-        format::significant(intensity),
-        format::percent(share, 1),
-        format::significant(roof)
+        "and above the {} GFLOP/s DRAM alone could feed it",
+        format::significant(dram)
     );
     assert!(text.contains(&expected), "{expected} not in: {text}");
     assert!(text.contains("counted vector operations only, a lower bound"));
+    // No share on another basis: neither of the SIMD peak for scalar code nor of
+    // "the bandwidth roof" without its level.
+    assert!(!text.contains("of the 149 GFLOP/s peak"), "{text}");
 
-    // The chart and the table of every point, with its roof.
+    // The chart, and one row per scene, one column per variant of the suite.
     assert!(
         s.blocks
             .iter()
             .any(|b| matches!(b, Block::Figure(f) if f.id == "roofline"))
     );
-    // One row per scene, one column per variant of the suite.
-    let t = tables(s)[0];
     let variants: Vec<&str> = r.suite.variants.iter().map(|v| v.as_str()).collect();
     let mut expected_titles = vec!["scene"];
     expected_titles.extend(&variants);
     assert_eq!(titles(t), expected_titles);
     assert_eq!(t.rows.len(), r.scenes.len());
-    let row = t
-        .rows
-        .iter()
-        .find(|row| row[0].text == "rings")
-        .expect("rings' row");
-    let column = 1 + variants
-        .iter()
-        .position(|v| *v == fastest.variant.as_str())
-        .expect("the fastest variant's column");
-    let cell = format!(
-        "{} ({})",
-        format::significant(e.achieved_gflops),
-        format::percent(share, 1)
+    // simd (SIMD code) is held to the SIMD roof in every row.
+    for scene in &r.scenes {
+        let v = variant(scene, "simd");
+        let e = v.efficiency.as_ref().expect("efficiency");
+        let roof = peak
+            .peak_gflops
+            .min(peak.cache_bandwidth_gbs * e.arithmetic_intensity);
+        assert_eq!(
+            cell_share(cell(t, &scene.name, "simd")),
+            format::percent(e.achieved_gflops / roof * 100.0, 1),
+            "{}",
+            scene.name
+        );
+    }
+}
+
+#[test]
+fn a_file_without_the_scalar_peak_sets_every_point_against_the_simd_roof_and_says_so() {
+    let dir = TempDir::new("machine-no-scalar").expect("temp dir");
+    let mut r = sample_results();
+    let peak = r.peak.as_mut().expect("peak");
+    peak.scalar_peak_gflops = None;
+    peak.scalar_kernel = None;
+    let peak = peak.clone();
+    let doc = document_of(r.clone(), dir.path());
+    let s = section(&doc, "roofline");
+    let text = prose(s);
+    assert!(
+        text.contains("this file has no scalar peak, so scalar code is set against this one too"),
+        "{text}"
     );
-    assert_eq!(row[column].text, cell);
+    let base = variant(rings(&r), "baseline");
+    let e = base.efficiency.as_ref().expect("efficiency");
+    let roof = peak
+        .peak_gflops
+        .min(peak.cache_bandwidth_gbs * e.arithmetic_intensity);
+    let share = format::percent(e.achieved_gflops / roof * 100.0, 1);
+    assert_eq!(stated_share(&text, "baseline"), share);
+    assert_eq!(cell_share(cell(tables(s)[0], "rings", "baseline")), share);
+    // The chart draws the roofs it has and says which one is missing.
+    let Some(Block::Figure(f)) = s
+        .blocks
+        .iter()
+        .find(|b| matches!(b, Block::Figure(f) if f.id == "roofline"))
+    else {
+        panic!("no roofline chart");
+    };
+    assert!(
+        f.caption.contains("This file has no scalar peak"),
+        "{}",
+        f.caption
+    );
 }
 
 #[test]
@@ -190,7 +292,7 @@ fn without_the_peaks_the_roofline_has_no_roof() {
     );
     let text = prose(s);
     assert!(
-        text.contains("On rings, baseline attains") && !text.contains("% of the"),
+        text.contains("On rings, baseline (scalar code) attains") && !text.contains("% of"),
         "{text}"
     );
     // The attained GFLOP/s alone, without a share of a roof.
@@ -332,13 +434,81 @@ fn the_bvh_section_says_where_the_metrics_do_not_predict_the_measurement() {
     );
 }
 
+/// Writes every map of `scene`'s variants as a NumPy file of the map's grid: values
+/// `value(variant, key, index)`.
+fn write_maps(dir: &Path, scene: &SceneResult, value: impl Fn(&str, &str, usize) -> u64) {
+    for maps in &scene.pixel_maps {
+        let n = (maps.columns * maps.rows) as usize;
+        for map in &maps.maps {
+            let values: Vec<u64> = (0..n)
+                .map(|i| value(maps.variant.as_str(), &map.key, i))
+                .collect();
+            let bytes = reports::npy::npy_bytes(maps.rows as usize, maps.columns as usize, &values)
+                .expect("npy");
+            let path = dir.join(&maps.directory).join(&map.npy);
+            std::fs::create_dir_all(path.parent().expect("parent")).expect("mkdir");
+            std::fs::write(path, bytes).expect("write");
+        }
+    }
+}
+
+/// The figures of a section, by id.
+fn figures(s: &Section) -> Vec<&document::Figure> {
+    s.blocks
+        .iter()
+        .filter_map(|b| match b {
+            Block::Figure(f) => Some(f),
+            _ => None,
+        })
+        .collect()
+}
+
+/// The pictures an SVG embeds, decoded.
+fn embedded_pngs(svg: &str) -> Vec<image::RgbImage> {
+    svg.split("href=\"data:image/png;base64,")
+        .skip(1)
+        .map(|rest| {
+            let data = rest.split('"').next().expect("quote");
+            image::load_from_memory(&unbase64(data))
+                .expect("a PNG")
+                .to_rgb8()
+        })
+        .collect()
+}
+
+fn unbase64(text: &str) -> Vec<u8> {
+    const ALPHABET: &[u8] = b"ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+    let mut out = Vec::new();
+    let (mut bits, mut held) = (0u32, 0u32);
+    for c in text.bytes().filter(|&c| c != b'=') {
+        bits = (bits << 6) | ALPHABET.iter().position(|&a| a == c).expect("base64") as u32;
+        held += 6;
+        if held >= 8 {
+            held -= 8;
+            out.push((bits >> held) as u8);
+        }
+    }
+    out
+}
+
 #[test]
-fn pixel_maps_stand_side_by_side_per_counter_and_missing_files_cost_their_tile() {
+fn pixel_maps_of_a_counter_share_one_scale_and_what_is_not_there_is_one_sentence() {
     let dir = TempDir::new("machine-maps").expect("temp dir");
     let r = sample_results();
     write_sample_files(dir.path()).expect("sample files");
-    // The maps of rings are lost: each tile must say so.
-    std::fs::remove_dir_all(dir.path().join("pixel-maps/rings")).expect("remove the maps");
+    let scene = rings(&r);
+    // Time: a ramp to 700 ns with baseline and to 470 ns with simd and bvh, so that
+    // a per-map scale would draw simd's 470 in baseline's 700's colour; the depth is
+    // 1 everywhere with every variant; other counters a ramp to 9.
+    let top = |variant: &str| if variant == "baseline" { 700 } else { 470 };
+    let n = (scene.pixel_maps[0].columns * scene.pixel_maps[0].rows) as usize;
+    write_maps(dir.path(), scene, |variant, key, i| match key {
+        "time.ns" => (i * top(variant) / (n - 1)) as u64,
+        "ray_tree.depth" => 1,
+        _ => (i % 10) as u64,
+    });
+    // simd's shadow rays are lost.
+    std::fs::remove_file(dir.path().join("pixel-maps/rings/simd/rays.shadow.npy")).expect("remove");
     let run = Run {
         label: "bench-1".to_string(),
         results: r.clone(),
@@ -346,66 +516,84 @@ fn pixel_maps_stand_side_by_side_per_counter_and_missing_files_cost_their_tile()
     };
     let doc = document::build(&[run]).expect("document");
     let s = section(&doc, "pixel-maps");
-    let scene = rings(&r);
+    let text = prose(s);
 
-    let grids = grids(s);
-    let labels: Vec<&str> = grids.iter().map(|g| g.row_labels[0].as_str()).collect();
+    // One figure per counter with a varying value, in row order; the depth is flat.
+    let ids: Vec<&str> = figures(s).iter().map(|f| f.id.as_str()).collect();
     assert_eq!(
-        labels,
+        ids,
         [
-            "time",
-            "sphere tests",
-            "cylinder tests",
-            "polygon tests",
-            "BVH nodes",
-            "shadow rays",
-            "ray-tree depth"
+            "pixel-maps-rings-time_ns",
+            "pixel-maps-rings-tests_sphere_tests",
+            "pixel-maps-rings-tests_cylinder_tests",
+            "pixel-maps-rings-tests_polygon_tests",
+            "pixel-maps-rings-accel_nodes_visited",
+            "pixel-maps-rings-rays_shadow",
         ]
     );
-    for g in &grids {
-        assert_eq!(g.columns, 3);
-        assert!(g.wide, "maps take the whole width");
-    }
-    // The suite's variant order: baseline, simd, bvh.
-    let order: Vec<&str> = r
-        .suite
-        .variants
-        .iter()
-        .map(|v| v.as_str())
-        .filter(|v| scene.pixel_maps.iter().any(|m| m.variant == *v))
-        .collect();
-    assert_eq!(order, ["baseline", "simd", "bvh"]);
-    let time = grids[0];
-    for (tile, name) in time.tiles.iter().zip(&order) {
-        assert!(
-            tile.caption
-                .starts_with(&format!("{name} · time.ns, ns per sample (min ")),
-            "{}",
-            tile.caption
-        );
-        // The map files are gone: each tile says so.
-        assert!(
-            matches!(&tile.visual, Visual::Missing { text } if text.contains(&format!("image missing: pixel-maps/rings/{name}/time.ns.png"))),
-            "{:?}",
-            tile.visual
-        );
-    }
-    // Only bvh traverses a tree.
-    let nodes = grids[4];
     assert!(
-        matches!(&nodes.tiles[0].visual, Visual::Placeholder { text } if text == "no BVH nodes with baseline")
+        text.contains("Not drawn because every sample of every variant holds the same value: the ray-tree depth is 1 everywhere."),
+        "{text}"
+    );
+    // What a variant did not count and what could not be read: one sentence each,
+    // no empty boxes.
+    assert!(
+        text.contains("Not drawn because not counted: no BVH nodes with baseline and simd."),
+        "{text}"
     );
     assert!(
-        matches!(&nodes.tiles[1].visual, Visual::Placeholder { text } if text == "no BVH nodes with simd")
+        text.contains("Not drawn because the raw values could not be read: simd's rays.shadow (pixel-maps/rings/simd/rays.shadow.npy: entity not found)."),
+        "{text}"
     );
-    assert!(
-        nodes.tiles[2]
-            .caption
-            .starts_with("bvh · accel.nodes_visited, nodes per sample")
-    );
+    assert!(grids(s).is_empty(), "no grids of tiles and placeholders");
 
-    // The busiest pixel's sphere tests (the most tested kind of baseline: the first of
-    // the largest maxima) and the clock.
+    // The time row: baseline, simd and bvh on one scale from 0 to 700 ns, its values
+    // once, beside the maps.
+    let time = figures(s)[0];
+    assert_eq!(time.title, "rings: time");
+    assert!(
+        time.caption
+            .contains("with baseline, simd and bvh, on one colour scale from 0 s to 700 ns"),
+        "{}",
+        time.caption
+    );
+    let Visual::Image(image) = &time.visual else {
+        panic!("the row is a picture");
+    };
+    let svg = String::from_utf8_lossy(&doc.assets.get(&image.asset).expect("asset").bytes);
+    for name in [
+        ">baseline<",
+        ">simd<",
+        ">bvh<",
+        ">ns per sample<",
+        ">700 ns<",
+        ">0 s<",
+    ] {
+        assert!(svg.contains(name), "{name} not in the row");
+    }
+    assert_eq!(svg.matches(">ns per sample<").count(), 1, "one scale a row");
+    assert!(svg.contains(">mean 350 ns, max 700 ns<") && svg.contains(">mean 235 ns, max 470 ns<"));
+    let maps = embedded_pngs(&svg);
+    assert_eq!(maps.len(), 3);
+    // The last sample: 700 ns with baseline, 470 with simd. On the shared scale
+    // simd's last sample is 470 / 700 of the way up, not at the top as on its own;
+    // the same value (the first sample, 0 ns) is the same colour in both.
+    let (width, height) = maps[0].dimensions();
+    let last = |p: &image::RgbImage| *p.get_pixel(width - 1, height - 1);
+    let first = |p: &image::RgbImage| *p.get_pixel(0, 0);
+    assert_eq!(first(&maps[0]), first(&maps[1]));
+    assert_ne!(last(&maps[0]), last(&maps[1]));
+    assert_eq!(
+        last(&maps[1]),
+        last(&maps[2]),
+        "simd and bvh both end at 470 ns"
+    );
+    // Viridis at 1 (yellow) and at 470 / 700 = 0.6714: between the keys at 0.6 (34,
+    // 168, 132) and 0.7 (67, 191, 113), 71.4 % of the way: 57.6, 184.4, 118.4.
+    assert_eq!(last(&maps[0]).0, [253, 231, 37]);
+    assert_eq!(last(&maps[1]).0, [58, 184, 118]);
+
+    // The busiest pixel's sphere tests and the clock, from the results.
     let max_of = |name: &str, key: &str| {
         scene
             .pixel_maps
@@ -415,7 +603,6 @@ fn pixel_maps_stand_side_by_side_per_counter_and_missing_files_cost_their_tile()
             .map(|x| x.max)
             .expect("map")
     };
-    let text = prose(s);
     let expected = format!(
         "On rings the busiest pixel makes {} sphere tests with baseline, against {} with simd and {} with bvh.",
         format::count(max_of("baseline", "tests.sphere.tests")),
@@ -427,45 +614,35 @@ fn pixel_maps_stand_side_by_side_per_counter_and_missing_files_cost_their_tile()
         text.contains("The time maps' clock ticks every 0.42 ns"),
         "{text}"
     );
+    let html = reports::html::render(&doc);
+    assert!(html.contains("id=\"chart-pixel-maps-rings-time_ns\""));
 }
 
 #[test]
-fn pixel_map_files_are_embedded_when_they_are_there() {
+fn pixel_maps_without_their_raw_values_say_so_in_one_sentence() {
+    // The sample's files: every map's NumPy file holds one value, not the grid.
     let dir = TempDir::new("machine-map-files").expect("temp dir");
-    let r = sample_results();
-    let maps = &rings(&r).pixel_maps[0];
-    let legend = reports::pixel_maps::Legend {
-        title: "time.ns".to_string(),
-        unit: "ns per sample".to_string(),
-        min: 0.0,
-        max: 10.0,
-    };
-    let values: Vec<f64> = (0..maps.columns * maps.rows)
-        .map(|i| f64::from(i % 11))
-        .collect();
-    let picture = reports::pixel_maps::false_colour(&values, maps.columns, maps.rows, &legend);
-    let path = dir.path().join(&maps.directory).join("time.ns.png");
-    std::fs::create_dir_all(path.parent().expect("parent")).expect("mkdir");
-    picture.save(&path).expect("png");
-    let doc = document_of(r.clone(), dir.path());
-    let tile = &grids(section(&doc, "pixel-maps"))[0].tiles[0];
-    let Visual::Image(image) = &tile.visual else {
-        panic!("not embedded: {:?}", tile.visual);
-    };
-    // Laid out at the file's size, embedded at most as wide as a small map is drawn
-    // (the PNG header's width: bytes 16 to 19, big-endian).
-    assert_eq!(
-        (image.width, image.height),
-        (f64::from(picture.width()), f64::from(picture.height()))
-    );
-    let png = &doc.assets.get(&image.asset).expect("asset").bytes;
-    let width = u32::from_be_bytes([png[16], png[17], png[18], png[19]]);
+    let doc = document_of(sample_results(), dir.path());
+    let s = section(&doc, "pixel-maps");
+    assert!(figures(s).is_empty());
+    let text = prose(s);
     assert!(
-        width <= reports::pixel_maps::MIN_WIDTH && width < picture.width(),
-        "{width}"
+        text.contains("Not drawn because the raw values could not be read: baseline's time.ns (pixel-maps/rings/baseline/time.ns.npy: 1×1 values, not the "),
+        "{text}"
     );
-    let html = reports::html::render(&doc);
-    assert!(html.contains("alt=\"rings baseline time.ns\""));
+    assert_eq!(
+        text.matches("Not drawn because the raw values could not be read")
+            .count(),
+        doc.sections
+            .iter()
+            .find(|s| s.id == "pixel-maps")
+            .map_or(0, |s| s
+                .blocks
+                .iter()
+                .filter(|b| matches!(b, Block::Heading { .. }))
+                .count()),
+        "one sentence a scene"
+    );
 }
 
 #[test]

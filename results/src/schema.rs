@@ -18,7 +18,7 @@ pub use analysis::profile::timer::Timer;
 pub use analysis::{Band, Estimate, Verdict};
 
 use crate::bvh_quality::BvhQuality;
-pub use crate::efficiency::{Efficiency, MachinePeak, RayRates};
+pub use crate::efficiency::{Bound, CodeKind, Efficiency, MachinePeak, RayRates, Roof};
 use crate::hardware::{HardwareResult, SceneHardware};
 use crate::pixel_stats::VariantPixelMaps;
 use crate::timing_policy::TimingPolicy;

@@ -12,9 +12,9 @@ use std::time::Instant;
 use analysis::{Band, compare, difference_heat_map, gray_histogram};
 use hwmodel::hw_scene::HwScene;
 use results::{
-    Calibration, Efficiency, F64Reference, FailedPart, Failure, MachinePeak, ProfileResult,
-    Results, SCHEMA, SceneHardware, SceneResult, Shard, SuiteInfo, VariantName, VariantResult,
-    slug,
+    Calibration, CodeKind, Efficiency, F64Reference, FailedPart, Failure, MachinePeak,
+    ProfileResult, Results, SCHEMA, SceneHardware, SceneResult, Shard, SuiteInfo, VariantName,
+    VariantResult, slug,
 };
 use tracer::{BvhBuilder, RenderOptions, Sampling, Scene, ShadingMode, VariantSet, parse_nff};
 
@@ -308,11 +308,12 @@ const BVH_STUDY_PIXELS: u64 = 128 * 128;
 /// The variants whose per-pixel maps the suite writes.
 const MAPPED_VARIANTS: [&str; 3] = ["baseline", "simd", "bvh"];
 
-/// A render of `counts` that took `seconds` as a point under `peak`'s roofs.
+/// A render of `counts` that took `seconds` as a point under `peak`'s roofs, held to
+/// the compute roof of its `code`.
 fn efficiency(
     counts: &tracer::Counts,
     scene: &Scene,
-    simd: bool,
+    (simd, code): (bool, CodeKind),
     seconds: f64,
     peak: &MachinePeak,
 ) -> Efficiency {
@@ -324,7 +325,7 @@ fn efficiency(
     } else {
         0.0
     };
-    let roof = peak.roof_gflops(intensity);
+    let roof = peak.roof(code, intensity).gflops;
     Efficiency {
         flops,
         bytes_moved: bytes,
@@ -718,10 +719,11 @@ impl SceneRunner<'_> {
             (lanes.lanes_issued > 0).then(|| lanes.lanes_active as f64 / lanes.lanes_issued as f64);
         let accel = m.variants.config().accel;
         let simd = accel == tracer::Accelerator::Simd;
+        let code = CodeKind::of_accelerator(accel);
         // Embree's work is uncounted: its flops would be a few shading operations.
         let efficiency = accel
             .counts_its_work()
-            .then(|| efficiency(&m.counts, scene, simd, m.time.median, self.peak));
+            .then(|| efficiency(&m.counts, scene, (simd, code), m.time.median, self.peak));
         let ray_rates = m
             .query_shares
             .map(|shares| ray_rates(&shares, &m.counts.rays, m.time.median));

@@ -18,11 +18,11 @@
 use std::collections::BTreeMap;
 
 use results::{
-    AmdahlFigures, AmdahlRow, Band, Build, BvhQuality, CriterionEstimate, DeviceUse, Efficiency,
-    Estimate, FailedPart, Failure, FlatRow, HardwareResult, HwRow, InstructionCount, Machine,
-    MachinePeak, PixelMap, Profile, ProfileResult, ProfileView, Quality, RayRates, Results, SCHEMA,
-    SceneFamily, SceneHardware, SceneResult, SuiteInfo, TimeCovers, TimingPolicy, VariantName,
-    VariantPixelMaps, VariantResult,
+    AmdahlFigures, AmdahlRow, Band, Build, BvhQuality, CodeKind, CriterionEstimate, DeviceUse,
+    Efficiency, Estimate, FailedPart, Failure, FlatRow, HardwareResult, HwRow, InstructionCount,
+    Machine, MachinePeak, PixelMap, Profile, ProfileResult, ProfileView, Quality, RayRates,
+    Results, SCHEMA, SceneFamily, SceneHardware, SceneResult, SuiteInfo, TimeCovers, TimingPolicy,
+    VariantName, VariantPixelMaps, VariantResult,
 };
 
 /// The variants of the sample, baseline first.
@@ -296,6 +296,10 @@ fn sample_peak() -> MachinePeak {
         threads: 2,
         fma_kernel: "AVX2+FMA, 8 lanes × 10 chains".to_string(),
         stream_bytes: 3 * 4 * (8 << 20),
+        // The same chains one lane wide: a fifth of the SIMD peak on the sample
+        // machine (eight lanes, but one lane's scalar FMAs issue at a higher clock).
+        scalar_peak_gflops: Some(29.72),
+        scalar_kernel: Some("scalar FMA, 1 lane × 10 chains".to_string()),
     }
 }
 
@@ -359,7 +363,8 @@ fn sample_efficiency(
         + get("accel.leaves_visited") * LEAF_BYTES;
     let arithmetic_intensity = flops as f64 / bytes_moved as f64;
     let achieved_gflops = flops as f64 / median / 1e9;
-    let roof = sample_peak().roof_gflops(arithmetic_intensity);
+    let code = VariantName::parse(variant).map_or(CodeKind::Scalar, |v| CodeKind::of_variant(&v));
+    let roof = sample_peak().roof(code, arithmetic_intensity).gflops;
     Efficiency {
         flops,
         bytes_moved,
@@ -1244,7 +1249,9 @@ mod tests {
                     e.arithmetic_intensity,
                     e.flops as f64 / e.bytes_moved as f64
                 ));
-                let roof = peak.roof_gflops(e.arithmetic_intensity);
+                let roof = peak
+                    .roof(CodeKind::of_variant(&v.variant), e.arithmetic_intensity)
+                    .gflops;
                 assert_eq!(e.roof_gflops, Some(roof));
                 let fraction = e.fraction_of_roof.expect("fraction");
                 assert!(fraction < 0.8, "{}/{}: {fraction}", scene.name, v.variant);

@@ -131,10 +131,11 @@ pub(super) fn rms_bands() -> impl Iterator<Item = (f64, &'static str)> {
         .filter_map(|b| Some((b.upper_edge()?, b.name())))
 }
 
-/// One render as a roofline point: its variant, arithmetic intensity (flop/byte) and
-/// attained GFLOP/s.
+/// One render as a roofline point: its variant, the kind of its code (which compute
+/// roof holds it), arithmetic intensity (flop/byte) and attained GFLOP/s.
 pub(super) struct RooflinePoint<'r> {
     pub variant: &'r VariantResult,
+    pub code: crate::results::CodeKind,
     pub intensity: f64,
     pub gflops: f64,
 }
@@ -151,6 +152,7 @@ pub(super) fn roofline_points(results: &Results) -> Vec<RooflinePoint<'_>> {
             (finite_positive(e.arithmetic_intensity) && finite_positive(e.achieved_gflops))
                 .then_some(RooflinePoint {
                     variant,
+                    code: crate::results::CodeKind::of_variant(&variant.variant),
                     intensity: e.arithmetic_intensity,
                     gflops: e.achieved_gflops,
                 })
@@ -158,7 +160,8 @@ pub(super) fn roofline_points(results: &Results) -> Vec<RooflinePoint<'_>> {
         .collect()
 }
 
-/// The machine's measured peaks, when both are usable.
+/// The machine's measured peaks, when the SIMD peak and the DRAM bandwidth are usable
+/// (the scalar peak and the L1 bandwidth are drawn when they are there too).
 pub(super) fn machine_peak(results: &Results) -> Option<&crate::results::MachinePeak> {
     results
         .peak

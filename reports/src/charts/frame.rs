@@ -94,10 +94,26 @@ impl<'r, 'b> Canvas<'r, 'b> {
         X: Ranged<ValueType = f64> + ValueFormatter<f64>,
         Y: Ranged<ValueType = f64> + ValueFormatter<f64>,
     {
+        self.plot_with_room(x, y, (24, 12))
+    }
+
+    /// [`Canvas::plot`] leaving `right` pixels of the page right of the plot and
+    /// `bottom` below its axis title, for labels and a legend drawn outside the plot.
+    pub(super) fn plot_with_room<X, Y>(
+        &self,
+        x: Axis<'_, X>,
+        y: Axis<'_, Y>,
+        (right, bottom): (u32, u32),
+    ) -> Result<Plot<'r, 'b, X, Y>, Failure>
+    where
+        X: Ranged<ValueType = f64> + ValueFormatter<f64>,
+        Y: Ranged<ValueType = f64> + ValueFormatter<f64>,
+    {
         let mut chart = ChartBuilder::on(self.root)
             .caption(self.title, font(TITLE_PX))
             .margin(12)
-            .margin_right(24)
+            .margin_right(right)
+            .margin_bottom(bottom)
             .x_label_area_size(x.room)
             .y_label_area_size(y.room)
             .build_cartesian_2d(x.range, y.range)?;

@@ -1,25 +1,47 @@
-//! The roofline chart (Williams, Waterman and Patterson, 2009): every render as a point
-//! of attained GFLOP/s against arithmetic intensity (flops per byte read), log-log,
-//! under the machine's roof: the lower of its measured compute peak and its bandwidth
-//! times the intensity. One colour per variant; the scenes share the plot, so a
-//! variant's cloud shows how its intensity and speed move with the scene.
+//! The roofline chart (Williams, Waterman and Patterson, 2009; drawn as Intel Advisor
+//! draws its roofs): every render as a point of attained GFLOP/s against arithmetic
+//! intensity (flops per byte read), log-log, under the machine's measured roofs: two
+//! compute roofs (the SIMD peak and the scalar peak) and two bandwidth roofs (L1, which
+//! bounds the cache-aware bytes, and DRAM). A point is held to the compute roof of its
+//! code: filled for a variant that tests primitives in SIMD lanes, hollow for scalar
+//! code. One colour per variant; the scenes share the plot, so a variant's cloud shows
+//! how its intensity and speed move with the scene.
+//!
+//! Every roof is labelled at its right end, outside the data: the compute roofs (and a
+//! bandwidth roof that leaves the plot through its right edge) in a margin right of
+//! the plot; a bandwidth roof that ends on the SIMD peak just above that peak, where no
+//! point lies. The legend stands below the plot.
 
 use std::cell::Cell;
 
 use plotters::coord::ranged1d::Ranged;
 use plotters::prelude::*;
+use plotters::style::text_anchor::{HPos, Pos, VPos};
 
 use super::Chart;
 use super::data::{RooflinePoint, machine_peak, roofline_points, variant_name, variant_place};
 use super::frame::{DrawResult, Plot, render};
-use super::marks::{Dashed, Key, Place, keyed};
+use super::marks::Dashed;
 use super::scale::{Axis, log_range, tight_log_range};
-use super::style::{GUIDE, GUIDE_TEXT, HEIGHT, INK, WIDTH, variant_colour};
+use super::style::{HEIGHT, INK, TICK_PX, VALUE_PX, WIDTH, font, text_width, variant_colour};
 use crate::format;
-use crate::results::{MachinePeak, Results, VariantResult};
+use crate::results::{CodeKind, MachinePeak, Results, VariantResult};
 
 /// DRAM's roof: a second, dashed ink, so that it reads as the lesser limit.
 const DRAM: RGBColor = RGBColor(110, 110, 110);
+/// The scalar compute roof: the compute roofs' ink, lighter.
+const SCALAR: RGBColor = RGBColor(90, 90, 150);
+
+/// Pixels right of the plot for the roofs' labels.
+const LABEL_MARGIN: u32 = 118;
+/// Height of one line of a roof's label.
+const LINE_PX: i32 = 14;
+/// Height of one row of the legend below the plot.
+const LEGEND_ROW: u32 = 20;
+/// The y axis' room (tick labels and title) left of the plot.
+const Y_ROOM: u32 = 56;
+/// The page's margin around the plot (see [`super::frame::Canvas::plot`]).
+const PAGE_MARGIN: u32 = 12;
 
 /// Where the chart puts its data: the axes' ranges and the plot's pixel edges, so a
 /// test can tell where a point must be drawn.
@@ -36,9 +58,16 @@ pub(super) struct RooflineScale {
 }
 
 /// Attained GFLOP/s against arithmetic intensity for every render with a roofline
-/// point, under the roof when the run measured the machine's peaks.
+/// point, under the roofs when the run measured the machine's peaks.
 pub fn roofline_chart(results: &Results) -> Option<Chart> {
     roofline_with_scale(results).map(|(chart, _)| chart)
+}
+
+/// A roof's label at the right edge: its pixel row, two lines and its ink.
+struct EdgeLabel {
+    row: i32,
+    lines: [String; 2],
+    colour: RGBColor,
 }
 
 /// [`roofline_chart`] and the scale it was drawn at.
@@ -48,11 +77,11 @@ pub(super) fn roofline_with_scale(results: &Results) -> Option<(Chart, RooflineS
         return None;
     }
     let peak = machine_peak(results).cloned();
-    // Both ridges in view: where the L1 and the DRAM slopes meet the peak.
-    let ridges: Vec<f64> = peak
-        .iter()
-        .flat_map(|p| [p.ridge_intensity(), p.peak_gflops / p.bandwidth_gbs])
-        .collect();
+    // The SIMD roof's bend in view (where it meets the L1 roof), so that the L1 slope
+    // shows; the scalar roof's bend may lie left of the data (it then starts at the
+    // left edge), DRAM's right of it (its slope leaves through the right edge,
+    // labelled there).
+    let ridges: Vec<f64> = peak.iter().map(|p| p.ridge(CodeKind::Simd)).collect();
     // Each axis from the decade below the data (plotters labels a log axis from its
     // first power of ten on) to just past the data and the roofs' bends.
     let span = |values: Vec<f64>| -> Option<(f64, f64)> {
@@ -61,7 +90,8 @@ pub(super) fn roofline_with_scale(results: &Results) -> Option<(Chart, RooflineS
         Some((lo, hi))
     };
     let (x_lo, x_hi) = span(points.iter().map(|p| p.intensity).chain(ridges).collect())?;
-    // Twice the peak: room above the roof for its label.
+    // Twice the SIMD peak: room above the top roof for the labels of the bandwidth
+    // roofs that end on it.
     let top = peak.as_ref().map(|p| p.peak_gflops * 2.0);
     let (y_lo, y_hi) = span(points.iter().map(|p| p.gflops).chain(top).collect())?;
     let mut series: Vec<&VariantResult> = Vec::new();
@@ -73,21 +103,18 @@ pub(super) fn roofline_with_scale(results: &Results) -> Option<(Chart, RooflineS
             series.push(p.variant);
         }
     }
-    let caption = match &peak {
-        Some(_) => {
-            "One point per scene and variant: the counted floating-point operations over the median tracing time, against the flops per byte the render asks of the memory system, wherever they are found (the cache-aware roofline). The roof is the lower of the machine's compute peak (FMA kernel) and its L1 bandwidth (STREAM triad within the cache) times the intensity; left of the dotted ridge a render is bandwidth-bound, right of it compute-bound. Dashed: the DRAM bandwidth's roof; a point above it read most of its records from the caches."
-        }
-        None => {
-            "One point per scene and variant: the counted floating-point operations over the median tracing time, against the flops per byte the render is estimated to read. The machine's peaks were not measured in this run: no roof."
-        }
-    };
+    let size = (WIDTH + LABEL_MARGIN, HEIGHT + 40);
+    let legend = legend_layout(&series, size.0);
+    let legend_height = legend.rows * LEGEND_ROW + 6;
+    let size = (size.0, size.1 + legend_height);
+    let caption = caption(peak.as_ref(), &points);
     let scale = Cell::new(RooflineScale::default());
     let drawn = &scale;
     let chart = render(
         "roofline",
         "Roofline: attained GFLOP/s against arithmetic intensity".to_string(),
-        caption.to_string(),
-        (WIDTH, HEIGHT + 40),
+        caption,
+        size,
         move |canvas| {
             let x = Axis::log(
                 (x_lo, x_hi),
@@ -101,9 +128,10 @@ pub(super) fn roofline_with_scale(results: &Results) -> Option<(Chart, RooflineS
                 "",
                 Some(30),
                 "attained GFLOP/s (log scale)",
-                56,
+                Y_ROOM,
             );
-            let mut plot = canvas.plot(x, y)?;
+            let mut plot =
+                canvas.plot_with_room(x, y, (LABEL_MARGIN, PAGE_MARGIN + legend_height))?;
             let (columns, rows) = plot.chart.plotting_area().get_pixel_range();
             drawn.set(RooflineScale {
                 intensity: (x_lo, x_hi),
@@ -112,74 +140,158 @@ pub(super) fn roofline_with_scale(results: &Results) -> Option<(Chart, RooflineS
                 rows: (f64::from(rows.start), f64::from(rows.end - 1)),
             });
             if let Some(peak) = &peak {
-                draw_roof(&mut plot, peak, y_lo)?;
+                draw_roofs(&mut plot, peak, y_lo)?;
             }
             for first in &series {
                 let colour = variant_colour(variant_place(results, first));
                 let name = variant_name(first);
                 let mine = points.iter().filter(|p| variant_name(p.variant) == name);
-                let anno = plot.chart.draw_series(mine.map(|p: &RooflinePoint| {
-                    Circle::new((p.intensity, p.gflops), 4, colour.mix(0.85).filled())
-                }))?;
-                keyed(anno, name, Key::Dot(colour));
+                plot.chart.draw_series(
+                    mine.map(|p: &RooflinePoint| marker(p.code, (p.intensity, p.gflops), colour)),
+                )?;
             }
-            // The lower right is high intensity at low speed, where renders rarely
-            // are (the ray tracer's intensities lie far left of DRAM's ridge, which
-            // the axis reaches); the upper left holds the steep L1 roof's label.
-            plot.legend(SeriesLabelPosition::LowerRight)
+            draw_legend(&plot, results, &legend, rows.end + 46)
         },
     );
     Some((chart, scale.get()))
 }
 
-/// The roofs with their labels: compute peak and the bandwidth that bounds the
-/// render's bytes (L1's, solid), DRAM's slope dashed below it when it was measured
-/// apart, and the ridge where the solid roofs meet, faint.
-fn draw_roof<X, Y>(plot: &mut Plot<'_, '_, X, Y>, peak: &MachinePeak, y_lo: f64) -> DrawResult
+/// A point's mark: filled for SIMD code, a ring for scalar code.
+fn marker<C>(code: CodeKind, at: C, colour: RGBColor) -> Circle<C, i32> {
+    match code {
+        CodeKind::Simd => Circle::new(at, 4, colour.mix(0.85).filled()),
+        CodeKind::Scalar => Circle::new(at, 4, colour.stroke_width(2)),
+    }
+}
+
+/// The caption: what a point is, which roofs are drawn and which one holds a point.
+fn caption(peak: Option<&MachinePeak>, points: &[RooflinePoint<'_>]) -> String {
+    let mut text = "One point per scene and variant: the counted floating-point operations over the median tracing time, against the flops per byte the render asks of the memory system, wherever they are found (the cache-aware roofline).".to_string();
+    let Some(peak) = peak else {
+        text += " The machine's peaks were not measured in this run: no roofs.";
+        return text;
+    };
+    let kinds = |kind: CodeKind| -> Vec<String> {
+        let mut names: Vec<String> = Vec::new();
+        for p in points.iter().filter(|p| p.code == kind) {
+            let name = variant_name(p.variant).to_string();
+            if !names.contains(&name) {
+                names.push(name);
+            }
+        }
+        names
+    };
+    let (simd, scalar) = (kinds(CodeKind::Simd), kinds(CodeKind::Scalar));
+    let l1 = peak.cache_bandwidth_gbs > 0.0;
+    text += if l1 {
+        " Solid roofs: the L1 bandwidth (STREAM triad within the cache) times the intensity, up to the compute peaks, each measured on the suite's threads; dashed: the DRAM bandwidth's slope, which a point above it beat by reading from the caches."
+    } else {
+        " Solid roofs: the DRAM bandwidth (STREAM triad) times the intensity, up to the compute peaks (this file has no L1 bandwidth, so DRAM's is the bandwidth roof)."
+    };
+    match peak.scalar_peak() {
+        Some(_) => {
+            text += " Filled points are SIMD code, held to the SIMD peak";
+            if !simd.is_empty() {
+                text += &format!(" ({})", format::join_list(&simd));
+            }
+            text += "; rings are scalar code, held to the scalar peak";
+            if !scalar.is_empty() {
+                text += &format!(" ({})", format::join_list(&scalar));
+            }
+            text += ".";
+        }
+        None => {
+            text += " This file has no scalar peak (measured since the roofline's scalar roof was added): only the SIMD compute roof is drawn, and every point, scalar code (rings) as well as SIMD code (filled), is set against it.";
+        }
+    }
+    text
+}
+
+/// The roofs: the L1 slope up to the SIMD peak and that peak to the right edge (one
+/// line, the SIMD roofline), the scalar peak from where it meets the L1 slope, and
+/// DRAM's slope dashed up to the SIMD peak or the right edge, each labelled at its
+/// right end.
+fn draw_roofs<X, Y>(plot: &mut Plot<'_, '_, X, Y>, peak: &MachinePeak, y_lo: f64) -> DrawResult
 where
     X: Ranged<ValueType = f64>,
     Y: Ranged<ValueType = f64>,
 {
     let (x_lo, x_hi) = (plot.chart.x_range().start, plot.chart.x_range().end);
     let bandwidth = peak.roof_bandwidth_gbs();
-    let ridge = peak.ridge_intensity();
+    let ridge = peak.ridge(CodeKind::Simd);
+    let simd = peak.peak_gflops;
     // A sloped roof enters the plot at its left edge or through its floor.
     let entry = |gbs: f64| x_lo.max(y_lo / gbs);
     let start = entry(bandwidth);
-    let roof = [
-        (start, bandwidth * start),
-        (ridge, peak.peak_gflops),
-        (x_hi, peak.peak_gflops),
-    ];
-    plot.chart
-        .draw_series(LineSeries::new(roof, INK.stroke_width(2)))?;
-    plot.text(
-        &format!("peak {} GFLOP/s", format::significant(peak.peak_gflops)),
-        (ridge, peak.peak_gflops),
-        Place::AboveRight,
-        INK,
-    )?;
-    let cache = peak.cache_bandwidth_gbs > 0.0;
-    let slope_label = |level: &str, gbs: f64| format!("{level}{} GB/s", format::significant(gbs));
-    // A third of the way up the slope, on its empty side.
-    let at = start * (ridge / start).powf(0.35);
-    plot.text(
-        &slope_label(if cache { "L1 " } else { "" }, bandwidth),
-        (at, bandwidth * at),
-        Place::AboveLeft,
-        INK,
-    )?;
-    if cache && peak.bandwidth_gbs < bandwidth {
-        // DRAM's slope up to where it meets the peak: a render above it read most of
-        // its records from the caches.
-        let dram_ridge = peak.peak_gflops / peak.bandwidth_gbs;
-        let from = entry(peak.bandwidth_gbs);
-        let to = dram_ridge.min(x_hi);
-        plot.dashed(
-            [
-                (from, peak.bandwidth_gbs * from),
-                (to, peak.bandwidth_gbs * to),
+    plot.chart.draw_series(LineSeries::new(
+        [(start, bandwidth * start), (ridge, simd), (x_hi, simd)],
+        INK.stroke_width(2),
+    ))?;
+    let mut edge = vec![EdgeLabel {
+        row: plot.at(x_hi, simd).1,
+        lines: [
+            "SIMD peak".to_string(),
+            format!("{} GFLOP/s", format::significant(simd)),
+        ],
+        colour: INK,
+    }];
+    if let Some(scalar) = peak.scalar_peak().filter(|s| *s < simd) {
+        let from = peak.ridge(CodeKind::Scalar).max(x_lo);
+        plot.chart.draw_series(LineSeries::new(
+            [(from, scalar), (x_hi, scalar)],
+            SCALAR.stroke_width(2),
+        ))?;
+        edge.push(EdgeLabel {
+            row: plot.at(x_hi, scalar).1,
+            lines: [
+                "scalar peak".to_string(),
+                format!("{} GFLOP/s", format::significant(scalar)),
             ],
+            colour: SCALAR,
+        });
+    }
+    let level = if peak.cache_bandwidth_gbs > 0.0 {
+        "L1"
+    } else {
+        "DRAM"
+    };
+    let bandwidth_text = |gbs: f64| format!("{} GB/s", format::significant(gbs));
+    // Labels above the SIMD peak, right-aligned at the slope's end; a second one
+    // that would run into the first goes a line higher.
+    let mut above: Vec<(i32, i32)> = Vec::new();
+    let mut label_above = |plot: &Plot<'_, '_, X, Y>, x: f64, text: &str, colour| {
+        let (px, py) = plot.at(x, simd);
+        let width = text_width(text, VALUE_PX) as i32;
+        let mut raise = 0;
+        while above
+            .iter()
+            .any(|&(right, r)| r == raise && (right - px).abs() < width + 8)
+        {
+            raise += 1;
+        }
+        above.push((px, raise));
+        draw_text(
+            plot,
+            text,
+            (px - 4, py - 3 - raise * LINE_PX),
+            Pos::new(HPos::Right, VPos::Bottom),
+            colour,
+        )
+    };
+    label_above(
+        plot,
+        ridge,
+        &format!("{level} {}", bandwidth_text(bandwidth)),
+        INK,
+    )?;
+    if peak.cache_bandwidth_gbs > 0.0 && peak.bandwidth_gbs < bandwidth {
+        // DRAM's slope up to where it meets the SIMD peak: a render above it read
+        // most of its records from the caches.
+        let dram = peak.bandwidth_gbs;
+        let from = entry(dram);
+        let to = (simd / dram).min(x_hi);
+        plot.dashed(
+            [(from, dram * from), (to, dram * to)],
             Dashed {
                 colour: DRAM,
                 width: 2,
@@ -187,27 +299,119 @@ where
                 gap: 4,
             },
         )?;
-        let at = from * (to / from).powf(0.75);
-        plot.text(
-            &slope_label("DRAM ", peak.bandwidth_gbs),
-            (at, peak.bandwidth_gbs * at),
-            Place::AboveLeft,
-            DRAM,
-        )?;
+        let text = format!("DRAM {}", bandwidth_text(dram));
+        if to < x_hi {
+            label_above(plot, to, &text, DRAM)?;
+        } else {
+            edge.push(EdgeLabel {
+                row: plot.at(x_hi, dram * x_hi).1,
+                lines: ["DRAM".to_string(), bandwidth_text(dram)],
+                colour: DRAM,
+            });
+        }
     }
-    plot.dashed(
-        [(ridge, y_lo), (ridge, peak.peak_gflops)],
-        Dashed {
-            colour: GUIDE,
-            width: 1,
-            dash: 3,
-            gap: 3,
-        },
-    )?;
-    plot.text(
-        &format!("ridge {} flop/byte", format::significant(ridge)),
-        (ridge, y_lo),
-        Place::AboveRight,
-        GUIDE_TEXT,
-    )
+    draw_edge_labels(plot, edge)
+}
+
+/// The labels right of the plot, each centred on its roof's row, pushed apart where
+/// two would overlap.
+fn draw_edge_labels<X, Y>(plot: &Plot<'_, '_, X, Y>, mut labels: Vec<EdgeLabel>) -> DrawResult
+where
+    X: Ranged<ValueType = f64>,
+    Y: Ranged<ValueType = f64>,
+{
+    let (columns, _) = plot.chart.plotting_area().get_pixel_range();
+    let left = columns.end + 6;
+    labels.sort_by_key(|l| l.row);
+    // Two lines a label: its top is a line above its roof.
+    let mut next_top = i32::MIN;
+    for label in &labels {
+        let top = (label.row - LINE_PX).max(next_top);
+        for (i, line) in (0i32..).zip(&label.lines) {
+            draw_text(
+                plot,
+                line,
+                (left, top + i * LINE_PX),
+                Pos::new(HPos::Left, VPos::Top),
+                label.colour,
+            )?;
+        }
+        plot.root.draw(&PathElement::new(
+            vec![(columns.end, label.row), (left - 2, label.row)],
+            label.colour.stroke_width(1),
+        ))?;
+        next_top = top + 2 * LINE_PX + 2;
+    }
+    Ok(())
+}
+
+fn draw_text<X, Y>(
+    plot: &Plot<'_, '_, X, Y>,
+    text: &str,
+    at: (i32, i32),
+    pos: Pos,
+    colour: RGBColor,
+) -> DrawResult
+where
+    X: Ranged<ValueType = f64>,
+    Y: Ranged<ValueType = f64>,
+{
+    let style = TextStyle::from(font(VALUE_PX)).color(&colour).pos(pos);
+    plot.root.draw(&Text::new(text.to_string(), at, style))?;
+    Ok(())
+}
+
+/// The legend's entries in rows below the plot: each variant's name, where it goes.
+struct LegendLayout<'r> {
+    /// Variant, column offset from the plot's left edge, row.
+    entries: Vec<(&'r VariantResult, u32, u32)>,
+    rows: u32,
+}
+
+/// Lays the variants' keys out left to right below the plot, wrapping at its width.
+fn legend_layout<'r>(series: &[&'r VariantResult], chart_width: u32) -> LegendLayout<'r> {
+    let width = chart_width.saturating_sub(2 * PAGE_MARGIN + Y_ROOM + LABEL_MARGIN);
+    let (mut column, mut row) = (0u32, 0u32);
+    let mut entries = Vec::new();
+    for v in series {
+        let entry = 18 + text_width(variant_name(v), TICK_PX).ceil() as u32 + 16;
+        if column > 0 && column + entry > width {
+            column = 0;
+            row += 1;
+        }
+        entries.push((*v, column, row));
+        column += entry;
+    }
+    LegendLayout {
+        entries,
+        rows: row + u32::from(!series.is_empty()),
+    }
+}
+
+/// The legend below the plot from pixel row `top`: a mark in each variant's colour
+/// (filled for SIMD code, a ring for scalar code) and its name.
+fn draw_legend<X, Y>(
+    plot: &Plot<'_, '_, X, Y>,
+    results: &Results,
+    legend: &LegendLayout<'_>,
+    top: i32,
+) -> DrawResult
+where
+    X: Ranged<ValueType = f64>,
+    Y: Ranged<ValueType = f64>,
+{
+    let (columns, _) = plot.chart.plotting_area().get_pixel_range();
+    for (v, column, row) in &legend.entries {
+        let colour = variant_colour(variant_place(results, v));
+        let x = columns.start + *column as i32;
+        let y = top + (*row * LEGEND_ROW) as i32 + LEGEND_ROW as i32 / 2;
+        let code = CodeKind::of_variant(&v.variant);
+        plot.root.draw(&marker(code, (x + 6, y), colour))?;
+        let style = TextStyle::from(font(TICK_PX))
+            .color(&INK)
+            .pos(Pos::new(HPos::Left, VPos::Center));
+        plot.root
+            .draw(&Text::new(variant_name(v).to_string(), (x + 16, y), style))?;
+    }
+    Ok(())
 }

@@ -56,14 +56,6 @@ fn attribute(element: &str, name: &str) -> Option<f64> {
         .ok()
 }
 
-/// The centres of the `<circle>`s of an SVG.
-fn circles(svg: &str) -> Vec<(f64, f64)> {
-    svg.split("<circle")
-        .skip(1)
-        .filter_map(|c| Some((attribute(c, "cx")?, attribute(c, "cy")?)))
-        .collect()
-}
-
 /// The points of every `<polyline>` of an SVG.
 fn polylines(svg: &str) -> Vec<Vec<(f64, f64)>> {
     svg.split("<polyline")
@@ -155,9 +147,12 @@ fn every_chart_of_the_sample_is_svg_with_its_axis_titles() {
             &[
                 "arithmetic intensity (flop/byte, log scale)",
                 "attained GFLOP/s (log scale)",
-                "peak 149 GFLOP/s",
+                "SIMD peak",
+                "149 GFLOP/s",
+                "scalar peak",
+                "29.7 GFLOP/s",
                 "L1 190 GB/s",
-                "DRAM 11.8 GB/s",
+                "11.8 GB/s",
                 "bvh",
             ],
         ),
@@ -355,10 +350,28 @@ fn scene_histograms_leave_out_identical_variants() {
     assert!(c.caption.contains("not drawn") && c.caption.contains("simd"));
 }
 
+/// The `<circle>`s of an SVG: centre and whether it is filled (a ring has
+/// `fill="none"`).
+fn circles_filled(svg: &str) -> Vec<(f64, f64, bool)> {
+    svg.split("<circle")
+        .skip(1)
+        .filter_map(|c| {
+            let element = c.split('>').next()?;
+            Some((
+                attribute(element, "cx")?,
+                attribute(element, "cy")?,
+                !element.contains("fill=\"none\""),
+            ))
+        })
+        .collect()
+}
+
 #[test]
-fn roofline_points_sit_at_their_intensity_and_speed_under_the_roof() {
+fn roofline_points_sit_at_their_intensity_and_speed_under_their_own_roof() {
+    use crate::results::CodeKind;
     let r = sample_results();
     let peak = r.peak.clone().expect("the sample measured the peaks");
+    let scalar_peak = peak.scalar_peak_gflops.expect("and the scalar peak");
     let (chart, scale) = roofline::roofline_with_scale(&r).expect("chart");
     // Pixels from the scale alone: a log axis puts ln(v) linearly between its edges,
     // and the pixel rows grow downwards.
@@ -369,7 +382,7 @@ fn roofline_points_sit_at_their_intensity_and_speed_under_the_roof() {
     let y_of = |gflops: f64| bottom - along(gflops, scale.gflops) * (bottom - top);
     assert!(0.0 < left && right < f64::from(chart.width), "{scale:?}");
     assert!(0.0 < top && bottom < f64::from(chart.height), "{scale:?}");
-    let drawn = circles(&chart.svg);
+    let drawn = circles_filled(&chart.svg);
     let mut checked = 0;
     for scene in &r.scenes {
         for v in &scene.variants {
@@ -378,30 +391,41 @@ fn roofline_points_sit_at_their_intensity_and_speed_under_the_roof() {
                 .as_ref()
                 .expect("every sample render has a point");
             let (x, y) = (x_of(e.arithmetic_intensity), y_of(e.achieved_gflops));
+            // SIMD code (simd here) filled, scalar code a ring.
+            let simd = v.variant.as_str() == "simd";
             assert!(
                 drawn
                     .iter()
-                    .any(|c| (c.0 - x).abs() <= 1.5 && (c.1 - y).abs() <= 1.5),
-                "{} {}: no point at ({x:.1}, {y:.1})",
+                    .any(|c| (c.0 - x).abs() <= 1.5 && (c.1 - y).abs() <= 1.5 && c.2 == simd),
+                "{} {}: no {} point at ({x:.1}, {y:.1})",
                 scene.name,
-                v.variant
+                v.variant,
+                if simd { "filled" } else { "ring" }
             );
-            // The roof over the point is higher on the page (a smaller row).
-            let roof = y_of(peak.roof_gflops(e.arithmetic_intensity));
+            // The roof of its code over the point is higher on the page (a smaller
+            // row): min(its compute peak, L1 bandwidth × intensity).
+            let compute = if simd { peak.peak_gflops } else { scalar_peak };
+            let roof = y_of(compute.min(peak.cache_bandwidth_gbs * e.arithmetic_intensity));
             assert!(
                 roof < y - 1.0,
                 "{} {}: roof {roof:.1}, point {y:.1}",
                 scene.name,
                 v.variant
             );
+            assert_eq!(CodeKind::of_variant(&v.variant) == CodeKind::Simd, simd);
             checked += 1;
         }
     }
     assert!(checked > 50, "{checked} points");
-    // The roof bends at the ridge, at the peak's height, and ends flat.
-    let ridge = (x_of(peak.ridge_intensity()), y_of(peak.peak_gflops));
-    let roof = polylines(&chart.svg)
-        .into_iter()
+    // The SIMD roofline bends where the L1 slope meets the SIMD peak and ends flat at
+    // the right edge.
+    let ridge = (
+        x_of(peak.peak_gflops / peak.cache_bandwidth_gbs),
+        y_of(peak.peak_gflops),
+    );
+    let lines = polylines(&chart.svg);
+    let roof = lines
+        .iter()
         .find(|line| line.len() == 3)
         .expect("the roof's polyline");
     assert!(
@@ -410,6 +434,32 @@ fn roofline_points_sit_at_their_intensity_and_speed_under_the_roof() {
         roof[1]
     );
     assert!((roof[2].1 - roof[1].1).abs() <= 1.0 && roof[0].1 > roof[1].1);
+    assert!((roof[2].0 - right).abs() <= 1.5);
+    // The scalar roof: flat at the scalar peak from where it meets the L1 slope (or
+    // the left edge) to the right edge.
+    let scalar_row = y_of(scalar_peak);
+    let from = x_of((scalar_peak / peak.cache_bandwidth_gbs).max(scale.intensity.0));
+    assert!(
+        lines.iter().any(|line| line.len() == 2
+            && (line[0].0 - from).abs() <= 1.5
+            && (line[1].0 - right).abs() <= 1.5
+            && line.iter().all(|p| (p.1 - scalar_row).abs() <= 1.0)),
+        "no scalar roof at row {scalar_row:.1} from column {from:.1}: {lines:?}"
+    );
+    // Each compute roof's label stands right of the plot.
+    for label in ["SIMD peak", "scalar peak"] {
+        let at = chart
+            .svg
+            .find(&format!(">\n{label}\n<"))
+            .or_else(|| chart.svg.find(&format!(">{label}<")));
+        let text = &chart.svg[..at.unwrap_or_else(|| panic!("no label {label}"))];
+        let element = &text[text.rfind("<text").expect("a text element")..];
+        let x = attribute(element, "x").expect("x");
+        assert!(
+            x > right,
+            "{label} at column {x}, inside the plot (right edge {right})"
+        );
+    }
 
     // Without the peaks: the same points, no roof.
     let unmeasured = Results {
@@ -417,6 +467,14 @@ fn roofline_points_sit_at_their_intensity_and_speed_under_the_roof() {
         ..r.clone()
     };
     let c = roofline_chart(&unmeasured).expect("chart");
-    assert!(!c.svg.contains("GFLOP/s peak") && !c.svg.contains("peak 149"));
+    assert!(!c.svg.contains("SIMD peak") && !c.svg.contains("scalar peak"));
     assert!(c.caption.contains("not measured"));
+    // Without the scalar peak: no scalar roof, and the caption says so.
+    let mut older = r.clone();
+    if let Some(p) = older.peak.as_mut() {
+        p.scalar_peak_gflops = None;
+    }
+    let c = roofline_chart(&older).expect("chart");
+    assert!(c.svg.contains("SIMD peak") && !c.svg.contains("scalar peak"));
+    assert!(c.caption.contains("This file has no scalar peak"));
 }

@@ -1,12 +1,16 @@
 //! The roofline section: how close each render runs to the machine, as a point of
-//! attained GFLOP/s against arithmetic intensity under the measured peaks, the table of
-//! those points and a sentence on the headline scene. Omitted when no variant has a
-//! roofline point (files before `rtprof.results/3`'s efficiency).
+//! attained GFLOP/s against arithmetic intensity under the measured roofs, the table of
+//! those points and a sentence on the headline scene. Every share it states, in the
+//! sentence and the table, is of one basis: the roof that applies to the render
+//! ([`judged`]). Omitted when no variant has a roofline point (files before
+//! `rtprof.results/3`'s efficiency).
 
 use super::access;
 use crate::document::{Block, Builder, Cell, Column, Section, Table, Tone};
 use crate::format;
-use crate::results::{Efficiency, MachinePeak, Results, SceneResult, VariantResult};
+use crate::results::{
+    Bound, CodeKind, Efficiency, MachinePeak, Results, Roof, SceneResult, VariantResult,
+};
 
 pub fn roofline(b: &mut Builder) -> Option<Section> {
     let r = b.results();
@@ -38,9 +42,23 @@ pub fn roofline(b: &mut Builder) -> Option<Section> {
     Some(s)
 }
 
-/// What the kernels measured, which roof bounds a render's bytes and where it meets
-/// the compute peak.
+/// What the kernels measured, which roof holds a render and where the compute roofs
+/// meet the bandwidth roof.
 fn peaks_line(peak: &MachinePeak) -> String {
+    let compute = match (peak.scalar_peak(), &peak.scalar_kernel) {
+        (Some(scalar), kernel) => format!(
+            "{} GFLOP/s in SIMD lanes by the FMA kernel ({}) and {} GFLOP/s in scalar instructions ({})",
+            format::significant(peak.peak_gflops),
+            peak.fma_kernel,
+            format::significant(scalar),
+            kernel.as_deref().unwrap_or("the same chains one lane wide")
+        ),
+        (None, _) => format!(
+            "{} GFLOP/s in SIMD lanes by the FMA kernel ({}; this file has no scalar peak, so scalar code is set against this one too)",
+            format::significant(peak.peak_gflops),
+            peak.fma_kernel
+        ),
+    };
     let bandwidths = if peak.cache_bandwidth_gbs > 0.0 {
         format!(
             "{} GB/s by the STREAM triad within the L1 cache and {} GB/s from DRAM (arrays of {})",
@@ -50,17 +68,30 @@ fn peaks_line(peak: &MachinePeak) -> String {
         )
     } else {
         format!(
-            "{} GB/s by the STREAM triad from DRAM (arrays of {}; no cache bandwidth in this file, so DRAM's is the roof)",
+            "{} GB/s by the STREAM triad from DRAM (arrays of {}; no cache bandwidth in this file, so DRAM's is the bandwidth roof)",
             format::significant(peak.bandwidth_gbs),
             format::bytes(peak.stream_bytes)
         )
     };
+    let ridges = match peak.scalar_peak() {
+        Some(_) => format!(
+            "scalar code is bandwidth-bound below {} flop/byte, SIMD code below {}",
+            format::significant(peak.ridge(CodeKind::Scalar)),
+            format::significant(peak.ridge(CodeKind::Simd))
+        ),
+        None => format!(
+            "a render is bandwidth-bound below {} flop/byte",
+            format::significant(peak.ridge(CodeKind::Simd))
+        ),
+    };
     format!(
-        "The machine's peaks, measured on the suite's {}: {} GFLOP/s by the FMA kernel ({}), {bandwidths}. A render's bytes count every record it reads, wherever it is found (the cache-aware roofline), so the fastest bandwidth is its roof: below an intensity of {} flop/byte a render is bandwidth-bound, above it compute-bound.{}",
+        "The machine's peaks, measured on the suite's {}: {compute}; {bandwidths}. A render's bytes count every record it reads, wherever it is found (the cache-aware roofline), so the fastest bandwidth bounds them. Each render is set against the one roof that applies to it: the lower of its code's compute peak (SIMD for the variants that test in SIMD lanes, scalar for the others) and the {} bandwidth times its intensity; {ridges}. The shares below, in the text and the table, are of that roof.{}",
         format::plural(peak.threads as usize, "thread"),
-        format::significant(peak.peak_gflops),
-        peak.fma_kernel,
-        format::significant(peak.ridge_intensity()),
+        if peak.cache_bandwidth_gbs > 0.0 {
+            "L1"
+        } else {
+            "DRAM"
+        },
         if peak.cache_bandwidth_gbs > 0.0 {
             " A point above the DRAM roof read most of its records from the caches."
         } else {
@@ -69,8 +100,82 @@ fn peaks_line(peak: &MachinePeak) -> String {
     )
 }
 
-/// The sentence on the headline scene: the reference's GFLOP/s against the peak, how
-/// far the fastest variant is from its roof, and what the counts can and cannot say.
+/// A render against the roof that applies to it.
+#[derive(Clone, Copy, Debug)]
+struct Judged {
+    roof: Roof,
+    /// The code kind of the variant (the roof may be another kind's in files without
+    /// the scalar peak).
+    code: CodeKind,
+    /// Attained over the roof, %.
+    share: f64,
+}
+
+/// The one basis of every share the section states: attained GFLOP/s over the roof
+/// that applies to the render, `min(compute peak of its code, bandwidth × intensity)`
+/// ([`MachinePeak::roof`]), from the peaks (the roof the chart draws), not from the
+/// file's `roof_gflops`, which files before the scalar peak computed otherwise.
+fn judged(v: &VariantResult, e: &Efficiency, peak: &MachinePeak) -> Judged {
+    let code = CodeKind::of_variant(&v.variant);
+    let roof = peak.roof(code, e.arithmetic_intensity);
+    Judged {
+        roof,
+        code,
+        share: e.achieved_gflops / roof.gflops * 100.0,
+    }
+}
+
+/// The roof by name: `the scalar peak of 18.6 GFLOP/s`, `the L1 bandwidth roof of
+/// 2.40 GFLOP/s at that intensity`.
+fn roof_name(j: &Judged, peak: &MachinePeak) -> String {
+    let gflops = format::significant(j.roof.gflops);
+    match j.roof.bound {
+        Bound::Compute(kind) if kind == j.code => {
+            format!("the {} peak of {gflops} GFLOP/s", kind.name())
+        }
+        Bound::Compute(kind) => format!(
+            "the {} peak of {gflops} GFLOP/s (no {} peak in this file)",
+            kind.name(),
+            j.code.name()
+        ),
+        Bound::Bandwidth => format!(
+            "the {} bandwidth roof of {gflops} GFLOP/s at that intensity",
+            if peak.cache_bandwidth_gbs > 0.0 {
+                "L1"
+            } else {
+                "DRAM"
+            }
+        ),
+    }
+}
+
+/// `: 17.2 % of the roof that applies, the scalar peak of 18.6 GFLOP/s`, or that it
+/// is above it.
+fn share_clause(j: &Judged, peak: &MachinePeak) -> String {
+    if j.share > 100.0 {
+        let why = if j.roof.bound == Bound::Compute(CodeKind::Scalar) {
+            // glam's Vec3A: a dot product's multiplies are one SSE instruction.
+            "the scalar kernel runs one lane, while scalar code's vector maths (glam's Vec3A) runs three SSE lanes wide"
+        } else {
+            "the kernels measured less than this render reached"
+        };
+        format!(
+            ": {} of its roof, {}, above it: {why}",
+            format::percent(j.share, 1),
+            roof_name(j, peak)
+        )
+    } else {
+        format!(
+            ": {} of its roof, {}",
+            format::percent(j.share, 1),
+            roof_name(j, peak)
+        )
+    }
+}
+
+/// The sentence on the headline scene: the reference's and the fastest variant's
+/// GFLOP/s as shares of the roofs that apply to them, and what the counts can and
+/// cannot say.
 fn headline(r: &Results) -> Option<String> {
     let scene = access::headline_scene(r, |s| s.variants.iter().any(|v| v.efficiency.is_some()))?;
     let measured = |v: &&VariantResult| v.efficiency.is_some();
@@ -79,22 +184,19 @@ fn headline(r: &Results) -> Option<String> {
         .or_else(|| scene.variants.iter().find(measured))?;
     let e = base.efficiency.as_ref()?;
     let mut text = format!(
-        "On {}, {} attains {} GFLOP/s at {} flop/byte",
+        "On {}, {} ({} code) attains {} GFLOP/s at {} flop/byte",
         scene.name,
         base.variant,
+        CodeKind::of_variant(&base.variant).name(),
         format::significant(e.achieved_gflops),
         format::significant(e.arithmetic_intensity)
     );
     if let Some(peak) = &r.peak {
-        text += &format!(
-            ", {} of the {} GFLOP/s peak",
-            format::percent(e.achieved_gflops / peak.peak_gflops * 100.0, 1),
-            format::significant(peak.peak_gflops)
-        );
+        text += &share_clause(&judged(base, e, peak), peak);
         let dram = peak.dram_roof_gflops(e.arithmetic_intensity);
         if peak.cache_bandwidth_gbs > 0.0 && e.achieved_gflops > dram {
             text += &format!(
-                " and above the {} GFLOP/s DRAM alone could feed it: its records came mostly from the caches",
+                ", and above the {} GFLOP/s DRAM alone could feed it: its records came mostly from the caches",
                 format::significant(dram)
             );
         }
@@ -104,59 +206,23 @@ fn headline(r: &Results) -> Option<String> {
         .and_then(|v| Some((v, v.efficiency.as_ref()?)));
     if let Some((v, fe)) = fastest {
         text += &format!(
-            "; the fastest variant, {}, attains {} GFLOP/s at {} flop/byte",
+            "; the fastest variant, {} ({} code), attains {} GFLOP/s at {} flop/byte",
             v.variant,
+            CodeKind::of_variant(&v.variant).name(),
             format::significant(fe.achieved_gflops),
             format::significant(fe.arithmetic_intensity)
         );
         if let Some(peak) = &r.peak {
-            text += &roof_clause(fe, peak);
+            text += &share_clause(&judged(v, fe, peak), peak);
         }
     }
     text += ". The flops are the counted vector operations only, a lower bound of the floating-point work the processor did; the bytes are the records the render reads, estimated from the counts.";
     Some(text)
 }
 
-/// How far a point is from its roof, and which roof that is.
-fn roof_clause(e: &Efficiency, peak: &MachinePeak) -> String {
-    let roof = roof_of(e, peak);
-    let share = e.achieved_gflops / roof * 100.0;
-    let bound = bound_by(e.arithmetic_intensity, peak);
-    if share > 100.0 {
-        format!(
-            ", {} of its {bound} roof of {} GFLOP/s: above it, so the kernels measured less than this render reached",
-            format::percent(share, 1),
-            format::significant(roof)
-        )
-    } else {
-        format!(
-            ", {} of its {bound} roof of {} GFLOP/s ({}× below it)",
-            format::percent(share, 1),
-            format::significant(roof),
-            format::significant(roof / e.achieved_gflops)
-        )
-    }
-}
-
-/// The roof over a point: as the file records it, else from the peaks.
-fn roof_of(e: &Efficiency, peak: &MachinePeak) -> f64 {
-    e.roof_gflops
-        .filter(|r| r.is_finite() && *r > 0.0)
-        .unwrap_or_else(|| peak.roof_gflops(e.arithmetic_intensity))
-}
-
-/// Which roof caps a render of this intensity.
-fn bound_by(intensity: f64, peak: &MachinePeak) -> &'static str {
-    if intensity < peak.ridge_intensity() {
-        "bandwidth"
-    } else {
-        "compute"
-    }
-}
-
 /// One row per scene, one column per variant (the suite's order): the attained
-/// GFLOP/s and, with the peaks, the share of the roof at that intensity. Hover: the
-/// flops, the time, the intensity, the roof and which roof it is.
+/// GFLOP/s and, with the peaks, the share of the roof that applies to it. Hover: the
+/// flops, the time, the intensity and that roof.
 fn points_table(
     r: &Results,
     points: &[(&SceneResult, &VariantResult, &Efficiency)],
@@ -168,7 +234,7 @@ fn points_table(
     let mut columns = vec![Column::text("scene")];
     columns.extend(variants.iter().map(|v| Column::number(*v)));
     let caption = if peak.is_some() {
-        "Attained GFLOP/s (share of the roof at the render's intensity) per scene and variant; hover for the intensity and the roof"
+        "Attained GFLOP/s (share of the roof that applies: the lower of its code's compute peak and the bandwidth roof at its intensity) per scene and variant; hover for the intensity and the roof"
     } else {
         "Attained GFLOP/s per scene and variant; hover for the intensity"
     };
@@ -203,18 +269,62 @@ fn point_cell(v: &VariantResult, e: &Efficiency, peak: Option<&MachinePeak>) -> 
     let Some(peak) = peak else {
         return Cell::number(attained, e.achieved_gflops).hover(work);
     };
-    let roof = roof_of(e, peak);
-    let share = e.achieved_gflops / roof * 100.0;
-    let cell =
-        Cell::number(format!("{attained} ({})", format::percent(share, 1)), share).hover(format!(
-            "{work}; roof {} GFLOP/s, {}-bound; DRAM roof {} GFLOP/s",
-            format::significant(roof),
-            bound_by(e.arithmetic_intensity, peak),
-            format::significant(peak.dram_roof_gflops(e.arithmetic_intensity))
-        ));
-    if share > 100.0 {
+    let j = judged(v, e, peak);
+    let cell = Cell::number(
+        format!("{attained} ({})", format::percent(j.share, 1)),
+        j.share,
+    )
+    .hover(format!(
+        "{work}; {} code; roof: {}; DRAM roof {} GFLOP/s",
+        j.code.name(),
+        roof_name(&j, peak),
+        format::significant(peak.dram_roof_gflops(e.arithmetic_intensity))
+    ));
+    if j.share > 100.0 {
         cell.tone(Tone::Warning)
     } else {
         cell
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn peak() -> MachinePeak {
+        MachinePeak {
+            peak_gflops: 100.0,
+            bandwidth_gbs: 10.0,
+            cache_bandwidth_gbs: 200.0,
+            threads: 2,
+            fma_kernel: "AVX2+FMA, 8 lanes × 12 chains".to_string(),
+            stream_bytes: 1 << 20,
+            scalar_peak_gflops: Some(12.5),
+            scalar_kernel: Some("scalar FMA, 1 lane × 12 chains".to_string()),
+        }
+    }
+
+    #[test]
+    fn a_point_above_its_roof_says_why_it_can_be() {
+        let p = peak();
+        let scalar = Judged {
+            roof: p.roof(CodeKind::Scalar, 1.0),
+            code: CodeKind::Scalar,
+            share: 120.0,
+        };
+        assert_eq!(
+            share_clause(&scalar, &p),
+            ": 120.0 % of its roof, the scalar peak of 12.5 GFLOP/s, above it: the scalar kernel runs one lane, while scalar code's vector maths (glam's Vec3A) runs three SSE lanes wide"
+        );
+        // 0.1 flop/byte: L1 feeds 20 GFLOP/s, below the SIMD peak.
+        let simd = Judged {
+            roof: p.roof(CodeKind::Simd, 0.1),
+            code: CodeKind::Simd,
+            share: 50.0,
+        };
+        assert_eq!(
+            share_clause(&simd, &p),
+            ": 50.0 % of its roof, the L1 bandwidth roof of 20.0 GFLOP/s at that intensity"
+        );
     }
 }
