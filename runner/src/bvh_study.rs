@@ -117,6 +117,7 @@ mod tests {
             name: "balls7",
             options: &options,
             pool: &pool,
+            counting_pool: &pool,
             stop: &stop,
         };
         let policy = TimingPolicy::new(1, 0.0);

@@ -127,6 +127,7 @@ mod tests {
             name: "mirror",
             options: &options,
             pool: &pool,
+            counting_pool: &pool,
             stop: &stop,
         };
         let set = VariantSet::parse("baseline").unwrap_or_else(|e| panic!("{e}"));

@@ -427,6 +427,7 @@ impl SceneRunner<'_> {
             name: &spec.name,
             options: &options,
             pool,
+            counting_pool: self.pool,
             stop: self.ctx.stop,
         };
         let doing = |what: &str| {

@@ -46,6 +46,9 @@ pub struct RenderSetup<'a> {
     pub name: &'a str,
     pub options: &'a RenderOptions,
     pub pool: &'a rayon::ThreadPool,
+    /// The pool of the counted renders: counts are the same on any number of threads,
+    /// so a scene timed on one thread is still counted on all of them.
+    pub counting_pool: &'a rayon::ThreadPool,
     pub stop: &'a AtomicBool,
 }
 
@@ -77,7 +80,7 @@ impl RenderSetup<'_> {
             .map(|set| {
                 doing(&format!("counting {set}"));
                 let counted = self
-                    .pool
+                    .counting_pool
                     .install(|| render_variant::<Count>(self.scene, self.options, set, &|_| {}))
                     .map_err(fail)?;
                 counted.rendered.counts().ok_or_else(|| RunError::Render {

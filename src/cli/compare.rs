@@ -93,6 +93,7 @@ fn side_by_side(args: &CompareArgs, scene_arg: &Path, list: &str) -> Result<()> 
         name: &name,
         options: &options,
         pool: &pool,
+        counting_pool: &pool,
         stop: &never,
     };
     // --repeats renders at least; no minimum time, so the count is what was asked.

@@ -523,9 +523,10 @@ impl Section {
 
 impl Document {
     /// The document as the PDF prints it: each [`Section::html_only`] section keeps
-    /// its first paragraph and says where the rest is.
+    /// its first paragraph and says where the rest is, and the flamegraphs lose their
+    /// interface (paper cannot search or zoom: [`crate::flame_static`]).
     pub fn for_print(&self) -> Document {
-        let mut doc = self.clone();
+        let mut doc = crate::flame_static::for_print(self);
         for section in doc.sections.iter_mut().filter(|s| s.html_only) {
             let opening = section
                 .blocks

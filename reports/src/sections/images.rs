@@ -43,7 +43,7 @@ pub fn images(b: &mut Builder) -> Section {
         s.blocks.push(Block::note(
             Tone::Muted,
             format!(
-                "Not shown: {} ({}); their images are in images/ next to this report and their metrics in the appendix's tables.",
+                "Not shown: {} ({}); their images are in images/ next to this report and their metrics in the HTML report's per-scene tables.",
                 format::plural(omitted.len(), "scene"),
                 omitted.join(", ")
             ),

@@ -50,7 +50,7 @@ pub fn variants(b: &mut Builder) -> Section {
     s.blocks.push(Block::Paragraph {
         content: vec![
             Inline::text(format!(
-                "Each cell: baseline's median time over the variant's ({}); its digits follow the 95 % bootstrap interval (the interval is in the appendix). Coloured by the verdict (faster or slower only beyond the {} noise threshold with an interval excluding 1×) when the variant kept baseline's picture and rays on that scene; otherwise by what it cost there, named under the figure: the image error (RMS against baseline, coloured by the thesis's table 2 band) or the ray count that changed. Scenes without baseline show the variant's time. Every figure is in ",
+                "Each cell: baseline's median time over the variant's ({}); its digits follow the 95 % bootstrap interval (the interval itself is in the HTML report's per-scene tables and in variants.csv). Coloured by the verdict (faster or slower only beyond the {} noise threshold with an interval excluding 1×) when the variant kept baseline's picture and rays on that scene; otherwise by what it cost there, named under the figure: the image error (RMS against baseline, coloured by the thesis's table 2 band) or the ray count that changed. Scenes without baseline show the variant's time. Every figure is in ",
                 time_covers(r.suite.timing.covers),
                 format::percent(
                     r.suite.noise_threshold.unwrap_or(crate::results::NOISE_THRESHOLD) * 100.0,
