@@ -9,17 +9,15 @@
 
 use hwmodel::device::{FitState, headroom_warning, resources_above_headroom};
 
-use crate::charts::short_name;
 use crate::format::{self, join_list, percent_of};
 use crate::results::{
     Band, CriterionEstimate, DeviceUse, HwColumn, HwRow, InstructionCount, Results, VariantName,
 };
 
-/// 4-8 sentences about the run, most important first.
+/// 3-6 sentences about the run beside the three answers (where the time goes and
+/// what the variants buy are theirs: `sections::answers`), most important first.
 pub fn headline_findings(results: &Results) -> Vec<String> {
     [
-        profile_finding(results),
-        fastest_variant_finding(results),
         quality_finding(results),
         truth_finding(results),
         hardware_speedup_finding(results),
@@ -58,32 +56,6 @@ pub fn geometric_mean(values: impl IntoIterator<Item = f64>) -> Option<(f64, usi
     }
     let mean = logs.iter().sum::<f64>() / logs.len() as f64;
     Some((mean.exp(), logs.len()))
-}
-
-fn profile_finding(results: &Results) -> Option<String> {
-    let profile = results.profile.as_ref()?;
-    let mut rows: Vec<_> = profile
-        .baseline
-        .flat
-        .iter()
-        .filter(|r| r.percent.is_finite())
-        .collect();
-    rows.sort_by(|a, b| b.percent.total_cmp(&a.percent));
-    let top = rows.first()?;
-    let runner_up = rows
-        .get(1)
-        .map(|r| format!(", ahead of {} ({:.1} %)", short_name(&r.name), r.percent))
-        .unwrap_or_default();
-    Some(format!(
-        "In the profile of {} ({}x{}, {}), {} takes the largest share of the time, {:.1} %{}.",
-        profile.scene,
-        profile.width,
-        profile.height,
-        profile.baseline.variant,
-        short_name(&top.name),
-        top.percent,
-        runner_up
-    ))
 }
 
 /// One scene's image error for a variant.
@@ -131,43 +103,6 @@ fn variant_stats(results: &Results) -> Vec<VariantStats> {
         }
     }
     stats
-}
-
-fn fastest_variant_finding(results: &Results) -> Option<String> {
-    let stats = variant_stats(results);
-    let (best, mean, scenes) = stats
-        .iter()
-        .filter_map(|s| {
-            let (mean, n) = geometric_mean(s.speedups.iter().map(|p| p.1))?;
-            Some((s, mean, n))
-        })
-        .max_by(|a, b| a.1.total_cmp(&b.1))?;
-    let finite: Vec<f64> = best
-        .speedups
-        .iter()
-        .map(|s| s.1)
-        .filter(|s| s.is_finite() && *s > 0.0)
-        .collect();
-    let lo = finite.iter().copied().fold(f64::INFINITY, f64::min);
-    let hi = finite.iter().copied().fold(f64::NEG_INFINITY, f64::max);
-    let worst = best
-        .errors
-        .iter()
-        .max_by(|a, b| a.rms.total_cmp(&b.rms))
-        .map_or_else(
-            || "no image metrics".to_string(),
-            |e| {
-                format!(
-                    "its worst image error is RMS {:.1} on {} ({})",
-                    e.rms, e.scene, e.band
-                )
-            },
-        );
-    Some(format!(
-        "The fastest variant is {}: a geometric-mean speed-up of {mean:.2}× over {scenes} scene{} ({lo:.2}× to {hi:.2}×), and {worst}.",
-        best.variant,
-        if scenes == 1 { "" } else { "s" }
-    ))
 }
 
 fn quality_finding(results: &Results) -> Option<String> {
@@ -805,39 +740,14 @@ mod tests {
     fn sample_findings_name_the_right_things() {
         let r = sample_results();
         let findings = headline_findings(&r);
-        assert!((4..=8).contains(&findings.len()), "{findings:#?}");
+        assert!((3..=8).contains(&findings.len()), "{findings:#?}");
 
-        // Top function of the profile, computed independently.
-        let flat = &r.profile.as_ref().expect("profile").baseline.flat;
-        let top = flat
-            .iter()
-            .max_by(|a, b| a.percent.total_cmp(&b.percent))
-            .expect("rows");
-        let f = find(&findings, "largest share");
-        assert!(f.contains(&short_name(&top.name)), "{f}");
-        assert!(f.contains(&format!("{:.1} %", top.percent)), "{f}");
-
-        // Fastest variant by geometric mean.
-        let mut best = (String::new(), 0.0);
-        for variant in &r.suite.variants {
-            if variant.is_reference() {
-                continue;
-            }
-            let speedups: Vec<f64> = r
-                .scenes
-                .iter()
-                .flat_map(|s| s.variants.iter())
-                .filter(|v| &v.variant == variant)
-                .filter_map(|v| v.speedup)
-                .collect();
-            let mean = (speedups.iter().map(|s| s.ln()).sum::<f64>() / speedups.len() as f64).exp();
-            if mean > best.1 {
-                best = (variant.to_string(), mean);
-            }
-        }
-        let f = find(&findings, "fastest variant");
-        assert!(f.contains(&format!("is {}:", best.0)), "{f}");
-        assert!(f.contains(&format!("{:.2}×", best.1)), "{f}");
+        // The profile and the fastest variant are the answers' (sections::answers),
+        // not findings of their own: a mean over every family hid the story.
+        assert!(
+            findings.iter().all(|f| !f.contains("fastest variant")),
+            "{findings:#?}"
+        );
 
         // Variants leaving the identical band: exactly those with a non-identical band.
         let f = find(&findings, "leave the");

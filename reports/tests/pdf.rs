@@ -90,7 +90,7 @@ fn sample_renders_to_a_pdf_of_at_least_eight_pages() {
     if let Some(text) = pdf_text(&path) {
         for expected in [
             "rtprof report",
-            "Headline findings",
+            "Findings beside the answers",
             "Flat profile",
             "Amdahl",
             "Table 7",

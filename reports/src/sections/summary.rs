@@ -28,7 +28,7 @@ pub fn summary(b: &mut Builder) -> Section {
             ],
         });
     }
-    s.blocks.push(Block::heading("Headline findings"));
+    s.blocks.push(Block::heading("Findings beside the answers"));
     let findings = headline_findings(r);
     s.blocks.push(if findings.is_empty() {
         Block::empty(
