@@ -536,7 +536,7 @@ impl Document {
             section.blocks = opening.into_iter().collect();
             section.blocks.push(Block::note(
                 Tone::Neutral,
-                "This section is in the HTML report (report.html), and its figures are in variants.csv and results.json: its tables, one per scene, would take dozens of printed pages.",
+                "The rest of this section is in the HTML report (report.html), and its figures are in results.json (and variants.csv): its tables of every scene would take pages of numbers here.",
             ));
         }
         doc

@@ -19,6 +19,8 @@ pub fn bvh_quality(b: &mut Builder) -> Option<Section> {
         return None;
     }
     let mut s = b.section("bvh-quality", None);
+    // A table of every scene and variant: the HTML's (the PDF keeps the opening).
+    s.html_only = true;
     s.text("Each build strategy's tree: its size and shape, the surface area heuristic's cost and the end-point overlap (both with an interior node costing 0.5 and a primitive test 1; lower predicts a cheaper traversal), the nodes, leaves and tests per ray the SAH model predicts against what a counted render measured, and the time of a timed render with the tree.");
     // Scenes with one tree (the bvh variant's, on frames too large to render again)
     // share one table; those with both builders get their comparison.

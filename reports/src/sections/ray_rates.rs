@@ -20,6 +20,8 @@ pub fn ray_rates(b: &mut Builder) -> Option<Section> {
         return None;
     }
     let mut s = b.section("ray-rates", None);
+    // A table of every scene and variant: the HTML's (the PDF keeps the opening).
+    s.html_only = true;
     if let Some(intro) = intro(&rows) {
         s.text(intro);
     }
