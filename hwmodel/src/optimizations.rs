@@ -122,7 +122,8 @@ mod tests {
     use super::*;
     use crate::library::OpKind;
 
-    fn costs() -> Vec<OptimizationCost> {
+    /// The thesis's device and its library.
+    fn ep4ce115() -> (Library, DeviceSpec) {
         let lib = Library::cyclone_iv_e();
         let device = lib
             .devices
@@ -130,6 +131,11 @@ mod tests {
             .find(|d| d.name == "EP4CE115")
             .cloned()
             .unwrap_or_else(|| panic!("EP4CE115 in the library"));
+        (lib, device)
+    }
+
+    fn costs() -> Vec<OptimizationCost> {
+        let (lib, device) = ep4ce115();
         thesis_optimizations(&lib, &device, 7, 640, 480, 50e6)
     }
 
@@ -199,13 +205,7 @@ mod tests {
         assert_ne!(most.state, FitState::DoesNotFit, "{}", most.label);
         assert!(most.design.fast_sqrt && most.design.ortho && most.design.no_rsqrt_shading);
         // One more unit than the most does not fit.
-        let lib = Library::cyclone_iv_e();
-        let device = lib
-            .devices
-            .iter()
-            .find(|d| d.name == "EP4CE115")
-            .cloned()
-            .unwrap_or_else(|| panic!("EP4CE115"));
+        let (lib, device) = ep4ce115();
         let more = Design {
             units: most.design.units + 1,
             ..most.design

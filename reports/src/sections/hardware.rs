@@ -122,9 +122,17 @@ pub fn optimizations_sentence(
         format::count(thesis.fill_cycles.saturating_sub(saving.fill_cycles)),
         format::seconds(thesis.frame_seconds - saving.frame_seconds),
         if most.design.units > 1 {
+            let on_paper = most.state == FitState::FitsOnPaper;
             format!(
-                "with them, {} fit and take the frame to {}.",
+                "with them, {} {} the frame to {}.",
                 format::plural(most.design.units as usize, "unit"),
+                if on_paper {
+                    format!(
+                        "fit, but only on paper (above the {ROUTING_HEADROOM_PERCENT} % routing headroom), and would take"
+                    )
+                } else {
+                    "fit and take".to_string()
+                },
                 format::seconds(most.frame_seconds)
             )
         } else {
@@ -469,6 +477,14 @@ mod tests {
         );
         assert!(
             said.contains("with them, 2 units fit and take the frame to 73.7 ms"),
+            "{said}"
+        );
+        // Above the routing headroom the units fit on paper only, and the sentence says so.
+        let mut on_paper = rows.clone();
+        on_paper[2].state = FitState::FitsOnPaper;
+        let said = optimizations_sentence(&on_paper, "EP4CE115").unwrap_or_default();
+        assert!(
+            said.contains("with them, 2 units fit, but only on paper (above the 85 % routing headroom), and would take the frame to 73.7 ms"),
             "{said}"
         );
     }
