@@ -4,6 +4,7 @@
 //! | file | sections |
 //! |---|---|
 //! | `answers.rs` | answers (where the time goes, what the optimizations buy and cost, whether the FPGA pays off) |
+//! | `fpga_answer.rs` | the break-even behind the third answer |
 //! | `profile.rs` | the profile chapter (flat profile, charts, flamegraphs, Amdahl); profile-details |
 //! | `variants.rs` | the variants chapter (the scene × variant matrix); variants-by-scene |
 //! | `hardware.rs` | the hardware chapter (tables 7 and 8, the optimizations costed, device fit, software against hardware) |
@@ -30,6 +31,7 @@ pub(crate) mod benchmarks;
 pub(crate) mod bvh_quality;
 pub(crate) mod closing;
 pub(crate) mod comparison;
+pub mod fpga_answer;
 pub mod hardware;
 pub mod images;
 pub(crate) mod pixel_maps;
