@@ -773,10 +773,12 @@ fn profile_writes_both_views_exports_and_json_with_calls_per_render() {
         "profile",
         &rings,
         "--size",
-        "20x15",
+        "10x8",
         "--threads",
         "1",
-        // Enough that a render is repeated also at 4,000 samples per CPU second.
+        // A 10x8 render takes ~12 ms of CPU here (~50 samples at 4,000 a CPU
+        // second): 400 samples need ~8 renders, so it repeats even when a busy
+        // machine makes each render several times slower.
         "--min-samples",
         "400",
         "--diff-with",
@@ -827,14 +829,14 @@ fn profile_writes_both_views_exports_and_json_with_calls_per_render() {
 
     let json: serde_json::Value =
         serde_json::from_slice(&out.stdout).unwrap_or_else(|e| panic!("{e}"));
-    let count = rtprof(&["count", &rings, "--size", "20x15", "--json"]);
+    let count = rtprof(&["count", &rings, "--size", "10x8", "--json"]);
     let counts: serde_json::Value =
         serde_json::from_slice(&count.stdout).unwrap_or_else(|e| panic!("{e}"));
     // The render is repeated to gather samples; calls stay those of one render.
     let renders = json["profile"]["renders"].as_u64().unwrap();
     assert!(
         renders > 1,
-        "a 20x15 render should need repeating: {renders}"
+        "a 10x8 render should need repeating: {renders}"
     );
     assert!(flat.contains(&format!("{renders} renders sampled; calls are per render")));
     let calls_of = |view: &str, name: &str| {
