@@ -71,8 +71,21 @@ fn wide_bvh_keeps_the_baseline_picture_and_ray_counts_on_all_twelve_spd_scenes()
         let m = compare(&image(&base_frame), &image(&frame)).unwrap_or_else(|e| panic!("{e}"));
         assert!(m.rms <= 0.5, "{name}: RMS {}", m.rms);
         assert_eq!(counts.rays, base.rays, "{name}");
-        // The same tests on the same leaves as the binary tree: the same floats.
-        assert_eq!(frame, bvh_frame, "{name}: bvh+simd differs from bvh");
+        if scene.polygons.len() + scene.patches.len() <= 1 {
+            // Quadrics and at most a floor: the same tests on the same leaves as the
+            // binary tree, the same floats.
+            assert_eq!(frame, bvh_frame, "{name}: bvh+simd differs from bvh");
+        } else {
+            // Outlines as triangles: the polygon's plane test gives the same distance,
+            // the edges differ only by rounding at silhouettes.
+            assert!(counts.tests.triangle.tests > 0, "{name}");
+            // Only outlines of many vertices (the gears' faces) stay whole.
+            let long = scene.polygons.iter().any(|p| p.outline.vertices.len() > 8);
+            assert_eq!(counts.tests.polygon.tests > 0, long, "{name}");
+            assert_eq!(counts.tests.patch.tests, 0, "{name}");
+            let m = compare(&image(&bvh_frame), &image(&frame)).unwrap_or_else(|e| panic!("{e}"));
+            assert!(m.rms <= 0.5, "{name}: RMS {} against bvh", m.rms);
+        }
         assert!(counts.accel.nodes_visited > 0 && counts.accel.lanes_issued > 0);
         // Packets of eye rays (and of their shadow rays) find each ray's own closest hit
         // and blockers: the same frame and rays. Their box and leaf work differs (a

@@ -23,12 +23,13 @@ use tracer::image_io::encode_png_rgb8;
 /// The counters mapped, when the render did any of that work (a map of zeros says
 /// nothing): primitive tests by kind, the BVH's traversal, shadow rays and the
 /// thesis's bottleneck, the dot product.
-const MAPPED: [&str; 9] = [
+const MAPPED: [&str; 10] = [
     "tests.sphere.tests",
     "tests.cylinder.tests",
     "tests.cone.tests",
     "tests.polygon.tests",
     "tests.patch.tests",
+    "tests.triangle.tests",
     "accel.nodes_visited",
     "accel.leaves_visited",
     "rays.shadow",

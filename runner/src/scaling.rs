@@ -238,7 +238,7 @@ fn measure(
     let rays = counts.rays.total();
     let per_ray = |x: u64| x as f64 / rays.max(1) as f64;
     let t = counts.tests;
-    let tests = t.sphere.tests + t.cylinder.tests + t.cone.tests + t.polygon.tests + t.patch.tests;
+    let tests = t.total();
     Ok(Measured {
         point: ScalingPoint {
             family: String::new(),

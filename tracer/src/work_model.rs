@@ -55,9 +55,12 @@ pub fn flops(counts: &Counts) -> u64 {
 const NODE_BYTES: u64 = 32;
 /// Bytes of one primitive reference in a BVH leaf.
 const PRIM_REF_BYTES: u64 = 8;
-/// Bytes of one SIMD lane: a sphere lane holds 5 floats, a cylinder lane 9.
+/// Bytes of one SIMD lane: a sphere lane holds 5 floats, a cylinder lane 9, a triangle
+/// lane 18 (its plane's normal and point, three edge functions) and its owner's
+/// 8-byte reference.
 const SPHERE_LANE_BYTES: u64 = 20;
 const CYLINDER_LANE_BYTES: u64 = 36;
+const TRIANGLE_LANE_BYTES: u64 = 80;
 
 /// The bytes a render with `counts` reads from the records of `scene` and its
 /// structure (module doc). `simd`: the spheres and cylinders were tested in lanes.
@@ -90,10 +93,14 @@ pub fn bytes_touched(counts: &Counts, scene: &Scene, simd: bool) -> u64 {
     let size = |bytes: usize| bytes as u64;
     let curved = if simd {
         // The lanes issued, each as wide as its kind's lane (split by the tests).
-        let (spheres, cylinders) = (t.sphere.tests, t.cylinder.tests);
+        let (spheres, cylinders, triangles) = (t.sphere.tests, t.cylinder.tests, t.triangle.tests);
         let lanes = counts.accel.lanes_issued;
-        let active = (spheres + cylinders).max(1);
-        lanes * (spheres * SPHERE_LANE_BYTES + cylinders * CYLINDER_LANE_BYTES) / active
+        let active = (spheres + cylinders + triangles).max(1);
+        lanes
+            * (spheres * SPHERE_LANE_BYTES
+                + cylinders * CYLINDER_LANE_BYTES
+                + triangles * TRIANGLE_LANE_BYTES)
+            / active
     } else {
         t.sphere.tests * size(std::mem::size_of::<crate::primitives::Sphere>())
             + t.cylinder.tests * size(std::mem::size_of::<crate::primitives::Cylinder>())
@@ -166,5 +173,11 @@ mod tests {
         lanes.tests.sphere.tests = 3;
         lanes.accel.lanes_issued = 8;
         assert_eq!(bytes_touched(&lanes, &scene, true), 8 * 20);
+        // Two triangle lanes beside the three spheres: the 8 lanes split 3 : 2.
+        lanes.tests.triangle.tests = 2;
+        assert_eq!(
+            bytes_touched(&lanes, &scene, true),
+            8 * (3 * 20 + 2 * 80) / 5
+        );
     }
 }

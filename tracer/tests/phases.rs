@@ -107,7 +107,7 @@ fn allowed_parents(phase: Phase, accel_has_traversal: bool) -> Vec<Option<Phase>
         Shading => vec![Some(SampleRow), Some(SecondaryRays)],
         ShadowQuery | SecondaryRays => vec![Some(Shading)],
         Traversal => vec![Some(ClosestHit), Some(ShadowQuery)],
-        SphereTest | CylinderTest | ConeTest | PolygonTest | PatchTest => query,
+        SphereTest | CylinderTest | ConeTest | PolygonTest | PatchTest | TriangleTest => query,
         PixelFill => vec![None],
     }
 }
@@ -219,6 +219,17 @@ fn every_primitive_test_is_its_kinds_phase_under_the_query_or_the_traversal() {
             .max();
         assert!(deepest_shading >= Some(3), "{list}: {deepest_shading:?}");
     }
+}
+
+#[test]
+fn the_wide_bvh_tests_polygons_and_patches_as_triangles_in_their_own_phase() {
+    let p = probe(&builtin("primitives"), "bvh+simd");
+    check_nesting(&p, true);
+    let stacks = p.at(Stat::TriangleTest);
+    assert!(!stacks.is_empty(), "no triangle test");
+    assert_eq!(leaves(&stacks), BTreeSet::from([Phase::TriangleTest]));
+    // The outlines are tested as triangles only: no polygon or patch test is left.
+    assert!(p.at(Stat::PolygonTest).is_empty() && p.at(Stat::PatchTest).is_empty());
 }
 
 #[test]

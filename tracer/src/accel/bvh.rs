@@ -14,6 +14,7 @@
 
 mod packet;
 mod quality;
+mod triangles;
 mod wide;
 
 pub use packet::PACKET;
@@ -281,7 +282,6 @@ impl<'s> Bvh<'s> {
 
     /// Builds the tree over every primitive of `scene` with `builder`.
     pub fn build_with(scene: &'s Scene, builder: BvhBuilder) -> Self {
-        let mut items = Vec::with_capacity(scene.primitive_count());
         let kinds = [
             (PrimKind::Sphere, scene.spheres.len()),
             (PrimKind::Cylinder, scene.cylinders.len()),
@@ -289,20 +289,32 @@ impl<'s> Bvh<'s> {
             (PrimKind::Polygon, scene.polygons.len()),
             (PrimKind::Patch, scene.patches.len()),
         ];
+        let mut items = Vec::with_capacity(scene.primitive_count());
         for (kind, n) in kinds {
             for index in 0..n {
                 let prim = PrimRef {
                     kind,
                     index: index as u32,
                 };
-                let bounds = bounds_of(scene, prim);
-                items.push(BuildItem {
-                    bounds,
-                    centroid: bounds.centroid(),
-                    prim,
-                });
+                items.push((prim, bounds_of(scene, prim)));
             }
         }
+        Self::build_over(scene, builder, items)
+    }
+
+    /// Builds the tree over `items`, each a reference and its box. The wide BVH builds
+    /// its binary tree over its own items (triangles in place of polygons), whose
+    /// references then index its tables rather than `scene`: such a tree is only
+    /// collapsed, never queried.
+    fn build_over(scene: &'s Scene, builder: BvhBuilder, items: Vec<(PrimRef, Aabb)>) -> Self {
+        let mut items: Vec<BuildItem> = items
+            .into_iter()
+            .map(|(prim, bounds)| BuildItem {
+                bounds,
+                centroid: bounds.centroid(),
+                prim,
+            })
+            .collect();
         let mut bvh = Self {
             scene,
             // Pairs: one per interior node (at most n - 1) and the root's.

@@ -80,6 +80,10 @@ pub struct TestCounts {
     pub cone: TestHits,
     pub polygon: TestHits,
     pub patch: TestHits,
+    /// The triangles of polygons and patches that the wide BVH tests in lanes (zero
+    /// for the other structures, which test the outlines whole).
+    #[serde(default)]
+    pub triangle: TestHits,
     pub plane: TestHits,
 }
 
@@ -92,6 +96,7 @@ impl TestCounts {
             + self.cone.tests
             + self.polygon.tests
             + self.patch.tests
+            + self.triangle.tests
     }
 }
 

@@ -327,6 +327,6 @@ mod tests {
         assert_eq!(json["tests"]["sphere"]["tests"], 2);
         assert_eq!(json["rays"]["primary"], 7);
         assert_eq!(json["calls"]["color_contribution"], 0);
-        assert_eq!(counts.rows().len(), 35);
+        assert_eq!(counts.rows().len(), 37);
     }
 }

@@ -74,11 +74,14 @@ pub enum Phase {
     /// One sample row of the parallel loop (a worker's root phase): the loop itself,
     /// storing the row's samples, the progress call.
     SampleRow = 13,
+    /// Triangle tests (a SIMD pack of the triangles of polygons and patches, in the
+    /// wide BVH).
+    TriangleTest = 14,
 }
 
 impl Phase {
     /// Every phase, by value.
-    pub const ALL: [Phase; 13] = [
+    pub const ALL: [Phase; 14] = [
         Phase::CameraRay,
         Phase::ClosestHit,
         Phase::ShadowQuery,
@@ -92,6 +95,7 @@ impl Phase {
         Phase::SecondaryRays,
         Phase::PixelFill,
         Phase::SampleRow,
+        Phase::TriangleTest,
     ];
 
     /// The short readable name, used as a function identity in profiles (never
@@ -107,6 +111,7 @@ impl Phase {
             Phase::ConeTest => "cone test",
             Phase::PolygonTest => "polygon test",
             Phase::PatchTest => "patch test",
+            Phase::TriangleTest => "triangle test",
             Phase::Shading => "shading",
             Phase::SecondaryRays => "reflection/refraction set-up",
             Phase::PixelFill => "pixel fill",
@@ -143,7 +148,8 @@ impl Phase {
             | Phase::CylinderTest
             | Phase::ConeTest
             | Phase::PolygonTest
-            | Phase::PatchTest => Some(2),
+            | Phase::PatchTest
+            | Phase::TriangleTest => Some(2),
             Phase::Shading | Phase::SecondaryRays | Phase::PixelFill | Phase::SampleRow => None,
         }
     }
@@ -339,6 +345,7 @@ pub fn phase_calls(counts: &super::Counts) -> Vec<(Phase, u64)> {
         (Phase::ConeTest, t.cone.tests),
         (Phase::PolygonTest, t.polygon.tests),
         (Phase::PatchTest, t.patch.tests),
+        (Phase::TriangleTest, t.triangle.tests),
         (Phase::Shading, counts.calls.shade),
     ]
 }
@@ -419,7 +426,7 @@ mod tests {
     #[test]
     fn work_phases_sit_on_top_of_the_pushed_scopes() {
         let work: Vec<Phase> = Phase::ALL.into_iter().filter(|p| !p.is_scope()).collect();
-        assert_eq!(work.len(), 9, "{work:?}");
+        assert_eq!(work.len(), 10, "{work:?}");
         let (inside, after) = with_phase(Phase::ShadowQuery, || {
             let inside = with_phase(Phase::CylinderTest, || (phase_stack_key(), phase_depth()));
             (inside, (phase_stack_key(), phase_depth()))

@@ -163,6 +163,13 @@ counter_table! {
     PatchTest => tests.patch.tests: "ray-patch tests run" ["Patch::intersect"];
     PatchHit => tests.patch.hits:
         "ray-patch tests whose plane hit inside the query's range lies inside the outline" [];
+    // The wide BVH (`bvh+simd`) tests polygons and patches as the triangles of their
+    // outlines, 8 in SIMD lanes: a triangle test is the plane test of the triangle's
+    // polygon or patch, then its three edges.
+    TriangleTest => tests.triangle.tests:
+        "ray-triangle tests run (triangles of polygons and patches, in the wide BVH's lanes)" [];
+    TriangleHit => tests.triangle.hits:
+        "ray-triangle tests whose plane hit inside the query's range lies inside the triangle" [];
     // The plane test opens every polygon and patch test (as in the thesis's table).
     PlaneTest => tests.plane.tests: "ray-plane tests: the first step of every polygon and patch test"
         ["PlanarOutline::intersect_plane"];
@@ -318,7 +325,7 @@ mod tests {
                 "{stat:?}"
             );
         }
-        assert_eq!(STAT_COUNT, 29);
+        assert_eq!(STAT_COUNT, 31);
         // The rest are the six ray counts.
         let rays: Vec<_> = COUNTERS.iter().filter(|d| d.stat.is_none()).collect();
         assert_eq!(rays.len(), 6);
@@ -340,7 +347,7 @@ mod tests {
             .collect();
         // Every value is distinct, so equal maps mean every key reads its own field.
         assert_eq!(rows, leaves);
-        assert_eq!(rows.values().collect::<BTreeSet<_>>().len(), 35);
+        assert_eq!(rows.values().collect::<BTreeSet<_>>().len(), 37);
         assert_eq!(
             by_key("tests.sphere.tests").map(|d| d.stat),
             Some(Some(Stat::SphereTest))

@@ -159,7 +159,7 @@ impl Variant {
                 "trace a checkerboard of samples, fill the rest with the mean of traced neighbours (8.3.5)"
             }
             Variant::Simd => {
-                "spheres and cylinders tested 8 at a time in SIMD lanes, then one minimum (8.3.3); with bvh: 8-wide nodes whose boxes and leaf spheres are tested in lanes"
+                "spheres and cylinders tested 8 at a time in SIMD lanes, then one minimum (8.3.3); with bvh: 8-wide nodes whose boxes, leaf spheres and the triangles of polygons and patches are tested in lanes"
             }
             Variant::Bvh => {
                 "bounding volume hierarchy (binned SAH) over all primitives, front-to-back traversal"

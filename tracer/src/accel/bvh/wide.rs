@@ -4,10 +4,13 @@
 //! tests all the children's boxes at once; the children hit are visited nearest first,
 //! and a shadow ray stops at its first blocker.
 //!
-//! Leaves are the binary tree's leaves. Their spheres are packed into lanes too (a
-//! leaf's spheres are tested together, the thesis's units on one leaf); the other
-//! kinds are tested one by one with the same tests as brute force, so the picture is
-//! the baseline's.
+//! The binary tree is built over the scene's primitives with polygons and patches
+//! replaced by the triangles of their outlines ([`triangles`]). Leaves are the binary
+//! tree's leaves. Their spheres are packed into lanes too (a leaf's spheres are tested
+//! together, the thesis's units on one leaf), and so are their triangles; cylinders,
+//! cones and the outlines kept whole are tested one by one with the same tests as
+//! brute force. Spheres and quadrics give the baseline's picture bit for bit;
+//! triangles the polygon's distance, with their edges differing by rounding only.
 //!
 //! The box and sphere lanes are compiled twice: for the build's target (SSE2 on any
 //! x86-64) and with AVX2 + FMA, chosen at run time when the CPU has them. Neither path
@@ -17,9 +20,10 @@
 //! Counting: every child box tested adds one `accel.nodes_visited` (the root has no box
 //! of its own: its children's cover it), every leaf entered one `accel.leaves_visited`; each node step issues
 //! [`WIDTH`] lanes (`accel.lanes_issued`), as many active as the node has children, and
-//! each sphere pack as many as its leaf has spheres. The primitive tests count
+//! each sphere or triangle pack as many as it holds. The primitive tests count
 //! themselves with the operations of the scalar test.
 
+use super::triangles::{self, Piece, Triangle, TrianglePack, triangle_pack};
 use super::{Aabb, Bvh, BvhBuilder, Node};
 use crate::accel::{Intersector, cpu_has_avx2_fma, intersect_primitive};
 use crate::counter::{Counter, Phase, Stat};
@@ -88,6 +92,9 @@ pub(super) struct Leaf {
     pack: u32,
     /// Spheres in the pack.
     spheres: u32,
+    /// The leaf's triangles: `triangle_packs` packs from `first_triangle_pack`.
+    first_triangle_pack: u32,
+    triangle_packs: u32,
     /// The leaf's other primitives: `others` entries from `first`.
     first: u32,
     others: u32,
@@ -128,6 +135,7 @@ pub struct WideBvh<'s> {
     pub(super) nodes: Vec<WideNode>,
     pub(super) leaves: Vec<Leaf>,
     packs: Vec<SpherePack>,
+    triangle_packs: Vec<TrianglePack>,
     others: Vec<PrimRef>,
     stats: WideBvhStats,
     pub(super) avx2: bool,
@@ -149,20 +157,24 @@ struct Entry {
 pub(super) const LEAF: u32 = 1 << 31;
 
 impl<'s> WideBvh<'s> {
-    /// Builds the binary tree with `builder` and collapses it.
+    /// Builds the binary tree with `builder` over the scene's items (polygons and
+    /// patches as their triangles, [`triangles::items`]) and collapses it.
     pub fn build_with(scene: &'s Scene, builder: BvhBuilder) -> Self {
-        Self::collapse(&Bvh::build_with(scene, builder))
+        let (items, pieces) = triangles::items(scene);
+        Self::collapse(&Bvh::build_over(scene, builder, items), &pieces)
     }
 
-    /// Collapses a binary tree: each wide node takes the two children of a binary node
-    /// and keeps opening its largest interior child (by surface area) until it has
+    /// Collapses a binary tree built over [`triangles::items`] (whose polygon
+    /// references index `pieces`): each wide node takes the two children of a binary
+    /// node and keeps opening its largest interior child (by surface area) until it has
     /// [`WIDTH`] children or only leaves.
-    pub fn collapse(binary: &Bvh<'s>) -> Self {
+    fn collapse(binary: &Bvh<'s>, pieces: &[Piece]) -> Self {
         let mut wide = Self {
             scene: binary.scene,
             nodes: huge_pages::vec_with_capacity(binary.nodes.len().max(1)),
             leaves: Vec::with_capacity(binary.stats.leaves),
             packs: Vec::new(),
+            triangle_packs: Vec::new(),
             others: Vec::with_capacity(binary.prims.len()),
             stats: WideBvhStats {
                 builder: binary.stats.builder,
@@ -175,10 +187,10 @@ impl<'s> WideBvh<'s> {
             wide.nodes.push(WideNode::UNUSED);
             if root.count > 0 {
                 // A one-leaf tree: a root node with that leaf as its only child.
-                let leaf = wide.push_leaf(binary, &root);
+                let leaf = wide.push_leaf(binary, pieces, &root);
                 wide.nodes[0].set(0, root.bounds(), leaf, true);
             } else {
-                wide.fill(binary, 0, &root, 1);
+                wide.fill(binary, pieces, 0, &root, 1);
             }
         }
         wide.nodes.shrink_to_fit();
@@ -189,12 +201,13 @@ impl<'s> WideBvh<'s> {
         wide.stats.bytes = wide.nodes.capacity() * size_of::<WideNode>()
             + wide.leaves.capacity() * size_of::<Leaf>()
             + wide.packs.capacity() * size_of::<SpherePack>()
+            + wide.triangle_packs.capacity() * size_of::<TrianglePack>()
             + wide.others.capacity() * size_of::<PrimRef>();
         wide
     }
 
     /// Fills wide node `at` with the collapsed children of binary interior node `node`.
-    fn fill(&mut self, binary: &Bvh, at: usize, node: &Node, depth: usize) {
+    fn fill(&mut self, binary: &Bvh, pieces: &[Piece], at: usize, node: &Node, depth: usize) {
         self.stats.max_depth = self.stats.max_depth.max(depth);
         let mut open: Vec<Node> = binary.nodes[node.offset as usize].0.to_vec();
         while open.len() < WIDTH {
@@ -216,21 +229,35 @@ impl<'s> WideBvh<'s> {
         }
         for (lane, child) in open.iter().enumerate() {
             if child.count > 0 {
-                let leaf = self.push_leaf(binary, child);
+                let leaf = self.push_leaf(binary, pieces, child);
                 self.nodes[at].set(lane, child.bounds(), leaf, true);
             } else {
                 let index = self.nodes.len();
                 self.nodes.push(WideNode::UNUSED);
                 self.nodes[at].set(lane, child.bounds(), index as u32, false);
-                self.fill(binary, index, child, depth + 1);
+                self.fill(binary, pieces, index, child, depth + 1);
             }
         }
     }
 
-    /// Stores a binary leaf: its spheres in a pack, the rest as references.
-    fn push_leaf(&mut self, binary: &Bvh, node: &Node) -> u32 {
+    /// Stores a binary leaf: its spheres in a pack, its triangles in packs, the rest as
+    /// references (polygon references of the binary tree are pieces).
+    fn push_leaf(&mut self, binary: &Bvh, pieces: &[Piece], node: &Node) -> u32 {
         let first = node.offset as usize;
-        let prims = &binary.prims[first..first + node.count as usize];
+        let items = &binary.prims[first..first + node.count as usize];
+        let mut leaf_triangles: Vec<Triangle> = Vec::new();
+        let mut prims: Vec<PrimRef> = Vec::with_capacity(items.len());
+        for item in items {
+            match (item.kind, pieces.get(item.index as usize)) {
+                (PrimKind::Polygon, Some(Piece::Triangle(t))) => leaf_triangles.push(*t),
+                (PrimKind::Polygon, Some(Piece::Whole(prim))) => prims.push(*prim),
+                _ => prims.push(*item),
+            }
+        }
+        let first_triangle_pack = self.triangle_packs.len() as u32;
+        for group in leaf_triangles.chunks(WIDTH) {
+            self.triangle_packs.push(TrianglePack::new(group));
+        }
         let spheres: Vec<u32> = prims
             .iter()
             .filter(|p| p.kind == PrimKind::Sphere)
@@ -239,6 +266,8 @@ impl<'s> WideBvh<'s> {
         let mut leaf = Leaf {
             pack: EMPTY,
             spheres: 0,
+            first_triangle_pack,
+            triangle_packs: self.triangle_packs.len() as u32 - first_triangle_pack,
             first: self.others.len() as u32,
             others: 0,
         };
@@ -487,6 +516,22 @@ pub(super) fn search_leaf<C: Counter, const FROM_EYE: bool, const ANY: bool>(
                 index: pack.index[lane],
             };
             let hit = Hit { t, prim, aux: 0.0 };
+            if ANY {
+                return Some(hit);
+            }
+            closer_than = t;
+            best = Some(hit);
+        }
+    }
+    let packs = leaf.first_triangle_pack as usize;
+    for pack in &bvh.triangle_packs[packs..packs + leaf.triangle_packs as usize] {
+        let found = triangle_pack(pack, ray, t_min, reach, closer_than, ANY, bvh.avx2, c);
+        if let Some((t, lane)) = found {
+            let hit = Hit {
+                t,
+                prim: pack.owner[lane],
+                aux: 0.0,
+            };
             if ANY {
                 return Some(hit);
             }
@@ -777,200 +822,4 @@ impl Intersector for WideBvh<'_> {
 }
 
 #[cfg(test)]
-mod tests {
-    use super::super::tests::{mixed_scene, rays};
-    use super::*;
-    use crate::accel::BruteForce;
-    use crate::counter::{Count, NoCount};
-    use crate::nff::parse_nff;
-    use crate::vec3::Vec3;
-
-    /// Both code paths of a tree: the one this CPU runs and the portable one.
-    fn both_paths(scene: &Scene) -> [WideBvh<'_>; 2] {
-        let wide = WideBvh::build_with(scene, BvhBuilder::BinnedSah);
-        let mut portable = wide.clone();
-        portable.avx2 = false;
-        [wide, portable]
-    }
-
-    /// A cluster of overlapping spheres (leaves of several spheres: packs) around
-    /// cylinders and polygons.
-    fn cluster_scene() -> Scene {
-        let mut text = String::from(
-            "v\nfrom 0 -12 3\nat 0 0 0\nup 0 0 1\nangle 50\nhither 0\nresolution 8 8\n\
-             l 4 -6 8\nf 1 1 1 1 0 1 0 1\ns 0 0 0 -20\n",
-        );
-        let mut state = 99u32;
-        let mut next = || {
-            state = state.wrapping_mul(1_664_525).wrapping_add(1_013_904_223);
-            (state >> 8) as f32 / (1u32 << 24) as f32 * 2.0 - 1.0
-        };
-        for _ in 0..300 {
-            let (x, y, z) = (next() * 5.0, next() * 5.0, next() * 2.0);
-            text += &format!("s {x} {y} {z} {}\n", 0.2 + 0.3 * next().abs());
-        }
-        for i in 0..12 {
-            let x = i as f32 - 6.0;
-            text += &format!(
-                "c\n{x} 3 -1 0.2\n{x} 3.5 1 0.2\np 3\n{x} -3 -1\n{} -3 -1\n{x} -3 0\n",
-                x + 0.8
-            );
-        }
-        parse_nff(&text, "cluster.nff").unwrap_or_else(|e| panic!("{e}"))
-    }
-
-    #[test]
-    fn wide_tree_finds_the_same_hits_and_blockers_as_brute_force_bit_for_bit() {
-        for scene in [mixed_scene(), cluster_scene()] {
-            let brute = BruteForce::new(&scene);
-            let mut hits = 0;
-            for wide in both_paths(&scene) {
-                for ray in rays() {
-                    let a = brute.closest_hit(&ray, 0.0, &mut NoCount);
-                    let b = wide.closest_hit(&ray, 0.0, &mut NoCount);
-                    assert_eq!(
-                        a.map(|h| (h.prim, h.t, h.aux)),
-                        b.map(|h| (h.prim, h.t, h.aux)),
-                        "{ray:?}"
-                    );
-                    hits += usize::from(a.is_some());
-                    for limit in [1.0, 5.0, f32::INFINITY] {
-                        assert_eq!(
-                            brute.occluded(&ray, 0.0, limit, &mut NoCount),
-                            wide.occluded(&ray, 0.0, limit, &mut NoCount),
-                            "{ray:?} {limit}"
-                        );
-                    }
-                }
-            }
-            assert!(hits > 600, "the test rays must hit something: {hits}");
-        }
-    }
-
-    #[test]
-    fn every_primitive_is_in_exactly_one_leaf_and_nodes_are_wide() {
-        let scene = cluster_scene();
-        let wide = WideBvh::build_with(&scene, BvhBuilder::BinnedSah);
-        let mut seen: Vec<PrimRef> = wide.others.clone();
-        for leaf in &wide.leaves {
-            if leaf.spheres > 0 {
-                let pack = &wide.packs[leaf.pack as usize];
-                seen.extend(
-                    pack.index[..leaf.spheres as usize]
-                        .iter()
-                        .map(|&index| PrimRef {
-                            kind: PrimKind::Sphere,
-                            index,
-                        }),
-                );
-                // Unused lanes are never hit.
-                assert!(
-                    pack.radius_sq[leaf.spheres as usize..]
-                        .iter()
-                        .all(|r| *r == f32::NEG_INFINITY)
-                );
-            }
-        }
-        assert_eq!(seen.len(), scene.primitive_count());
-        let mut keys: Vec<(u8, u32)> = seen.iter().map(|p| (p.kind as u8, p.index)).collect();
-        keys.sort_unstable();
-        keys.dedup();
-        assert_eq!(keys.len(), scene.primitive_count());
-        let stats = wide.stats();
-        let binary = Bvh::build(&scene).stats();
-        assert_eq!(stats.leaves, binary.leaves);
-        // Collapsing removes interior nodes: n binary interior nodes in about n / 7 wide ones.
-        assert!(
-            stats.nodes * 3 < binary.nodes - binary.leaves,
-            "{stats:?} {binary:?}"
-        );
-        assert!(stats.mean_children > 4.0, "{stats:?}");
-        assert!(!wide.packs.is_empty());
-    }
-
-    #[test]
-    fn counts_of_a_two_leaf_tree_are_the_hand_computed_ones() {
-        // Two unit spheres 10 apart: one wide node with two leaf children (one sphere
-        // each, tested by the scalar test: a pack needs two).
-        let scene = parse_nff(
-            "v\nfrom 0 -20 0\nat 0 0 0\nup 0 0 1\nangle 40\nhither 0\nresolution 4 4\n\
-             f 1 1 1 1 0 1 0 1\ns -5 0 0 1\ns 5 0 0 1\n",
-            "two.nff",
-        )
-        .unwrap_or_else(|e| panic!("{e}"));
-        let wide = WideBvh::build_with(&scene, BvhBuilder::BinnedSah);
-        assert_eq!((wide.stats().nodes, wide.stats().leaves), (1, 2));
-        let ray: Ray = Ray {
-            origin: Vec3::new(-20.0, 0.0, 0.0),
-            dir: Vec3::new(1.0, 0.0, 0.0),
-        };
-        // Closest hit: both boxes tested (2 of 8 lanes), the near leaf entered and hit at
-        // t = 14, the far one dropped (it starts at 24 > 14).
-        let mut c = Count::default();
-        let hit = wide.closest_hit(&ray, 0.0, &mut c);
-        assert_eq!(hit.map(|h| (h.prim.index, h.t)), Some((0, 14.0)));
-        assert_eq!(c.get(Stat::NodesVisited), 2);
-        assert_eq!(c.get(Stat::LeavesVisited), 1);
-        assert_eq!((c.get(Stat::LanesIssued), c.get(Stat::LanesActive)), (8, 2));
-        assert_eq!((c.get(Stat::SphereTest), c.get(Stat::Intersect)), (1, 1));
-        // A shadow ray stops at the first leaf too.
-        let mut c = Count::default();
-        assert!(wide.occluded(&ray, 0.0, f32::INFINITY, &mut c));
-        assert_eq!(
-            (c.get(Stat::NodesVisited), c.get(Stat::LeavesVisited)),
-            (2, 1)
-        );
-        // Between the spheres, looking at neither: boxes tested, nothing entered.
-        let up: Ray = Ray {
-            origin: Vec3::ZERO,
-            dir: Vec3::new(0.0, 0.0, 1.0),
-        };
-        let mut c = Count::default();
-        assert!(wide.closest_hit(&up, 0.0, &mut c).is_none());
-        assert_eq!(
-            (c.get(Stat::NodesVisited), c.get(Stat::LeavesVisited)),
-            (2, 0)
-        );
-    }
-
-    #[test]
-    fn sphere_packs_count_their_live_lanes() {
-        // Three nearly coincident spheres: splitting them cannot pay, so one leaf and one
-        // pack of 3.
-        let scene = parse_nff(
-            "v\nfrom 0 -20 0\nat 0 0 0\nup 0 0 1\nangle 40\nhither 0\nresolution 4 4\n\
-             f 1 1 1 1 0 1 0 1\ns 0 0 0 1\ns 0.01 0 0 1\ns 0 0 0.01 1\n",
-            "three.nff",
-        )
-        .unwrap_or_else(|e| panic!("{e}"));
-        let wide = WideBvh::build_with(&scene, BvhBuilder::BinnedSah);
-        assert_eq!((wide.stats().leaves, wide.packs.len()), (1, 1));
-        let ray: Ray = Ray {
-            origin: Vec3::new(0.0, -20.0, 0.0),
-            dir: Vec3::new(0.0, 1.0, 0.0),
-        };
-        let mut c = Count::default();
-        let hit = wide.closest_hit(&ray, 0.0, &mut c);
-        let brute = BruteForce::new(&scene).closest_hit(&ray, 0.0, &mut NoCount);
-        assert_eq!(hit, brute);
-        // One node lane (the leaf) and one pack of 3 live lanes.
-        assert_eq!(
-            (c.get(Stat::LanesIssued), c.get(Stat::LanesActive)),
-            (16, 4)
-        );
-        // Each sphere meets the ray but is small as seen from 20 away (the first
-        // stage's discriminant b² - (|Voc|² - r²) ≈ 1 is below |Voc|²/2⁸ ≈ 1.56), so each
-        // runs both stages of the test: `sub` and two `dot`, then `scale`, `sub`, `dot`.
-        assert_eq!(
-            (
-                c.get(Stat::SphereTest),
-                c.get(Stat::Sub),
-                c.get(Stat::Dot),
-                c.get(Stat::Scale)
-            ),
-            (3, 6, 9, 3)
-        );
-        // Every sphere meets the ray (disc > 0): three square roots.
-        assert_eq!(c.get(Stat::Sqrt), 3);
-    }
-}
+mod tests;

@@ -49,12 +49,11 @@
 //! counts are the renderer's and agree with the other intersectors.
 
 mod ffi;
-mod triangulate;
 
 use std::ffi::{CStr, c_char, c_void};
 use std::sync::Mutex;
 
-use super::{Intersector, intersect_primitive};
+use super::{Intersector, intersect_primitive, triangulate};
 use crate::counter::{Counter, NoCount, Phase, Stat};
 use crate::primitives::PlanarOutline;
 use crate::ray::{Hit, PrimKind, PrimRef, Ray};

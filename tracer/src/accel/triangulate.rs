@@ -1,4 +1,5 @@
-//! Ear clipping of planar outlines into triangles for Embree's triangle meshes.
+//! Ear clipping of planar outlines into triangles: Embree's triangle meshes and the
+//! wide BVH's triangle lanes.
 //!
 //! rtprof's polygon test hits the plane of the first three vertices, then keeps the
 //! hit when its projection onto two coordinate axes (the plane normal's largest
@@ -17,15 +18,20 @@ use crate::primitives::PlanarOutline;
 /// An outline's vertices lifted onto its plane, and its triangles when ear clipping
 /// reproduces the crossing test's region.
 #[derive(Clone, Debug, Default, PartialEq)]
-pub(super) struct Lifted {
+pub(crate) struct Lifted {
     pub vertices: Vec<[f32; 3]>,
     /// Indices into `vertices`, each triangle turning as the outline; `None` for a
     /// self-intersecting or zero-area outline (the caller keeps rtprof's test).
     pub triangles: Option<Vec<[u32; 3]>>,
+    /// The written vertices projected onto `axes` (exactly the coordinates rtprof's
+    /// crossing test compares), where the triangles were clipped.
+    pub projected: Vec<[f64; 2]>,
+    /// The two coordinate axes kept (the normal's largest component dropped).
+    pub axes: [usize; 2],
 }
 
 /// The outline lifted onto its plane and triangulated.
-pub(super) fn lift(outline: &PlanarOutline) -> Lifted {
+pub(crate) fn lift(outline: &PlanarOutline) -> Lifted {
     let n = outline.normal.to_array().map(f64::from);
     let dropped = outline.normal.dominant_axis();
     let (a, b) = ((dropped + 1) % 3, (dropped + 2) % 3);
@@ -47,6 +53,8 @@ pub(super) fn lift(outline: &PlanarOutline) -> Lifted {
     Lifted {
         vertices: lifted,
         triangles: ear_clip(&projected),
+        projected,
+        axes: [a, b],
     }
 }
 
@@ -66,7 +74,7 @@ fn in_triangle(p: [f64; 2], [a, b, c]: [[f64; 2]; 3], sign: f64) -> bool {
 /// before the end, or when the triangles' area differs from the outline's: a
 /// self-intersecting outline, whose crossing-test (even-odd) region ear clipping
 /// cannot give.
-pub(super) fn ear_clip(points: &[[f64; 2]]) -> Option<Vec<[u32; 3]>> {
+pub(crate) fn ear_clip(points: &[[f64; 2]]) -> Option<Vec<[u32; 3]>> {
     let count = points.len();
     if count < 3 || u32::try_from(count).is_err() {
         return None;
