@@ -53,6 +53,9 @@ pub const TOP: &str = "raycaster_top";
 /// shading's 5).
 pub const FIELDS: u32 = 14;
 
+/// Most intersection units the generator builds (the comparator tree's width).
+pub const MAX_UNITS: u32 = 64;
+
 /// Memory delay-line segments shorter than this stay in registers (a circular buffer
 /// needs at least 2 words).
 const RAM_SEGMENT_MIN: u32 = 3;
@@ -656,6 +659,12 @@ pub fn generate(
 ) -> Result<GeneratedRtl, RtlError> {
     let design = pipeline.design;
     let units = design.units.max(1);
+    if units > MAX_UNITS {
+        return Err(RtlError::TooManyUnits {
+            units,
+            max: MAX_UNITS,
+        });
+    }
     if depth_bits == 0 || depth_bits > ADDRESS_BITS {
         return Err(RtlError::Generate(format!(
             "scene memory of 2^{depth_bits} primitives: the address has {ADDRESS_BITS} bits"

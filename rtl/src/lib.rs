@@ -57,6 +57,16 @@ pub enum RtlError {
     /// The design cannot be generated as asked.
     #[error("RTL generation: {0}")]
     Generate(String),
+    /// A block asked for by name that the design does not have.
+    #[error("no block '{block}' in the {design} design: one of {names}")]
+    UnknownBlock {
+        block: String,
+        design: String,
+        names: String,
+    },
+    /// More intersection units than the generator builds ([`generate::MAX_UNITS`]).
+    #[error("the RTL is generated for at most {max} intersection units, not {units}")]
+    TooManyUnits { units: u32, max: u32 },
     /// A synthesis that cannot be run or reported as asked.
     #[error("synthesis: {0}")]
     Synth(String),
