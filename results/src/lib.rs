@@ -1,7 +1,8 @@
 //! `results`: the contract between an rtprof suite and everything that reads its
 //! output. This crate defines ONLY the serde types of `rtprof.results/N` (the current
-//! schema [`SCHEMA`], `rtprof.results/2`, in [`schema`] and [`hardware`]; the previous
-//! one in [`v1`], read and upgraded), their validation on read ([`Results::from_json`]),
+//! schema [`SCHEMA`], `rtprof.results/3`, in [`schema`] and [`hardware`]; `/2` is read
+//! with the same types, `/1` from [`v1`], read and upgraded), their validation on read
+//! ([`Results::from_json`]),
 //! the regression gate ([`gate`]), and the JSON Schema derived from the types
 //! ([`json_schema`], checked in as `docs/results.schema.json`).
 //!

@@ -7,6 +7,9 @@
 //! frame and reads back the frame buffer, the cycles from the first pixel's issue to
 //! the last frame-buffer write, and each block's latency as built (the first valid
 //! output after the first valid input, from the blocks' structural monitors).
+//! [`SimCheck`] holds one frame against the model and the reference picture: what
+//! `rtprof hw sim` prints and whether it agrees. [`verilator_command`] is the one
+//! Verilator command line (the operator tests build with it too).
 
 use std::collections::hash_map::DefaultHasher;
 use std::fmt::Write as _;
