@@ -527,56 +527,5 @@ fn push_arc_line(out: &mut String, times: Option<(f64, f64)>, calls: Option<u64>
     let _ = writeln!(out, "     {label}");
 }
 
-/// C's `%W.Ws` (right-aligned) or `%-W.Ws` (left-aligned): cut and padded to `width`.
-pub(super) fn c_field(text: &str, width: usize, left: bool) -> String {
-    let cut: String = text.chars().take(width).collect();
-    if left {
-        format!("{cut:<width$}")
-    } else {
-        format!("{cut:>width$}")
-    }
-}
-
-/// C's `%g`: six significant digits, trailing zeros dropped, exponent form for
-/// exponents below -4 or from 6 on.
-pub fn format_g(value: f64) -> String {
-    if value.is_nan() {
-        return "nan".to_owned();
-    }
-    if value.is_infinite() {
-        return if value > 0.0 { "inf" } else { "-inf" }.to_owned();
-    }
-    if value == 0.0 {
-        return if value.is_sign_negative() { "-0" } else { "0" }.to_owned();
-    }
-    // Rounded to six significant digits first: the rounding can change the exponent.
-    let scientific = format!("{value:.5e}");
-    let Some((mantissa, exponent)) = scientific.split_once('e') else {
-        return scientific;
-    };
-    let Ok(exponent) = exponent.parse::<i32>() else {
-        return scientific;
-    };
-    if (-4..6).contains(&exponent) {
-        let decimals = usize::try_from(5 - exponent).unwrap_or(0);
-        without_trailing_zeros(&format!("{value:.decimals$}")).to_owned()
-    } else {
-        let sign = if exponent < 0 { '-' } else { '+' };
-        format!(
-            "{}e{sign}{:02}",
-            without_trailing_zeros(mantissa),
-            exponent.unsigned_abs()
-        )
-    }
-}
-
-fn without_trailing_zeros(number: &str) -> &str {
-    if number.contains('.') {
-        number.trim_end_matches('0').trim_end_matches('.')
-    } else {
-        number
-    }
-}
-
 #[cfg(test)]
 pub(crate) mod tests;
