@@ -21,9 +21,10 @@ use tracer::{Counts, VariantSet};
 use crate::error::RunError;
 use crate::progress::Progress;
 use crate::reference_job::ImageError;
+use crate::render_setup::RenderSetup;
 use crate::staging::save_png;
 use crate::timing::TimingPolicy;
-use crate::variant_job::{RenderSetup, VariantMeasurement};
+use crate::variant_job::VariantMeasurement;
 
 /// One variant's row.
 #[derive(Serialize)]

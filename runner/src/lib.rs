@@ -15,6 +15,7 @@
 //! - [`reference_job`]: one render by the f64 reference renderer (`render --reference`);
 //! - [`pixel_maps`]: per-sample records into per-pixel maps (NPY, PNG, JSON);
 //! - [`variant_catalogue`]: what each variant does and how accurate it is;
+//! - [`render_setup`]: where and how a job renders (scene, options, pools, stop flag);
 //! - [`variant_job`]: one variant on one scene: counts, timed renders, picture;
 //! - [`estimate`]: how long a brute-force render of a big scene will take;
 //! - [`compare`]: variants side by side (`rtprof compare SCENE --variants`);
@@ -68,6 +69,7 @@ pub mod progress;
 pub mod ray_rates;
 pub mod reference_job;
 pub mod render_job;
+pub mod render_setup;
 pub mod report_files;
 pub mod scaling;
 pub mod scene_input;

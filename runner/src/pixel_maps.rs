@@ -17,8 +17,8 @@ use tracer::{
 };
 
 use crate::error::RunError;
+use crate::render_setup::RenderSetup;
 use crate::staging::save;
-use crate::variant_job::RenderSetup;
 use tracer::image_io::encode_png_rgb8;
 
 /// The counters mapped, when the render did any of that work (a map of zeros says

@@ -6,7 +6,7 @@ use anyhow::{Context, Result};
 use runner::pixel_maps::{MapsContext, record_maps_of, write_maps, written_line};
 use runner::pool::thread_pool;
 use runner::render_job::SceneRender;
-use runner::variant_job::RenderSetup;
+use runner::render_setup::RenderSetup;
 use std::path::{Path, PathBuf};
 use std::sync::atomic::AtomicBool;
 use tracer::{Count, ShadingMode};
