@@ -14,9 +14,9 @@ use runner::suite::Suite;
 use runner::suite_dir::{DirRun, run_into_dir};
 use tokio::sync::watch;
 
-use crate::catalogue::Catalogue;
+use crate::catalogue::{Catalogue, Part};
 use crate::error::ApiError;
-use crate::job::{Job, JobProgress, JobRequest, JobStatus, Part};
+use crate::job::{Job, JobProgress, JobRequest, JobStatus};
 use crate::store::{PARTIAL_DIR, Store, list_files};
 
 struct Entry {
