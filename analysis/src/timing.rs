@@ -208,8 +208,9 @@ fn median_of_sorted(sorted: &[f64]) -> f64 {
 }
 
 /// Linear interpolation between order statistics (Hyndman & Fan type 7); `sorted`
-/// non-empty and ascending, `p` in [0, 1].
-fn quantile_of_sorted(sorted: &[f64], p: f64) -> f64 {
+/// non-empty and ascending, `p` in [0, 1]. The one quantile of the workspace (the
+/// bootstrap's intervals, the report's box plots).
+pub fn quantile_of_sorted(sorted: &[f64], p: f64) -> f64 {
     let position = (sorted.len() - 1) as f64 * p;
     let below = position.floor() as usize;
     let above = (below + 1).min(sorted.len() - 1);

@@ -26,7 +26,6 @@ use analysis::profile::session::Sampling;
 use analysis::profile::{Stack, StackSamples};
 use criterion::profiler::Profiler;
 use std::collections::BTreeMap;
-use std::io::Write as _;
 use std::path::Path;
 use std::time::Duration;
 
@@ -139,19 +138,11 @@ fn write_outputs(
     write_atomically(&dir.join("speedscope.json"), speedscope.as_bytes())
 }
 
-/// Writes `bytes` to a temporary file beside `path`, then renames it to `path`.
+/// Writes `bytes` to a temporary file beside `path`, then renames it to `path`
+/// ([`tracer::image_io::write_atomically`]).
 fn write_atomically(path: &Path, bytes: &[u8]) -> Result<(), String> {
-    let mut temporary = path.as_os_str().to_owned();
-    temporary.push(format!(".tmp{}", std::process::id()));
-    let temporary = Path::new(&temporary);
-    let written = std::fs::File::create(temporary)
-        .and_then(|mut file| file.write_all(bytes).and_then(|()| file.sync_all()))
-        .and_then(|()| std::fs::rename(temporary, path));
-    written.map_err(|e| {
-        // Best effort: do not leave the temporary file behind.
-        let _ = std::fs::remove_file(temporary);
-        format!("cannot write {}: {e}", path.display())
-    })
+    tracer::image_io::write_atomically(path, bytes)
+        .map_err(|e| format!("cannot write {}: {e}", path.display()))
 }
 
 /// One warning line on stderr.

@@ -147,7 +147,7 @@ pub struct DeviceSpec {
     pub name: String,
     /// The board or product line it is known from.
     pub board: String,
-    /// Whether the thesis measured on it (only the EP4CE115 was).
+    /// Whether the thesis measured on it (the library's TOML says which device).
     pub validated: bool,
     /// Logic elements (LE equivalents for families built of ALMs).
     pub le: u64,
@@ -201,6 +201,11 @@ pub const CYCLONE_IV_E: &str = include_str!("../data/cyclone_iv_e.toml");
 pub const CYCLONE_V: &str = include_str!("../data/cyclone_v.toml");
 
 impl Library {
+    /// The device the thesis measured on, as the library's TOML marks it (`validated`).
+    pub fn validated_device(&self) -> Option<&DeviceSpec> {
+        self.devices.iter().find(|d| d.validated)
+    }
+
     /// Parses a library file; `file` names it in errors.
     pub fn from_toml(text: &str, file: &str) -> Result<Self, LibraryError> {
         let library: Library = toml::from_str(text).map_err(|e| LibraryError::Parse {
@@ -289,6 +294,15 @@ pub fn find_device(name: &str) -> Result<(Library, DeviceSpec), LibraryError> {
             name: name.to_string(),
             known: device_names().join(", "),
         })
+}
+
+/// The name of the device the hardware commands use by default: the one the Cyclone
+/// IV E library marks `validated` (the thesis's board), read from its TOML, the one
+/// place that says which device the thesis measured on.
+pub fn default_device_name() -> String {
+    Library::cyclone_iv_e()
+        .validated_device()
+        .map_or_else(String::new, |d| d.name.clone())
 }
 
 /// Names of every embedded device, for error messages and `--help`.

@@ -273,8 +273,7 @@ fn device_finding(results: &Results) -> Option<String> {
     let d = hardware
         .devices
         .iter()
-        .find(|d| d.device == "EP4CE115")
-        .or_else(|| hardware.devices.iter().find(|d| d.validated))
+        .find(|d| d.validated)
         .or_else(|| hardware.devices.first())?;
     let exhausted = exhausted_resources(d);
     let use_text = format!(

@@ -8,7 +8,7 @@ pub use hwmodel::table::{
     Column as HwColumn, Errors as HwErrors, Figures as HwFigures, RowKind as HwRowKind,
 };
 
-use crate::schema::{Band, Estimate};
+use analysis::{Band, Estimate};
 
 /// One row of tables 7 or 8: the model's figures, the thesis's, the errors (%).
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize, JsonSchema)]

@@ -1,7 +1,8 @@
 //! `results`: the contract between an rtprof suite and everything that reads its
 //! output. This crate defines ONLY the serde types of `rtprof.results/N` (the current
-//! schema [`SCHEMA`], `rtprof.results/2`, in [`schema`] and [`hardware`]; the previous
-//! one in [`v1`], read and upgraded), their validation on read ([`Results::from_json`]),
+//! schema [`SCHEMA`], `rtprof.results/3`, in [`schema`] and [`hardware`]; `/2` is read
+//! with the same types, `/1` from [`v1`], read and upgraded), their validation on read
+//! ([`Results::from_json`]),
 //! the regression gate ([`gate`]), and the JSON Schema derived from the types
 //! ([`json_schema`], checked in as `docs/results.schema.json`).
 //!
@@ -20,9 +21,11 @@ pub mod bvh_quality;
 pub mod change;
 pub mod created;
 pub mod efficiency;
+mod error;
 pub mod gate;
 pub mod hardware;
 pub mod json_schema;
+pub mod limits;
 pub mod pixel_stats;
 mod read;
 pub mod scaling;

@@ -28,6 +28,8 @@ use crate::variant_name::VariantName;
 pub const SCHEMA: &str = "rtprof.results/3";
 /// The previous schema, read with the same types (its profiles lack what `/3` added).
 pub const SCHEMA_V2: &str = "rtprof.results/2";
+/// The first schema, read with its own types ([`crate::v1`]) and upgraded.
+pub const SCHEMA_V1: &str = "rtprof.results/1";
 
 /// A whole suite run.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize, JsonSchema)]

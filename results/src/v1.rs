@@ -12,14 +12,13 @@ use std::collections::BTreeMap;
 
 use serde::{Deserialize, Serialize};
 
+use crate::error::ResultsError;
 use crate::hardware as v2hw;
-use crate::read::ResultsError;
 use crate::schema as v2;
 use crate::timing_policy::{TimeCovers, TimingPolicy};
 use crate::variant_name::VariantName;
 
-/// The schema identifier of these files.
-pub const SCHEMA: &str = "rtprof.results/1";
+pub use crate::schema::SCHEMA_V1 as SCHEMA;
 
 /// What rtprof's suite used while it wrote `/1` files (src/cli/suite.rs at d19ee0e):
 /// the defaults an upgraded file's timing policy records.

@@ -1,12 +1,22 @@
 //! The RTL of the thesis's FPGA ray-casting pipeline.
 //!
-//! This first step is the floating-point operator library the pipeline is built from:
-//! IEEE-754 single-precision operators written in Verilog-2005 by this project
-//! (`rtl/verilog/*.v`, embedded here; [`operators`]), each with the latency of its row
-//! in hwmodel's operator library, and their Rust reference ([`float_policy`]): the
-//! exact rounding, denormal and NaN rules the operators follow, which the tests check
-//! bit for bit through Verilator (`tests/operators.rs`, `cargo test -p rtl --
-//! --ignored`; `scripts/install-rtl-tools.sh` installs Verilator and g++).
+//! - [`operators`]: the floating-point operator library the pipeline is built from:
+//!   IEEE-754 single-precision operators written in Verilog-2005 by this project
+//!   (`rtl/verilog/*.v`, embedded here), each with the latency of its row in hwmodel's
+//!   operator library, and their Rust reference ([`float_policy`]): the exact rounding,
+//!   denormal and NaN rules the operators follow, which the tests check bit for bit
+//!   through Verilator (`tests/operators.rs`);
+//! - [`generate`]: the whole pipeline as Verilog, written from the scheduled dataflow
+//!   graphs hwmodel times (`rtprof hw rtl`), up to [`generate::MAX_UNITS`] units;
+//! - [`sim`]: the generated pipeline simulated cycle by cycle with Verilator and held
+//!   against the model and the emulator ([`sim::SimCheck`], `rtprof hw sim`;
+//!   `tests/pipeline.rs`);
+//! - [`synth`]: Yosys synthesis for Cyclone IV E, per block, beside the model and the
+//!   thesis's table 8 ([`synth::SynthComparison`], `rtprof hw synth`;
+//!   `tests/synthesis.rs`).
+//!
+//! The tool tests are ignored by default (`cargo test -p rtl -- --ignored`;
+//! `scripts/install-rtl-tools.sh` installs Verilator, g++ and Yosys).
 
 // What user input can reach returns an error: no unwrap, expect or panic outside tests
 // (unit tests are cfg(test); integration tests, benches and examples are other crates).
@@ -57,6 +67,16 @@ pub enum RtlError {
     /// The design cannot be generated as asked.
     #[error("RTL generation: {0}")]
     Generate(String),
+    /// A block asked for by name that the design does not have.
+    #[error("no block '{block}' in the {design} design: one of {names}")]
+    UnknownBlock {
+        block: String,
+        design: String,
+        names: String,
+    },
+    /// More intersection units than the generator builds ([`generate::MAX_UNITS`]).
+    #[error("the RTL is generated for at most {max} intersection units, not {units}")]
+    TooManyUnits { units: u32, max: u32 },
     /// A synthesis that cannot be run or reported as asked.
     #[error("synthesis: {0}")]
     Synth(String),

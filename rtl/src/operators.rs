@@ -11,7 +11,6 @@
 
 use std::fmt::Write as _;
 use std::fs;
-use std::io::Write as _;
 use std::path::{Path, PathBuf};
 
 use hwmodel::library::{Library, OpKind};
@@ -343,28 +342,15 @@ pub fn write_sources(dir: &Path) -> Result<Vec<PathBuf>, RtlError> {
         .collect()
 }
 
-/// Writes `text` to `path` through a temporary file beside it and a rename.
+/// Writes `text` to `path` through a temporary file beside it and a rename
+/// ([`tracer::image_io::write_atomically`], the workspace's one way of writing a file),
+/// with the path in the error.
 pub fn write_atomically(path: &Path, text: &str) -> Result<PathBuf, RtlError> {
-    let name = path
-        .file_name()
-        .map(|n| n.to_string_lossy().into_owned())
-        .unwrap_or_default();
-    let tmp = path.with_file_name(format!(".{name}.{}.tmp", std::process::id()));
-    let io = |p: &Path| {
-        let p = p.to_path_buf();
-        move |source| RtlError::Io { path: p, source }
-    };
-    let result = fs::File::create(&tmp)
-        .and_then(|mut f| {
-            f.write_all(text.as_bytes())?;
-            f.sync_all()
-        })
-        .map_err(io(&tmp))
-        .and_then(|()| fs::rename(&tmp, path).map_err(io(path)));
-    if result.is_err() {
-        let _ = fs::remove_file(&tmp);
-    }
-    result.map(|()| path.to_path_buf())
+    tracer::image_io::write_atomically(path, text.as_bytes()).map_err(|source| RtlError::Io {
+        path: path.to_path_buf(),
+        source,
+    })?;
+    Ok(path.to_path_buf())
 }
 
 #[cfg(test)]

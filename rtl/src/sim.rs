@@ -7,6 +7,9 @@
 //! frame and reads back the frame buffer, the cycles from the first pixel's issue to
 //! the last frame-buffer write, and each block's latency as built (the first valid
 //! output after the first valid input, from the blocks' structural monitors).
+//! [`SimCheck`] holds one frame against the model and the reference picture: what
+//! `rtprof hw sim` prints and whether it agrees. [`verilator_command`] is the one
+//! Verilator command line (the operator tests build with it too).
 
 use std::collections::hash_map::DefaultHasher;
 use std::fmt::Write as _;
@@ -19,6 +22,7 @@ use std::sync::atomic::{AtomicU64, Ordering};
 use serde::Serialize;
 
 use hwmodel::blocks::Pipeline;
+use hwmodel::design::Design;
 use hwmodel::emulator::{HwImage, to_gray8};
 use hwmodel::frame_timing::{cycles_per_pixel, frame_timing};
 use hwmodel::graph_eval::{FrameConstants, light_direction, shading_words};
@@ -51,6 +55,13 @@ pub struct BlockLatency {
     pub model: u32,
 }
 
+impl BlockLatency {
+    /// The block as built has its schedule's latency.
+    pub fn agrees(&self) -> bool {
+        self.simulated == Some(u64::from(self.model))
+    }
+}
+
 /// Scene-memory address bits for `primitives` (at least 64 primitives, so that the
 /// test-bench scenes share one build).
 pub fn depth_bits_for(primitives: usize) -> u32 {
@@ -69,6 +80,48 @@ fn io(path: &Path) -> impl FnOnce(std::io::Error) -> RtlError + '_ {
     move |source| RtlError::Io {
         path: path.to_path_buf(),
         source,
+    }
+}
+
+/// Verilator's command line for a C++ model of `top` with a C++ main, built in
+/// `dir/obj` as the program `program` with `jobs` compilers: the flags the pipeline's
+/// simulation and the operator tests share (the callers add their sources).
+pub fn verilator_command(dir: &Path, top: &str, program: &str, jobs: u32) -> Command {
+    let mut command = Command::new("verilator");
+    command
+        .current_dir(dir)
+        .args(["--cc", "--exe", "--build", "-j"])
+        .arg(jobs.to_string())
+        .args([
+            "-O3",
+            "--x-assign",
+            "fast",
+            "--x-initial",
+            "fast",
+            "-Wno-fatal",
+            "--top-module",
+            top,
+            "-Mdir",
+            "obj",
+            "-o",
+            program,
+        ]);
+    command
+}
+
+/// Where Verilator builds the models when no directory is given: the user's cache
+/// (`$XDG_CACHE_HOME/rtprof/rtl`, else `~/.cache/rtprof/rtl`), else the temporary
+/// directory.
+pub fn default_build_root() -> PathBuf {
+    if let Some(dir) = std::env::var_os("XDG_CACHE_HOME") {
+        return PathBuf::from(dir).join("rtprof").join("rtl");
+    }
+    match std::env::var_os("HOME") {
+        Some(home) => PathBuf::from(home)
+            .join(".cache")
+            .join("rtprof")
+            .join("rtl"),
+        None => std::env::temp_dir().join("rtprof-rtl"),
     }
 }
 
@@ -99,29 +152,9 @@ pub fn build(rtl: &GeneratedRtl, root: &Path) -> Result<PathBuf, RtlError> {
         .map(|(name, _)| name.clone())
         .filter(|n| n.ends_with(".v"))
         .collect();
-    let output = Command::new("verilator")
-        .current_dir(&staging)
-        .args([
-            "--cc",
-            "--exe",
-            "--build",
-            "-j",
-            "2",
-            "-O3",
-            "--x-assign",
-            "fast",
-            "--x-initial",
-            "fast",
-            "-Wno-fatal",
-            "-Wno-lint",
-            "-Wno-style",
-            "--top-module",
-            TOP,
-            "-Mdir",
-            "obj",
-            "-o",
-            "Vsim",
-        ])
+    let output = verilator_command(&staging, TOP, "Vsim", 2)
+        // The generated modules leave inputs unused by design (constants, monitors).
+        .args(["-Wno-lint", "-Wno-style"])
         .args(&sources)
         .arg(generate::TESTBENCH.name)
         .output()
@@ -221,6 +254,22 @@ fn view_direction(scene: &HwScene) -> [f32; 3] {
     let d = [0, 1, 2].map(|i| hwmodel::float_policy::sub(scene.look_at[i], scene.eye[i]));
     // The same normalization as the light's direction.
     light_direction(d)
+}
+
+/// Writes the testbench's input for `scene` (`sim_input.txt`) and its scene memory
+/// (`scene.mif`) into `dir`, beside the generated RTL; returns the files written.
+pub fn write_scene_files(
+    dir: &Path,
+    pipeline: &Pipeline,
+    scene: &HwScene,
+    width: u32,
+    height: u32,
+) -> Result<Vec<PathBuf>, RtlError> {
+    let input = testbench_input(pipeline, scene, width, height)?;
+    Ok(vec![
+        write_atomically(&dir.join("sim_input.txt"), &input)?,
+        write_atomically(&dir.join("scene.mif"), &hwmodel::mif::to_mif(scene))?,
+    ])
 }
 
 /// Runs `program` on `scene` in `work` (input, image and results files).
@@ -340,6 +389,146 @@ pub fn compare_images(a: &HwImage, b: &HwImage) -> ImageDifference {
     ImageDifference {
         differing_pixels: differing,
         rms: (sum / n).sqrt(),
+    }
+}
+
+/// One simulated frame held against the model and the reference picture: what
+/// `rtprof hw sim` reports, and whether it agrees.
+#[derive(Clone, Debug)]
+pub struct SimCheck {
+    /// The scene's name as the user gave it.
+    pub scene: String,
+    pub design: Design,
+    pub width: u32,
+    pub height: u32,
+    pub primitives: usize,
+    pub result: SimResult,
+    /// Where the simulated picture was written.
+    pub image: PathBuf,
+    /// Where the reference picture comes from ([`reference_image`]).
+    pub reference: &'static str,
+    /// The simulated picture against the reference.
+    pub difference: ImageDifference,
+}
+
+impl SimCheck {
+    /// Runs `program` on `scene` in a work directory beside its build (removed after),
+    /// and compares the frame with the reference picture. `image` is where the caller
+    /// writes the simulated picture.
+    pub fn run(
+        program: &Path,
+        pipeline: &Pipeline,
+        name: &str,
+        scene: &HwScene,
+        (width, height): (u32, u32),
+        image: &Path,
+    ) -> Result<SimCheck, RtlError> {
+        let work = program
+            .parent()
+            .and_then(|p| p.parent())
+            .map(|p| p.join("runs").join(format!("{}", std::process::id())))
+            .ok_or_else(|| RtlError::Tool {
+                tool: "simulation",
+                message: "the simulator has no build directory".into(),
+            })?;
+        let result = run(program, pipeline, scene, width, height, &work);
+        // The run's files are scratch: its figures are in `result`.
+        let _ = fs::remove_dir_all(&work);
+        let result = result?;
+        let (reference, source) = reference_image(pipeline, scene, width, height)?;
+        let difference = compare_images(&result.image, &reference);
+        Ok(SimCheck {
+            scene: name.to_string(),
+            design: pipeline.design,
+            width,
+            height,
+            primitives: scene.primitive_count(),
+            result,
+            image: image.to_path_buf(),
+            reference: source,
+            difference,
+        })
+    }
+
+    /// Every block's latency as built equals its schedule's.
+    pub fn latencies_agree(&self) -> bool {
+        self.result.blocks.iter().all(BlockLatency::agrees)
+    }
+
+    /// The frame agrees with the model and the reference: the same picture, the
+    /// model's cycles per frame, one write per pixel, every block's latency.
+    pub fn agrees(&self) -> bool {
+        self.difference.differing_pixels == 0
+            && self.result.cycles == self.result.model_cycles
+            && self.result.writes == u64::from(self.width) * u64::from(self.height)
+            && self.latencies_agree()
+    }
+
+    /// `rtprof hw sim --json`.
+    pub fn to_json(&self) -> serde_json::Value {
+        serde_json::json!({
+            "scene": self.scene,
+            "design": self.design.label(),
+            "units": self.design.units,
+            "width": self.width,
+            "height": self.height,
+            "primitives": self.primitives,
+            "cycles": self.result.cycles,
+            "model_cycles": self.result.model_cycles,
+            "writes": self.result.writes,
+            "blocks": self.result.blocks,
+            "image": self.image.display().to_string(),
+            "reference": self.reference,
+            "differing_pixels": self.difference.differing_pixels,
+            "rms": self.difference.rms,
+            "agrees": self.agrees(),
+        })
+    }
+
+    /// `rtprof hw sim`'s report: cycles, block latencies and the picture, each with
+    /// its verdict.
+    pub fn to_text(&self) -> String {
+        let verdict = |equal: bool| if equal { "equal" } else { "DIFFERENT" };
+        let r = &self.result;
+        let mut text = String::new();
+        let _ = writeln!(
+            text,
+            "{} on the {} design, {}x{}, {} primitives",
+            self.scene,
+            self.design.label(),
+            self.width,
+            self.height,
+            self.primitives
+        );
+        let _ = writeln!(
+            text,
+            "  cycles per frame   {:>12}  model {:>12}  {}",
+            r.cycles,
+            r.model_cycles,
+            verdict(r.cycles == r.model_cycles)
+        );
+        text.push_str("  block latencies (first valid output after the first input):\n");
+        for b in &r.blocks {
+            let sim = b.simulated.map_or("none".to_string(), |v| v.to_string());
+            let _ = writeln!(
+                text,
+                "    {:<14} {:>5}  model {:>5}  {}",
+                b.name,
+                sim,
+                b.model,
+                verdict(b.agrees())
+            );
+        }
+        let _ = writeln!(
+            text,
+            "  image {}: {} of {} pixels differ from {} (RMS {:.3})",
+            self.image.display(),
+            self.difference.differing_pixels,
+            r.image.pixels.len(),
+            self.reference,
+            self.difference.rms
+        );
+        text
     }
 }
 

@@ -610,28 +610,10 @@ fn build(op: Operator, lib: &Library) -> PathBuf {
         include_str!("../verilog/tb/tb_main.cpp"),
     )
     .unwrap();
-    let mut cmd = Command::new("verilator");
-    cmd.current_dir(&dir).args([
-        "--cc",
-        "--exe",
-        "--build",
-        "-j",
-        "1",
-        "-O3",
-        "--x-assign",
-        "fast",
-        "--x-initial",
-        "fast",
-        "-Wno-fatal",
-        "--top-module",
-        "tb_top",
-        "-Mdir",
-        "obj",
-        "-o",
-        "tb",
-        "-MAKEFLAGS",
-        "OPT_FAST=-O1 OPT_SLOW=-O0 OPT_GLOBAL=-O1",
-    ]);
+    // The pipeline's flags (rtl::sim), on one compiler, the C++ barely optimised: the
+    // operator models run for a second, their build would take longer.
+    let mut cmd = rtl::sim::verilator_command(&dir, "tb_top", "tb", 1);
+    cmd.args(["-MAKEFLAGS", "OPT_FAST=-O1 OPT_SLOW=-O0 OPT_GLOBAL=-O1"]);
     cmd.arg(src.join("tb_top.v"));
     for file in op.files() {
         cmd.arg(src.join(file.name));

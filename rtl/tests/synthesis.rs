@@ -5,30 +5,23 @@
 //! Needs `yosys` (`scripts/install-rtl-tools.sh`): `cargo test -p rtl --test synthesis
 //! -- --ignored`.
 
-use std::path::PathBuf;
-
 use hwmodel::blocks::{ADDRESS_BITS, Pipeline};
 use hwmodel::design::Design;
 use hwmodel::library::{Library, OpKind};
 use rtl::{generate, synth};
 
-fn synthesize(design: Design, top: &str, blocks: &[&str]) -> synth::SynthReport {
+fn synthesize(design: Design, block: Option<&str>) -> synth::SynthReport {
     let lib = Library::cyclone_iv_e();
     let pipeline = Pipeline::build(&lib, &design);
-    let rtl = generate::generate(&lib, &pipeline, 6).unwrap_or_else(|e| panic!("{e}"));
     let dir = std::env::temp_dir().join(format!(
-        "rtprof-synth-test-{top}-{}-{}",
+        "rtprof-synth-test-{}-{}-{}",
+        block.unwrap_or(generate::TOP),
         design.label(),
         std::process::id()
     ));
-    generate::write(&rtl, &dir).unwrap_or_else(|e| panic!("{e}"));
-    let files: Vec<PathBuf> = rtl
-        .files
-        .iter()
-        .filter(|(n, _)| n.ends_with(".v"))
-        .map(|(n, _)| dir.join(n))
-        .collect();
-    let report = synth::synthesize(&dir, &files, top, blocks).unwrap_or_else(|e| panic!("{e}"));
+    let report =
+        synth::synthesize_design(&lib, &pipeline, block, &dir).unwrap_or_else(|e| panic!("{e}"));
+    let top = &report.top;
     eprintln!(
         "{top} ({}): {:?} in {:.0} s; blocks {:?}",
         design.label(),
@@ -48,7 +41,7 @@ fn synthesize(design: Design, top: &str, blocks: &[&str]) -> synth::SynthReport 
 #[test]
 #[ignore = "needs yosys"]
 fn the_minimum_distance_block_synthesizes_with_its_registers() {
-    let report = synthesize(Design::thesis(), "min_distance", &["min_distance"]);
+    let report = synthesize(Design::thesis(), Some("min_distance"));
     let lib = Library::cyclone_iv_e();
     // The kept registers (5 words and the address: 173 bits, fig. 25) and the payload
     // beside the compare (compare latency × the same 173 bits, plus 3 flag bits).
@@ -68,7 +61,8 @@ fn the_minimum_distance_block_synthesizes_with_its_registers() {
 #[ignore = "needs yosys; several minutes"]
 fn the_whole_thesis_design_synthesizes_block_by_block() {
     let blocks = ["primary_ray", "intersection", "min_distance", "shading"];
-    let report = synthesize(Design::thesis(), generate::TOP, &blocks);
+    let report = synthesize(Design::thesis(), None);
+    assert_eq!(report.top, generate::TOP);
     for name in blocks {
         let b = report
             .block(name)

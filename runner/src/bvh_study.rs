@@ -7,8 +7,8 @@ use results::BvhQuality;
 use tracer::{Bvh, BvhBuilder, Count, Counts, NoCount, RenderOptions, VariantSet, render_variant};
 
 use crate::error::RunError;
+use crate::render_setup::RenderSetup;
 use crate::timing::{TimingPolicy, measure};
-use crate::variant_job::RenderSetup;
 
 /// Per ray (every closest-hit and shadow query): boxes tested, leaves entered and
 /// primitives tested.

@@ -5,6 +5,7 @@
 //! variant's image error is also given against that ground truth.
 
 use std::path::Path;
+use std::sync::atomic::AtomicBool;
 
 use analysis::verdict::{NOISE_THRESHOLD, Verdict, judge_speedup};
 use analysis::{
@@ -16,14 +17,18 @@ use reports::format;
 use reports::sections::variants::{Detail, scene_table};
 use results::{Quality, SceneResult, VariantName, VariantResult};
 use serde::Serialize;
-use tracer::{Counts, VariantSet};
+use tracer::{Counts, ShadingMode, VariantSet};
 
 use crate::error::RunError;
+use crate::pool::thread_pool;
 use crate::progress::Progress;
 use crate::reference_job::ImageError;
+use crate::render_job::RenderSettings;
+use crate::render_setup::RenderSetup;
+use crate::scene_input::SceneInput;
 use crate::staging::save_png;
 use crate::timing::TimingPolicy;
-use crate::variant_job::{RenderSetup, VariantMeasurement};
+use crate::variant_job::VariantMeasurement;
 
 /// One variant's row.
 #[derive(Serialize)]
@@ -56,6 +61,51 @@ pub struct VariantRow {
     /// The image error against the f64 reference, as the suite's results hold it.
     #[serde(skip)]
     pub vs_f64_quality: Option<Quality>,
+}
+
+/// `rtprof compare SCENE --variants …`: the variant sets `sets` side by side on one
+/// scene, each timed `repeats` times at least (no minimum time: the count is what was
+/// asked), images and heat maps into `out` when given (created if missing).
+pub struct SideBySide<'a> {
+    pub input: &'a SceneInput,
+    pub sets: &'a [VariantSet],
+    pub settings: &'a RenderSettings,
+    pub mode: ShadingMode,
+    pub repeats: u32,
+    pub out: Option<&'a Path>,
+    /// Also against the f64 reference renderer.
+    pub f64_reference: bool,
+}
+
+impl SideBySide<'_> {
+    /// Loads the scene, sets up the pool and runs [`compare_variants`].
+    pub fn run(&self, progress: &dyn Progress) -> Result<VariantsReport, RunError> {
+        if let Some(dir) = self.out {
+            std::fs::create_dir_all(dir).map_err(|e| RunError::io("create directory", dir, &e))?;
+        }
+        let scene = self.input.load(&self.settings.limits)?;
+        let options = self.settings.options(&scene, self.mode);
+        let pool = thread_pool(self.settings.threads)?;
+        let name = self.input.to_string();
+        let never = AtomicBool::new(false);
+        let setup = RenderSetup {
+            scene: &scene,
+            name: &name,
+            options: &options,
+            pool: &pool,
+            counting_pool: &pool,
+            stop: &never,
+        };
+        let policy = TimingPolicy::new(self.repeats, 0.0);
+        compare_variants(
+            &setup,
+            self.sets,
+            &policy,
+            self.out,
+            self.f64_reference,
+            progress,
+        )
+    }
 }
 
 /// Measures every set in `sets` (the first is the reference) and compares them. With

@@ -254,11 +254,6 @@ impl SuiteDef {
         TimingPolicy::new(self.repeats, self.min_seconds)
     }
 
-    /// The variants `spec` runs: its own subset, or the suite's.
-    pub fn variants_of<'a>(&'a self, spec: &'a crate::scenes::SceneSpec) -> &'a [String] {
-        spec.variants.as_deref().unwrap_or(&self.variants)
-    }
-
     /// How the software side of the hardware comparison is timed.
     pub fn hardware_timing(&self) -> TimingPolicy {
         TimingPolicy::new(self.hardware_repeats.max(1), self.min_seconds)

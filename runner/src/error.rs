@@ -44,6 +44,9 @@ pub enum RunError {
     /// The caller asked the run to stop (Ctrl-C).
     #[error("stopped on request")]
     Stopped,
+    /// A run that panicked (a bug), caught where its partial outputs are kept.
+    #[error("internal error (panic) while running this job; please report it")]
+    Panicked,
     /// A suite stopped on request after `done` of its `total` scenes.
     #[error("stopped on request after {done} of {total} scenes")]
     StoppedAfter { done: usize, total: usize },

@@ -85,7 +85,7 @@ pub struct HardwareMeasurement {
 }
 
 /// Runs the hardware job on `scene` at `size` with the thesis design at 50 MHz on the
-/// EP4CE115.
+/// thesis's device (the one the library marks validated).
 #[allow(clippy::too_many_arguments)] // the job's inputs: scene, size, two pools, policy, stop
 pub fn run_hardware(
     scene: &Scene,
@@ -103,8 +103,7 @@ pub fn run_hardware(
     let n = hw.primitive_count() as u64;
     let timing = frame_timing(&pipeline, n, width, height, THESIS_CLOCK_HZ);
     let fits = lib
-        .devices
-        .first()
+        .validated_device()
         .is_some_and(|device| fit(&lib, device, demand(&lib, &pipeline, n, width, height)).fits);
     let emulated = all_threads.install(|| hwmodel::emulator::render(hw, width, height));
     let emulator_image = RgbImage::new(width, height, emulated.to_rgb8())?;

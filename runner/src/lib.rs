@@ -2,7 +2,7 @@
 //! statistics and profiles with `analysis`, the FPGA model with `hwmodel`) and collects
 //! everything into the typed results; it writes nothing but the files a run produces
 //! (images, profiles, flamegraphs, the reports) and prints nothing (progress goes to a [`Progress`]).
-//! The binary and a future `serve` command call it; reports are made from its results.
+//! The binary and the web app (`serve`) call it; reports are made from its results.
 //!
 //! Modules:
 //! - [`definition`]: the suite definition (scenes/suite.toml) and its `[quick]` form;
@@ -15,6 +15,7 @@
 //! - [`reference_job`]: one render by the f64 reference renderer (`render --reference`);
 //! - [`pixel_maps`]: per-sample records into per-pixel maps (NPY, PNG, JSON);
 //! - [`variant_catalogue`]: what each variant does and how accurate it is;
+//! - [`render_setup`]: where and how a job renders (scene, options, pools, stop flag);
 //! - [`variant_job`]: one variant on one scene: counts, timed renders, picture;
 //! - [`estimate`]: how long a brute-force render of a big scene will take;
 //! - [`compare`]: variants side by side (`rtprof compare SCENE --variants`);
@@ -26,7 +27,8 @@
 //! - [`collect`]: measurements into results entries; [`bvh_study`]: the BVH's quality
 //!   per build strategy;
 //! - [`scaling`]: the growth study (`rtprof scaling`), cost per ray against scene size;
-//! - [`suite`]: the whole suite into one results value; [`shard`]: its deterministic
+//! - [`suite`]: the whole suite into one results value; [`suite_dir`]: a suite run into
+//!   a directory, staged and published (`rtprof suite` and the web app's jobs); [`shard`]: its deterministic
 //!   shares (`--shard I/N`); [`merge`]: shards' results joined into one;
 //! - [`report_files`]: results files read back, report.html and report.pdf written;
 //! - [`benchmarks`]: criterion estimates and instruction counts picked up from disk;
@@ -67,6 +69,7 @@ pub mod progress;
 pub mod ray_rates;
 pub mod reference_job;
 pub mod render_job;
+pub mod render_setup;
 pub mod report_files;
 pub mod scaling;
 pub mod scene_input;
@@ -74,6 +77,7 @@ pub mod scenes;
 pub mod shard;
 pub mod staging;
 pub mod suite;
+pub mod suite_dir;
 pub mod timing;
 pub mod variant_catalogue;
 pub mod variant_job;

@@ -373,6 +373,23 @@ fn unique_by_id<'a, T: Clone + 'a>(
 }
 
 impl Merged {
+    /// Writes the merged run into `output` (created if missing) as the suite writes a
+    /// run: the parts' files, results.json and the reports staged, then published;
+    /// report.pdf's pages when it was written.
+    pub fn write_into(
+        &self,
+        output: &Path,
+        pdf: crate::report_files::Pdf,
+    ) -> Result<Option<reports::pdf::PageCount>, RunError> {
+        std::fs::create_dir_all(output).map_err(|e| RunError::io("create", output, &e))?;
+        let staging = crate::staging::Staging::create(output)?;
+        self.copy_files(staging.dir())?;
+        let pages = crate::report_files::write_run(&self.results, staging.dir(), pdf)?;
+        staging.publish(output)?;
+        pdf.remove_stale(output)?;
+        Ok(pages)
+    }
+
     /// Copies every file the merged results reference into `dir` (same relative path).
     pub fn copy_files(&self, dir: &Path) -> Result<(), RunError> {
         for (rel, source) in &self.files {

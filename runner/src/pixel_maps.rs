@@ -12,12 +12,13 @@ use std::path::Path;
 use results::pixel_stats::{PIXEL_STATS_SCHEMA, PixelMap, PixelStats};
 use tracer::counter::{COUNTERS, CounterDef, STAT_COUNT};
 use tracer::{
-    Count, Counter, NoCount, RenderOptions, SampleStats, Sampling, VariantSet, render_variant,
+    Count, Counter, NoCount, RenderOptions, Rendered, SampleStats, Sampling, VariantSet,
+    render_variant,
 };
 
 use crate::error::RunError;
+use crate::render_setup::RenderSetup;
 use crate::staging::save;
-use crate::variant_job::RenderSetup;
 use tracer::image_io::encode_png_rgb8;
 
 /// The counters mapped, when the render did any of that work (a map of zeros says
@@ -186,23 +187,34 @@ pub fn record_maps(setup: &RenderSetup, set: &VariantSet) -> Result<Maps, RunErr
         per_sample: true,
         ..*setup.options
     };
+    let counted = setup
+        .pool
+        .install(|| render_variant::<Count>(setup.scene, &options, set, &|_| {}))
+        .map_err(|e| RunError::render(setup.name, &e))?;
+    record_maps_of(setup, set, &counted.rendered)
+}
+
+/// [`record_maps`] after its counted render: `counted` is a counted render of
+/// `setup`'s scene with per-sample records (`rtprof count --pixel-stats` has made one
+/// already); the timed renders run on `setup`'s pool.
+pub fn record_maps_of(
+    setup: &RenderSetup,
+    set: &VariantSet,
+    counted: &Rendered<Count>,
+) -> Result<Maps, RunError> {
+    let options = RenderOptions {
+        per_sample: true,
+        ..*setup.options
+    };
     let fail = |e: tracer::RenderError| RunError::render(setup.name, &e);
     let missing = |what: &str| RunError::Render {
         context: setup.name.to_string(),
         message: format!("the counted render kept no {what}"),
     };
-    let counted = setup
-        .pool
-        .install(|| render_variant::<Count>(setup.scene, &options, set, &|_| {}))
-        .map_err(fail)?;
-    let totals = counted
-        .rendered
-        .counter
-        .totals()
-        .ok_or_else(|| missing("counts"))?;
+    let totals = counted.counter.totals().ok_or_else(|| missing("counts"))?;
     let samples = counted
-        .rendered
         .samples
+        .as_ref()
         .ok_or_else(|| missing("per-sample records"))?;
     let mut timed = Vec::with_capacity(TIMED_PASSES);
     for _ in 0..TIMED_PASSES {
@@ -212,7 +224,24 @@ pub fn record_maps(setup: &RenderSetup, set: &VariantSet) -> Result<Maps, RunErr
             .map_err(fail)?;
         timed.extend(run.rendered.samples);
     }
-    maps_of(&samples, &timed, &totals)
+    maps_of(samples, &timed, &totals)
+}
+
+/// What `rtprof count --pixel-stats DIR` says of the maps written into `dir`.
+pub fn written_line(stats: &PixelStats, dir: &Path) -> String {
+    format!(
+        "wrote {} per-pixel maps ({}x{} samples) to {}: {}",
+        stats.maps.len(),
+        stats.columns,
+        stats.rows,
+        dir.display(),
+        stats
+            .maps
+            .iter()
+            .map(|m| m.key.as_str())
+            .collect::<Vec<_>>()
+            .join(", ")
+    )
 }
 
 /// What `pixel-stats.json` records besides the maps.

@@ -10,7 +10,7 @@ use tracer::counter::{QueryClock, QueryTicks, clock_ticks, take_query_ticks};
 use tracer::{RayCounts, VariantSet, render_variant};
 
 use crate::error::RunError;
-use crate::variant_job::RenderSetup;
+use crate::render_setup::RenderSetup;
 
 /// What a clocked pass measured: the query shares of the threads' time.
 #[derive(Clone, Copy, Debug, PartialEq)]

@@ -14,8 +14,8 @@ use crate::error::RunError;
 use crate::pool::{Workers, workers_for};
 use crate::progress::Progress;
 use crate::render_job::RenderSettings;
+use crate::render_setup::RenderSetup;
 use crate::scene_input::SceneInput;
-use crate::variant_job::RenderSetup;
 
 /// A finished reference render with its timings.
 pub struct ReferenceRender {

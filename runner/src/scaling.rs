@@ -5,6 +5,7 @@
 //! bytes. A brute-force or SIMD render predicted longer than the budget is not run: its
 //! point is extrapolated with the power law fitted on the measured ones, and marked.
 
+use std::path::Path;
 use std::sync::atomic::{AtomicBool, Ordering};
 
 use analysis::power_law::PowerLaw;
@@ -17,6 +18,7 @@ use tracer::{
 use crate::error::RunError;
 use crate::machine::{build_info, command_line, machine, now_rfc3339};
 use crate::progress::Progress;
+use crate::staging::save;
 use crate::timing::{self, TimingPolicy};
 
 /// One family: an SPD program and the size factors to run.
@@ -255,6 +257,87 @@ fn measure(
             scene_bytes: scene.memory_bytes() as u64,
         },
         render_seconds,
+    })
+}
+
+impl Family {
+    /// `balls:1-6` or `shells:1-13:2` (from 1 to 13 in steps of 2).
+    pub fn parse(text: &str) -> Result<Family, String> {
+        let bad =
+            || format!("'{text}' is not a family: expected SPD:FROM-TO[:STEP], e.g. balls:1-6");
+        let mut parts = text.split(':');
+        let (Some(name), Some(range)) = (parts.next(), parts.next()) else {
+            return Err(bad());
+        };
+        let step: u32 = match parts.next() {
+            Some(s) => s.parse().map_err(|_| bad())?,
+            None => 1,
+        };
+        let (from, to) = range.split_once('-').unwrap_or((range, range));
+        let (from, to): (u32, u32) = (
+            from.parse().map_err(|_| bad())?,
+            to.parse().map_err(|_| bad())?,
+        );
+        if step == 0 || from > to || parts.next().is_some() {
+            return Err(bad());
+        }
+        let program = spd::find(name).ok_or_else(|| {
+            spd::SpdError::UnknownProgram {
+                name: name.to_string(),
+            }
+            .to_string()
+        })?;
+        Ok(Family {
+            program: program.name,
+            size_factors: (from..=to).step_by(step as usize).collect(),
+        })
+    }
+}
+
+/// The files of a study written into a directory.
+pub struct StudyFiles {
+    /// scaling.json's text, as written.
+    pub json: String,
+    /// Whether scaling.svg was written (a study of one point has no chart).
+    pub chart: bool,
+}
+
+impl StudyFiles {
+    /// `DIR/{scaling.json, scaling.csv, scaling.md, scaling.svg}`, the files written.
+    pub fn line(&self, dir: &Path) -> String {
+        format!(
+            "{}/{{scaling.json, scaling.csv, scaling.md{}}}",
+            dir.display(),
+            if self.chart { ", scaling.svg" } else { "" }
+        )
+    }
+}
+
+/// Writes the study into `dir` (created if missing): scaling.json, scaling.csv,
+/// scaling.md and, when there is one, the log-log chart scaling.svg.
+pub fn write_study(study: &ScalingStudy, dir: &Path) -> Result<StudyFiles, RunError> {
+    std::fs::create_dir_all(dir).map_err(|e| RunError::io("create directory", dir, &e))?;
+    let json = serde_json::to_string_pretty(study)
+        .map_err(|e| RunError::Report(format!("cannot serialize scaling.json: {e}")))?
+        + "\n";
+    let chart = reports::charts::scaling_chart(study);
+    save(dir, "scaling.json", json.as_bytes())?;
+    save(
+        dir,
+        "scaling.csv",
+        reports::scaling_text::to_csv(study).as_bytes(),
+    )?;
+    save(
+        dir,
+        "scaling.md",
+        reports::scaling_text::to_markdown(study).as_bytes(),
+    )?;
+    if let Some(chart) = &chart {
+        save(dir, "scaling.svg", chart.svg.as_bytes())?;
+    }
+    Ok(StudyFiles {
+        json,
+        chart: chart.is_some(),
     })
 }
 

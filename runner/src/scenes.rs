@@ -32,6 +32,11 @@ pub struct SceneSpec {
 }
 
 impl SceneSpec {
+    /// The variants this scene runs in `def`'s suite: its own subset, or the suite's.
+    pub fn variants_in<'a>(&'a self, def: &'a crate::definition::SuiteDef) -> &'a [String] {
+        self.variants.as_deref().unwrap_or(&def.variants)
+    }
+
     /// The two runs of an SPD entry (see [`crate::definition::SpdDef`]): the accelerated
     /// variants at `full_size` with corner sampling, named as the scene, and every
     /// variant at `size`, named `NAME-small`.

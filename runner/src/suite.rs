@@ -31,9 +31,10 @@ use crate::profile_job::ProfileJob;
 use crate::progress::Progress;
 use crate::ray_rates::ray_rates;
 use crate::reference_job;
+use crate::render_setup::RenderSetup;
 use crate::scenes::{SceneSpec, extra_scenes, resolve_scene};
 use crate::staging::save_png;
-use crate::variant_job::{RenderSetup, VariantMeasurement};
+use crate::variant_job::VariantMeasurement;
 
 /// A suite ready to run: its definition and its resolved scenes.
 pub struct Suite {
@@ -157,7 +158,7 @@ impl Suite {
     pub fn steps(&self) -> u64 {
         self.scenes
             .iter()
-            .map(|s| self.def.variants_of(s).len() as u64)
+            .map(|s| s.variants_in(&self.def).len() as u64)
             .sum()
     }
 
@@ -438,7 +439,7 @@ impl SceneRunner<'_> {
                 spec.name
             ));
         };
-        let names = self.def.variants_of(spec);
+        let names = spec.variants_in(self.def);
         let sets: Vec<VariantSet> = names
             .iter()
             .map(|name| VariantSet::parse(name))

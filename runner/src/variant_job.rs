@@ -4,16 +4,13 @@
 //! the timed uncounted renders under the timing policy, interleaved in rounds with the
 //! calibration kernel. The last timed frame is each variant's image.
 
-use std::sync::atomic::AtomicBool;
-
 use analysis::RgbImage;
-use tracer::{
-    Count, Counts, NoCount, RenderOptions, Scene, VariantRender, VariantSet, render_variant,
-};
+use tracer::{Count, Counts, NoCount, VariantRender, VariantSet, render_variant};
 
 use crate::calibration::time_kernel;
 use crate::error::RunError;
 use crate::ray_rates::{QueryShares, clocked_pass};
+use crate::render_setup::RenderSetup;
 use crate::timing::{RenderJob, TimingPolicy, measure_interleaved};
 
 /// A measured variant.
@@ -37,19 +34,6 @@ pub struct VariantMeasurement {
     pub framebuffer_bytes: usize,
     /// The clocked pass's split of the time by query (`None` if it failed).
     pub query_shares: Option<QueryShares>,
-}
-
-/// Where and how to render.
-pub struct RenderSetup<'a> {
-    pub scene: &'a Scene,
-    /// The scene's name in messages.
-    pub name: &'a str,
-    pub options: &'a RenderOptions,
-    pub pool: &'a rayon::ThreadPool,
-    /// The pool of the counted renders: counts are the same on any number of threads,
-    /// so a scene timed on one thread is still counted on all of them.
-    pub counting_pool: &'a rayon::ThreadPool,
-    pub stop: &'a AtomicBool,
 }
 
 /// Every variant of [`RenderSetup::measure_all`], in the order asked, and the

@@ -1,18 +1,87 @@
 //! The scenes a job can name: the built-in scenes, the generators (SPD databases at a
 //! size factor, sphereflake, lattice) and the NFF files uploaded to this server; and
-//! the variants and parts a job can ask for. `GET /api/scenes` is this, as JSON.
+//! the variants and parts ([`Part`]) a job can ask for, and the rule of an upload's name
+//! ([`check_name`]). `GET /api/scenes` is this, as JSON.
 
 use std::path::{Path, PathBuf};
 
 use runner::scene_input::{SPD_PREFIX, SceneInput};
-use serde::Serialize;
+use serde::{Deserialize, Serialize};
 use tracer::{Limits, VariantSet};
 
 use crate::error::ApiError;
-use crate::job::Part;
 
 /// The prefix of an uploaded scene's id.
 pub const UPLOAD_PREFIX: &str = "upload:";
+
+/// Longest upload name.
+const MAX_NAME: usize = 64;
+
+/// An uploaded scene's name (its id after [`UPLOAD_PREFIX`]), a plain name: letters, digits, `-` and `_`, 1 to 64 of them, not starting with `-`.
+pub fn check_name(name: &str) -> Result<(), ApiError> {
+    let plain = !name.is_empty()
+        && name.len() <= MAX_NAME
+        && !name.starts_with('-')
+        && name
+            .bytes()
+            .all(|b| b.is_ascii_alphanumeric() || b == b'-' || b == b'_');
+    if plain {
+        Ok(())
+    } else {
+        Err(ApiError::invalid(format!(
+            "'{name}' is not a scene name: use 1 to {MAX_NAME} letters, digits, '-' or '_'"
+        )))
+    }
+}
+
+/// What a job runs besides the renders (the suite's parts).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Part {
+    /// Every variant rendered, counted, timed and compared with baseline (always run).
+    Render,
+    /// The scene sampled: gprof-format profile and flamegraphs of baseline and the
+    /// fastest variant whose picture stays visually identical.
+    Profile,
+    /// The FPGA pipeline model (time, fit) and its emulator's image.
+    Hardware,
+    /// Per-pixel maps of baseline, simd and bvh.
+    PixelMaps,
+    /// The embedded suite's CI-sized run (`rtprof suite --quick`): every scene and
+    /// variant; the job's scene and variants are ignored.
+    Suite,
+}
+
+impl Part {
+    pub const ALL: [Part; 5] = [
+        Part::Render,
+        Part::Profile,
+        Part::Hardware,
+        Part::PixelMaps,
+        Part::Suite,
+    ];
+
+    pub fn name(self) -> &'static str {
+        match self {
+            Part::Render => "render",
+            Part::Profile => "profile",
+            Part::Hardware => "hardware",
+            Part::PixelMaps => "pixel_maps",
+            Part::Suite => "suite",
+        }
+    }
+
+    /// What the page says of it.
+    pub fn label(self) -> &'static str {
+        match self {
+            Part::Render => "render and compare: counts, times, images and their difference",
+            Part::Profile => "profile: gprof flat profile, call graph, flamegraphs",
+            Part::Hardware => "hardware: FPGA model time and fit, emulator image",
+            Part::PixelMaps => "per-pixel maps of baseline, simd and bvh",
+            Part::Suite => "the whole quick suite (every scene and variant; a few minutes)",
+        }
+    }
+}
 
 /// A scene a job can name as is.
 #[derive(Clone, Debug, Serialize)]
@@ -206,7 +275,7 @@ impl Catalogue {
             .filter_map(|e| {
                 let name = e.file_name().to_string_lossy().into_owned();
                 let stem = name.strip_suffix(".nff")?;
-                crate::uploads::check_name(stem).ok()?;
+                check_name(stem).ok()?;
                 Some(stem.to_string())
             })
             .collect();
@@ -236,7 +305,7 @@ impl Catalogue {
             ));
         }
         if let Some(name) = id.strip_prefix(UPLOAD_PREFIX) {
-            crate::uploads::check_name(name)?;
+            check_name(name)?;
             let path = self.upload_path(name);
             if !path.is_file() {
                 return Err(ApiError::invalid(format!(

@@ -5,57 +5,8 @@
 use serde::{Deserialize, Serialize};
 use tracer::VariantSet;
 
-use crate::catalogue::Catalogue;
+use crate::catalogue::{Catalogue, Part};
 use crate::error::ApiError;
-
-/// What a job runs besides the renders (the suite's parts).
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
-#[serde(rename_all = "snake_case")]
-pub enum Part {
-    /// Every variant rendered, counted, timed and compared with baseline (always run).
-    Render,
-    /// The scene sampled: gprof-format profile and flamegraphs of baseline and the
-    /// fastest variant whose picture stays visually identical.
-    Profile,
-    /// The FPGA pipeline model (time, fit) and its emulator's image.
-    Hardware,
-    /// Per-pixel maps of baseline, simd and bvh.
-    PixelMaps,
-    /// The embedded suite's CI-sized run (`rtprof suite --quick`): every scene and
-    /// variant; the job's scene and variants are ignored.
-    Suite,
-}
-
-impl Part {
-    pub const ALL: [Part; 5] = [
-        Part::Render,
-        Part::Profile,
-        Part::Hardware,
-        Part::PixelMaps,
-        Part::Suite,
-    ];
-
-    pub fn name(self) -> &'static str {
-        match self {
-            Part::Render => "render",
-            Part::Profile => "profile",
-            Part::Hardware => "hardware",
-            Part::PixelMaps => "pixel_maps",
-            Part::Suite => "suite",
-        }
-    }
-
-    /// What the page says of it.
-    pub fn label(self) -> &'static str {
-        match self {
-            Part::Render => "render and compare: counts, times, images and their difference",
-            Part::Profile => "profile: gprof flat profile, call graph, flamegraphs",
-            Part::Hardware => "hardware: FPGA model time and fit, emulator image",
-            Part::PixelMaps => "per-pixel maps of baseline, simd and bvh",
-            Part::Suite => "the whole quick suite (every scene and variant; a few minutes)",
-        }
-    }
-}
 
 /// The request of `POST /api/jobs`.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]

@@ -10,13 +10,13 @@ use std::sync::{Arc, Mutex, MutexGuard, mpsc};
 use runner::RunError;
 use runner::definition::SuiteDef;
 use runner::report_files::Pdf;
-use runner::staging::Staging;
-use runner::suite::{RunContext, Suite};
+use runner::suite::Suite;
+use runner::suite_dir::{DirRun, run_into_dir};
 use tokio::sync::watch;
 
-use crate::catalogue::Catalogue;
+use crate::catalogue::{Catalogue, Part};
 use crate::error::ApiError;
-use crate::job::{Job, JobProgress, JobRequest, JobStatus, Part};
+use crate::job::{Job, JobProgress, JobRequest, JobStatus};
 use crate::store::{PARTIAL_DIR, Store, list_files};
 
 struct Entry {
@@ -364,37 +364,18 @@ fn execute(
     if request.runs(Part::PixelMaps) {
         suite.def.pixel_stats = suite.scenes.iter().map(|s| s.name.clone()).collect();
     }
-    let staging = Staging::create(dir).map_err(|e| failed(&e))?;
-    let ctx = RunContext {
-        out: staging.dir(),
+    let run = DirRun {
         threads: request.threads,
         progress,
         stop,
+        pdf: Pdf::Write,
+        keep_partial: Some(&dir.join(PARTIAL_DIR)),
     };
-    let run = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
-        let results = suite.run(&ctx)?;
-        if stop.load(Ordering::SeqCst) {
-            return Err(RunError::Stopped);
-        }
-        runner::Progress::begin(progress, "reports", 0);
-        runner::Progress::message(progress, "writing results.json, report.html and report.pdf");
-        runner::report_files::write_run(&results, staging.dir(), Pdf::Write)?;
-        Ok(())
-    }));
-    let ended = match run {
-        Ok(Ok(())) => return staging.publish(dir).map_err(|e| failed(&e)),
-        Ok(Err(RunError::Stopped | RunError::StoppedAfter { .. })) => Ended::Stopped,
-        Ok(Err(e)) => Ended::Failed(e.to_string()),
-        Err(_) => {
-            Ended::Failed("internal error (panic) while running this job; please report it".into())
-        }
-    };
-    // Never a results.json among partial outputs: only a finished job has one.
-    let _ = std::fs::remove_file(staging.dir().join("results.json"));
-    if let Err(e) = staging.keep_as(&dir.join(PARTIAL_DIR)) {
-        eprintln!("rtprof: warning: {e}");
+    match run_into_dir(&suite, dir, &run, &mut |_| Ok(())) {
+        Ok(_) => Ok(()),
+        Err(RunError::Stopped | RunError::StoppedAfter { .. }) => Err(Ended::Stopped),
+        Err(e) => Err(Ended::Failed(e.to_string())),
     }
-    Err(ended)
 }
 
 /// The runner's progress, as the job's progress.
@@ -452,6 +433,12 @@ impl runner::Progress for ProgressSink<'_> {
 
     fn advance(&self, steps: u64) {
         self.change(|p| p.done += steps);
+    }
+
+    fn note(&self, text: &str) {
+        // The runner's asides (a render repeated to gather samples, partial outputs
+        // that could not be kept) belong in the server's log.
+        eprintln!("rtprof: {text}");
     }
 }
 

@@ -5,28 +5,8 @@
 use axum::http::StatusCode;
 use tracer::Limits;
 
-use crate::catalogue::{Catalogue, SceneEntry, UPLOAD_PREFIX};
+use crate::catalogue::{Catalogue, SceneEntry, UPLOAD_PREFIX, check_name};
 use crate::error::ApiError;
-
-/// Longest upload name.
-const MAX_NAME: usize = 64;
-
-/// A plain name: letters, digits, `-` and `_`, 1 to 64 of them, not starting with `-`.
-pub fn check_name(name: &str) -> Result<(), ApiError> {
-    let plain = !name.is_empty()
-        && name.len() <= MAX_NAME
-        && !name.starts_with('-')
-        && name
-            .bytes()
-            .all(|b| b.is_ascii_alphanumeric() || b == b'-' || b == b'_');
-    if plain {
-        Ok(())
-    } else {
-        Err(ApiError::invalid(format!(
-            "'{name}' is not a scene name: use 1 to {MAX_NAME} letters, digits, '-' or '_'"
-        )))
-    }
-}
 
 /// Checks `bytes` as the NFF scene `name` and keeps it. Refused: a bad name (422), a
 /// name already taken (409: uploads are never replaced, since earlier jobs name them),

@@ -5,14 +5,10 @@
 use super::Format;
 use super::progress::Bars;
 use super::scene_args::{RenderFlags, ShadingFlags};
-use anyhow::{Context, Result, bail};
-use runner::compare::compare_variants;
-use runner::pool::thread_pool;
+use anyhow::{Result, bail};
+use runner::compare::SideBySide;
 use runner::scene_input::SceneInput;
-use runner::timing::TimingPolicy;
-use runner::variant_job::RenderSetup;
 use std::path::{Path, PathBuf};
-use std::sync::atomic::AtomicBool;
 use tracer::VariantSet;
 
 #[derive(clap::Args, Debug)]
@@ -79,33 +75,16 @@ fn compare_images(args: &CompareArgs, a: &Path, b: &Path) -> Result<()> {
 fn side_by_side(args: &CompareArgs, scene_arg: &Path, list: &str) -> Result<()> {
     let sets = VariantSet::parse_list(list)?;
     let input = SceneInput::parse(&scene_arg.to_string_lossy(), Path::new(""))?;
-    if let Some(dir) = &args.output {
-        std::fs::create_dir_all(dir)
-            .with_context(|| format!("cannot create directory {}", dir.display()))?;
+    let report = SideBySide {
+        input: &input,
+        sets: &sets,
+        settings: &args.render.settings(),
+        mode: args.shading.mode(),
+        repeats: args.repeats,
+        out: args.output.as_deref(),
+        f64_reference: args.reference,
     }
-    let scene = args.render.limits.load(&input)?;
-    let options = args.render.settings().options(&scene, args.shading.mode());
-    let pool = thread_pool(args.render.threads)?;
-    let name = input.to_string();
-    let never = AtomicBool::new(false);
-    let setup = RenderSetup {
-        scene: &scene,
-        name: &name,
-        options: &options,
-        pool: &pool,
-        counting_pool: &pool,
-        stop: &never,
-    };
-    // --repeats renders at least; no minimum time, so the count is what was asked.
-    let policy = TimingPolicy::new(args.repeats, 0.0);
-    let report = compare_variants(
-        &setup,
-        &sets,
-        &policy,
-        args.output.as_deref(),
-        args.reference,
-        &Bars::default(),
-    )?;
+    .run(&Bars::default())?;
     let format = if args.json { Format::Json } else { args.format };
     print!(
         "{}",

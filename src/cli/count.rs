@@ -3,9 +3,13 @@
 
 use super::scene_args::SceneArgs;
 use anyhow::{Context, Result};
-use runner::pixel_maps::{MapsContext, TIMED_PASSES, maps_of, write_maps};
+use runner::pixel_maps::{MapsContext, record_maps_of, write_maps, written_line};
+use runner::pool::thread_pool;
+use runner::render_job::SceneRender;
+use runner::render_setup::RenderSetup;
 use std::path::{Path, PathBuf};
-use tracer::{Count, NoCount, ShadingMode};
+use std::sync::atomic::AtomicBool;
+use tracer::{Count, ShadingMode};
 
 #[derive(clap::Args, Debug)]
 pub struct CountArgs {
@@ -46,47 +50,29 @@ pub fn run(args: &CountArgs) -> Result<()> {
     Ok(())
 }
 
-fn write_pixel_stats(
-    args: &CountArgs,
-    counted: &runner::render_job::SceneRender<Count>,
-    dir: &Path,
-) -> Result<()> {
-    let mut timed = Vec::new();
-    for _ in 0..TIMED_PASSES {
-        let run = args.scene.run_with::<NoCount>(ShadingMode::Color, true)?;
-        timed.extend(run.rendered.samples);
-    }
-    let Some(counted_samples) = &counted.rendered.samples else {
-        anyhow::bail!("the counted render kept no per-sample records");
-    };
-    let totals = tracer::Counter::totals(&counted.rendered.counter)
-        .context("the counted render returned no counts")?;
-    let maps = maps_of(counted_samples, &timed, &totals)?;
-    let resolution = tracer::pixel_stats::clock_resolution();
+/// The per-pixel maps of the counted render `counted` and three timed ones, into `dir`.
+fn write_pixel_stats(args: &CountArgs, counted: &SceneRender<Count>, dir: &Path) -> Result<()> {
     let options = args.scene.render.options(&counted.scene);
-    let stats = write_maps(
-        dir,
-        &maps,
-        &MapsContext {
-            scene: &args.scene.scene.to_string(),
-            variant: &args.scene.variant,
-            sampling: options.sampling,
-            threads: counted.threads,
-            clock_resolution_ns: resolution.as_secs_f64() * 1e9,
-        },
-    )?;
-    eprintln!(
-        "wrote {} per-pixel maps ({}x{} samples) to {}: {}",
-        stats.maps.len(),
-        stats.columns,
-        stats.rows,
-        dir.display(),
-        stats
-            .maps
-            .iter()
-            .map(|m| m.key.as_str())
-            .collect::<Vec<_>>()
-            .join(", ")
-    );
+    let pool = thread_pool(args.scene.render.threads)?;
+    let name = args.scene.scene.to_string();
+    let never = AtomicBool::new(false);
+    let setup = RenderSetup {
+        scene: &counted.scene,
+        name: &name,
+        options: &options,
+        pool: &pool,
+        counting_pool: &pool,
+        stop: &never,
+    };
+    let maps = record_maps_of(&setup, &counted.variants, &counted.rendered)?;
+    let context = MapsContext {
+        scene: &name,
+        variant: &args.scene.variant,
+        sampling: options.sampling,
+        threads: counted.threads,
+        clock_resolution_ns: tracer::pixel_stats::clock_resolution().as_secs_f64() * 1e9,
+    };
+    let stats = write_maps(dir, &maps, &context)?;
+    eprintln!("{}", written_line(&stats, dir));
     Ok(())
 }

@@ -77,8 +77,8 @@ impl DesignFlags {
 struct WhatIf {
     #[command(flatten)]
     design: DesignFlags,
-    /// Device (default EP4CE115, the thesis's; others are unvalidated).
-    #[arg(long, value_name = "D", default_value = "EP4CE115")]
+    /// Device: the thesis's by default; the others are unvalidated.
+    #[arg(long, value_name = "D", default_value_t = hwmodel::library::default_device_name())]
     device: String,
 }
 

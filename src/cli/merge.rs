@@ -3,9 +3,8 @@
 //! staging directory as the suite writes.
 
 use super::Outcome;
-use anyhow::{Context, Result};
+use anyhow::Result;
 use runner::merge::{MergeOptions, merge, read_part};
-use runner::staging::Staging;
 use runner::suite::Suite;
 use std::path::PathBuf;
 
@@ -35,14 +34,8 @@ pub fn run(args: &MergeArgs) -> Result<()> {
     for warning in &merged.warnings {
         eprintln!("rtprof: warning: {warning}");
     }
-    std::fs::create_dir_all(&args.output)
-        .with_context(|| format!("cannot create {}", args.output.display()))?;
-    let staging = Staging::create(&args.output)?;
-    merged.copy_files(staging.dir())?;
     let pdf = args.pdf.choice();
-    let pages = runner::report_files::write_run(&merged.results, staging.dir(), pdf)?;
-    staging.publish(&args.output)?;
-    pdf.remove_stale(&args.output)?;
+    let pages = merged.write_into(&args.output, pdf)?;
     eprint!("{}", merged.summary(&args.output, pdf));
     if let Some(p) = pages {
         eprintln!("{}", reports::format::pdf_pages(p.total, p.main_body));

@@ -57,7 +57,7 @@ impl BenchmarkDirs {
 
     /// Reads the benchmark figures into `results` (replacing any it had), saying what
     /// it added; `discover` looks in the cargo target directory when none is given.
-    pub fn add_to(&self, results: &mut Results, discover: bool) -> Result<()> {
+    pub fn add_to(&self, results: &mut Results, discover: bool) -> Result<(), runner::RunError> {
         let (criterion, instructions) = (self.criterion.as_deref(), self.instructions.as_deref());
         let added = runner::benchmarks::add_to_results(results, criterion, instructions, discover)?;
         added.iter().for_each(|line| eprintln!("{line}"));

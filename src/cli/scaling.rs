@@ -9,9 +9,8 @@ use super::progress::Bars;
 use super::scene_args::parse_size;
 use anyhow::{Context, Result, bail};
 use runner::pool::thread_pool;
-use runner::scaling::{Family, ScalingPlan, run_scaling};
-use std::path::{Path, PathBuf};
-use tracer::image_io::write_atomically;
+use runner::scaling::{Family, ScalingPlan, run_scaling, write_study};
+use std::path::PathBuf;
 
 #[derive(clap::Args, Debug)]
 pub struct ScalingArgs {
@@ -23,7 +22,7 @@ pub struct ScalingArgs {
     quick: bool,
     /// A scene family and its size factors, e.g. balls:1-6 or shells:1-13:2 (step 2);
     /// repeat for several [default: balls:1-6, shells:1-13:2, tetra:2-10:2].
-    #[arg(long, value_name = "SPD:FROM-TO[:STEP]", value_parser = parse_family)]
+    #[arg(long, value_name = "SPD:FROM-TO[:STEP]", value_parser = Family::parse)]
     family: Vec<Family>,
     /// Frame of every render, pixel centres [default: 128x128].
     #[arg(long, value_name = "WxH", value_parser = parse_size)]
@@ -44,37 +43,6 @@ pub struct ScalingArgs {
     format: Format,
 }
 
-/// `balls:1-6` or `shells:1-13:2`.
-fn parse_family(text: &str) -> Result<Family, String> {
-    let bad = || format!("'{text}' is not a family: expected SPD:FROM-TO[:STEP], e.g. balls:1-6");
-    let mut parts = text.split(':');
-    let (Some(name), Some(range)) = (parts.next(), parts.next()) else {
-        return Err(bad());
-    };
-    let step: u32 = match parts.next() {
-        Some(s) => s.parse().map_err(|_| bad())?,
-        None => 1,
-    };
-    let (from, to) = range.split_once('-').unwrap_or((range, range));
-    let (from, to): (u32, u32) = (
-        from.parse().map_err(|_| bad())?,
-        to.parse().map_err(|_| bad())?,
-    );
-    if step == 0 || from > to || parts.next().is_some() {
-        return Err(bad());
-    }
-    let program = spd::find(name).ok_or_else(|| {
-        spd::SpdError::UnknownProgram {
-            name: name.to_string(),
-        }
-        .to_string()
-    })?;
-    Ok(Family {
-        program: program.name,
-        size_factors: (from..=to).step_by(step as usize).collect(),
-    })
-}
-
 pub fn run(args: &ScalingArgs) -> Result<()> {
     let mut plan = ScalingPlan::default_plan(args.quick);
     if !args.family.is_empty() {
@@ -89,47 +57,22 @@ pub fn run(args: &ScalingArgs) -> Result<()> {
         plan.budget_seconds = budget;
     }
     plan.check()?;
+    // Refused before the work, not after it.
     std::fs::create_dir_all(&args.output)
         .with_context(|| format!("cannot create directory {}", args.output.display()))?;
     let pool = thread_pool(args.threads)?;
     let stop = super::interrupt::install();
     let study = pool.install(|| run_scaling(&plan, &Bars::default(), stop))?;
-    let json = serde_json::to_string_pretty(&study)? + "\n";
-    let chart = reports::charts::scaling_chart(&study);
-    let dir = &args.output;
-    let write = |name: &str, bytes: &[u8]| -> Result<()> {
-        let path = dir.join(name);
-        write_atomically(&path, bytes).with_context(|| format!("cannot write {}", path.display()))
-    };
-    write("scaling.json", json.as_bytes())?;
-    write(
-        "scaling.csv",
-        reports::scaling_text::to_csv(&study).as_bytes(),
-    )?;
-    write(
-        "scaling.md",
-        reports::scaling_text::to_markdown(&study).as_bytes(),
-    )?;
-    if let Some(chart) = &chart {
-        write("scaling.svg", chart.svg.as_bytes())?;
-    }
+    let files = write_study(&study, &args.output)?;
     print!(
         "{}",
         match args.format {
             Format::Text => reports::scaling_text::to_text(&study),
             Format::Markdown => reports::scaling_text::to_markdown(&study),
             Format::Csv => reports::scaling_text::to_csv(&study),
-            Format::Json => json,
+            Format::Json => files.json.clone(),
         }
     );
-    eprintln!("wrote {}", files(dir, chart.is_some()));
+    eprintln!("wrote {}", files.line(&args.output));
     Ok(())
-}
-
-fn files(dir: &Path, chart: bool) -> String {
-    format!(
-        "{}/{{scaling.json, scaling.csv, scaling.md{}}}",
-        dir.display(),
-        if chart { ", scaling.svg" } else { "" }
-    )
 }

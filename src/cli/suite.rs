@@ -4,11 +4,12 @@
 
 use super::Outcome;
 use super::progress::Bars;
-use anyhow::{Context, Result};
+use anyhow::Result;
 use runner::RunError;
 use runner::definition::SuiteDef;
-use runner::staging::{Staging, discarded_message, save};
-use runner::suite::{RunContext, Suite};
+use runner::staging::{discarded_message, save};
+use runner::suite::Suite;
+use runner::suite_dir::{DirRun, RunWritten, run_into_dir};
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
@@ -83,33 +84,29 @@ pub fn run(args: &SuiteArgs) -> Result<()> {
         .unwrap_or_default();
     let suite = Suite::prepare(def, args.quick, &base_dir, args.scenes.as_deref())?
         .with_shard(args.shard)?;
-    std::fs::create_dir_all(&args.output)
-        .with_context(|| format!("cannot create {}", args.output.display()))?;
-    let staging = Staging::create(&args.output)?;
     let stop = super::interrupt::install();
-    let progress = Bars::default();
-    let ctx = RunContext {
-        out: staging.dir(),
-        threads: args.threads,
-        progress: &progress,
-        stop,
-    };
-    let mut results = match suite.run(&ctx) {
-        Ok(r) => r,
-        Err(RunError::StoppedAfter { done, total }) => {
-            return Err(interrupted(&args.output, done, total));
-        }
-        Err(e) => return Err(e.into()),
-    };
-    args.benchmarks.add_to(&mut results, true)?;
     let pdf = args.pdf.choice();
-    let pages = runner::report_files::write_run(&results, staging.dir(), pdf)?;
-    let total = suite.scenes.len();
-    if stop.load(std::sync::atomic::Ordering::SeqCst) {
-        return Err(interrupted(&args.output, total, total));
-    }
-    staging.publish(&args.output)?;
-    pdf.remove_stale(&args.output)?;
+    let run = DirRun {
+        threads: args.threads,
+        progress: &Bars::default(),
+        stop,
+        pdf,
+        keep_partial: None,
+    };
+    let add_benchmarks =
+        &mut |results: &mut results::Results| args.benchmarks.add_to(results, true);
+    let RunWritten { results, pages } =
+        match run_into_dir(&suite, &args.output, &run, add_benchmarks) {
+            Ok(written) => written,
+            Err(RunError::StoppedAfter { done, total }) => {
+                return Err(interrupted(&args.output, done, total));
+            }
+            Err(RunError::Stopped) => {
+                let total = suite.scenes.len();
+                return Err(interrupted(&args.output, total, total));
+            }
+            Err(e) => return Err(e.into()),
+        };
     let seconds = started.elapsed().as_secs_f64();
     eprint!("{}", suite.summary(&results, seconds, &args.output, pdf));
     if let Some(p) = pages {

@@ -32,7 +32,7 @@
 //! then every row's self and inclusive shares with their 95 % intervals, by inclusive
 //! share, noise rows saying `noise` in the self column.
 
-use super::gprof::{c_field, format_g};
+use super::c_format::{c_field, format_g};
 use super::share_interval::{ShareInterval, Z_95, below_noise_floor, wilson_interval};
 use super::tally::{ProfileInput, Tally, percent_of};
 use serde::{Deserialize, Serialize};

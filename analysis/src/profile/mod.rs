@@ -6,6 +6,7 @@
 //! produces [`StackSamples`]; everything else reads it.
 
 pub mod amdahl;
+mod c_format;
 pub mod export;
 pub mod flat;
 pub mod folded;

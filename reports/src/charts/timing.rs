@@ -1,6 +1,7 @@
 //! Render time against primitive count: box plots of the timed repeats per test-bench
 //! family, with the hardware model's time (thesis fig. 47, 48).
 
+use analysis::timing::quantile_of_sorted;
 use plotters::prelude::*;
 
 use super::Chart;
@@ -34,14 +35,6 @@ struct BoxStats {
     outliers: Vec<f64>,
 }
 
-/// The `p` quantile of sorted, non-empty `sorted`, interpolated linearly.
-fn percentile(sorted: &[f64], p: f64) -> f64 {
-    let rank = p * (sorted.len() - 1) as f64;
-    let below = rank.floor() as usize;
-    let above = (below + 1).min(sorted.len() - 1);
-    sorted[below] + (sorted[above] - sorted[below]) * (rank - below as f64)
-}
-
 /// The box of the finite positive `samples`, if there are any.
 fn box_stats(samples: &[f64]) -> Option<BoxStats> {
     let mut s: Vec<f64> = samples
@@ -53,7 +46,7 @@ fn box_stats(samples: &[f64]) -> Option<BoxStats> {
         return None;
     }
     s.sort_by(f64::total_cmp);
-    let [q1, median, q3] = [0.25, 0.5, 0.75].map(|p| percentile(&s, p));
+    let [q1, median, q3] = [0.25, 0.5, 0.75].map(|p| quantile_of_sorted(&s, p));
     let iqr = q3 - q1;
     let fences = q1 - 1.5 * iqr..=q3 + 1.5 * iqr;
     let (inside, outliers): (Vec<f64>, Vec<f64>) = s.into_iter().partition(|v| fences.contains(v));

@@ -5,7 +5,7 @@ use super::access;
 use crate::document::{Block, Builder, Cell, Column, Inline, Pair, Section, Table};
 use crate::findings::{headline_findings, repeats_text};
 use crate::format;
-use crate::results::{Results, SceneResult};
+use crate::results::{Results, SceneResult, TimeCovers};
 
 pub fn summary(b: &mut Builder) -> Section {
     let mut s = b.section(
@@ -128,7 +128,7 @@ pub fn run_pairs(label: &str, r: &Results) -> Vec<Pair> {
             "Times",
             format!(
                 "{}; {} bootstrap resamples for each 95 % interval",
-                super::variants::time_covers(s.timing.covers),
+                time_covers(s.timing.covers),
                 s.timing.bootstrap_resamples
             ),
         ),
@@ -158,6 +158,16 @@ pub fn kinds(scene: &SceneResult) -> String {
         .map(|(k, n)| format::kind_count(*n, k))
         .collect::<Vec<_>>()
         .join(", ")
+}
+
+/// What a time of the run covers, in words.
+pub fn time_covers(covers: TimeCovers) -> &'static str {
+    match covers {
+        TimeCovers::Tracing => "tracing only (scene preparation and structure build apart)",
+        TimeCovers::PreprocessingAndTracing => {
+            "scene preparation, structure build and tracing together (an rtprof.results/1 file)"
+        }
+    }
 }
 
 /// "balls · 7 primitives (7 spheres) · 640×480 · builtin": a scene in one line.

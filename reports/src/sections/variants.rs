@@ -4,21 +4,11 @@
 
 use std::collections::BTreeSet;
 
-use super::summary::scene_line;
+use super::summary::{scene_line, time_covers};
 use super::{access, answers};
 use crate::document::{Block, Builder, Cell, Column, Inline, Section, Table, Tone};
 use crate::format;
-use crate::results::{Band, Quality, SceneResult, TimeCovers, VariantResult};
-
-/// What a time of the run covers, in words.
-pub fn time_covers(covers: TimeCovers) -> &'static str {
-    match covers {
-        TimeCovers::Tracing => "tracing only (scene preparation and structure build apart)",
-        TimeCovers::PreprocessingAndTracing => {
-            "scene preparation, structure build and tracing together (an rtprof.results/1 file)"
-        }
-    }
-}
+use crate::results::{Band, Quality, SceneResult, VariantResult};
 
 /// Counters shown as their own columns: key and header.
 const MAIN_COUNTERS: [(&str, &str); 5] = [

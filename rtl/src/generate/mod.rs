@@ -1,0 +1,320 @@
+//! The RTL generator: the pipeline's Verilog, written from the same scheduled dataflow
+//! graphs the model times ([`hwmodel::blocks::Pipeline`]).
+//!
+//! Each graph block (primary ray, intersection, shading, the comparator tree) becomes
+//! one module: every operator node an instance of the Verilog library at its library
+//! latency, every producer one tapped delay line as long as its largest wait (the
+//! scheduler's), in registers or, when the library puts the line in memory, in
+//! circular buffers (`fp_delay_ram.v`); frame constants and literals are never
+//! delayed; a row register loads once per image row. The minimum-distance block is
+//! written by hand (it feeds its own result back: the kept distance is forwarded to the
+//! next compare), with the model's latency (compare + register), in
+//! `rtl/verilog/min_distance.v`. The top module adds the screen iterator (one pixel
+//! every 3c cycles, c = ⌈n/K⌉), the scene memory (one RAM per word, written by a loader
+//! port, read with the library's 2 cycles), K intersection units fed primitive k of
+//! their chunk 3k cycles after the ray, and the frame-buffer write port.
+//!
+//! Control (which slot is valid, first or last of a pixel) travels beside the data in
+//! short delay lines of the blocks' latencies. For the simulation, every block also
+//! carries a *monitor* valid bit through its generated structure (the AND of its
+//! operands' valid bits, delayed like the data): its first rise after the first input
+//! is the block's latency as built, which the testbench reports. Monitors are
+//! `ifndef SYNTHESIS`: Yosys does not count them.
+//!
+//! `block.rs` writes a graph block's module, `top.rs` the top module and the
+//! minimum-distance block; this module joins them into the design's files.
+
+mod block;
+mod top;
+
+use std::collections::{BTreeMap, BTreeSet};
+use std::path::Path;
+
+use hwmodel::blocks::{ADDRESS_BITS, Block, Pipeline};
+use hwmodel::graph::NodeKind;
+use hwmodel::library::Library;
+
+use crate::RtlError;
+use crate::operators::write_atomically;
+use crate::operators::{self, SourceFile};
+
+pub use block::{block_module, built_delay_lines};
+use top::{TopTiming, min_distance_module, top_module};
+
+/// The circular-buffer delay line for lines in memory.
+pub const DELAY_RAM: SourceFile = SourceFile {
+    name: "fp_delay_ram.v",
+    text: include_str!("../../verilog/fp_delay_ram.v"),
+};
+
+/// The Verilator testbench: runs one frame, writes the image and the measurements.
+pub const TESTBENCH: SourceFile = SourceFile {
+    name: "tb_pipeline.cpp",
+    text: include_str!("../../verilog/tb/tb_pipeline.cpp"),
+};
+
+/// The top module's name.
+pub const TOP: &str = "raycaster_top";
+
+/// Scene-memory words per primitive the RTL can hold (9 words, then the rsqrt-free
+/// shading's 5).
+pub const FIELDS: u32 = 14;
+
+/// Most intersection units the generator builds (the comparator tree's width).
+pub const MAX_UNITS: u32 = 64;
+
+/// Memory delay-line segments shorter than this stay in registers (a circular buffer
+/// needs at least 2 words).
+const RAM_SEGMENT_MIN: u32 = 3;
+
+/// A generated design: its files and what the testbench and the synthesis need.
+#[derive(Clone, Debug)]
+pub struct GeneratedRtl {
+    /// `(file name, text)`: the generated modules, then the operator library.
+    pub files: Vec<(String, String)>,
+    /// Per block: its module name and its latency in the model's schedule.
+    pub blocks: Vec<BlockRtl>,
+    /// Address bits of the scene memory (2^bits primitives).
+    pub depth_bits: u32,
+    /// Cycles the top needs after `start` before the first pixel (row 0's base).
+    pub prologue: u32,
+}
+
+/// One generated block.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct BlockRtl {
+    /// The model's block name (`primary_ray`, `intersection`, …).
+    pub name: &'static str,
+    /// Its Verilog module.
+    pub module: String,
+    /// Its latency in the model's schedule.
+    pub latency: u32,
+}
+
+/// A Verilog identifier for a graph label (`L̂.x` → `Lhat_x`, `∞` → `inf`).
+pub fn identifier(label: &str) -> String {
+    let label = label.replace('̂', "hat").replace('∞', "inf");
+    let mut out = String::new();
+    for c in label.chars() {
+        if c.is_ascii_alphanumeric() {
+            out.push(c);
+        } else if !out.ends_with('_') {
+            out.push('_');
+        }
+    }
+    out.trim_matches('_').to_string()
+}
+
+fn malformed(block: &str, problem: String) -> RtlError {
+    RtlError::Generate(format!("{block}: {problem}"))
+}
+
+/// The whole design for `pipeline`, with a scene memory of 2^`depth_bits` primitives.
+pub fn generate(
+    lib: &Library,
+    pipeline: &Pipeline,
+    depth_bits: u32,
+) -> Result<GeneratedRtl, RtlError> {
+    let design = pipeline.design;
+    let units = design.units.max(1);
+    if units > MAX_UNITS {
+        return Err(RtlError::TooManyUnits {
+            units,
+            max: MAX_UNITS,
+        });
+    }
+    if depth_bits == 0 || depth_bits > ADDRESS_BITS {
+        return Err(RtlError::Generate(format!(
+            "scene memory of 2^{depth_bits} primitives: the address has {ADDRESS_BITS} bits"
+        )));
+    }
+    let mut files = Vec::new();
+    let mut blocks = Vec::new();
+    let mut graph_blocks: Vec<(&Block, String)> = vec![
+        (&pipeline.primary_ray, "primary_ray".to_string()),
+        (&pipeline.intersection, "intersection".to_string()),
+        (&pipeline.shading, "shading".to_string()),
+    ];
+    if let Some(tree) = &pipeline.min_tree {
+        graph_blocks.push((tree, "min_tree".to_string()));
+    }
+    let mut texts = BTreeMap::new();
+    for (block, module) in &graph_blocks {
+        let text = block_module(lib, block, module)?;
+        texts.insert(block.name, text.clone());
+        files.push((format!("{module}.v"), text));
+    }
+    files.push(("min_distance.v".into(), min_distance_module(lib)));
+    for b in pipeline.blocks_in_order() {
+        blocks.push(BlockRtl {
+            name: b.name,
+            module: b.name.to_string(),
+            latency: b.latency(),
+        });
+    }
+
+    // The row path: the primary ray's row registers load at their consumers' start.
+    let pr = &pipeline.primary_ray;
+    let nodes = pr.graph.nodes();
+    let mut row_starts = BTreeSet::new();
+    let mut row_path = 0;
+    for (id, node) in nodes.iter().enumerate() {
+        if node.kind == NodeKind::RowRegister {
+            if let Some(&src) = node.inputs.first() {
+                row_path = row_path.max(pr.schedule.finish[src]);
+            }
+            for (c, consumer) in nodes.iter().enumerate() {
+                if consumer.inputs.contains(&id) {
+                    row_starts.insert(pr.schedule.start[c]);
+                }
+            }
+        }
+    }
+    let row_start = match (row_starts.first(), row_starts.last()) {
+        (Some(&a), Some(&b)) if a == b && a >= 1 => a,
+        (None, None) => 1,
+        _ => {
+            return Err(RtlError::Generate(format!(
+                "primary_ray: the row registers' readers start at {row_starts:?}: one start ≥ 1 is needed"
+            )));
+        }
+    };
+    // i as a float (registered int-to-float), then the row path, then a margin.
+    let prologue = row_path + 4;
+
+    let top = top_module(
+        lib,
+        pipeline,
+        &texts,
+        TopTiming {
+            units,
+            depth_bits,
+            row_load_delay: row_start - 1,
+            prologue,
+            row_path,
+        },
+    )?;
+    files.push((format!("{TOP}.v"), top));
+    for source in operators::SOURCES.iter().chain([&DELAY_RAM]) {
+        files.push((source.name.to_string(), source.text.to_string()));
+    }
+    files.push((TESTBENCH.name.to_string(), TESTBENCH.text.to_string()));
+    Ok(GeneratedRtl {
+        files,
+        blocks,
+        depth_bits,
+        prologue,
+    })
+}
+
+/// Writes `rtl`'s files into `dir` (created if needed), each atomically.
+pub fn write(rtl: &GeneratedRtl, dir: &Path) -> Result<(), RtlError> {
+    std::fs::create_dir_all(dir).map_err(|source| RtlError::Io {
+        path: dir.to_path_buf(),
+        source,
+    })?;
+    for (name, text) in &rtl.files {
+        write_atomically(&dir.join(name), text)?;
+    }
+    Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use hwmodel::design::Design;
+    use hwmodel::library::OpKind;
+
+    fn designs() -> Vec<Design> {
+        let t = Design::thesis();
+        vec![
+            t,
+            Design { units: 2, ..t },
+            Design { units: 3, ..t },
+            Design {
+                fast_sqrt: true,
+                ..t
+            },
+            Design { ortho: true, ..t },
+            Design {
+                no_rsqrt_shading: true,
+                ..t
+            },
+        ]
+    }
+
+    #[test]
+    fn every_block_builds_the_delay_lines_the_model_costs() {
+        let lib = Library::cyclone_iv_e();
+        for design in designs() {
+            let p = Pipeline::build(&lib, &design);
+            let blocks = [
+                Some(&p.primary_ray),
+                Some(&p.intersection),
+                Some(&p.shading),
+                p.min_tree.as_ref(),
+            ];
+            for block in blocks.into_iter().flatten() {
+                let mut built = built_delay_lines(&lib, block).unwrap();
+                let mut model: Vec<(String, u32, u32)> = block
+                    .schedule
+                    .delay_lines
+                    .iter()
+                    .map(|l| (l.producer.clone(), l.bits, l.cycles))
+                    .collect();
+                built.sort();
+                model.sort();
+                assert_eq!(built, model, "{} of {}", block.name, design.label());
+            }
+        }
+    }
+
+    #[test]
+    fn every_operator_node_is_one_instance_at_its_library_latency() {
+        let lib = Library::cyclone_iv_e();
+        let p = Pipeline::build(&lib, &Design::thesis());
+        let text = block_module(&lib, &p.intersection, "intersection").unwrap();
+        let count = |needle: &str| text.matches(needle).count() as u32;
+        let s = &p.intersection.schedule;
+        assert_eq!(count("fp_add_sub #(.LATENCY(7))"), s.count(OpKind::AddSub));
+        assert_eq!(
+            count("fp_mul #(.LATENCY(5))") + count("fp_mul #(.LATENCY(7))"),
+            s.count(OpKind::Multiply) + s.count(OpKind::MultiplyRegistered)
+        );
+        assert_eq!(count("fp_sqrt #(.LATENCY(16))"), 1);
+        assert_eq!(count("fp_div #(.LATENCY(6))"), 2);
+        assert_eq!(count("fp_compare #(.LATENCY(3))"), s.count(OpKind::Compare));
+        // −b − √disc and −b + √disc: the sign of b flipped on the wire.
+        assert_eq!(count("{~n"), 2);
+    }
+
+    #[test]
+    fn the_whole_design_generates_for_every_what_if() {
+        let lib = Library::cyclone_iv_e();
+        for design in designs() {
+            let p = Pipeline::build(&lib, &design);
+            let rtl = generate(&lib, &p, 6).unwrap_or_else(|e| panic!("{}: {e}", design.label()));
+            let top = rtl
+                .files
+                .iter()
+                .find(|(n, _)| n == "raycaster_top.v")
+                .map(|(_, t)| t.clone())
+                .unwrap();
+            let units = top.matches("    intersection unit").count() as u32;
+            assert_eq!(units, design.units, "{}", design.label());
+            assert_eq!(
+                top.matches("    min_distance min").count() as u32,
+                design.units
+            );
+            assert_eq!(top.contains("    min_tree tree"), design.units > 1);
+        }
+    }
+
+    #[test]
+    fn identifiers_are_verilog_names() {
+        assert_eq!(identifier("R.x"), "R_x");
+        assert_eq!(identifier("L̂.y"), "Lhat_y");
+        assert_eq!(identifier("scan_line.z"), "scan_line_z");
+        assert_eq!(identifier("0 (bit)"), "0_bit");
+    }
+}
