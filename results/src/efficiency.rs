@@ -34,7 +34,7 @@ impl CodeKind {
     pub fn of_accelerator(accel: tracer::Accelerator) -> CodeKind {
         use tracer::Accelerator as A;
         match accel {
-            A::Simd | A::WideBvh | A::Embree | A::EmbreeNative => CodeKind::Simd,
+            A::Simd | A::WideBvh | A::Embree | A::EmbreeNative | A::EmbreePackets => CodeKind::Simd,
             A::BruteForce | A::Bvh => CodeKind::Scalar,
         }
     }

@@ -32,8 +32,9 @@ pub struct SuiteArgs {
     /// Add every .nff file of this directory (e.g. ../shared/spd).
     #[arg(long, value_name = "DIR")]
     scenes: Option<PathBuf>,
-    /// Also run Intel Embree (the `embree` variant, the peer) on every scene: needs an
-    /// rtprof built with `--features embree`.
+    /// Also run Intel Embree, the peer, on every scene in both its modes: single rays
+    /// (`embree`) and packets (`embree-packets`). Needs an rtprof built with
+    /// `--features embree`.
     #[arg(long)]
     embree: bool,
     /// Worker threads for the renders (default: one per core).
@@ -69,7 +70,9 @@ pub fn run(args: &SuiteArgs) -> Result<()> {
             "--embree: this rtprof was built without Embree; install libembree-dev and build with \
              `cargo build --release --features embree`"
         );
-        def = def.with_variant(tracer::Variant::Embree.name());
+        for peer in [tracer::Variant::Embree, tracer::Variant::EmbreePackets] {
+            def = def.with_variant(peer.name());
+        }
     }
     // Check the inputs first: a bad --baseline or --criterion should fail before the work.
     args.benchmarks.check()?;

@@ -62,7 +62,7 @@ pub use accel::{
     BruteForce, Bvh, BvhBuilder, BvhShape, BvhStats, Intersector, Simd, WideBvh, WideBvhStats,
 };
 #[cfg(feature = "embree")]
-pub use accel::{Embree, EmbreeCode, EmbreeError, EmbreeMode};
+pub use accel::{Embree, EmbreeCode, EmbreeError, EmbreeMode, EmbreePackets, NativeWidths};
 pub use camera::{Camera, Projection, Sampling};
 pub use color::Rgb;
 pub use counter::{

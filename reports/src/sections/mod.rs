@@ -7,6 +7,7 @@
 //! | `fpga_answer.rs` | the break-even behind the third answer |
 //! | `profile.rs` | the profile chapter (flat profile, charts, flamegraphs, Amdahl); profile-details |
 //! | `variants.rs` | the variants chapter (the scene × variant matrix); variants-by-scene |
+//! | `peer.rs` | the variants chapter's sentence on the peer, Embree in both its modes |
 //! | `hardware.rs` | the hardware chapter (tables 7 and 8, the optimizations costed, device fit, software against hardware) |
 //! | `images.rs` | the images chapter |
 //! | `summary.rs` | summary (findings, machine, scenes, runs) |
@@ -34,6 +35,7 @@ pub(crate) mod comparison;
 pub mod fpga_answer;
 pub mod hardware;
 pub mod images;
+pub(crate) mod peer;
 pub(crate) mod pixel_maps;
 pub(crate) mod profile;
 pub(crate) mod ray_rates;

@@ -37,6 +37,9 @@ pub fn variants(b: &mut Builder) -> Section {
     }
     let lines = answers::variant_lines(r);
     s.text(answers::optimization_sentence(&lines));
+    if let Some(peer) = super::peer::sentence(&lines) {
+        s.text(peer);
+    }
     s.blocks.push(Block::Paragraph {
         content: vec![
             Inline::text(format!(

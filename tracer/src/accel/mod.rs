@@ -19,7 +19,7 @@ pub use bvh::{
     Bvh, BvhBuilder, BvhShape, BvhStats, PACKET, WIDTH as BVH_WIDTH, WideBvh, WideBvhStats,
 };
 #[cfg(feature = "embree")]
-pub use embree::{Embree, EmbreeCode, EmbreeError, EmbreeMode};
+pub use embree::{Embree, EmbreeCode, EmbreeError, EmbreeMode, EmbreePackets, NativeWidths};
 pub use simd::Simd;
 
 use crate::counter::{Counter, Phase};

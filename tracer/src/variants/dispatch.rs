@@ -138,8 +138,9 @@ pub fn render_variant_with<C: Counter>(
             out.accelerator_bytes = wide.stats().bytes;
             Ok(out)
         }
-        Accelerator::Embree => job.embree(config.sqrt, false),
-        Accelerator::EmbreeNative => job.embree(config.sqrt, true),
+        Accelerator::Embree | Accelerator::EmbreeNative | Accelerator::EmbreePackets => {
+            job.embree(config.sqrt, config.accel)
+        }
     }
 }
 
@@ -197,22 +198,28 @@ struct Job<'a> {
 }
 
 impl Job<'_> {
-    /// The `embree` variant: Embree builds its tree (preprocessing) and answers the
-    /// queries; camera and shading are rtprof's.
+    /// The `embree` variants (`accel` says which): Embree builds its tree
+    /// (preprocessing) and answers the queries; camera and shading are rtprof's.
     #[cfg(feature = "embree")]
     fn embree<C: Counter>(
         &self,
         sqrt: SqrtMethod,
-        native: bool,
+        accel: Accelerator,
     ) -> Result<VariantRender<C>, RenderError> {
-        use crate::accel::{Embree, EmbreeMode};
-        let mode = if native {
+        use crate::accel::{Embree, EmbreeMode, EmbreePackets};
+        let failed = |e| RenderError::Accelerator(format!("Embree: {e}"));
+        if accel == Accelerator::EmbreePackets {
+            let embree = EmbreePackets::new(self.scene).map_err(failed)?;
+            let mut out = self.with_sqrt(&embree, sqrt, None)?;
+            out.accelerator_bytes = embree.memory_bytes();
+            return Ok(out);
+        }
+        let mode = if accel == Accelerator::EmbreeNative {
             EmbreeMode::Native
         } else {
             EmbreeMode::Exact
         };
-        let embree = Embree::with_mode(self.scene, mode)
-            .map_err(|e| RenderError::Accelerator(format!("Embree: {e}")))?;
+        let embree = Embree::with_mode(self.scene, mode).map_err(failed)?;
         let mut out = self.with_sqrt(&embree, sqrt, None)?;
         out.accelerator_bytes = embree.memory_bytes();
         Ok(out)
@@ -222,7 +229,7 @@ impl Job<'_> {
     fn embree<C: Counter>(
         &self,
         _sqrt: SqrtMethod,
-        _native: bool,
+        _accel: Accelerator,
     ) -> Result<VariantRender<C>, RenderError> {
         Err(RenderError::Accelerator(
             "this rtprof was built without Embree: install libembree-dev and build with \

@@ -23,6 +23,7 @@ pub enum Variant {
     Bvh,
     Embree,
     EmbreeNative,
+    EmbreePackets,
     Packets,
 }
 
@@ -50,6 +51,9 @@ pub enum Accelerator {
     Embree,
     /// Embree with its own sphere kernel (sphere points).
     EmbreeNative,
+    /// Embree's packet API (`rtcIntersect8` / `rtcOccluded8`) on the renderer's packets,
+    /// with Embree's own spheres and cone curves.
+    EmbreePackets,
 }
 
 impl Accelerator {
@@ -62,7 +66,21 @@ impl Accelerator {
     /// Whether the work inside a query is counted (`tests.*`, `ops.*`, `accel.*`): not
     /// inside Embree, so no flops or roofline point can be derived for it.
     pub fn counts_its_work(self) -> bool {
-        !matches!(self, Accelerator::Embree | Accelerator::EmbreeNative)
+        !self.is_embree()
+    }
+
+    /// Whether Intel Embree answers the queries (any of its modes).
+    pub fn is_embree(self) -> bool {
+        matches!(
+            self,
+            Accelerator::Embree | Accelerator::EmbreeNative | Accelerator::EmbreePackets
+        )
+    }
+
+    /// Whether the structure traces the renderer's packets of eye rays together
+    /// (its intersector has `Intersector::PACKETS`): the wide BVH and Embree's packets.
+    pub fn walks_packets(self) -> bool {
+        matches!(self, Accelerator::WideBvh | Accelerator::EmbreePackets)
     }
 
     /// Whether every query tests every primitive (brute force, with or without lanes):
@@ -80,7 +98,7 @@ pub struct VariantConfig {
     pub projection: Projection,
     pub diffuse: DiffuseForm,
     pub checkerboard: bool,
-    /// Eye rays traced in packets (`packets`, with the wide BVH).
+    /// Eye rays traced in packets (`packets` with the wide BVH; `embree-packets`).
     pub packets: bool,
 }
 
@@ -98,7 +116,7 @@ enum Choice {
 
 impl Variant {
     /// Every variant, in the order reports list them.
-    pub const ALL: [Variant; 13] = [
+    pub const ALL: [Variant; 14] = [
         Variant::Baseline,
         Variant::FastSqrt,
         Variant::FastSqrtTuned,
@@ -111,6 +129,7 @@ impl Variant {
         Variant::Bvh,
         Variant::Embree,
         Variant::EmbreeNative,
+        Variant::EmbreePackets,
         Variant::Packets,
     ];
 
@@ -129,6 +148,7 @@ impl Variant {
             Variant::Bvh => "bvh",
             Variant::Embree => "embree",
             Variant::EmbreeNative => "embree-native",
+            Variant::EmbreePackets => "embree-packets",
             Variant::Packets => "packets",
         }
     }
@@ -170,6 +190,9 @@ impl Variant {
             Variant::EmbreeNative => {
                 "embree with Embree's own sphere kernel (sphere points): its real speed on spheres; its more accurate test can change pixels"
             }
+            Variant::EmbreePackets => {
+                "Embree's packet API: eye rays 8 neighbours at a time by rtcIntersect8, their shadow rays light by light by rtcOccluded8 (coherent flag); spheres, cylinders and cones Embree's own (sphere points, open cone curves); its more accurate tests can change pixels"
+            }
             Variant::Packets => {
                 "with bvh+simd: eye rays, and their shadow rays light by light, traced 8 neighbours at a time: one walk of the wide tree per packet, each ray testing the boxes and primitives it reaches (counted per ray)"
             }
@@ -178,7 +201,10 @@ impl Variant {
 
     /// Whether this build can run the variant (`embree` needs the `embree` feature).
     pub fn available(self) -> bool {
-        !matches!(self, Variant::Embree | Variant::EmbreeNative) || cfg!(feature = "embree")
+        !matches!(
+            self,
+            Variant::Embree | Variant::EmbreeNative | Variant::EmbreePackets
+        ) || cfg!(feature = "embree")
     }
 
     /// Whether the variant may change the picture (all others must match baseline).
@@ -192,6 +218,7 @@ impl Variant {
                 | Variant::NoRsqrtShading
                 | Variant::PixelAvg
                 | Variant::EmbreeNative
+                | Variant::EmbreePackets
         )
     }
 
@@ -202,7 +229,11 @@ impl Variant {
             Variant::Bounded | Variant::Ortho => Choice::Projection,
             Variant::NoRsqrtShading => Choice::Diffuse,
             Variant::PixelAvg => Choice::Sampling,
-            Variant::Simd | Variant::Bvh | Variant::Embree | Variant::EmbreeNative => Choice::Accel,
+            Variant::Simd
+            | Variant::Bvh
+            | Variant::Embree
+            | Variant::EmbreeNative
+            | Variant::EmbreePackets => Choice::Accel,
             Variant::Packets => Choice::EyeRays,
         }
     }
@@ -227,6 +258,11 @@ impl Variant {
             Variant::Bvh => config.accel = Accelerator::Bvh,
             Variant::Embree => config.accel = Accelerator::Embree,
             Variant::EmbreeNative => config.accel = Accelerator::EmbreeNative,
+            // Embree's packet API answers the renderer's packets: its packet path.
+            Variant::EmbreePackets => {
+                config.accel = Accelerator::EmbreePackets;
+                config.packets = true;
+            }
             Variant::Packets => config.packets = true,
         }
     }
@@ -327,8 +363,9 @@ impl VariantSet {
         }
         let set = Self(out);
         let config = set.config();
-        if config.packets && config.accel != Accelerator::WideBvh {
-            // Only the wide BVH walks packets; elsewhere the flag would change nothing.
+        if config.packets && !config.accel.walks_packets() {
+            // Only the wide BVH and Embree's packets walk packets; elsewhere the flag
+            // would change nothing.
             return Err(VariantError::Needs(
                 "packets",
                 "the wide BVH, bvh and simd together",
@@ -452,7 +489,11 @@ mod tests {
                 ..
             })
         ));
-        for alone in ["packets", "bvh+packets", "simd+packets", "packets+embree"] {
+        let embree = ["packets+embree", "packets+embree-native"];
+        for alone in ["packets", "bvh+packets", "simd+packets"]
+            .into_iter()
+            .chain(embree)
+        {
             let err = VariantSet::parse(alone).err();
             assert!(
                 matches!(err, Some(VariantError::Needs("packets", ..))),
@@ -480,6 +521,27 @@ mod tests {
         for (structure, compiled) in structures {
             let name = format!("{structure}packets");
             assert_eq!(VariantSet::parse(&name).is_ok(), compiled, "{name}");
+        }
+        #[cfg(feature = "embree")]
+        {
+            use crate::accel::{Embree, EmbreePackets};
+            assert_eq!(VariantSet::parse("embree+packets").is_ok(), Embree::PACKETS);
+            // `embree-packets` takes the packet path by itself (and with `packets`).
+            for name in ["embree-packets", "embree-packets+packets"] {
+                let config = VariantSet::parse(name).map(|s| s.config());
+                let packets = config.as_ref().map(|c| c.packets);
+                assert_eq!(packets, Ok(EmbreePackets::PACKETS), "{name}");
+                assert!(
+                    matches!(
+                        config,
+                        Ok(VariantConfig {
+                            accel: Accelerator::EmbreePackets,
+                            ..
+                        })
+                    ),
+                    "{name}: {config:?}"
+                );
+            }
         }
     }
 

@@ -1,7 +1,7 @@
 //! The few declarations of Embree 3's C API (`embree3/rtcore*.h`, 3.13.5) that the
 //! intersector uses, written by hand.
 //!
-//! Why by hand: the intersector needs about twenty functions and nine structs. A
+//! Why by hand: the intersector needs about twenty-five functions and twelve structs. A
 //! generated `-sys` crate would need bindgen and the headers at build time. The
 //! crates.io `embree3` (0.4) safe wrapper does offer user geometry, but, as its
 //! documentation describes, calls it through heap-owned closures found in a
@@ -61,17 +61,30 @@ pub const RTC_SCENE_FLAG_ROBUST: u32 = 1 << 2;
 
 // enum RTCIntersectContextFlags
 pub const RTC_INTERSECT_CONTEXT_FLAG_INCOHERENT: u32 = 0;
+pub const RTC_INTERSECT_CONTEXT_FLAG_COHERENT: u32 = 1 << 0;
+
+// enum RTCDeviceProperty
+pub const RTC_DEVICE_PROPERTY_NATIVE_RAY8_SUPPORTED: u32 = 33;
+pub const RTC_DEVICE_PROPERTY_NATIVE_RAY16_SUPPORTED: u32 = 34;
 
 // enum RTCGeometryType
 pub const RTC_GEOMETRY_TYPE_TRIANGLE: u32 = 0;
+pub const RTC_GEOMETRY_TYPE_CONE_LINEAR_CURVE: u32 = 15;
 pub const RTC_GEOMETRY_TYPE_SPHERE_POINT: u32 = 50;
 pub const RTC_GEOMETRY_TYPE_USER: u32 = 120;
 
 // enum RTCBufferType
 pub const RTC_BUFFER_TYPE_INDEX: u32 = 0;
 pub const RTC_BUFFER_TYPE_VERTEX: u32 = 1;
+pub const RTC_BUFFER_TYPE_FLAGS: u32 = 32;
+
+// enum RTCCurveFlags (one byte per segment in the flags buffer)
+pub const RTC_CURVE_FLAG_NEIGHBOR_LEFT: u8 = 1 << 0;
+pub const RTC_CURVE_FLAG_NEIGHBOR_RIGHT: u8 = 1 << 1;
 
 // enum RTCFormat
+pub const RTC_FORMAT_UCHAR: u32 = 0x1001;
+pub const RTC_FORMAT_UINT: u32 = 0x5001;
 pub const RTC_FORMAT_UINT3: u32 = 0x5003;
 pub const RTC_FORMAT_FLOAT3: u32 = 0x9003;
 pub const RTC_FORMAT_FLOAT4: u32 = 0x9004;
@@ -116,6 +129,46 @@ pub struct RTCRayHit {
     pub hit: RTCHit,
 }
 
+/// `struct RTCRay8` (`RTC_ALIGN(32)`): eight rays, one array per field.
+#[repr(C, align(32))]
+#[derive(Clone, Copy, Debug)]
+pub struct RTCRay8 {
+    pub org_x: [f32; 8],
+    pub org_y: [f32; 8],
+    pub org_z: [f32; 8],
+    pub tnear: [f32; 8],
+    pub dir_x: [f32; 8],
+    pub dir_y: [f32; 8],
+    pub dir_z: [f32; 8],
+    pub time: [f32; 8],
+    pub tfar: [f32; 8],
+    pub mask: [u32; 8],
+    pub id: [u32; 8],
+    pub flags: [u32; 8],
+}
+
+/// `struct RTCHit8` (`RTC_ALIGN(32)`), for `RTC_MAX_INSTANCE_LEVEL_COUNT` 1.
+#[repr(C, align(32))]
+#[derive(Clone, Copy, Debug)]
+pub struct RTCHit8 {
+    pub ng_x: [f32; 8],
+    pub ng_y: [f32; 8],
+    pub ng_z: [f32; 8],
+    pub u: [f32; 8],
+    pub v: [f32; 8],
+    pub prim_id: [u32; 8],
+    pub geom_id: [u32; 8],
+    pub inst_id: [[u32; 8]; 1],
+}
+
+/// `struct RTCRayHit8`: 32-byte aligned through its members.
+#[repr(C)]
+#[derive(Clone, Copy, Debug)]
+pub struct RTCRayHit8 {
+    pub ray: RTCRay8,
+    pub hit: RTCHit8,
+}
+
 /// `RTCFilterFunctionN` (never set: the intersector uses no filter).
 pub type RTCFilterFunctionN = Option<unsafe extern "C" fn(args: *const c_void)>;
 
@@ -132,8 +185,13 @@ impl RTCIntersectContext {
     /// `rtcInitIntersectContext`, a `RTC_FORCEINLINE` function of the header that no
     /// library exports: incoherent rays, no filter, no instance on the stack.
     pub fn new() -> Self {
+        Self::with_flags(RTC_INTERSECT_CONTEXT_FLAG_INCOHERENT)
+    }
+
+    /// `rtcInitIntersectContext` followed by setting `flags` (e.g. coherent rays).
+    pub fn with_flags(flags: u32) -> Self {
         Self {
-            flags: RTC_INTERSECT_CONTEXT_FLAG_INCOHERENT,
+            flags,
             filter: None,
             inst_id: [RTC_INVALID_GEOMETRY_ID],
         }
@@ -223,6 +281,7 @@ unsafe extern "C" {
     pub fn rtcNewDevice(config: *const c_char) -> RTCDevice;
     pub fn rtcReleaseDevice(device: RTCDevice);
     pub fn rtcGetDeviceError(device: RTCDevice) -> u32;
+    pub fn rtcGetDeviceProperty(device: RTCDevice, prop: u32) -> isize;
     pub fn rtcSetDeviceErrorFunction(
         device: RTCDevice,
         error: RTCErrorFunction,
@@ -263,6 +322,18 @@ unsafe extern "C" {
         rayhit: *mut RTCRayHit,
     );
     pub fn rtcOccluded1(scene: RTCScene, context: *mut RTCIntersectContext, ray: *mut RTCRay);
+    pub fn rtcIntersect8(
+        valid: *const i32,
+        scene: RTCScene,
+        context: *mut RTCIntersectContext,
+        rayhit: *mut RTCRayHit8,
+    );
+    pub fn rtcOccluded8(
+        valid: *const i32,
+        scene: RTCScene,
+        context: *mut RTCIntersectContext,
+        ray: *mut RTCRay8,
+    );
 }
 
 // The layouts of the headers (x86-64 / AArch64, LP64).
@@ -280,6 +351,15 @@ const _: () = {
     assert!(soa::TFAR * 4 == offset_of!(RTCRay, tfar));
     assert!(soa::U * 4 == offset_of!(RTCRayHit, hit) + offset_of!(RTCHit, u));
     assert!(soa::INST_ID * 4 == offset_of!(RTCRayHit, hit) + offset_of!(RTCHit, inst_id));
+    assert!(size_of::<RTCRay8>() == 384 && align_of::<RTCRay8>() == 32);
+    assert!(offset_of!(RTCRay8, tfar) == 256 && offset_of!(RTCRay8, flags) == 352);
+    assert!(size_of::<RTCHit8>() == 256 && align_of::<RTCHit8>() == 32);
+    assert!(offset_of!(RTCHit8, prim_id) == 160 && offset_of!(RTCHit8, inst_id) == 224);
+    assert!(size_of::<RTCRayHit8>() == 640 && offset_of!(RTCRayHit8, hit) == 384);
+    // The SoA word indices of eight rays (N = 8) are the offsets of RTCRayHit8 / 4.
+    assert!(soa::TFAR * 8 * 4 == offset_of!(RTCRay8, tfar));
+    assert!(soa::U * 8 * 4 == offset_of!(RTCRayHit8, hit) + offset_of!(RTCHit8, u));
+    assert!(soa::INST_ID * 8 * 4 == offset_of!(RTCRayHit8, hit) + offset_of!(RTCHit8, inst_id));
     assert!(size_of::<RTCIntersectContext>() == 24);
     assert!(offset_of!(RTCIntersectContext, filter) == 8);
     assert!(offset_of!(RTCIntersectContext, inst_id) == 16);

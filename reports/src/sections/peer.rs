@@ -1,0 +1,121 @@
+//! The peer sentence of the variants chapter: rtprof's fastest variant against Intel
+//! Embree in both its modes, single rays (`embree`) and packets (`embree-packets`),
+//! per family of scenes, when the run has them (`rtprof suite --embree`).
+
+use super::answers::{FAMILY_GROUPS, VariantLine};
+use crate::format;
+
+/// Embree's modes as the report names them, by variant name.
+const MODES: [(&str, &str); 2] = [
+    ("embree", "single-ray queries"),
+    ("embree-packets", "packet queries"),
+];
+
+/// Whether Embree answers the variant's queries (any of its modes).
+fn is_embree(line: &VariantLine) -> bool {
+    line.variant
+        .set()
+        .is_ok_and(|s| s.config().accel.is_embree())
+}
+
+/// "On the SPD scenes rtprof's fastest variant, X (a× geometric mean), runs at b× the
+/// speed of Embree's single-ray queries (`embree`, c×) and d× that of its packet
+/// queries (`embree-packets`, e×)", per family group where both sides ran; `None`
+/// without an Embree mode.
+pub fn sentence(lines: &[VariantLine]) -> Option<String> {
+    let mut parts = Vec::new();
+    for (g, (family, _)) in FAMILY_GROUPS.iter().enumerate() {
+        let geomean = |l: &VariantLine| l.families.get(g).and_then(|f| f.geomean);
+        let Some((best, ours)) = lines
+            .iter()
+            .filter(|l| !is_embree(l) && !l.variant.is_reference())
+            .filter_map(|l| Some((l, geomean(l)?)))
+            .max_by(|a, b| a.1.total_cmp(&b.1))
+        else {
+            continue;
+        };
+        let peers: Vec<String> = MODES
+            .iter()
+            .filter_map(|&(name, what)| {
+                let theirs = lines
+                    .iter()
+                    .find(|l| l.variant.as_str() == name)
+                    .and_then(geomean)?;
+                Some(format!(
+                    "{} the speed of Embree's {what} (`{name}`, {})",
+                    format::speedup(ours / theirs),
+                    format::speedup(theirs)
+                ))
+            })
+            .collect();
+        if peers.is_empty() {
+            continue;
+        }
+        parts.push(format!(
+            "on the {family} scenes rtprof's fastest variant, {} ({} geometric mean), runs at {}",
+            best.variant,
+            format::speedup(ours),
+            format::join_list(&peers)
+        ));
+    }
+    (!parts.is_empty()).then(|| {
+        format!(
+            "Against the peer, Intel Embree 3 (rtprof's camera and shading, Embree's queries; speed-ups over baseline): {}.",
+            parts.join("; ")
+        )
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::results::VariantName;
+    use crate::sections::answers::FamilyFigures;
+
+    fn line(name: &str, spd: f64) -> VariantLine {
+        let mut families = vec![FamilyFigures::default(); FAMILY_GROUPS.len()];
+        let g = FAMILY_GROUPS
+            .iter()
+            .position(|(f, _)| *f == "SPD")
+            .unwrap_or(0);
+        families[g].geomean = Some(spd);
+        VariantLine {
+            variant: VariantName::parse(name).unwrap_or_else(|e| panic!("{e}")),
+            families,
+            worst: None,
+            picture_changed: false,
+            rays_changed: 0,
+            compared: 1,
+        }
+    }
+
+    #[test]
+    fn names_both_embree_modes_against_the_fastest_of_rtprof() {
+        let lines = [
+            line("bvh", 10.0),
+            line("bvh+simd+packets", 40.0),
+            line("embree", 50.0),
+            line("embree-packets", 80.0),
+        ];
+        let text = sentence(&lines).unwrap_or_default();
+        assert!(
+            text.contains("bvh+simd+packets (40.0× geometric mean)"),
+            "{text}"
+        );
+        // 40 / 50 and 40 / 80: rtprof's speed as a share of each mode's.
+        assert!(
+            text.contains("0.80× the speed of Embree's single-ray queries (`embree`, 50.0×)"),
+            "{text}"
+        );
+        assert!(
+            text.contains("0.50× the speed of Embree's packet queries (`embree-packets`, 80.0×)"),
+            "{text}"
+        );
+        assert!(text.contains("on the SPD scenes"), "{text}");
+    }
+
+    #[test]
+    fn no_sentence_without_embree() {
+        assert_eq!(sentence(&[line("bvh", 10.0), line("bvh+simd", 20.0)]), None);
+    }
+}
