@@ -191,7 +191,7 @@ impl Variant {
                 "embree with Embree's own sphere kernel (sphere points): its real speed on spheres; its more accurate test can change pixels"
             }
             Variant::EmbreePackets => {
-                "Embree's packet API: eye rays 8 neighbours at a time by rtcIntersect8, their shadow rays light by light by rtcOccluded8 (coherent flag); spheres, cylinders and cones Embree's own (sphere points, open cone curves); its more accurate tests can change pixels"
+                "Embree's packet API: eye rays 8 neighbours at a time by rtcIntersect8, their shadow rays light by light by rtcOccluded8 (coherent flag); spheres, cylinders and cones Embree's own (sphere points, open cone curves), a hit's distance then rtprof's test of the primitive Embree found (the baseline's rays); silhouette pixels can differ"
             }
             Variant::Packets => {
                 "with bvh+simd: eye rays, and their shadow rays light by light, traced 8 neighbours at a time: one walk of the wide tree per packet, each ray testing the boxes and primitives it reaches (counted per ray)"
