@@ -4,8 +4,9 @@
 use analysis::{RgbImage, compare};
 use std::path::PathBuf;
 use tracer::{
-    Camera, Count, Counts, Frame, NoCount, Projection, RenderOptions, Sampling, Scene, ShadingMode,
-    Stat, VariantSet, load_nff, render_variant,
+    BruteForce, Bvh, BvhBuilder, Camera, Count, Counts, Frame, Intersector, NoCount, PrimKind,
+    PrimRef, Projection, Ray, RenderOptions, Sampling, Scene, ShadingMode, Stat, VariantSet,
+    WideBvh, load_nff, render_variant, vec3::Vec3,
 };
 
 fn spd(name: &str) -> Scene {
@@ -96,6 +97,39 @@ fn wide_bvh_keeps_the_baseline_picture_and_ray_counts_on_all_twelve_spd_scenes()
         assert_eq!(packets.rays, counts.rays, "{name}");
         assert!(packets.accel.nodes_visited > 0 && packets.accel.lanes_issued > 0);
     }
+}
+
+#[test]
+fn every_accelerator_breaks_a_tie_in_scene_order_as_brute_force_does() {
+    // This eye ray of gears at 256x256 (pixel 115, 128) meets a gear's face (polygon 1)
+    // and a tooth's side (polygon 147) at the same distance, on their shared edge. Brute
+    // force tests in scene order and keeps the first of equal hits; the wide BVH meets
+    // the side's triangles first, and must still answer polygon 1.
+    let scene = spd("gears");
+    let ray = Ray {
+        origin: Vec3::new(-1.1, -2.1, 2.6),
+        dir: Vec3::new(0.2758737, 0.6141141, -0.7394306),
+    };
+    let polygon = |index| PrimRef {
+        kind: PrimKind::Polygon,
+        index,
+    };
+    let t_at =
+        |index: usize| scene.polygons[index].intersect(&ray, 0.0, f32::INFINITY, &mut NoCount);
+    let (face, side) = (t_at(1), t_at(147));
+    assert!(
+        face.is_some() && face == side,
+        "not a tie: {face:?} {side:?}"
+    );
+    let brute = BruteForce::new(&scene).closest_hit(&ray, 0.0, &mut NoCount);
+    let bvh = Bvh::build(&scene).closest_hit(&ray, 0.0, &mut NoCount);
+    let wide = WideBvh::build_with(&scene, BvhBuilder::default());
+    let mut hits = [None];
+    wide.closest_hits(&[ray], &mut hits, &mut [NoCount]);
+    assert_eq!(brute.map(|h| h.prim), Some(polygon(1)));
+    assert_eq!(bvh, brute);
+    assert_eq!(wide.closest_hit(&ray, 0.0, &mut NoCount), brute);
+    assert_eq!(hits[0], brute, "packet path");
 }
 
 #[test]

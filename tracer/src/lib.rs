@@ -72,7 +72,7 @@ pub use counter::{
 pub use nff::{Limits, LoadError, NffError, load_nff, load_nff_with_limits, parse_nff};
 pub use nff_writer::{scene_to_nff, write_scene};
 pub use pixel_stats::SampleStats;
-pub use ray::{Hit, PrimKind, PrimRef, Ray};
+pub use ray::{Hit, HitBound, PrimKind, PrimRef, Ray};
 pub use render::{Frame, RenderError, RenderMethod, RenderOptions, Rendered, render};
 pub use scene::{Light, Material, Scene, View};
 pub use shading::{MAX_DEPTH, RayLog, ShadingMode};

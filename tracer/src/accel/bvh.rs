@@ -24,7 +24,7 @@ pub use wide::{WIDTH, WideBvh, WideBvhStats};
 use super::{Intersector, intersect_primitive};
 use crate::counter::{Counter, Phase, Stat};
 use crate::huge_pages;
-use crate::ray::{Hit, PrimKind, PrimRef, Ray};
+use crate::ray::{Hit, HitBound, PrimKind, PrimRef, Ray};
 use crate::scene::Scene;
 use crate::vec3::Vec3;
 use glam::Vec3A;
@@ -608,10 +608,12 @@ impl<'s> Bvh<'s> {
         self.traverse(ray, t_min, &mut t_max, c, |leaf, t_max, c| {
             for &prim in leaf {
                 // Tested against the query's reach (the hit counts whatever was found
-                // before), kept when closer.
+                // before), kept when it beats the closest so far (ties: scene order).
                 if let Some((t, aux)) =
                     intersect_primitive(scene, prim, ray, t_min, f32::INFINITY, c)
-                    && t < *t_max
+                    && best
+                        .map_or(HitBound::reach(*t_max), |b| HitBound::of(&b))
+                        .admits(t, prim)
                 {
                     *t_max = t;
                     best = Some(Hit { t, prim, aux });

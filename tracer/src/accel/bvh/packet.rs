@@ -17,7 +17,7 @@
 use super::wide::{LEAF, STACK, Slab, WideBvh, WideNode, search_leaf, visit_order};
 use crate::accel::BVH_WIDTH as WIDTH;
 use crate::counter::{Counter, Phase, Stat};
-use crate::ray::{Hit, Ray};
+use crate::ray::{Hit, HitBound, Ray};
 use std::mem::MaybeUninit;
 
 /// Rays traced together: one bit each in a `u32` ray set.
@@ -175,9 +175,9 @@ fn packet_search<C: Counter, const FROM_EYE: bool, const ANY: bool, const AVX2: 
                 bits &= bits - 1;
                 let c = &mut counters[r];
                 c.tally(Stat::LeavesVisited);
-                let (ray, closer_than) = (&rays[r], t_max[r]);
+                let bound = hits[r].map_or(HitBound::reach(t_max[r]), |h| HitBound::of(&h));
                 if let Some(hit) =
-                    search_leaf::<C, FROM_EYE, ANY>(bvh, leaf, ray, t_min, reach[r], closer_than, c)
+                    search_leaf::<C, FROM_EYE, ANY>(bvh, leaf, &rays[r], t_min, reach[r], bound, c)
                 {
                     hits[r] = Some(hit);
                     if ANY {

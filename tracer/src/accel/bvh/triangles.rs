@@ -219,22 +219,18 @@ impl TrianglePack {
     }
 }
 
-/// The closest triangle of a pack closer than `closer_than`, as `(t, lane)` (with
-/// `any`: the first lane found), testing the pack's live lanes against the query's
-/// reach `(t_min, reach)`; `avx2`: the CPU has AVX2 (the wide BVH's flag). On equal
-/// distances the lowest lane wins.
+/// Each lane's hit distance in a pack of triangles (infinite where it misses), testing
+/// the pack's live lanes against the query's reach `(t_min, reach)`; `None` when no
+/// lane's plane is hit in reach. `avx2`: the CPU has AVX2 (the wide BVH's flag).
 #[inline(always)]
-#[allow(clippy::too_many_arguments)]
 pub(super) fn triangle_pack<C: Counter, const FROM_EYE: bool>(
     pack: &TrianglePack,
     ray: &Ray<FROM_EYE>,
     t_min: f32,
     reach: f32,
-    closer_than: f32,
-    any: bool,
     avx2: bool,
     c: &mut C,
-) -> Option<(f32, usize)> {
+) -> Option<[f32; WIDTH]> {
     let _phase = C::enter_phase(Phase::TriangleTest);
     #[cfg(target_arch = "x86_64")]
     let (hit, ranged) = if avx2 {
@@ -264,19 +260,7 @@ pub(super) fn triangle_pack<C: Counter, const FROM_EYE: bool>(
         let hits = hit.iter().filter(|t| t.is_finite()).count();
         c.tally_n(Stat::TriangleHit, hits as u64);
     }
-    if ranged == 0 {
-        return None;
-    }
-    let mut best: Option<(f32, usize)> = None;
-    for (lane, &tl) in hit.iter().enumerate() {
-        if tl < best.map_or(closer_than, |b| b.0) {
-            best = Some((tl, lane));
-            if any {
-                break;
-            }
-        }
-    }
-    best
+    (ranged != 0).then_some(hit)
 }
 
 /// Each lane's hit distance (infinite where it misses) and the lanes whose plane hit
@@ -399,20 +383,28 @@ mod tests {
         (TrianglePack::new(&triangles), triangles.len() as u32)
     }
 
+    /// The nearest lane that hits (the first of equal ones), as `(t, lane)`.
+    fn nearest(lanes: Option<[f32; WIDTH]>) -> Option<(f32, usize)> {
+        let lanes = lanes?;
+        let (lane, &t) = lanes
+            .iter()
+            .enumerate()
+            .min_by(|a, b| a.1.total_cmp(b.1).then(a.0.cmp(&b.0)))?;
+        t.is_finite().then_some((t, lane))
+    }
+
     /// The pack's closest hit on the portable path, checked equal to the AVX2 path's
     /// where the CPU has it.
     fn both(pack: &TrianglePack, ray: &Ray) -> Option<(f32, usize)> {
         let test = |avx2| {
-            triangle_pack(
+            nearest(triangle_pack(
                 pack,
                 ray,
                 0.0,
                 f32::INFINITY,
-                f32::INFINITY,
-                false,
                 avx2,
                 &mut NoCount,
-            )
+            ))
         };
         let portable = test(false);
         if crate::accel::cpu_has_avx2_fma() {
@@ -474,16 +466,14 @@ mod tests {
         let (pack, live) = pack_of(&s);
         assert_eq!(live, 3);
         let mut c = Count::default();
-        let hit = triangle_pack(
+        let hit = nearest(triangle_pack(
             &pack,
             &down(0.25, 0.25),
             0.0,
             f32::INFINITY,
-            f32::INFINITY,
-            false,
             crate::accel::cpu_has_avx2_fma(),
             &mut c,
-        );
+        ));
         assert_eq!(hit, Some((10.0, 0)));
         // 3 live lanes: 3 tests, 3 `sub`, 6 `dot`; 2 planes in range (the third is
         // parallel): 2 `scale`, 2 `add`, 6 more `dot`; 1 triangle holds the point.

@@ -29,7 +29,7 @@ use crate::accel::{Intersector, cpu_has_avx2_fma, intersect_primitive};
 use crate::counter::{Counter, Phase, Stat};
 use crate::huge_pages;
 use crate::primitives::{first_stage_suffices, sphere_first_disc, sphere_may_hit};
-use crate::ray::{Hit, PrimKind, PrimRef, Ray};
+use crate::ray::{Hit, HitBound, PrimKind, PrimRef, Ray};
 use crate::scene::Scene;
 use glam::Vec3A;
 use std::mem::MaybeUninit;
@@ -381,8 +381,9 @@ fn search<C: Counter, const FROM_EYE: bool, const ANY: bool, const AVX2: bool>(
         if current.child & LEAF != 0 {
             c.tally(Stat::LeavesVisited);
             let leaf = &bvh.leaves[(current.child & !LEAF) as usize];
+            let bound = best.map_or(HitBound::reach(t_max), |b| HitBound::of(&b));
             if let Some(hit) =
-                search_leaf::<C, FROM_EYE, ANY>(bvh, leaf, ray, t_min, reach, t_max, c)
+                search_leaf::<C, FROM_EYE, ANY>(bvh, leaf, ray, t_min, reach, bound, c)
             {
                 if ANY {
                     return Some(hit);
@@ -494,8 +495,8 @@ pub(super) fn visit_order<E: Waiting>(
     None
 }
 
-/// The closest hit in a leaf (with `ANY`: the first): its sphere pack, then its other
-/// primitives one by one.
+/// The closest hit in a leaf that beats `bound` (with `ANY`: the first): its sphere
+/// pack, its triangle packs, then its other primitives one by one.
 #[inline(always)]
 pub(super) fn search_leaf<C: Counter, const FROM_EYE: bool, const ANY: bool>(
     bvh: &WideBvh,
@@ -503,53 +504,85 @@ pub(super) fn search_leaf<C: Counter, const FROM_EYE: bool, const ANY: bool>(
     ray: &Ray<FROM_EYE>,
     t_min: f32,
     reach: f32,
-    mut closer_than: f32,
+    mut bound: HitBound,
     c: &mut C,
 ) -> Option<Hit> {
     let mut best = None;
     if leaf.spheres > 0 {
         let pack = &bvh.packs[leaf.pack as usize];
-        let found = sphere_pack(pack, leaf.spheres, ray, t_min, reach, closer_than, ANY, c);
-        if let Some((t, lane)) = found {
-            let prim = PrimRef {
-                kind: PrimKind::Sphere,
-                index: pack.index[lane],
-            };
-            let hit = Hit { t, prim, aux: 0.0 };
-            if ANY {
-                return Some(hit);
-            }
-            closer_than = t;
-            best = Some(hit);
-        }
-    }
-    let packs = leaf.first_triangle_pack as usize;
-    for pack in &bvh.triangle_packs[packs..packs + leaf.triangle_packs as usize] {
-        let found = triangle_pack(pack, ray, t_min, reach, closer_than, ANY, bvh.avx2, c);
-        if let Some((t, lane)) = found {
+        let lanes = sphere_pack(pack, leaf.spheres, ray, t_min, reach, c);
+        let prim = |lane: usize| PrimRef {
+            kind: PrimKind::Sphere,
+            index: pack.index[lane],
+        };
+        if let Some((t, lane)) = lanes.and_then(|t| closest_lane(&t, prim, bound, ANY)) {
             let hit = Hit {
                 t,
-                prim: pack.owner[lane],
+                prim: prim(lane),
                 aux: 0.0,
             };
             if ANY {
                 return Some(hit);
             }
-            closer_than = t;
+            bound = HitBound::of(&hit);
+            best = Some(hit);
+        }
+    }
+    let packs = leaf.first_triangle_pack as usize;
+    for pack in &bvh.triangle_packs[packs..packs + leaf.triangle_packs as usize] {
+        let lanes = triangle_pack(pack, ray, t_min, reach, bvh.avx2, c);
+        let prim = |lane: usize| pack.owner[lane];
+        if let Some((t, lane)) = lanes.and_then(|t| closest_lane(&t, prim, bound, ANY)) {
+            let hit = Hit {
+                t,
+                prim: prim(lane),
+                aux: 0.0,
+            };
+            if ANY {
+                return Some(hit);
+            }
+            bound = HitBound::of(&hit);
             best = Some(hit);
         }
     }
     let first = leaf.first as usize;
     for &prim in &bvh.others[first..first + leaf.others as usize] {
         if let Some((t, aux)) = intersect_primitive(bvh.scene, prim, ray, t_min, reach, c)
-            && t < closer_than
+            && bound.admits(t, prim)
         {
             let hit = Hit { t, prim, aux };
             if ANY {
                 return Some(hit);
             }
-            closer_than = t;
+            bound = HitBound::of(&hit);
             best = Some(hit);
+        }
+    }
+    best
+}
+
+/// The lane of a pack's distances (infinite where a lane misses) that beats `bound`,
+/// as `(t, lane)`: the nearest, on equal distances the first primitive in scene order
+/// (see [`HitBound`]); with `any`, the first lane that beats it.
+#[inline(always)]
+fn closest_lane(
+    t: &[f32; WIDTH],
+    prim: impl Fn(usize) -> PrimRef,
+    mut bound: HitBound,
+    any: bool,
+) -> Option<(f32, usize)> {
+    let mut best = None;
+    for (lane, &tl) in t.iter().enumerate() {
+        // A bound at an infinite reach has no primitive, so a missing lane never ties.
+        if tl <= bound.t && bound.admits(tl, prim(lane)) {
+            if any {
+                return Some((tl, lane));
+            }
+            bound = HitBound {
+                t: tl,
+                prim: Some(prim(lane)),
+            };
+            best = Some((tl, lane));
         }
     }
     best
@@ -667,24 +700,19 @@ fn min_or_second(a: f32, b: f32) -> f32 {
     if a < b { a } else { b }
 }
 
-/// The closest sphere of a pack closer than `closer_than` as `(t, lane)` (with `any`:
-/// the first lane found), testing `live` lanes against the query's reach
-/// `(t_min, reach)`. The arithmetic is the scalar sphere test's (both stages and the
-/// choice between them) in the same order, so the distances are the same bit for bit;
-/// on equal distances the lowest lane wins, as the scalar loop keeps the first of
-/// equal hits.
+/// Each lane's hit distance in a pack of spheres (infinite where it misses), testing
+/// `live` lanes against the query's reach `(t_min, reach)`; `None` when no lane passes
+/// the first stage. The arithmetic is the scalar sphere test's (both stages and the
+/// choice between them) in the same order, so the distances are the same bit for bit.
 #[inline(always)]
-#[allow(clippy::too_many_arguments)]
 fn sphere_pack<C: Counter, const FROM_EYE: bool>(
     pack: &SpherePack,
     live: u32,
     ray: &Ray<FROM_EYE>,
     t_min: f32,
     reach: f32,
-    closer_than: f32,
-    any: bool,
     c: &mut C,
-) -> Option<(f32, usize)> {
+) -> Option<[f32; WIDTH]> {
     let _phase = C::enter_phase(Phase::SphereTest);
     let [ox, oy, oz] = ray.origin.to_array();
     let [dx, dy, dz] = ray.dir.to_array();
@@ -764,16 +792,7 @@ fn sphere_pack<C: Counter, const FROM_EYE: bool>(
         let hits = t[..live].iter().filter(|x| x.is_finite()).count();
         c.tally_n(Stat::SphereHit, hits as u64);
     }
-    let mut best: Option<(f32, usize)> = None;
-    for (lane, &tl) in t.iter().enumerate() {
-        if tl < best.map_or(closer_than, |b| b.0) {
-            best = Some((tl, lane));
-            if any {
-                break;
-            }
-        }
-    }
-    best
+    Some(t)
 }
 
 impl Intersector for WideBvh<'_> {
