@@ -24,6 +24,7 @@ use std::collections::BTreeSet;
 use std::ops::Range;
 
 use crate::document::{AssetKind, Block, Document, Visual};
+use crate::html::escape;
 
 /// The elements of inferno's interface, by id: what the script drives.
 const INTERFACE_IDS: [&str; 4] = ["search", "unzoom", "matched", "details"];
@@ -268,13 +269,6 @@ fn content_range(svg: &str, element: Range<usize>) -> Option<Range<usize>> {
     }
     let close_start = text.rfind("</")?;
     (open_end <= close_start).then(|| element.start + open_end..element.start + close_start)
-}
-
-/// Text for an element's content.
-fn escape(text: &str) -> String {
-    text.replace('&', "&amp;")
-        .replace('<', "&lt;")
-        .replace('>', "&gt;")
 }
 
 /// `svg` with each range replaced by its text. Ranges inside a range already taken

@@ -14,6 +14,7 @@
 //! font of `font8x8` (text in a PNG without a font rasteriser or font file).
 
 use crate::format;
+use crate::html::escape;
 use image::{Rgb, RgbImage};
 
 /// What a map shows and the range of its colour scale.
@@ -419,14 +420,6 @@ fn png_bytes(picture: &RgbImage) -> Vec<u8> {
         Ok(()) => out.into_inner(),
         Err(_) => Vec::new(),
     }
-}
-
-/// Text for an SVG element or attribute.
-fn escape(text: &str) -> String {
-    text.replace('&', "&amp;")
-        .replace('<', "&lt;")
-        .replace('>', "&gt;")
-        .replace('"', "&quot;")
 }
 
 /// `text` cut to `max_chars` characters, ending in "..." when cut.

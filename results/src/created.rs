@@ -1,24 +1,14 @@
 //! The `created` field's form: seconds since the epoch as RFC 3339 UTC.
 
-/// Seconds since the epoch as RFC 3339 UTC (civil-from-days, no time-zone crate).
+/// Seconds since the epoch as RFC 3339 UTC, to the second (`2026-11-21T00:00:00Z`).
 pub fn rfc3339_utc(secs: u64) -> String {
-    let days = (secs / 86_400) as i64;
-    let rem = secs % 86_400;
-    let z = days + 719_468;
-    let era = z.div_euclid(146_097);
-    let doe = z.rem_euclid(146_097);
-    let yoe = (doe - doe / 1460 + doe / 36_524 - doe / 146_096) / 365;
-    let doy = doe - (365 * yoe + yoe / 4 - yoe / 100);
-    let mp = (5 * doy + 2) / 153;
-    let day = doy - (153 * mp + 2) / 5 + 1;
-    let month = if mp < 10 { mp + 3 } else { mp - 9 };
-    let year = yoe + era * 400 + i64::from(month <= 2);
-    format!(
-        "{year:04}-{month:02}-{day:02}T{:02}:{:02}:{:02}Z",
-        rem / 3600,
-        rem / 60 % 60,
-        rem % 60
-    )
+    let seconds = i64::try_from(secs).unwrap_or(i64::MAX);
+    // Past the year 9999 RFC 3339 has no form: the latest instant it has.
+    let time = time::OffsetDateTime::from_unix_timestamp(seconds)
+        .unwrap_or(time::macros::datetime!(9999-12-31 23:59:59 UTC));
+    let format =
+        time::macros::format_description!("[year]-[month]-[day]T[hour]:[minute]:[second]Z");
+    time.format(format).unwrap_or_default()
 }
 
 #[cfg(test)]

@@ -113,14 +113,8 @@ pub fn verilator_command(dir: &Path, top: &str, program: &str, jobs: u32) -> Com
 /// (`$XDG_CACHE_HOME/rtprof/rtl`, else `~/.cache/rtprof/rtl`), else the temporary
 /// directory.
 pub fn default_build_root() -> PathBuf {
-    if let Some(dir) = std::env::var_os("XDG_CACHE_HOME") {
-        return PathBuf::from(dir).join("rtprof").join("rtl");
-    }
-    match std::env::var_os("HOME") {
-        Some(home) => PathBuf::from(home)
-            .join(".cache")
-            .join("rtprof")
-            .join("rtl"),
+    match dirs::cache_dir() {
+        Some(cache) => cache.join("rtprof").join("rtl"),
         None => std::env::temp_dir().join("rtprof-rtl"),
     }
 }

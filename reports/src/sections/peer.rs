@@ -123,7 +123,10 @@ mod tests {
             "{text}"
         );
         assert!(text.contains("on the SPD scenes"), "{text}");
-        assert!(text.ends_with(CAVEAT), "the caveat follows the figures: {text}");
+        assert!(
+            text.ends_with(CAVEAT),
+            "the caveat follows the figures: {text}"
+        );
     }
 
     #[test]
