@@ -862,6 +862,7 @@ impl SceneRunner<'_> {
             frequency: self.def.profile_frequency,
             name: &spec.name,
             min_samples: self.def.profile_samples,
+            stop: self.ctx.stop,
         };
         let base_set = VariantSet::default();
         let best = best.map(|name| VariantSet::parse(&name)).transpose()?;

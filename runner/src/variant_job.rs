@@ -5,7 +5,7 @@
 //! calibration kernel. The last timed frame is each variant's image.
 
 use analysis::RgbImage;
-use tracer::{Count, Counts, NoCount, VariantRender, VariantSet, render_variant};
+use tracer::{Count, Counts, NoCount, VariantRender, VariantSet, render_variant_until};
 
 use crate::calibration::time_kernel;
 use crate::error::RunError;
@@ -65,7 +65,15 @@ impl RenderSetup<'_> {
                 doing(&format!("counting {set}"));
                 let counted = self
                     .counting_pool
-                    .install(|| render_variant::<Count>(self.scene, self.options, set, &|_| {}))
+                    .install(|| {
+                        render_variant_until::<Count>(
+                            self.scene,
+                            self.options,
+                            set,
+                            &|_| {},
+                            self.stop,
+                        )
+                    })
                     .map_err(fail)?;
                 counted.rendered.counts().ok_or_else(|| RunError::Render {
                     context: self.name.to_string(),
@@ -91,7 +99,13 @@ impl RenderSetup<'_> {
                 Box::new(move || {
                     self.pool
                         .install(|| {
-                            render_variant::<NoCount>(self.scene, self.options, set, &|_| {})
+                            render_variant_until::<NoCount>(
+                                self.scene,
+                                self.options,
+                                set,
+                                &|_| {},
+                                self.stop,
+                            )
                         })
                         .map_err(fail)
                 }) as RenderJob<'_, _>

@@ -353,7 +353,7 @@ fn a_running_job_answers_50_concurrent_requests_and_cancels_to_partial_outputs()
     assert_eq!(f.cancel(&id), 202);
     let job = f.wait(&id, Duration::from_secs(300));
     eprintln!(
-        "cancelled mid-render: stopped {:.1} s later (after the render under way)",
+        "cancelled mid-render: stopped {:.2} s later (renders stop within a row)",
         cancelled.elapsed().as_secs_f64()
     );
     assert_eq!(job["status"], "cancelled", "{job}");

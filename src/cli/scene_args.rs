@@ -187,6 +187,7 @@ impl SceneArgs {
                 ..self.render.settings()
             },
             mode,
+            stop: super::interrupt::install(),
         };
         // Loaded twice only without an accelerator, where the render costs far more.
         if request.variants.config().accel.tests_everything() {
