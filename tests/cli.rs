@@ -1718,3 +1718,44 @@ fn a_suite_with_a_failed_scene_writes_the_rest_and_exits_3() {
     assert!(out_dir.join("report.html").is_file());
     std::fs::remove_dir_all(&dir).ok();
 }
+
+/// The thread limit is the library's one rule (`runner::pool::check_threads`): 1 to 4 ×
+/// the logical CPUs; beyond it every command that takes `--threads` exits 2 naming it.
+#[test]
+fn thread_counts_beyond_the_limit_exit_2_naming_it() {
+    let cpus = std::thread::available_parallelism().map_or(1, |n| n.get());
+    let max = 4 * cpus;
+    let dir = scratch("threads");
+    let image = dir.join("out.png");
+    let image = image.to_str().unwrap();
+    for args in [
+        vec!["render", "balls1", "--threads", "999", "-o", image],
+        vec!["count", "balls1", "--threads", "999"],
+        vec!["suite", "--quick", "--threads", "999", "-o", image],
+        vec!["render", "balls1", "--threads", "0", "-o", image],
+    ] {
+        let out = rtprof(&args);
+        let err = stderr(&out);
+        assert_eq!(out.status.code(), Some(2), "{args:?}: {err}");
+        let asked = args[args.iter().position(|a| *a == "--threads").unwrap() + 1];
+        assert!(
+            err.contains(&format!("threads {asked}: choose 1 to {max} ")),
+            "{args:?}: {err}"
+        );
+    }
+    assert!(!Path::new(image).exists(), "nothing was rendered");
+    // The limit itself is accepted.
+    let most = max.to_string();
+    let out = rtprof(&[
+        "render",
+        "balls1",
+        "--size",
+        "8x6",
+        "--threads",
+        &most,
+        "-o",
+        image,
+    ]);
+    assert_eq!(out.status.code(), Some(0), "{}", stderr(&out));
+    let _ = std::fs::remove_dir_all(&dir);
+}

@@ -366,8 +366,11 @@ fn execute(
     if request.runs(Part::PixelMaps) {
         suite.def.pixel_stats = suite.scenes.iter().map(|s| s.name.clone()).collect();
     }
+    let threads = request
+        .thread_count()
+        .map_err(|e| Ended::Failed(e.message))?;
     let run = DirRun {
-        threads: request.threads,
+        threads,
         progress,
         stop,
         pdf: Pdf::Write,
