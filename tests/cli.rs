@@ -1759,3 +1759,33 @@ fn thread_counts_beyond_the_limit_exit_2_naming_it() {
     assert_eq!(out.status.code(), Some(0), "{}", stderr(&out));
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+/// A gate of two runs with no scene × variant in common refuses (exit 2) rather than
+/// passing on nothing compared; `--force` does not change that.
+#[test]
+fn a_gate_of_runs_with_nothing_in_common_exits_2() {
+    let dir = scratch("gate-nothing");
+    let first = PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+        .join("results/tests/data/default-suite-runs/first.json");
+    let text = std::fs::read_to_string(&first).unwrap();
+    let mut other: serde_json::Value = serde_json::from_str(&text).unwrap();
+    for scene in other["scenes"].as_array_mut().unwrap() {
+        let name = scene["name"].as_str().unwrap().to_string();
+        scene["name"] = serde_json::json!(format!("other-{name}"));
+    }
+    let other_path = dir.join("other.json");
+    std::fs::write(&other_path, serde_json::to_string(&other).unwrap()).unwrap();
+    let (a, b) = (first.to_str().unwrap(), other_path.to_str().unwrap());
+    for extra in [None, Some("--force")] {
+        let mut args = vec!["gate", a, b];
+        args.extend(extra);
+        let out = rtprof(&args);
+        let err = stderr(&out);
+        assert_eq!(out.status.code(), Some(2), "{args:?}: {err}");
+        assert!(err.contains("nothing in common"), "{err}");
+        assert!(err.contains("new: other-"), "{err}");
+    }
+    // The same file against itself is gated (and passes).
+    assert_eq!(rtprof(&["gate", a, a]).status.code(), Some(0));
+    let _ = std::fs::remove_dir_all(&dir);
+}
