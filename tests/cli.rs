@@ -1233,14 +1233,20 @@ fn suite_writes_results_and_reports_and_the_gate_sets_the_exit_code() {
     assert!(gate.contains("rays.primary"), "{gate}");
 
     // `rtprof gate` on files made from this run: every variant's samples set to
-    // `seconds` ±1 % per round, the calibration kernel's to a tenth of that; `slow`
-    // scales bvh's.
+    // `seconds` ±1 % per round, the yardstick's and the calibration kernel's to a
+    // tenth of that; `slow` scales bvh's.
     let with_times = |seconds: f64, slow: f64| {
         let mut v = v.clone();
         let round = |m: f64| serde_json::json!([m * 0.99, m, m * 1.01, m]);
         for scene in v["scenes"].as_array_mut().unwrap() {
             let kernel = seconds / 10.0;
             scene["calibration"] = serde_json::json!({
+                "time": {"median": kernel, "low": kernel, "high": kernel},
+                "samples": round(kernel),
+                "cpu_samples": round(kernel)
+            });
+            scene["yardstick"] = serde_json::json!({
+                "width": 8, "height": 6,
                 "time": {"median": kernel, "low": kernel, "high": kernel},
                 "samples": round(kernel),
                 "cpu_samples": round(kernel)
