@@ -207,7 +207,8 @@ pub fn measure_interleaved<'a, R: PhaseTimes>(
         })
         .collect();
     // Each per-round job with its wall and CPU samples; `None` once it failed.
-    let mut rounds: Vec<Option<(RoundJob<'a>, Vec<f64>, Vec<f64>)>> = each_round
+    type Timed<'a> = (RoundJob<'a>, Vec<f64>, Vec<f64>);
+    let mut rounds: Vec<Option<Timed<'a>>> = each_round
         .into_iter()
         .map(|job| Some((job, Vec::new(), Vec::new())))
         .collect();
