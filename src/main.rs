@@ -47,6 +47,11 @@ fn run() -> ExitCode {
     };
     let message = format!("{error:#}");
     let message = runner::messages::name_the_flag(&runner::messages::one_line(&message));
+    if let Some(runner::RunError::Stopped) = error.downcast_ref::<runner::RunError>() {
+        // Ctrl-C during a render: it stopped within a row, and wrote nothing.
+        eprintln!("rtprof: interrupted: the render was cancelled; no output was written");
+        return ExitCode::from(cli::Outcome::INTERRUPTED);
+    }
     match error.downcast_ref::<cli::Outcome>() {
         Some(outcome) => {
             eprintln!("rtprof: {message}");

@@ -1233,14 +1233,20 @@ fn suite_writes_results_and_reports_and_the_gate_sets_the_exit_code() {
     assert!(gate.contains("rays.primary"), "{gate}");
 
     // `rtprof gate` on files made from this run: every variant's samples set to
-    // `seconds` ±1 % per round, the calibration kernel's to a tenth of that; `slow`
-    // scales bvh's.
+    // `seconds` ±1 % per round, the yardstick's and the calibration kernel's to a
+    // tenth of that; `slow` scales bvh's.
     let with_times = |seconds: f64, slow: f64| {
         let mut v = v.clone();
         let round = |m: f64| serde_json::json!([m * 0.99, m, m * 1.01, m]);
         for scene in v["scenes"].as_array_mut().unwrap() {
             let kernel = seconds / 10.0;
             scene["calibration"] = serde_json::json!({
+                "time": {"median": kernel, "low": kernel, "high": kernel},
+                "samples": round(kernel),
+                "cpu_samples": round(kernel)
+            });
+            scene["yardstick"] = serde_json::json!({
+                "width": 8, "height": 6,
                 "time": {"median": kernel, "low": kernel, "high": kernel},
                 "samples": round(kernel),
                 "cpu_samples": round(kernel)
@@ -1717,4 +1723,75 @@ fn a_suite_with_a_failed_scene_writes_the_rest_and_exits_3() {
     assert_eq!(results["scenes"][0]["name"], "balls1");
     assert!(out_dir.join("report.html").is_file());
     std::fs::remove_dir_all(&dir).ok();
+}
+
+/// The thread limit is the library's one rule (`runner::pool::check_threads`): 1 to 4 ×
+/// the logical CPUs; beyond it every command that takes `--threads` exits 2 naming it.
+#[test]
+fn thread_counts_beyond_the_limit_exit_2_naming_it() {
+    let cpus = std::thread::available_parallelism().map_or(1, |n| n.get());
+    let max = 4 * cpus;
+    let dir = scratch("threads");
+    let image = dir.join("out.png");
+    let image = image.to_str().unwrap();
+    for args in [
+        vec!["render", "balls1", "--threads", "999", "-o", image],
+        vec!["count", "balls1", "--threads", "999"],
+        vec!["suite", "--quick", "--threads", "999", "-o", image],
+        vec!["render", "balls1", "--threads", "0", "-o", image],
+    ] {
+        let out = rtprof(&args);
+        let err = stderr(&out);
+        assert_eq!(out.status.code(), Some(2), "{args:?}: {err}");
+        let asked = args[args.iter().position(|a| *a == "--threads").unwrap() + 1];
+        assert!(
+            err.contains(&format!("threads {asked}: choose 1 to {max} ")),
+            "{args:?}: {err}"
+        );
+    }
+    assert!(!Path::new(image).exists(), "nothing was rendered");
+    // The limit itself is accepted.
+    let most = max.to_string();
+    let out = rtprof(&[
+        "render",
+        "balls1",
+        "--size",
+        "8x6",
+        "--threads",
+        &most,
+        "-o",
+        image,
+    ]);
+    assert_eq!(out.status.code(), Some(0), "{}", stderr(&out));
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+/// A gate of two runs with no scene × variant in common refuses (exit 2) rather than
+/// passing on nothing compared; `--force` does not change that.
+#[test]
+fn a_gate_of_runs_with_nothing_in_common_exits_2() {
+    let dir = scratch("gate-nothing");
+    let first = PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+        .join("results/tests/data/default-suite-runs/first.json");
+    let text = std::fs::read_to_string(&first).unwrap();
+    let mut other: serde_json::Value = serde_json::from_str(&text).unwrap();
+    for scene in other["scenes"].as_array_mut().unwrap() {
+        let name = scene["name"].as_str().unwrap().to_string();
+        scene["name"] = serde_json::json!(format!("other-{name}"));
+    }
+    let other_path = dir.join("other.json");
+    std::fs::write(&other_path, serde_json::to_string(&other).unwrap()).unwrap();
+    let (a, b) = (first.to_str().unwrap(), other_path.to_str().unwrap());
+    for extra in [None, Some("--force")] {
+        let mut args = vec!["gate", a, b];
+        args.extend(extra);
+        let out = rtprof(&args);
+        let err = stderr(&out);
+        assert_eq!(out.status.code(), Some(2), "{args:?}: {err}");
+        assert!(err.contains("nothing in common"), "{err}");
+        assert!(err.contains("new: other-"), "{err}");
+    }
+    // The same file against itself is gated (and passes).
+    assert_eq!(rtprof(&["gate", a, a]).status.code(), Some(0));
+    let _ = std::fs::remove_dir_all(&dir);
 }

@@ -1,6 +1,7 @@
 //! The reference render: every sample in f64, rows in parallel (rayon) when called
 //! inside a pool, else one after another on the calling thread; each sample depends on
-//! nothing but its ray, so the image is the same for any thread count.
+//! nothing but its ray, so the image is the same for any thread count. Each row first
+//! reads a stop flag ([`render_until`]), as the tracer's renderer does.
 
 use crate::camera::Camera;
 use crate::error::ReferenceError;
@@ -8,6 +9,7 @@ use crate::scene::RefScene;
 use crate::shading::{Color, Shader, Walk};
 use glam::DVec3;
 use rayon::prelude::*;
+use std::sync::atomic::{AtomicBool, Ordering};
 use tracer::{Frame, RenderOptions, Rgb, Sampling, Scene};
 
 /// Renders `scene` as `options` ask (size, sampling, shading mode, depth; limits checked
@@ -29,6 +31,17 @@ pub fn render_converted(
     render_walking(scene, options, Walk::Bvh, progress)
 }
 
+/// [`render_converted`] that stops when `stop` is set (read before each sample row):
+/// it then returns [`ReferenceError::Cancelled`], never a partial frame.
+pub fn render_until(
+    scene: &RefScene,
+    options: &RenderOptions,
+    progress: &(dyn Fn(u64) + Sync),
+    stop: &AtomicBool,
+) -> Result<Frame, ReferenceError> {
+    render_walking_until(scene, options, Walk::Bvh, progress, stop)
+}
+
 /// [`render_converted`] with the queries walking as `walk` says (the picture is the
 /// same either way; the brute-force walk is the definition tests hold the BVH to).
 pub fn render_walking(
@@ -36,6 +49,17 @@ pub fn render_walking(
     options: &RenderOptions,
     walk: Walk,
     progress: &(dyn Fn(u64) + Sync),
+) -> Result<Frame, ReferenceError> {
+    render_walking_until(scene, options, walk, progress, &tracer::NEVER_STOP)
+}
+
+/// [`render_walking`] that stops when `stop` is set.
+fn render_walking_until(
+    scene: &RefScene,
+    options: &RenderOptions,
+    walk: Walk,
+    progress: &(dyn Fn(u64) + Sync),
+    stop: &AtomicBool,
 ) -> Result<Frame, ReferenceError> {
     let limits = &options.limits;
     limits
@@ -49,17 +73,21 @@ pub fn render_walking(
     let shader = Shader::new(scene, options.mode, options.max_depth, walk);
     let (columns, rows) = camera.grid();
     let trace_row = |row: u32| {
+        if stop.load(Ordering::Relaxed) {
+            return None;
+        }
         let samples: Vec<Color> = (0..columns)
             .map(|column| shader.primary(&camera.ray(column, row)))
             .collect();
         progress(1);
-        samples
+        Some(samples)
     };
-    let traced: Vec<Vec<Color>> = if rayon::current_thread_index().is_some() {
+    let traced: Option<Vec<Vec<Color>>> = if rayon::current_thread_index().is_some() {
         (0..rows).into_par_iter().map(trace_row).collect()
     } else {
         (0..rows).map(trace_row).collect()
     };
+    let traced = traced.ok_or(ReferenceError::Cancelled)?;
     let samples: Vec<Color> = traced.into_iter().flatten().collect();
     let pixels = match options.sampling {
         Sampling::PixelCenters => samples,

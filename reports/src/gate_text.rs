@@ -154,7 +154,7 @@ pub fn headline(gate: &GateReport) -> String {
 /// What the verdicts mean, in one paragraph.
 pub fn rule(gate: &GateReport) -> String {
     format!(
-        "Times are the process CPU time of each render (wall time for older files), gated relative to a reference timed in the same rounds (each variant ÷ baseline on its scene; baseline ÷ the calibration kernel), so a busier or slower machine moves both alike. A change is slower or faster only when it exceeds the noise threshold of {} (the run-to-run noise of relative times measured on a shared machine, docs/gate.md) and its 95 % interval excludes no change. Any changed count fails.",
+        "Times are the process CPU time of each render (wall time for older files), gated relative to a render of the same scene timed in the same rounds (each variant ÷ baseline, or ÷ bvh on a scene run without baseline; baseline, or bvh there, ÷ the f64 reference renderer at a smaller frame, or ÷ the calibration kernel in older files), so a busier or slower machine moves both alike. A change is slower or faster only when it exceeds the noise threshold of {} (the run-to-run noise of relative times measured on a shared machine, docs/gate.md; wider for an entry whose own 95 % intervals are, their half-widths summed) and its 95 % interval excludes no change. Any changed count fails.",
         format::percent(gate.threshold * 100.0, 1)
     )
 }
@@ -174,6 +174,37 @@ fn notes(gate: &GateReport) -> Vec<String> {
             "note: the old run's times cover {}, the new run's {}: time changes include the difference",
             old.describe(),
             new.describe()
+        ));
+    }
+    let widened: Vec<String> = gate
+        .entries
+        .iter()
+        .filter(|e| e.threshold > gate.threshold)
+        .map(|e| {
+            format!(
+                "{} / {} {}",
+                e.scene,
+                e.variant,
+                format::percent(e.threshold * 100.0, 1)
+            )
+        })
+        .collect();
+    if !widened.is_empty() {
+        const NAMED: usize = 5;
+        let mut named: Vec<String> = widened.iter().take(NAMED).cloned().collect();
+        if widened.len() > NAMED {
+            named.push(format!("and {} more", widened.len() - NAMED));
+        }
+        notes.push(format!(
+            "note: {} {} gated at a wider threshold than {}, their own intervals being wider: {}",
+            widened.len(),
+            if widened.len() == 1 {
+                "entry"
+            } else {
+                "entries"
+            },
+            format::percent(gate.threshold * 100.0, 1),
+            named.join(", ")
         ));
     }
     if let Some((e, change)) = gate.largest_change() {

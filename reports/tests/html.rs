@@ -100,7 +100,7 @@ fn two_runs_give_the_comparison_section() {
     let first = sample_run("bench-1", dir.path());
     let mut second = sample_run("bench-2", dir.path());
     second.results.machine.hostname = "bench-2".into();
-    // Every render 20 % slower, the calibration kernel unchanged: baseline ÷ kernel
+    // Every render 20 % slower, the yardsticks unchanged: baseline ÷ yardstick
     // grows 20 %, the variants ÷ baseline do not.
     for scene in &mut second.results.scenes {
         for v in &mut scene.variants {
@@ -119,7 +119,7 @@ fn two_runs_give_the_comparison_section() {
     assert!(html.contains("bench-2 vs bench-1"));
     assert!(
         html.contains(">+20"),
-        "baseline's change against the kernel"
+        "baseline's change against the yardstick"
     );
     assert!(html.contains(">slower<"), "its verdict");
     assert!(

@@ -201,7 +201,7 @@ fn several_runs_get_a_comparison() {
     let a = sample_run(&dir, "bench-1");
     let mut b = sample_run(&dir, "bench-2");
     b.results.machine.hostname = "bench-2".to_string();
-    // Every render 20 % slower, the calibration kernel unchanged: baseline ÷ kernel
+    // Every render 20 % slower, the yardsticks unchanged: baseline ÷ yardstick
     // grows 20 %.
     for scene in &mut b.results.scenes {
         for v in &mut scene.variants {

@@ -6,22 +6,25 @@
 //!   any counter is a changed program and fails the gate;
 //! - **instruction counts** (gungraun, when both files have them): deterministic up to
 //!   the build; an increase beyond [`INSTRUCTION_THRESHOLD`] fails;
-//! - **time relative to a reference measured in the same run**, not absolute time: each
-//!   variant's time divided by the reference variant's on the same scene (both timed in
-//!   interleaved rounds), and the reference's own time divided by the calibration
-//!   kernel's (timed in the same rounds); each a median of per-round ratios
+//! - **time relative to a render timed in the same rounds**, not absolute time: each
+//!   variant's time divided by a reference that does the same kind of work on the same
+//!   scene ([`references`]: baseline; bvh on a scene run without baseline; for the
+//!   scene's root variant itself, the f64 reference renderer on the same scene at a
+//!   smaller frame), each a median of per-round ratios
 //!   ([`crate::change::paired_ratios`]). A machine that is busier or slower on the
 //!   second run moves both alike. The change of a relative time between the runs, with
 //!   its bootstrap interval, is labelled by the one verdict rule
 //!   ([`analysis::verdict::judge`]) at a noise threshold calibrated from run-to-run
-//!   noise ([`analysis::verdict::NOISE_THRESHOLD`], docs/gate.md). Slower fails.
+//!   noise ([`analysis::verdict::NOISE_THRESHOLD`], docs/gate.md), widened for an entry
+//!   whose own intervals are wider ([`entry_threshold`]). Slower fails.
 //!
 //! Times are process CPU times of each render when both runs recorded them (they do
 //! not grow while the machine runs other work), wall times otherwise.
 //!
 //! Runs that cannot be compared (another suite, frame sizes, thread count or machine)
-//! are refused with every reason ([`GateError`]); runs that are too short to gate well
-//! (`--quick`) and files without the calibration kernel are gated with a warning.
+//! are refused with every reason, and so are runs with no scene × variant in common,
+//! `--force` or not ([`GateError`]); runs that are too short to gate well (`--quick`)
+//! and entries gated on seconds (files without a yardstick) come with a warning.
 
 use serde::Serialize;
 
@@ -40,10 +43,16 @@ pub const INSTRUCTION_THRESHOLD: f64 = 0.01;
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
 #[serde(rename_all = "snake_case")]
 pub enum Measure {
-    /// The variant's time divided by the reference variant's, same scene, same run.
+    /// The variant's time divided by baseline's, same scene, same rounds.
     RelativeToReference,
-    /// The reference variant's time (any variant's on a scene run without the
-    /// reference) divided by the calibration kernel's, same rounds.
+    /// The variant's time divided by bvh's, same scene, same rounds (a scene run
+    /// without baseline, such as the SPD's full frames).
+    RelativeToBvh,
+    /// The scene's root variant (baseline, or bvh without baseline) divided by the f64
+    /// reference renderer's time on the same scene at a smaller frame, same rounds.
+    RelativeToYardstick,
+    /// The root variant divided by the calibration kernel's time, same rounds (files
+    /// from before the yardstick).
     RelativeToCalibration,
     /// Seconds (a file without the reference or the calibration kernel): a busier
     /// machine reads as slower.
@@ -55,6 +64,8 @@ impl Measure {
     pub fn describe(self) -> &'static str {
         match self {
             Measure::RelativeToReference => "÷ baseline",
+            Measure::RelativeToBvh => "÷ bvh",
+            Measure::RelativeToYardstick => "÷ f64 reference",
             Measure::RelativeToCalibration => "÷ calibration",
             Measure::Seconds => "seconds",
         }
@@ -98,6 +109,9 @@ pub struct Entry {
     pub new_seconds: f64,
     /// new / old of the measure, with its 95 % bootstrap interval (1.25: 25 % slower).
     pub change: Estimate,
+    /// The noise threshold of this entry's verdict (a fraction): the gate's, or wider
+    /// where the entry's own intervals are ([`entry_threshold`]).
+    pub threshold: f64,
     pub verdict: Verdict,
     pub count_changes: Vec<CountChange>,
 }
@@ -205,6 +219,13 @@ impl Default for GateOptions {
 pub enum GateError {
     #[error("the runs are not comparable: {}; gate runs of the same suite on the same machine (--force gates them anyway)", .0.join("; "))]
     NotComparable(Vec<String>),
+    /// No scene × variant at the same frame size is in both runs: a gate of nothing
+    /// would pass whatever the runs hold. (Instruction counts do not count: they are the
+    /// build's micro-benchmarks, which any two runs share, not the runs' scenes.)
+    #[error(
+        "the runs have nothing in common: no scene × variant at the same frame size is in both (old: {old}; new: {new}); gate two runs of the same scenes"
+    )]
+    NothingInCommon { old: String, new: String },
 }
 
 /// Why two runs cannot be compared: every difference that makes their relative times
@@ -297,16 +318,23 @@ pub fn gate(old: &Results, new: &Results, options: GateOptions) -> Result<GateRe
     }
     if uncalibrated > 0 {
         warnings.push(format!(
-            "{uncalibrated} entr{} gated on seconds (a file without the calibration kernel or the baseline variant): a busier machine reads as slower",
+            "{uncalibrated} entr{} gated on seconds (a file without a reference timed in the same rounds): a busier machine reads as slower",
             if uncalibrated == 1 { "y" } else { "ies" }
         ));
+    }
+    let instructions = instruction_entries(&old.instructions, &new.instructions);
+    if entries.is_empty() {
+        return Err(GateError::NothingInCommon {
+            old: scene_list(old),
+            new: scene_list(new),
+        });
     }
     let (old_covers, new_covers) = (old.suite.timing.covers, new.suite.timing.covers);
     Ok(GateReport {
         threshold,
         instruction_threshold: INSTRUCTION_THRESHOLD,
         entries,
-        instructions: instruction_entries(&old.instructions, &new.instructions),
+        instructions,
         unmatched,
         warnings,
         covers_differ: (old_covers != new_covers).then_some((old_covers, new_covers)),
@@ -318,24 +346,87 @@ fn find<'a>(scene: &'a SceneResult, variant: &VariantName) -> Option<&'a Variant
     scene.variants.iter().find(|v| &v.variant == variant)
 }
 
-/// What a variant's time is measured against in its run: the yardstick's wall and CPU
-/// samples, and the measure.
-fn yardstick<'a>(
-    scene: &'a SceneResult,
-    v: &VariantResult,
-) -> Option<(&'a [f64], &'a [f64], Measure)> {
-    let reference = scene.variants.iter().find(|r| r.variant.is_reference());
-    match reference {
-        Some(r) if !v.variant.is_reference() => {
-            Some((&r.samples, &r.cpu_samples, Measure::RelativeToReference))
-        }
-        // The reference itself, or a scene run without it (the SPD's full frame, where
-        // only accelerated variants run): the kernel timed in the same rounds.
-        _ => {
-            let c = scene.calibration.as_ref()?;
-            Some((&c.samples, &c.cpu_samples, Measure::RelativeToCalibration))
-        }
+/// The scenes of a run as a gate error lists them (`balls3 640x480, ...`; the first
+/// few).
+fn scene_list(r: &Results) -> String {
+    const SHOWN: usize = 4;
+    if r.scenes.is_empty() {
+        return "no scenes".to_string();
     }
+    let mut names: Vec<String> = r
+        .scenes
+        .iter()
+        .take(SHOWN)
+        .map(|s| format!("{} {}x{}", s.name, s.width, s.height))
+        .collect();
+    if r.scenes.len() > SHOWN {
+        names.push(format!("{} more", r.scenes.len() - SHOWN));
+    }
+    names.join(", ")
+}
+
+/// A reference's wall and CPU samples, one per round, and the measure it makes.
+type Reference<'a> = (&'a [f64], &'a [f64], Measure);
+
+/// What a variant's time can be measured against in its run, best first: each a render
+/// timed in the same rounds on the same scene.
+///
+/// - a variant other than baseline: **baseline**; on a scene run without baseline (the
+///   SPD's full frames), **bvh**: the same scene, the same kind of work, so load moves
+///   both alike;
+/// - the scene's root variant (baseline, or bvh without baseline; any variant when
+///   neither ran): the **yardstick**, the f64 reference renderer on the same scene at a
+///   smaller frame. It does the same kind of work (the same scene's rays, shading and a
+///   hierarchy walk) with none of the tracer's code, so a slower tracer is not divided
+///   away; the **calibration kernel** in files from before it.
+///
+/// The later entries are fallbacks for runs that lack the earlier ones: the gate takes
+/// the first measure both runs have.
+pub fn references<'a>(scene: &'a SceneResult, v: &VariantResult) -> Vec<Reference<'a>> {
+    let mut out = Vec::new();
+    let baseline = scene.variants.iter().find(|r| r.variant.is_reference());
+    let bvh = scene.variants.iter().find(|r| r.variant.as_str() == "bvh");
+    match (baseline, bvh) {
+        (Some(r), _) if !v.variant.is_reference() => {
+            out.push((
+                &r.samples[..],
+                &r.cpu_samples[..],
+                Measure::RelativeToReference,
+            ));
+        }
+        (None, Some(r)) if v.variant != r.variant => {
+            out.push((&r.samples[..], &r.cpu_samples[..], Measure::RelativeToBvh));
+        }
+        _ => {}
+    }
+    if let Some(y) = &scene.yardstick {
+        out.push((
+            &y.samples[..],
+            &y.cpu_samples[..],
+            Measure::RelativeToYardstick,
+        ));
+    }
+    if let Some(c) = &scene.calibration {
+        out.push((
+            &c.samples[..],
+            &c.cpu_samples[..],
+            Measure::RelativeToCalibration,
+        ));
+    }
+    out
+}
+
+/// The noise threshold of one entry: the gate's `threshold`, or, where the entry's own
+/// measure is known less well, the sum of the relative half-widths of its 95 % intervals
+/// in the two runs (a half-width `sqrt(high / low) - 1`, symmetric in log scale as the
+/// verdicts are). Two medians each known to ±w can lie w_old + w_new apart with nothing
+/// changed, so a change within that is not called slower (docs/gate.md).
+pub fn entry_threshold(threshold: f64, old: &Estimate, new: &Estimate) -> f64 {
+    let half_width = |e: &Estimate| {
+        let w = (e.high / e.low).sqrt() - 1.0;
+        if w.is_finite() && w > 0.0 { w } else { 0.0 }
+    };
+    threshold.max(half_width(old) + half_width(new))
 }
 
 fn compare_entry(
@@ -343,7 +434,12 @@ fn compare_entry(
     (new_scene, v): (&SceneResult, &VariantResult),
     threshold: f64,
 ) -> Entry {
-    let sticks = yardstick(old_scene, o).zip(yardstick(new_scene, v));
+    // The first measure both runs have.
+    let new_refs = references(new_scene, v);
+    let sticks = references(old_scene, o).into_iter().find_map(|old_ref| {
+        let new_ref = new_refs.iter().find(|n| n.2 == old_ref.2)?;
+        Some((old_ref, *new_ref))
+    });
     // CPU time when every set has it (it does not grow while the machine is busy).
     let cpu = match sticks {
         Some(((_, a, _), (_, b, _))) => [a, b, &o.cpu_samples, &v.cpu_samples]
@@ -364,7 +460,7 @@ fn compare_entry(
         pick(&v.samples, &v.cpu_samples),
     );
     let (measure, old, new, change) = match sticks {
-        Some(((old_wall, old_cpu, measure), (new_wall, new_cpu, same))) if measure == same => {
+        Some(((old_wall, old_cpu, measure), (new_wall, new_cpu, _))) => {
             let old_ratios = paired_ratios(&o_samples, &pick(old_wall, old_cpu));
             let new_ratios = paired_ratios(&v_samples, &pick(new_wall, new_cpu));
             let old = of_medians(&[&old_ratios], |m| m[0]);
@@ -385,6 +481,8 @@ fn compare_entry(
         high: f64::NAN,
     };
     let change = change.unwrap_or(unknown);
+    let (old, new) = (old.unwrap_or(unknown), new.unwrap_or(unknown));
+    let threshold = entry_threshold(threshold, &old, &new);
     Entry {
         scene: new_scene.name.clone(),
         width: new_scene.width,
@@ -392,11 +490,12 @@ fn compare_entry(
         variant: v.variant.clone(),
         measure,
         clock,
-        old: old.unwrap_or(unknown),
-        new: new.unwrap_or(unknown),
+        old,
+        new,
         old_seconds: o.time.median,
         new_seconds: v.time.median,
         change,
+        threshold,
         verdict: judge(&change, threshold),
         count_changes: count_changes(o, v),
     }

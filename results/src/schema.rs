@@ -215,10 +215,15 @@ pub struct SceneResult {
     /// The hardware model and emulator on this scene (spheres and cylinders only).
     pub hardware: Option<SceneHardware>,
     /// The calibration kernel, timed once per round between this scene's renders: the
-    /// gate divides the reference variant's time by it, so that a machine busier or
-    /// slower on one run does not read as a change of the tracer. `None` in older files.
+    /// gate's yardstick of the scene's root variant in files without [`Self::yardstick`].
+    /// `None` in older files.
     #[serde(default)]
     pub calibration: Option<Calibration>,
+    /// The f64 reference renderer on this scene at a smaller frame, timed once per round
+    /// between this scene's renders: the gate divides the scene's root variant (baseline,
+    /// or bvh where baseline did not run) by it (docs/gate.md). `None` in older files.
+    #[serde(default)]
+    pub yardstick: Option<Yardstick>,
     /// The ray statistics the SPD publishes for this scene, when it is a classic SPD
     /// scene rendered as the figures were (512 × 512, corner rays, depth 5): each
     /// variant's counts can be read against them. `None` otherwise and in older files.
@@ -281,6 +286,30 @@ pub struct MemoryUse {
     pub peak_bytes: u64,
     /// The BVH's bytes per primitive, when a variant built one.
     pub bvh_bytes_per_primitive: Option<f64>,
+}
+
+/// A render of the scene by the f64 reference renderer (its own code: no line of the
+/// tracer's renderer, intersectors or shading), at a smaller frame, timed on the same
+/// threads and in the same rounds as the variants' renders: the same kind of work as
+/// theirs, so load that slows memory-bound rendering slows it alike.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize, JsonSchema)]
+pub struct Yardstick {
+    /// The frame it rendered (the scene's divided by [`Yardstick::DIVISOR`] per side).
+    pub width: u32,
+    pub height: u32,
+    /// Median and interval of its tracing time, seconds.
+    pub time: Estimate,
+    /// Tracing seconds of each round.
+    pub samples: Vec<f64>,
+    /// Process CPU seconds of each round.
+    pub cpu_samples: Vec<f64>,
+}
+
+impl Yardstick {
+    /// The yardstick's frame is the scene's divided by this per side (a sixteenth of the
+    /// pixels: the f64 renderer takes a few times bvh's time per pixel, so a round costs
+    /// a fraction of one accelerated render more).
+    pub const DIVISOR: u32 = 4;
 }
 
 /// A fixed amount of arithmetic (independent of the tracer's code), timed on the same

@@ -362,6 +362,7 @@ fn scene(s: SceneResult, path: &str) -> Result<v2::SceneResult, ResultsError> {
         spd: s.spd,
         hardware,
         calibration: None,
+        yardstick: None,
         published: None,
         memory: None,
         bvh_quality: Vec::new(),

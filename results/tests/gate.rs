@@ -1,14 +1,16 @@
-//! The regression gate on synthetic results: relative times (variant ÷ baseline,
-//! baseline ÷ calibration kernel) survive a uniformly slower machine, a 25 % slow-down
-//! of one variant fails, a changed count fails, runs that cannot be compared are
-//! refused; results round-trip through serde.
+//! The regression gate on synthetic results: relative times (variant ÷ baseline, or ÷
+//! bvh on a scene without baseline; the root variant ÷ the f64 reference yardstick, or
+//! ÷ the calibration kernel in older files) survive a uniformly slower machine, a 25 %
+//! slow-down of one variant fails, a changed count fails, runs that cannot be compared
+//! or have nothing in common are refused, noisy entries get wider thresholds; results
+//! round-trip through serde.
 
 use std::collections::BTreeMap;
 
-use results::gate::{GateOptions, Measure, gate};
+use results::gate::{GateError, GateOptions, Measure, entry_threshold, gate};
 use results::{
     Build, Calibration, Estimate, Machine, Results, SCHEMA, SceneFamily, SceneResult, SuiteInfo,
-    TimeCovers, TimingPolicy, VariantName, VariantResult, Verdict,
+    TimeCovers, TimingPolicy, VariantName, VariantResult, Verdict, Yardstick,
 };
 
 fn name(v: &str) -> VariantName {
@@ -115,6 +117,7 @@ fn run(baseline_s: f64, bvh_s: f64, kernel_s: f64, dots: u64) -> Results {
                 samples: samples(kernel_s),
                 cpu_samples: samples(kernel_s),
             }),
+            yardstick: None,
             published: None,
             memory: None,
             bvh_quality: Vec::new(),
@@ -167,6 +170,161 @@ fn a_scene_run_without_baseline_is_gated_against_the_calibration_kernel() {
     assert_eq!(g.entries[0].old.median, 20.0);
     assert_eq!(g.entries[0].change.median, 1.0);
     assert!(!g.failed());
+}
+
+/// `r` with the f64 reference yardstick timed at `seconds` a round.
+fn with_yardstick(mut r: Results, seconds: f64) -> Results {
+    r.scenes[0].yardstick = Some(Yardstick {
+        width: 16,
+        height: 12,
+        time: estimate(seconds),
+        samples: samples(seconds),
+        cpu_samples: samples(seconds),
+    });
+    r
+}
+
+/// `r` as the SPD's full frames run: no baseline, bvh and bvh+simd (at `simd_s`).
+fn without_baseline(mut r: Results, simd_s: f64) -> Results {
+    let scene = &mut r.scenes[0];
+    scene.variants.retain(|v| v.variant.as_str() == "bvh");
+    scene.variants.push(variant("bvh+simd", simd_s, 1000));
+    r
+}
+
+#[test]
+fn without_baseline_variants_are_gated_against_bvh_and_bvh_against_the_yardstick() {
+    // Load that slows the renders 22 % and leaves the compute-bound kernel alone (the
+    // false alarm of issue 40) moves the yardstick, a render too, alike: no alarm.
+    let old = with_yardstick(without_baseline(run(1.0, 0.2, 0.01, 1000), 0.1), 0.05);
+    let new = with_yardstick(without_baseline(run(1.0, 0.244, 0.01, 1000), 0.122), 0.061);
+    let g = default_gate(&old, &new);
+    assert_eq!(g.entries.len(), 2);
+    let (bvh, simd) = (&g.entries[0], &g.entries[1]);
+    assert_eq!(bvh.measure, Measure::RelativeToYardstick);
+    assert_eq!(simd.measure, Measure::RelativeToBvh);
+    // 0.2 / 0.05 = 4 and 0.1 / 0.2 = 0.5 in both runs.
+    assert_eq!(bvh.old.median, 4.0);
+    assert_eq!(simd.new.median, 0.5);
+    assert!((bvh.change.median - 1.0).abs() < 1e-9, "{bvh:?}");
+    assert!(!g.failed(), "{g:?}");
+    // The same runs without the yardstick (older files) fall back to the kernel, which
+    // did not move: bvh reads 22 % slower, the false alarm the yardstick removes.
+    let strip = |mut r: Results| {
+        r.scenes[0].yardstick = None;
+        r
+    };
+    let g = default_gate(&strip(old.clone()), &strip(new.clone()));
+    assert_eq!(g.entries[0].measure, Measure::RelativeToCalibration);
+    assert_eq!(g.entries[0].verdict, Verdict::Slower);
+    // bvh+simd 25 % slower (bvh unchanged): slower ÷ bvh.
+    let slower = with_yardstick(without_baseline(run(1.0, 0.2, 0.01, 1000), 0.125), 0.05);
+    let g = default_gate(&old, &slower);
+    assert_eq!(g.entries[1].verdict, Verdict::Slower);
+    assert_eq!(g.entries[0].verdict, Verdict::WithinNoise);
+}
+
+#[test]
+fn the_root_variant_25_percent_slower_against_an_unchanged_yardstick_fails() {
+    let old = with_yardstick(run(1.0, 0.2, 0.01, 1000), 0.05);
+    let new = with_yardstick(run(1.25, 0.25, 0.01, 1000), 0.05);
+    let g = default_gate(&old, &new);
+    let baseline = &g.entries[0];
+    assert_eq!(baseline.measure, Measure::RelativeToYardstick);
+    assert_eq!(baseline.verdict, Verdict::Slower);
+    assert!((baseline.change.median - 1.25).abs() < 1e-9);
+    // bvh moved with baseline: its relative time did not change.
+    assert_eq!(g.entries[1].verdict, Verdict::WithinNoise);
+    // A yardstick in one run only: the kernel, which both have.
+    let g = default_gate(&run(1.0, 0.2, 0.01, 1000), &new);
+    assert_eq!(g.entries[0].measure, Measure::RelativeToCalibration);
+}
+
+#[test]
+fn runs_with_nothing_in_common_are_refused_even_when_forced() {
+    let old = run(1.0, 0.2, 0.01, 1000);
+    let mut new = old.clone();
+    new.scenes[0].name = "teapot".into();
+    for options in [
+        GateOptions::default(),
+        GateOptions {
+            force: true,
+            ..GateOptions::default()
+        },
+    ] {
+        let err = gate(&old, &new, options).unwrap_err();
+        assert!(matches!(err, GateError::NothingInCommon { .. }), "{err}");
+        let message = err.to_string();
+        assert!(message.contains("nothing in common"), "{message}");
+        assert!(
+            message.contains("old: balls3 64x48; new: teapot 64x48"),
+            "{message}"
+        );
+    }
+    // Only the variants differ: nothing in common either.
+    let mut other = old.clone();
+    other.scenes[0]
+        .variants
+        .retain(|v| v.variant.as_str() == "bvh");
+    let mut only_base = old.clone();
+    only_base.scenes[0]
+        .variants
+        .retain(|v| v.variant.is_reference());
+    assert!(gate(&only_base, &other, GateOptions::default()).is_err());
+    // One scene in common of two: gated (the other is listed as unmatched).
+    let mut two = old.clone();
+    two.scenes.push(new.scenes[0].clone());
+    let g = default_gate(&old, &two);
+    assert_eq!(g.entries.len(), 2);
+    assert_eq!(g.unmatched.len(), 2);
+}
+
+#[test]
+fn an_entry_known_less_well_than_the_threshold_gets_a_wider_one() {
+    let around = |median: f64, half: f64| Estimate {
+        median,
+        low: median / (1.0 + half),
+        high: median * (1.0 + half),
+    };
+    // ±1 % in each run: the default threshold.
+    assert_eq!(
+        entry_threshold(0.2, &around(1.0, 0.01), &around(2.0, 0.01)),
+        0.2
+    );
+    // ±15 % in each run: 30 %.
+    let wide = entry_threshold(0.2, &around(1.0, 0.15), &around(3.0, 0.15));
+    assert!((wide - 0.30).abs() < 1e-12, "{wide}");
+    // Unknown intervals leave the default.
+    let nan = Estimate {
+        median: f64::NAN,
+        low: f64::NAN,
+        high: f64::NAN,
+    };
+    assert_eq!(entry_threshold(0.2, &nan, &nan), 0.2);
+    // In a gate: bvh's samples spread ±30 % in both runs and 25 % slower in the second
+    // is within its own noise, and the entry says which threshold it used.
+    let spread = |r: &mut Results, median: f64| {
+        let v = &mut r.scenes[0].variants[1];
+        let pattern = [
+            0.7, 0.85, 1.0, 1.15, 1.3, 0.7, 1.3, 0.75, 1.25, 1.0, 0.9, 1.1,
+        ];
+        v.samples = pattern.iter().map(|k| median * k).collect();
+        v.cpu_samples = v.samples.clone();
+    };
+    let mut old = run(1.0, 0.2, 0.01, 1000);
+    spread(&mut old, 0.2);
+    let mut new = run(1.0, 0.25, 0.01, 1000);
+    spread(&mut new, 0.25);
+    let g = default_gate(&old, &new);
+    let bvh = &g.entries[1];
+    assert!(bvh.threshold > 0.25, "{bvh:?}");
+    assert_eq!(
+        bvh.threshold,
+        entry_threshold(0.2, &bvh.old, &bvh.new),
+        "{bvh:?}"
+    );
+    assert_eq!(bvh.verdict, Verdict::WithinNoise, "{bvh:?}");
+    assert_eq!(g.entries[0].threshold, 0.2);
 }
 
 #[test]
@@ -251,8 +409,14 @@ fn runs_that_cannot_be_compared_are_refused_unless_forced() {
         force: true,
         ..GateOptions::default()
     };
+    // Forced, the frame size still leaves nothing in common (entries match by size).
+    assert!(matches!(
+        gate(&old, &new, forced),
+        Err(GateError::NothingInCommon { .. })
+    ));
+    new.scenes[0].width = 64;
     let g = gate(&old, &new, forced).unwrap();
-    assert_eq!(g.forced_over.len(), 3);
+    assert_eq!(g.forced_over.len(), 2);
     let mut other = old.clone();
     other.suite.name = "mine".into();
     assert!(gate(&old, &other, GateOptions::default()).is_err());

@@ -1,11 +1,11 @@
 //! The gate on real runs: two back-to-back default-suite runs of one binary on the
 //! project's shared two-core machine (results/tests/data/default-suite-runs, trimmed
 //! to what the gate reads by its trim.py) must pass; the same second run with one
-//! variant's render times made 25 % slower must fail on that variant; a count changed
-//! by one must fail.
+//! variant's render times made 25 % slower must fail on that variant, also where the
+//! scenes ran without baseline (variants then ÷ bvh); a count changed by one must fail.
 
 use results::Results;
-use results::gate::{GateOptions, gate};
+use results::gate::{GateOptions, Measure, gate};
 use results::{VariantName, Verdict};
 
 const FIRST: &str = include_str!("data/default-suite-runs/first.json");
@@ -57,6 +57,10 @@ fn one_variant_made_25_percent_slower_is_flagged() {
     // stays under it); never faster.
     let slower = bvh.iter().filter(|e| e.verdict == Verdict::Slower).count();
     assert!(slower * 4 >= bvh.len() * 3, "{slower} of {}", bvh.len());
+    eprintln!(
+        "bvh 25 % slower: {slower} of {} caught ÷ baseline",
+        bvh.len()
+    );
     assert!(bvh.iter().all(|e| e.verdict != Verdict::Faster));
     assert!(bvh.iter().all(|e| e.change.median > 1.1));
     // Nothing else moved: the other variants pass.
@@ -104,5 +108,55 @@ fn a_count_changed_by_one_is_flagged() {
     assert_eq!(
         changed[0].count_changes[0].new,
         changed[0].count_changes[0].old + 1
+    );
+}
+
+/// The runs as the SPD's full frames run: without baseline (so each variant is gated ÷
+/// bvh, and bvh ÷ the calibration kernel these files have).
+fn without_baseline(mut r: Results) -> Results {
+    for scene in &mut r.scenes {
+        scene.variants.retain(|v| !v.variant.is_reference());
+    }
+    r
+}
+
+#[test]
+fn without_baseline_a_variant_25_percent_slower_is_still_caught_against_bvh() {
+    let (a, b) = runs();
+    let (a, b) = (without_baseline(a), without_baseline(b));
+    let g = gate(&a, &b, GateOptions::default()).expect("comparable");
+    assert!(!g.failed(), "{:?}", g.tally());
+    assert!(g.entries.iter().all(|e| match e.variant.as_str() {
+        "bvh" => e.measure == Measure::RelativeToCalibration,
+        _ => e.measure == Measure::RelativeToBvh,
+    }));
+    let mut slower = b.clone();
+    slow_down(&mut slower, "simd", 1.25);
+    let g = gate(&a, &slower, GateOptions::default()).expect("comparable");
+    assert!(g.failed());
+    let simd: Vec<_> = g
+        .entries
+        .iter()
+        .filter(|e| e.variant.as_str() == "simd")
+        .collect();
+    assert_eq!(simd.len(), 23);
+    let caught = simd.iter().filter(|e| e.verdict == Verdict::Slower).count();
+    assert!(caught * 4 >= simd.len() * 3, "{caught} of {}", simd.len());
+    assert!(simd.iter().all(|e| e.verdict != Verdict::Faster));
+    assert!(
+        g.entries
+            .iter()
+            .filter(|e| e.variant.as_str() != "simd")
+            .all(|e| !e.failed())
+    );
+    let widened = g
+        .entries
+        .iter()
+        .filter(|e| e.threshold > g.threshold)
+        .count();
+    eprintln!(
+        "simd 25 % slower: {caught} of {} caught; {widened} of {} entries at a widened threshold",
+        simd.len(),
+        g.entries.len()
     );
 }

@@ -4,7 +4,9 @@
 //! report can show whether the metrics predict the cost.
 
 use results::BvhQuality;
-use tracer::{Bvh, BvhBuilder, Count, Counts, NoCount, RenderOptions, VariantSet, render_variant};
+use tracer::{
+    Bvh, BvhBuilder, Count, Counts, NoCount, RenderOptions, VariantSet, render_variant_until,
+};
 
 use crate::error::RunError;
 use crate::render_setup::RenderSetup;
@@ -45,7 +47,7 @@ pub fn study(
     let fail = |e: tracer::RenderError| RunError::render(setup.name, &e);
     let counted = setup
         .pool
-        .install(|| render_variant::<Count>(setup.scene, &options, &set, &|_| {}))
+        .install(|| render_variant_until::<Count>(setup.scene, &options, &set, &|_| {}, setup.stop))
         .map_err(fail)?;
     let counts = counted.rendered.counts().ok_or_else(|| RunError::Render {
         context: setup.name.to_string(),
@@ -54,7 +56,9 @@ pub fn study(
     let timed = measure(policy, setup.stop, || {
         setup
             .pool
-            .install(|| render_variant::<NoCount>(setup.scene, &options, &set, &|_| {}))
+            .install(|| {
+                render_variant_until::<NoCount>(setup.scene, &options, &set, &|_| {}, setup.stop)
+            })
             .map_err(fail)
     })?;
     Ok(quality(setup, builder, &counts, timed.time.median))

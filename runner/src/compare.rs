@@ -316,6 +316,7 @@ impl VariantsReport {
             variants,
             hardware: None,
             calibration: None,
+            yardstick: None,
             published: None,
             memory: None,
             bvh_quality: Vec::new(),

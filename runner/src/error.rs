@@ -62,8 +62,12 @@ impl RunError {
         }
     }
 
-    /// A render error, said of `context` (a file or scene name).
+    /// A render error, said of `context` (a file or scene name); a render stopped by its
+    /// flag is [`RunError::Stopped`], as the other stops are.
     pub fn render(context: impl std::fmt::Display, err: &tracer::RenderError) -> Self {
+        if *err == tracer::RenderError::Cancelled {
+            return RunError::Stopped;
+        }
         RunError::Render {
             context: context.to_string(),
             message: err.to_string(),

@@ -13,7 +13,9 @@ use hwmodel::frame_timing::{FrameTiming, frame_timing};
 use hwmodel::hw_scene::HwScene;
 use hwmodel::library::Library;
 use results::{DeviceUse, HardwareResult, HwRow};
-use tracer::{NoCount, RenderOptions, Sampling, Scene, ShadingMode, VariantSet, render_variant};
+use tracer::{
+    NoCount, RenderOptions, Sampling, Scene, ShadingMode, VariantSet, render_variant_until,
+};
 
 use crate::error::RunError;
 use crate::timing::{Measured, TimingPolicy, measure};
@@ -58,7 +60,7 @@ pub fn variant_time(
         ShadingMode::DiffuseOnly,
     );
     measure(policy, stop, || {
-        pool.install(|| render_variant::<NoCount>(scene, &options, set, &|_| {}))
+        pool.install(|| render_variant_until::<NoCount>(scene, &options, set, &|_| {}, stop))
             .map_err(|e| RunError::render(name, &e))
     })
 }

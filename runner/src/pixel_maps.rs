@@ -13,7 +13,7 @@ use results::pixel_stats::{PIXEL_STATS_SCHEMA, PixelMap, PixelStats};
 use tracer::counter::{COUNTERS, CounterDef, STAT_COUNT};
 use tracer::{
     Count, Counter, NoCount, RenderOptions, Rendered, SampleStats, Sampling, VariantSet,
-    render_variant,
+    render_variant_until,
 };
 
 use crate::error::RunError;
@@ -189,7 +189,7 @@ pub fn record_maps(setup: &RenderSetup, set: &VariantSet) -> Result<Maps, RunErr
     };
     let counted = setup
         .pool
-        .install(|| render_variant::<Count>(setup.scene, &options, set, &|_| {}))
+        .install(|| render_variant_until::<Count>(setup.scene, &options, set, &|_| {}, setup.stop))
         .map_err(|e| RunError::render(setup.name, &e))?;
     record_maps_of(setup, set, &counted.rendered)
 }
@@ -220,7 +220,9 @@ pub fn record_maps_of(
     for _ in 0..TIMED_PASSES {
         let run = setup
             .pool
-            .install(|| render_variant::<NoCount>(setup.scene, &options, set, &|_| {}))
+            .install(|| {
+                render_variant_until::<NoCount>(setup.scene, &options, set, &|_| {}, setup.stop)
+            })
             .map_err(fail)?;
         timed.extend(run.rendered.samples);
     }

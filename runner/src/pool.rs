@@ -1,12 +1,57 @@
-//! Worker threads.
+//! Worker threads, and the one rule of how many a user may ask for
+//! ([`check_threads`]: the command line's `--threads` and the web app's `threads`).
 
 use crate::error::RunError;
 
+/// Worker threads per logical CPU that can still help: a render keeps every thread
+/// busy, so beyond one per CPU threads only queue for the same cores; a few more leave
+/// room for measuring oversubscription (and for CPUs the machine reports too few of),
+/// thousands only load the machine (1,008 threads on two cores kept a job at
+/// "starting" for minutes, issue 40).
+pub const THREADS_PER_CPU: usize = 4;
+
+/// A thread count outside the rule of [`check_threads`].
+#[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
+#[error(
+    "threads {asked}: choose 1 to {max} ({THREADS_PER_CPU} × the {cpus} logical CPU{s} of this machine; more threads only queue for the same cores), or leave it out for one per core",
+    s = if *.cpus == 1 { "" } else { "s" }
+)]
+pub struct ThreadsError {
+    pub asked: u64,
+    pub max: u16,
+    pub cpus: usize,
+}
+
+/// The most worker threads a render may use here: [`THREADS_PER_CPU`] × the logical
+/// CPUs this process may run on (`std::thread::available_parallelism`, which reads
+/// the affinity mask and the cgroup quota), and with it the CPU count.
+pub fn max_threads() -> (u16, usize) {
+    let cpus = std::thread::available_parallelism().map_or(1, |n| n.get());
+    let max = u16::try_from(cpus.saturating_mul(THREADS_PER_CPU)).unwrap_or(u16::MAX);
+    (max, cpus)
+}
+
+/// `threads` if it is 1 to [`max_threads`]: the one rule of every place a user names
+/// a thread count (the CLI exits 2 and the API answers 422 with its message).
+pub fn check_threads(threads: u64) -> Result<u16, ThreadsError> {
+    let (max, cpus) = max_threads();
+    match u16::try_from(threads) {
+        Ok(n) if (1..=max).contains(&n) => Ok(n),
+        _ => Err(ThreadsError {
+            asked: threads,
+            max,
+            cpus,
+        }),
+    }
+}
+
 /// A rayon pool of `threads` workers (default: one per core), named `rtprof-worker-N`
-/// so that profiles and debuggers show whose stack is whose.
+/// so that profiles and debuggers show whose stack is whose. A count beyond
+/// [`check_threads`]'s rule is refused.
 pub fn thread_pool(threads: Option<u16>) -> Result<rayon::ThreadPool, RunError> {
     let mut pool = rayon::ThreadPoolBuilder::new().thread_name(|i| format!("rtprof-worker-{i}"));
     if let Some(n) = threads {
+        let n = check_threads(u64::from(n)).map_err(|e| RunError::Input(e.to_string()))?;
         pool = pool.num_threads(usize::from(n));
     }
     pool.build().map_err(|e| RunError::Render {
@@ -93,6 +138,33 @@ mod tests {
         let two = Workers::new(Some(2)).unwrap_or_else(|e| panic!("{e}"));
         assert_eq!(two.threads(), 2);
         assert_ne!(two.install(|| std::thread::current().id()), here);
+    }
+
+    #[test]
+    fn thread_counts_are_1_to_4_per_logical_cpu() {
+        let cpus = std::thread::available_parallelism().map_or(1, |n| n.get());
+        let max = 4 * cpus as u64;
+        assert_eq!(max_threads(), (max as u16, cpus));
+        assert_eq!(check_threads(1), Ok(1));
+        assert_eq!(check_threads(max), Ok(max as u16));
+        for bad in [0, max + 1, 999 + max, 70_000] {
+            let e = check_threads(bad).unwrap_err();
+            let message = e.to_string();
+            assert!(
+                message.starts_with(&format!("threads {bad}: ")),
+                "{message}"
+            );
+            assert!(
+                message.contains(&format!("choose 1 to {max} ")),
+                "{message}"
+            );
+        }
+        // The pools obey the same rule.
+        let too_many = u16::try_from(max + 1).unwrap_or(u16::MAX);
+        assert!(
+            matches!(thread_pool(Some(too_many)), Err(RunError::Input(m)) if m.contains("choose 1 to"))
+        );
+        assert!(matches!(Workers::new(Some(0)), Err(RunError::Input(_))));
     }
 
     #[test]

@@ -31,7 +31,11 @@ use analysis::profile::timer::Timer;
 use analysis::profile::{CallCounts, Stack, StackSamples};
 use results::ProfileView;
 use serde::Serialize;
-use tracer::{Count, Counts, NoCount, Phased, RenderOptions, Scene, VariantSet, render_variant};
+use std::sync::atomic::AtomicBool;
+
+use tracer::{
+    Count, Counts, NoCount, Phased, RenderOptions, Scene, VariantSet, render_variant_until,
+};
 
 use crate::error::RunError;
 use crate::progress::Progress;
@@ -170,6 +174,8 @@ pub struct ProfileJob<'a> {
     pub name: &'a str,
     /// Samples to gather at least (renders are repeated until there are).
     pub min_samples: u64,
+    /// Set to stop: the render under way ends within a row ([`RunError::Stopped`]).
+    pub stop: &'a AtomicBool,
 }
 
 impl ProfileJob<'_> {
@@ -220,7 +226,9 @@ impl ProfileJob<'_> {
         progress.message(&format!("counting {set}"));
         let counted = self
             .pool
-            .install(|| render_variant::<Count>(self.scene, &self.options, set, &|_| {}))
+            .install(|| {
+                render_variant_until::<Count>(self.scene, &self.options, set, &|_| {}, self.stop)
+            })
             .map_err(|e| self.fail(&e))?;
         let counts = counted
             .rendered
@@ -245,9 +253,15 @@ impl ProfileJob<'_> {
             |name| name.starts_with("tracer::"),
             || {
                 let start = Instant::now();
-                let out = self
-                    .pool
-                    .install(|| render_variant::<Phased>(self.scene, &self.options, set, &|_| {}));
+                let out = self.pool.install(|| {
+                    render_variant_until::<Phased>(
+                        self.scene,
+                        &self.options,
+                        set,
+                        &|_| {},
+                        self.stop,
+                    )
+                });
                 render_seconds
                     .borrow_mut()
                     .push(start.elapsed().as_secs_f64());
@@ -342,7 +356,15 @@ impl ProfileJob<'_> {
         for _ in 0..n {
             let start = Instant::now();
             self.pool
-                .install(|| render_variant::<NoCount>(self.scene, &self.options, set, &|_| {}))
+                .install(|| {
+                    render_variant_until::<NoCount>(
+                        self.scene,
+                        &self.options,
+                        set,
+                        &|_| {},
+                        self.stop,
+                    )
+                })
                 .map_err(|e| self.fail(&e))?;
             unprofiled.push(start.elapsed().as_secs_f64());
         }

@@ -7,7 +7,7 @@ use std::time::Instant;
 
 use results::RayRates;
 use tracer::counter::{QueryClock, QueryTicks, clock_ticks, take_query_ticks};
-use tracer::{RayCounts, VariantSet, render_variant};
+use tracer::{RayCounts, VariantSet, render_variant_until};
 
 use crate::error::RunError;
 use crate::render_setup::RenderSetup;
@@ -28,8 +28,10 @@ pub fn clocked_pass(setup: &RenderSetup, set: &VariantSet) -> Result<QueryShares
     pool.broadcast(|_| take_query_ticks());
     let start = Instant::now();
     let first = clock_ticks();
-    pool.install(|| render_variant::<QueryClock>(setup.scene, setup.options, set, &|_| {}))
-        .map_err(|e| RunError::render(setup.name, &e))?;
+    pool.install(|| {
+        render_variant_until::<QueryClock>(setup.scene, setup.options, set, &|_| {}, setup.stop)
+    })
+    .map_err(|e| RunError::render(setup.name, &e))?;
     let wall = clock_ticks().wrapping_sub(first);
     let seconds = start.elapsed().as_secs_f64();
     let mut ticks: QueryTicks = take_query_ticks();

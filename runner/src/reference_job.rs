@@ -104,10 +104,16 @@ pub fn render_in(setup: &RenderSetup<'_>) -> Result<ReferencePicture, RunError> 
     let start = Instant::now();
     let frame = setup
         .pool
-        .install(|| reference::render(setup.scene, setup.options, &|_| {}))
-        .map_err(|e| RunError::Render {
-            context: setup.name.to_string(),
-            message: e.to_string(),
+        .install(|| {
+            let converted = reference::RefScene::new(setup.scene);
+            reference::render::render_until(&converted, setup.options, &|_| {}, setup.stop)
+        })
+        .map_err(|e| match e {
+            reference::ReferenceError::Cancelled => RunError::Stopped,
+            e => RunError::Render {
+                context: setup.name.to_string(),
+                message: e.to_string(),
+            },
         })?;
     let seconds = start.elapsed().as_secs_f64();
     let image = RgbImage::new(frame.width, frame.height, frame.to_rgb8())?;

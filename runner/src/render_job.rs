@@ -2,12 +2,13 @@
 //! render it once with the chosen counter and variants, and time the two phases
 //! (preprocessing = parse + build, tracing) as the SPD rules ask.
 
+use std::sync::atomic::AtomicBool;
 use std::time::{Duration, Instant};
 
 use tracer::accel::BvhStats;
 use tracer::{
     Counts, Limits, RenderOptions, Rendered, Sampling, Scene, ShadingMode, VariantSet,
-    render_variant,
+    render_variant_until,
 };
 
 use crate::error::RunError;
@@ -21,6 +22,8 @@ pub struct RenderRequest<'a> {
     pub variants: VariantSet,
     pub settings: RenderSettings,
     pub mode: ShadingMode,
+    /// Set to stop the render (Ctrl-C): it ends within a row with [`RunError::Stopped`].
+    pub stop: &'a AtomicBool,
 }
 
 /// How to render a scene: the settings every rendering command takes.
@@ -105,8 +108,15 @@ pub fn render_scene<C: tracer::RenderWith>(
     let rows = options.sample_rows();
     let workers = Workers::new(workers_for(req.settings.threads, rows))?;
     progress.begin("tracing", rows);
-    let out = workers
-        .install(|| render_variant::<C>(&scene, &options, &req.variants, &|n| progress.advance(n)));
+    let out = workers.install(|| {
+        render_variant_until::<C>(
+            &scene,
+            &options,
+            &req.variants,
+            &|n| progress.advance(n),
+            req.stop,
+        )
+    });
     progress.end();
     let out = out.map_err(|e| RunError::render(req.scene, &e))?;
     Ok(SceneRender {

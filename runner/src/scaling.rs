@@ -12,7 +12,7 @@ use analysis::power_law::PowerLaw;
 use results::scaling::{SCALING_SCHEMA, ScalingFit, ScalingPoint, ScalingStudy};
 use tracer::{
     Count, Counts, NoCount, RenderOptions, Sampling, Scene, ShadingMode, VariantSet, parse_nff,
-    render_variant,
+    render_variant_until,
 };
 
 use crate::error::RunError;
@@ -229,11 +229,12 @@ fn measure(
     name: &str,
 ) -> Result<Measured, RunError> {
     let fail = |e: tracer::RenderError| RunError::render(name, &e);
-    let counted = render_variant::<Count>(scene, options, set, &|_| {}).map_err(fail)?;
+    let counted =
+        render_variant_until::<Count>(scene, options, set, &|_| {}, stop).map_err(fail)?;
     let counts: Counts = counted.rendered.counts().unwrap_or_default();
     let policy = TimingPolicy::new(plan.repeats, plan.min_seconds);
     let timed = timing::measure(&policy, stop, || {
-        render_variant::<NoCount>(scene, options, set, &|_| {}).map_err(fail)
+        render_variant_until::<NoCount>(scene, options, set, &|_| {}, stop).map_err(fail)
     })?;
     let render_seconds = timed.time.median;
     let accelerator_bytes = timed.last.accelerator_bytes;

@@ -513,6 +513,15 @@ impl SceneRunner<'_> {
             samples: k.samples,
             cpu_samples: k.cpu_samples,
         });
+        let yardstick = measured
+            .yardstick
+            .map(|((width, height), k)| results::Yardstick {
+                width,
+                height,
+                time: k.time,
+                samples: k.samples,
+                cpu_samples: k.cpu_samples,
+            });
         let hardware = match HwScene::from_scene(&scene) {
             Ok(_) if !self.def.hardware => None,
             Ok(hw) => match self.run_hardware(spec, &scene, &hw) {
@@ -547,6 +556,7 @@ impl SceneRunner<'_> {
             variants,
             hardware,
             calibration,
+            yardstick,
             published: published_rays(spec, &options),
             memory,
             bvh_quality,
@@ -862,6 +872,7 @@ impl SceneRunner<'_> {
             frequency: self.def.profile_frequency,
             name: &spec.name,
             min_samples: self.def.profile_samples,
+            stop: self.ctx.stop,
         };
         let base_set = VariantSet::default();
         let best = best.map(|name| VariantSet::parse(&name)).transpose()?;

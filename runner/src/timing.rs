@@ -149,13 +149,13 @@ pub fn measure<R: PhaseTimes>(
 }
 
 /// What [`measure_interleaved`] measured: each render's outcome, in the order given, and
-/// the calibration kernel's samples (one per round) when it ran.
+/// each per-round job's samples (one per round; `None` for a job that failed).
 pub struct Interleaved<R> {
     pub renders: Vec<Result<Measured<R>, RunError>>,
-    pub calibration: Option<KernelTimes>,
+    pub each_round: Vec<Option<KernelTimes>>,
 }
 
-/// The calibration kernel's times, one per round.
+/// A per-round job's times (the calibration kernel, the yardstick), one per round.
 pub struct KernelTimes {
     /// Wall seconds, and their median and interval.
     pub samples: Vec<f64>,
@@ -167,16 +167,20 @@ pub struct KernelTimes {
 /// A render job of [`measure_interleaved`].
 pub type RenderJob<'a, R> = Box<dyn FnMut() -> Result<R, RunError> + 'a>;
 
-/// Times several renders in rounds: each round runs `calibrate` (when given) and then
+/// A job of [`measure_interleaved`] that runs at the start of every round (the
+/// calibration kernel, the yardstick render) and returns its wall seconds.
+pub type RoundJob<'a> = Box<dyn FnMut() -> Result<f64, RunError> + 'a>;
+
+/// Times several renders in rounds: each round runs every job of `each_round` and then
 /// every render that still needs samples under `policy`, once. A change of load during
-/// the measurement then hits every render (and the calibration kernel) alike, so their
-/// ratios stay true. A render that fails drops out with its error; the others go on.
-/// `stop` is checked before each round.
+/// the measurement then hits every render (and the per-round jobs) alike, so their
+/// ratios stay true. A render or per-round job that fails drops out (a render with its
+/// error); the others go on. `stop` is checked before each round.
 pub fn measure_interleaved<'a, R: PhaseTimes>(
     policy: &TimingPolicy,
     stop: &AtomicBool,
     renders: Vec<RenderJob<'a, R>>,
-    mut calibrate: Option<&mut dyn FnMut() -> f64>,
+    each_round: Vec<RoundJob<'a>>,
 ) -> Result<Interleaved<R>, RunError> {
     struct Slot<'a, R> {
         render: RenderJob<'a, R>,
@@ -202,8 +206,12 @@ pub fn measure_interleaved<'a, R: PhaseTimes>(
             error: None,
         })
         .collect();
-    let mut calibration = Vec::new();
-    let mut calibration_cpu = Vec::new();
+    // Each per-round job with its wall and CPU samples; `None` once it failed.
+    type Timed<'a> = (RoundJob<'a>, Vec<f64>, Vec<f64>);
+    let mut rounds: Vec<Option<Timed<'a>>> = each_round
+        .into_iter()
+        .map(|job| Some((job, Vec::new(), Vec::new())))
+        .collect();
     loop {
         let active: Vec<usize> = (0..slots.len())
             .filter(|&i| slots[i].error.is_none() && needs_more(&slots[i].samples))
@@ -214,10 +222,19 @@ pub fn measure_interleaved<'a, R: PhaseTimes>(
         if stop.load(Ordering::SeqCst) {
             return Err(RunError::Stopped);
         }
-        if let Some(kernel) = calibrate.as_mut() {
+        for slot in &mut rounds {
+            let Some((job, wall, cpu)) = slot else {
+                continue;
+            };
             let cpu_before = process_cpu_time();
-            calibration.push(kernel());
-            calibration_cpu.push(process_cpu_time().saturating_sub(cpu_before).as_secs_f64());
+            match job() {
+                Ok(seconds) => {
+                    wall.push(seconds);
+                    cpu.push(process_cpu_time().saturating_sub(cpu_before).as_secs_f64());
+                }
+                Err(RunError::Stopped) => return Err(RunError::Stopped),
+                Err(_) => *slot = None,
+            }
         }
         for i in active {
             let slot = &mut slots[i];
@@ -252,18 +269,21 @@ pub fn measure_interleaved<'a, R: PhaseTimes>(
             })
         })
         .collect();
-    let calibration = if calibration.is_empty() {
-        None
-    } else {
-        Some(KernelTimes {
-            time: policy.estimate(&calibration)?,
-            samples: calibration,
-            cpu_samples: calibration_cpu,
+    let each_round = rounds
+        .into_iter()
+        .map(|slot| {
+            let (_, samples, cpu_samples) = slot?;
+            let time = policy.estimate(&samples).ok()?;
+            Some(KernelTimes {
+                time,
+                samples,
+                cpu_samples,
+            })
         })
-    };
+        .collect();
     Ok(Interleaved {
         renders,
-        calibration,
+        each_round,
     })
 }
 
@@ -344,23 +364,32 @@ mod tests {
             Ok(Fake(Duration::from_micros(62_500), ms(2)))
         });
         let failing: RenderJob<'_, Fake> = Box::new(|| Err(RunError::Input("broken".into())));
-        let mut kernel_runs = 0;
-        let mut kernel = || {
-            kernel_runs += 1;
-            0.002
-        };
-        let m = measure_interleaved(&policy, &stop, vec![fast, slow, failing], Some(&mut kernel))
-            .unwrap();
+        let kernel_runs = std::cell::Cell::new(0);
+        let kernel: RoundJob<'_> = Box::new(|| {
+            kernel_runs.set(kernel_runs.get() + 1);
+            Ok(0.002)
+        });
+        let failing_job: RoundJob<'_> = Box::new(|| Err(RunError::Input("no".into())));
+        let m = measure_interleaved(
+            &policy,
+            &stop,
+            vec![fast, slow, failing],
+            vec![kernel, failing_job],
+        )
+        .unwrap();
         assert_eq!(m.renders[0].as_ref().unwrap().samples.len(), 8);
         assert_eq!(m.renders[1].as_ref().unwrap().samples.len(), 3);
         assert!((m.renders[1].as_ref().unwrap().preprocessing - 0.002).abs() < 1e-12);
         assert!(matches!(m.renders[2], Err(RunError::Input(_))));
-        let kernel = m.calibration.unwrap();
+        let mut each_round = m.each_round.into_iter();
+        let kernel = each_round.next().flatten().unwrap();
+        // The per-round job that failed drops out; the measurement goes on.
+        assert!(each_round.next().flatten().is_none());
         assert_eq!(kernel.samples.len(), 8);
         assert_eq!(kernel.cpu_samples.len(), 8);
         assert_eq!(kernel.time.median, 0.002);
         assert_eq!(m.renders[0].as_ref().unwrap().cpu_samples.len(), 8);
-        assert_eq!(kernel_runs, 8);
+        assert_eq!(kernel_runs.get(), 8);
         // Interleaved: the slow render's three samples come in the first three rounds.
         let order: String = order.into_inner().into_iter().collect();
         assert_eq!(order, "fsfsfsfffff");
@@ -371,7 +400,7 @@ mod tests {
         let policy = TimingPolicy::new(2, 0.0);
         let stop = AtomicBool::new(true);
         let job: RenderJob<'_, Fake> = Box::new(|| Ok(Fake(ms(1), ms(0))));
-        let r = measure_interleaved(&policy, &stop, vec![job], None);
+        let r = measure_interleaved(&policy, &stop, vec![job], Vec::new());
         assert!(matches!(r, Err(RunError::Stopped)));
     }
 }

@@ -2,16 +2,19 @@
 //! a counted render of each first (exact counts; it also warms caches and the thread
 //! pool up) and a clocked one (the time split by query, [`crate::ray_rates`]), then
 //! the timed uncounted renders under the timing policy, interleaved in rounds with the
-//! calibration kernel. The last timed frame is each variant's image.
+//! gate's yardsticks: the f64 reference renderer on the same scene at a smaller frame,
+//! and the calibration kernel. The last timed frame is each variant's image.
+
+use std::time::Instant;
 
 use analysis::RgbImage;
-use tracer::{Count, Counts, NoCount, VariantRender, VariantSet, render_variant};
+use tracer::{Count, Counts, NoCount, VariantRender, VariantSet, render_variant_until};
 
 use crate::calibration::time_kernel;
 use crate::error::RunError;
 use crate::ray_rates::{QueryShares, clocked_pass};
 use crate::render_setup::RenderSetup;
-use crate::timing::{RenderJob, TimingPolicy, measure_interleaved};
+use crate::timing::{KernelTimes, RenderJob, RoundJob, TimingPolicy, measure_interleaved};
 
 /// A measured variant.
 pub struct VariantMeasurement {
@@ -36,19 +39,29 @@ pub struct VariantMeasurement {
     pub query_shares: Option<QueryShares>,
 }
 
-/// Every variant of [`RenderSetup::measure_all`], in the order asked, and the
-/// calibration kernel timed between them.
+/// Every variant of [`RenderSetup::measure_all`], in the order asked, and the gate's
+/// yardsticks timed between them.
 pub struct VariantsMeasured {
     pub variants: Vec<Result<VariantMeasurement, RunError>>,
-    /// The kernel's times (one per round).
-    pub calibration: Option<crate::timing::KernelTimes>,
+    /// The calibration kernel's times (one per round).
+    pub calibration: Option<KernelTimes>,
+    /// The f64 reference renderer's times at [`yardstick_size`] (one per round).
+    pub yardstick: Option<((u32, u32), KernelTimes)>,
+}
+
+/// The yardstick's frame for a scene rendered at `width` × `height`: each side divided
+/// by [`results::Yardstick::DIVISOR`] (at least 8 pixels, and never more than the frame).
+pub fn yardstick_size(width: u32, height: u32) -> (u32, u32) {
+    let side = |n: u32| (n / results::Yardstick::DIVISOR).max(8).min(n);
+    (side(width), side(height))
 }
 
 impl RenderSetup<'_> {
     /// Counts and pictures every set of `sets`, timing them interleaved: one counted
     /// render each first (exact counts; it also warms caches and the pool up), then
     /// rounds of one uncounted render of each set still short of `policy`'s samples,
-    /// with the calibration kernel at the start of each round (when `calibrate`). A set
+    /// with the gate's yardsticks at the start of each round (when `calibrate`): the f64
+    /// reference renderer on the scene at [`yardstick_size`] and the calibration kernel. A set
     /// that fails is reported in its place; the others are measured. `doing` hears what
     /// is being done (for a progress display).
     pub fn measure_all(
@@ -65,7 +78,15 @@ impl RenderSetup<'_> {
                 doing(&format!("counting {set}"));
                 let counted = self
                     .counting_pool
-                    .install(|| render_variant::<Count>(self.scene, self.options, set, &|_| {}))
+                    .install(|| {
+                        render_variant_until::<Count>(
+                            self.scene,
+                            self.options,
+                            set,
+                            &|_| {},
+                            self.stop,
+                        )
+                    })
                     .map_err(fail)?;
                 counted.rendered.counts().ok_or_else(|| RunError::Render {
                     context: self.name.to_string(),
@@ -91,20 +112,51 @@ impl RenderSetup<'_> {
                 Box::new(move || {
                     self.pool
                         .install(|| {
-                            render_variant::<NoCount>(self.scene, self.options, set, &|_| {})
+                            render_variant_until::<NoCount>(
+                                self.scene,
+                                self.options,
+                                set,
+                                &|_| {},
+                                self.stop,
+                            )
                         })
                         .map_err(fail)
                 }) as RenderJob<'_, _>
             })
             .collect();
         doing(&format!("timing {} variants", jobs.len()));
-        let mut kernel = || time_kernel(self.pool);
-        let measured = measure_interleaved(
-            policy,
-            self.stop,
-            jobs,
-            calibrate.then_some(&mut kernel as &mut dyn FnMut() -> f64),
-        )?;
+        let (width, height) = yardstick_size(self.options.width, self.options.height);
+        let small = tracer::RenderOptions {
+            width,
+            height,
+            per_sample: false,
+            ..*self.options
+        };
+        // Converted once: a round times the render alone, as the variants' tracing.
+        let converted = calibrate.then(|| reference::RefScene::new(self.scene));
+        let mut each_round: Vec<RoundJob<'_>> = Vec::new();
+        if let Some(converted) = &converted {
+            each_round.push(Box::new(move || {
+                let start = Instant::now();
+                self.pool
+                    .install(|| {
+                        reference::render::render_until(converted, &small, &|_| {}, self.stop)
+                    })
+                    .map_err(|e| match e {
+                        reference::ReferenceError::Cancelled => RunError::Stopped,
+                        e => RunError::Render {
+                            context: format!("{} (yardstick)", self.name),
+                            message: e.to_string(),
+                        },
+                    })?;
+                Ok(start.elapsed().as_secs_f64())
+            }));
+            each_round.push(Box::new(|| Ok(time_kernel(self.pool))));
+        }
+        let measured = measure_interleaved(policy, self.stop, jobs, each_round)?;
+        let mut each_round = measured.each_round.into_iter();
+        let yardstick = each_round.next().flatten().map(|t| ((width, height), t));
+        let calibration = each_round.next().flatten();
         let mut timings = timed.into_iter().zip(measured.renders);
         let mut variants = Vec::with_capacity(sets.len());
         for (i, ((set, counted), query_shares)) in sets.iter().zip(counts).zip(shares).enumerate() {
@@ -138,7 +190,8 @@ impl RenderSetup<'_> {
         }
         Ok(VariantsMeasured {
             variants,
-            calibration: measured.calibration,
+            calibration,
+            yardstick,
         })
     }
 }

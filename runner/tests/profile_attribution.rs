@@ -43,6 +43,7 @@ fn profile(
         frequency: None,
         name,
         min_samples,
+        stop: &tracer::NEVER_STOP,
     };
     let set = VariantSet::parse(variant).unwrap();
     job.profile(&set, &runner::progress::Silent)

@@ -134,6 +134,8 @@ pub struct LimitsEntry {
     pub max_side: u32,
     pub max_pixels: u64,
     pub max_upload_bytes: u64,
+    /// The most worker threads a job may ask for (`runner::pool::max_threads`).
+    pub max_threads: u16,
 }
 
 /// Everything `GET /api/scenes` lists.
@@ -261,6 +263,7 @@ impl Catalogue {
                 max_side: limits.max_side,
                 max_pixels: limits.max_pixels,
                 max_upload_bytes: self.max_upload_bytes,
+                max_threads: runner::pool::max_threads().0,
             },
         }
     }

@@ -21,9 +21,11 @@ pub struct JobRequest {
     /// Image width and height.
     #[serde(default = "default_size")]
     pub size: [u32; 2],
-    /// Worker threads (default: one per core).
+    /// Worker threads (default: one per core); at most `runner::pool::max_threads`.
+    /// Read as any whole number, so that a count too large for a thread pool is
+    /// refused by the one rule with its message rather than by the JSON reader.
     #[serde(default)]
-    pub threads: Option<u16>,
+    pub threads: Option<u64>,
     /// What to run (default: render).
     #[serde(default = "default_run")]
     pub run: Vec<Part>,
@@ -36,9 +38,6 @@ fn default_size() -> [u32; 2] {
 fn default_run() -> Vec<Part> {
     vec![Part::Render]
 }
-
-/// Most worker threads a job may ask for (as the command line's `--threads`).
-pub const MAX_THREADS: u16 = 1024;
 
 impl JobRequest {
     /// The request checked and normalized: a known scene, known variants (baseline
@@ -64,12 +63,8 @@ impl JobRequest {
         limits
             .check_size(u64::from(width), u64::from(height))
             .map_err(|e| ApiError::invalid(format!("size {width}x{height}: {e}")))?;
-        if let Some(threads) = self.threads
-            && !(1..=MAX_THREADS).contains(&threads)
-        {
-            return Err(ApiError::invalid(format!(
-                "threads {threads}: choose 1 to {MAX_THREADS}, or leave it out for one per core"
-            )));
+        if let Some(threads) = self.threads {
+            runner::pool::check_threads(threads).map_err(|e| ApiError::invalid(e.to_string()))?;
         }
         // One run per distinct set: `simd+bvh` and `bvh+simd` are the same variant (the
         // first spelling is kept).
@@ -103,6 +98,14 @@ impl JobRequest {
             self.variants = variants;
         }
         Ok(self)
+    }
+
+    /// The checked thread count as the runner takes it.
+    pub fn thread_count(&self) -> Result<Option<u16>, ApiError> {
+        self.threads
+            .map(runner::pool::check_threads)
+            .transpose()
+            .map_err(|e| ApiError::invalid(e.to_string()))
     }
 
     /// Whether the job runs `part`.
@@ -212,8 +215,21 @@ mod tests {
         let mut big = request("balls3", &[]);
         big.size = [1 << 20, 2];
         assert!(message(big).contains("size 1048576x2"));
-        let mut threads = request("balls3", &[]);
-        threads.threads = Some(0);
-        assert!(message(threads).contains("threads 0"));
+        let (max, _) = runner::pool::max_threads();
+        for bad in [0, u64::from(max) + 1, 999 + u64::from(max), 1 << 40] {
+            let mut threads = request("balls3", &[]);
+            threads.threads = Some(bad);
+            let said = message(threads);
+            assert!(
+                said.starts_with(&format!("threads {bad}: choose 1 to {max} ")),
+                "{said}"
+            );
+        }
+        let mut most = request("balls3", &[]);
+        most.threads = Some(u64::from(max));
+        assert_eq!(
+            most.checked(&catalogue()).unwrap().thread_count().unwrap(),
+            Some(max)
+        );
     }
 }

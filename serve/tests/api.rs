@@ -137,6 +137,21 @@ fn bad_requests_are_refused_with_the_right_status() {
     let (status, _) = f.upload("..%2Fevil", b"v\n");
     assert_eq!(status, 422);
     assert_eq!(std::fs::read_dir(f.data.join("scenes")).unwrap().count(), 0);
+    // The limits `GET /api/scenes` lists are the ones the checks apply.
+    let limits = f.get("/api/scenes").1["limits"].clone();
+    let cpus = std::thread::available_parallelism().map_or(1, |n| n.get());
+    let max_threads = 4 * cpus;
+    assert_eq!(limits["max_threads"], max_threads, "{limits}");
+    assert_eq!(limits["max_side"], 16384, "{limits}");
+    assert_eq!(limits["max_pixels"], 67_108_864, "{limits}");
+    assert_eq!(limits["max_upload_bytes"], 4096, "{limits}");
+    // An upload name of 65 characters: 422.
+    let (status, body) = f.upload(&"n".repeat(65), b"v\n");
+    assert_eq!(status, 422, "{body}");
+    assert!(
+        body["error"].as_str().unwrap().contains("1 to 64"),
+        "{body}"
+    );
     // Absurd sizes, unknown variants and scenes, a scene named by path: 422.
     for (body, says) in [
         (
@@ -154,6 +169,33 @@ fn bad_requests_are_refused_with_the_right_status() {
             "unknown scene",
         ),
         (json!({"scene": "balls3", "threads": 0}), "threads 0"),
+        // The one thread rule of the CLI and the API: 1 to 4 × the logical CPUs.
+        (
+            json!({"scene": "balls3", "threads": 999}),
+            &*format!("threads 999: choose 1 to {max_threads} "),
+        ),
+        (
+            json!({"scene": "balls3", "threads": 70000}),
+            &*format!("threads 70000: choose 1 to {max_threads} "),
+        ),
+        // Each side and the pixel count within the tracer's limits.
+        (
+            json!({"scene": "balls3", "size": [16385, 1]}),
+            "size 16385x1",
+        ),
+        (
+            json!({"scene": "balls3", "size": [16384, 16384]}),
+            "size 16384x16384",
+        ),
+        // Generators within their documented ranges.
+        (json!({"scene": "spd:balls:7"}), "out of range"),
+        (json!({"scene": "sphereflake:7"}), "the maximum is 6"),
+        (json!({"scene": "lattice:41"}), "out of range"),
+        (json!({"scene": "upload:bad/name"}), "not a scene name"),
+        (
+            json!({"scene": "balls3", "run": ["warp"]}),
+            "unknown variant",
+        ),
     ] {
         let (status, answer) = f.post_job(body.clone());
         assert_eq!(status, 422, "{body} -> {answer}");
@@ -299,6 +341,21 @@ fn a_job_runs_to_the_end_and_its_files_are_served_but_nothing_outside() {
     let gate = f.get(&format!("/api/gate?old={id}&new={id}")).1;
     assert_eq!(gate["passed"], true, "{gate}");
     assert!(gate["text"].as_str().unwrap().contains("passed"), "{gate}");
+    // A job of another scene has nothing in common with it: the gate refuses (422)
+    // rather than passing on nothing compared.
+    let (status, other) = f.post_job(json!({"scene": "balls1", "size": [8, 6], "threads": 1}));
+    assert_eq!(status, 202, "{other}");
+    let other = other["id"].as_str().unwrap().to_string();
+    let other_job = f.wait(&other, Duration::from_secs(300));
+    assert_eq!(other_job["status"], "done", "{other_job}");
+    let (status, gate) = f.get(&format!("/api/gate?old={id}&new={other}"));
+    assert_eq!(status, 422, "{gate}");
+    let error = gate["error"].as_str().unwrap();
+    assert!(error.contains("nothing in common"), "{error}");
+    assert!(
+        error.contains("mine 24x18") && error.contains("balls1 8x6"),
+        "{error}"
+    );
 }
 
 #[test]
@@ -353,7 +410,7 @@ fn a_running_job_answers_50_concurrent_requests_and_cancels_to_partial_outputs()
     assert_eq!(f.cancel(&id), 202);
     let job = f.wait(&id, Duration::from_secs(300));
     eprintln!(
-        "cancelled mid-render: stopped {:.1} s later (after the render under way)",
+        "cancelled mid-render: stopped {:.2} s later (renders stop within a row)",
         cancelled.elapsed().as_secs_f64()
     );
     assert_eq!(job["status"], "cancelled", "{job}");

@@ -124,7 +124,7 @@ struct TimeArgs {
     vs_software: bool,
     /// Software threads for --vs-software (the thesis's software ran on one).
     #[arg(long, value_name = "N", default_value_t = 1,
-          value_parser = clap::value_parser!(u16).range(1..=1024))]
+          value_parser = super::scene_args::parse_threads)]
     threads: u16,
     /// Timed software renders for --vs-software (median).
     #[arg(long, value_name = "N", default_value_t = 3,

@@ -1,7 +1,8 @@
-//! Ctrl-C for long commands (the suite): the first Ctrl-C asks the command to stop at
-//! its next safe point, where it discards its partial outputs and leaves the previous
-//! ones intact; a second Ctrl-C exits at once (outputs are written to a temporary file
-//! and renamed, so even then nothing is left half-written).
+//! Ctrl-C for long commands (the suite, a render, a profile): the first Ctrl-C asks the
+//! command to stop; renders read the flag before each sample row, so it takes effect
+//! within a row's time, and the command discards its partial outputs and leaves the
+//! previous ones intact; a second Ctrl-C exits at once (outputs are written to a
+//! temporary file and renamed, so even then nothing is left half-written).
 //!
 //! Only commands that check the flag [`install`] returns install the handler; the
 //! others keep the default Ctrl-C behaviour.
@@ -19,9 +20,7 @@ pub fn install() -> &'static AtomicBool {
             eprintln!("\nrtprof: interrupted again; exiting now");
             std::process::exit(130);
         }
-        eprintln!(
-            "\nrtprof: interrupted; stopping after the current render (Ctrl-C again to exit now)"
-        );
+        eprintln!("\nrtprof: interrupted; stopping (Ctrl-C again to exit now)");
     });
     &REQUESTED
 }

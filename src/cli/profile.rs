@@ -74,6 +74,7 @@ pub fn run(args: &ProfileArgs) -> Result<()> {
         frequency: args.frequency,
         name: &name,
         min_samples: args.min_samples,
+        stop: super::interrupt::install(),
     };
 
     note_if_slow(&scene, &options, &set, args.render.threads)?;

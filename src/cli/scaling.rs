@@ -36,7 +36,7 @@ pub struct ScalingArgs {
     #[arg(long, value_name = "SECONDS")]
     budget: Option<f64>,
     /// Worker threads (default: one per core).
-    #[arg(long, value_name = "N", value_parser = clap::value_parser!(u16).range(1..=1024))]
+    #[arg(long, value_name = "N", value_parser = super::scene_args::parse_threads)]
     threads: Option<u16>,
     /// What to print: a table, Markdown, CSV or JSON.
     #[arg(long, value_enum, default_value_t = Format::Text)]

@@ -53,7 +53,7 @@ pub struct RenderFlags {
     #[arg(long)]
     pub spd: bool,
     /// Worker threads (default: one per core).
-    #[arg(long, value_name = "N", value_parser = clap::value_parser!(u16).range(1..=1024))]
+    #[arg(long, value_name = "N", value_parser = parse_threads)]
     pub threads: Option<u16>,
     /// Ray-tree depth: the eye ray is level 1, each reflection or refraction one more
     /// (default: 5, the SPD rule; at most --max-ray-depth).
@@ -150,6 +150,16 @@ pub fn parse_scene(text: &str) -> Result<SceneInput, String> {
     SceneInput::parse(text, Path::new("")).map_err(|e| e.to_string())
 }
 
+/// Parses a `--threads` count; the limit is the library's one rule
+/// (`runner::pool::check_threads`, the web app's too).
+pub fn parse_threads(text: &str) -> Result<u16, String> {
+    let n: u64 = text
+        .trim()
+        .parse()
+        .map_err(|_| format!("'{text}' is not a thread count: give a whole number such as 2"))?;
+    runner::pool::check_threads(n).map_err(|e| e.to_string())
+}
+
 /// The help of every command's --size: one rule for all of them.
 pub const SIZE_HELP: &str = "Image size WxH [default: the scene's resolution]";
 
@@ -187,6 +197,7 @@ impl SceneArgs {
                 ..self.render.settings()
             },
             mode,
+            stop: super::interrupt::install(),
         };
         // Loaded twice only without an accelerator, where the render costs far more.
         if request.variants.config().accel.tests_everything() {

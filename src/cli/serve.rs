@@ -77,7 +77,7 @@ pub fn run(args: &ServeArgs) -> Result<()> {
     }
     if server.busy() {
         eprintln!(
-            "rtprof serve: stopping after the current render; the job is kept as interrupted"
+            "rtprof serve: stopping the job under way (within a sample row); it is kept as interrupted"
         );
     }
     server.stop();

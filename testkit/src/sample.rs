@@ -693,6 +693,16 @@ fn sample_scene(s: &SceneSpec, failed: &[(&str, &str)]) -> SceneResult {
                 samples,
             })
         },
+        yardstick: {
+            let (time, samples) = sample_times(0.002, &format!("yardstick/{}", s.name));
+            Some(results::Yardstick {
+                width: s.width / results::Yardstick::DIVISOR,
+                height: s.height / results::Yardstick::DIVISOR,
+                time,
+                cpu_samples: samples.iter().map(|s| s * 1.9).collect(),
+                samples,
+            })
+        },
         published: None,
         // 12 bytes a pixel; the sample's scenes hold about 100 bytes a primitive.
         memory: Some(results::MemoryUse {

@@ -73,11 +73,13 @@ pub use nff::{Limits, LoadError, NffError, load_nff, load_nff_with_limits, parse
 pub use nff_writer::{scene_to_nff, write_scene};
 pub use pixel_stats::SampleStats;
 pub use ray::{Hit, HitBound, PrimKind, PrimRef, Ray};
-pub use render::{Frame, RenderError, RenderMethod, RenderOptions, Rendered, render};
+pub use render::{
+    Frame, NEVER_STOP, RenderError, RenderMethod, RenderOptions, Rendered, render, render_until,
+};
 pub use scene::{Light, Material, Scene, View};
 pub use shading::{MAX_DEPTH, RayLog, ShadingMode};
 pub use variants::{
     Accelerator, DiffuseForm, RenderWith, SqrtMethod, Variant, VariantConfig, VariantError,
-    VariantRender, VariantSet, render_variant, render_variant_with,
+    VariantRender, VariantSet, render_variant, render_variant_until, render_variant_with,
 };
 pub use vec3::Vec3;

@@ -10,6 +10,11 @@
 //! `(colour above - colour below) / 2`, is a difference, which is near zero (black)
 //! wherever the picture is smooth; we read it as the neighbours' mean it describes in
 //! words, and use all traced 4-neighbours rather than only the two vertical ones.
+//!
+//! A render can be stopped ([`render_until`]): each sample row first reads a stop flag
+//! (one relaxed atomic load a row, nothing measurable beside a row's rays) and, once it
+//! is set, the rows not yet started are skipped and the render returns
+//! [`RenderError::Cancelled`] instead of a partial frame.
 
 use crate::accel::{BvhBuilder, Intersector, PACKET};
 use crate::camera::{Camera, Projection, Sampling};
@@ -23,7 +28,11 @@ use crate::shading::{MAX_DEPTH, RayLog, Shader, ShadingMode};
 use crate::variants::diffuse::DiffuseForm;
 use crate::vec3::Vec3;
 use rayon::prelude::*;
+use std::sync::atomic::{AtomicBool, Ordering};
 use std::time::{Duration, Instant};
+
+/// The stop flag of a render nobody can stop ([`render`], [`crate::render_variant`]).
+pub static NEVER_STOP: AtomicBool = AtomicBool::new(false);
 
 /// What to render: the choices of whoever asks for the picture.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -110,6 +119,9 @@ pub enum RenderError {
     /// The intersection structure cannot be used (e.g. a variant this build lacks).
     #[error("{0}")]
     Accelerator(String),
+    /// The stop flag was set during the render: the frame is incomplete and not returned.
+    #[error("cancelled: the render was stopped on request before it finished")]
+    Cancelled,
 }
 
 /// A floating-point framebuffer, row 0 at the top.
@@ -167,6 +179,20 @@ pub fn render<C: Counter, I: Intersector>(
     method: &RenderMethod,
     progress: &(dyn Fn(u64) + Sync),
 ) -> Result<Rendered<C>, RenderError> {
+    render_until(scene, accel, options, method, progress, &NEVER_STOP)
+}
+
+/// [`render`] that stops when `stop` is set: each sample row reads the flag before it
+/// starts, so the render ends within one row's time (per worker) of the request, with
+/// [`RenderError::Cancelled`]; rows already traced are dropped, never returned.
+pub fn render_until<C: Counter, I: Intersector>(
+    scene: &Scene,
+    accel: &I,
+    options: &RenderOptions,
+    method: &RenderMethod,
+    progress: &(dyn Fn(u64) + Sync),
+    stop: &AtomicBool,
+) -> Result<Rendered<C>, RenderError> {
     let limits = &options.limits;
     limits
         .check_size(u64::from(options.width), u64::from(options.height))
@@ -193,6 +219,11 @@ pub fn render<C: Counter, I: Intersector>(
     let from_eye = method.projection == Projection::EyeRows;
 
     let trace_row = |row: u32| {
+        // Relaxed: the flag orders nothing else; a row started just before it is set
+        // finishes, and the render then ends.
+        if stop.load(Ordering::Relaxed) {
+            return None;
+        }
         let _phase = C::enter_phase(Phase::SampleRow);
         let mut c = C::default();
         let mut rays = RayLog::default();
@@ -254,20 +285,22 @@ pub fn render<C: Counter, I: Intersector>(
                 .collect()
         };
         progress(1);
-        TracedRow {
+        Some(TracedRow {
             samples,
             counter: c,
             rays: rays.counts,
             records,
-        }
+        })
     };
     // In the caller's pool, the rows in parallel; outside any pool, on the calling thread,
-    // rather than in a global pool started behind the caller's back.
-    let traced: Vec<TracedRow<C>> = if rayon::current_thread_index().is_some() {
+    // rather than in a global pool started behind the caller's back. A skipped row (the
+    // stop flag) makes the whole collection `None`.
+    let traced: Option<Vec<TracedRow<C>>> = if rayon::current_thread_index().is_some() {
         (0..rows).into_par_iter().map(trace_row).collect()
     } else {
         (0..rows).map(trace_row).collect()
     };
+    let traced = traced.ok_or(RenderError::Cancelled)?;
 
     let pixel_fill = C::enter_phase(Phase::PixelFill);
     let mut ray_counts = RayCounts::default();

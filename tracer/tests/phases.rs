@@ -43,8 +43,9 @@ impl tracer::RenderWith for Probe {
         options: &tracer::RenderOptions,
         variants: &VariantSet,
         progress: &(dyn Fn(u64) + Sync),
+        stop: &std::sync::atomic::AtomicBool,
     ) -> Result<tracer::VariantRender<Self>, tracer::RenderError> {
-        tracer::render_variant_with::<Self>(scene, options, variants, progress)
+        tracer::render_variant_with::<Self>(scene, options, variants, progress, stop)
     }
 }
 

@@ -62,7 +62,7 @@ pub fn comparison(b: &mut Builder) -> Section {
             Inline::text("Median tracing time of each scene × variant in every run; the change against "),
             Inline::strong(&first.label),
             Inline::text(
-                " is the gate's: the variant's time relative to its run's baseline (baseline: relative to the calibration kernel), coloured only when the verdict is faster or slower. Counts are exact: any difference is flagged.",
+                " is the gate's: the variant's time relative to a render of the same scene timed in the same rounds (baseline, or bvh where baseline did not run; baseline or bvh itself relative to the f64 reference renderer at a smaller frame, docs/gate.md), coloured only when the verdict is faster or slower. Counts are exact: any difference is flagged.",
             ),
         ],
     });

@@ -7,7 +7,7 @@
 use crate::accel::{BruteForce, Bvh, BvhStats, Intersector, Simd, WideBvh};
 use crate::camera::Projection;
 use crate::counter::{Count, Counter, NoCount, Phased, QueryClock};
-use crate::render::{RenderError, RenderMethod, RenderOptions, Rendered, render};
+use crate::render::{NEVER_STOP, RenderError, RenderMethod, RenderOptions, Rendered, render_until};
 use crate::scene::Scene;
 use crate::variants::eye_space::with_eye_offsets;
 use crate::variants::fast_sqrt::{
@@ -15,6 +15,7 @@ use crate::variants::fast_sqrt::{
 };
 use crate::variants::set::{Accelerator, SqrtMethod, VariantSet};
 use crate::vec3::Vec3;
+use std::sync::atomic::AtomicBool;
 use std::time::{Duration, Instant};
 
 /// A finished variant render with its phase timings.
@@ -42,7 +43,19 @@ pub fn render_variant<C: RenderWith>(
     variants: &VariantSet,
     progress: &(dyn Fn(u64) + Sync),
 ) -> Result<VariantRender<C>, RenderError> {
-    C::render_variant(scene, options, variants, progress)
+    C::render_variant(scene, options, variants, progress, &NEVER_STOP)
+}
+
+/// [`render_variant`] that stops when `stop` is set (checked before each sample row):
+/// it then returns [`RenderError::Cancelled`], never a partial frame.
+pub fn render_variant_until<C: RenderWith>(
+    scene: &Scene,
+    options: &RenderOptions,
+    variants: &VariantSet,
+    progress: &(dyn Fn(u64) + Sync),
+    stop: &AtomicBool,
+) -> Result<VariantRender<C>, RenderError> {
+    C::render_variant(scene, options, variants, progress, stop)
 }
 
 /// A counter [`render_variant`] renders with.
@@ -55,12 +68,13 @@ pub fn render_variant<C: RenderWith>(
 /// once with the tracer's own codegen settings; a counter defined elsewhere (a test's)
 /// implements it by calling [`render_variant_with`].
 pub trait RenderWith: Counter {
-    /// [`render_variant`] with this counter.
+    /// [`render_variant_until`] with this counter.
     fn render_variant(
         scene: &Scene,
         options: &RenderOptions,
         variants: &VariantSet,
         progress: &(dyn Fn(u64) + Sync),
+        stop: &AtomicBool,
     ) -> Result<VariantRender<Self>, RenderError>;
 }
 
@@ -75,8 +89,9 @@ macro_rules! render_with_compiled_here {
                 options: &RenderOptions,
                 variants: &VariantSet,
                 progress: &(dyn Fn(u64) + Sync),
+                stop: &AtomicBool,
             ) -> Result<VariantRender<Self>, RenderError> {
-                render_variant_with::<Self>(scene, options, variants, progress)
+                render_variant_with::<Self>(scene, options, variants, progress, stop)
             }
         }
     )*};
@@ -91,6 +106,7 @@ pub fn render_variant_with<C: Counter>(
     options: &RenderOptions,
     variants: &VariantSet,
     progress: &(dyn Fn(u64) + Sync),
+    stop: &AtomicBool,
 ) -> Result<VariantRender<C>, RenderError> {
     let config = variants.config();
     let start = Instant::now();
@@ -115,6 +131,7 @@ pub fn render_variant_with<C: Counter>(
         options,
         method: &method,
         progress,
+        stop,
         start,
     };
     match config.accel {
@@ -194,6 +211,7 @@ struct Job<'a> {
     options: &'a RenderOptions,
     method: &'a RenderMethod,
     progress: &'a (dyn Fn(u64) + Sync),
+    stop: &'a AtomicBool,
     start: Instant,
 }
 
@@ -259,7 +277,14 @@ impl Job<'_> {
     ) -> Result<VariantRender<C>, RenderError> {
         let preprocessing = self.start.elapsed();
         let start = Instant::now();
-        let rendered = render::<C, I>(self.scene, accel, self.options, self.method, self.progress)?;
+        let rendered = render_until::<C, I>(
+            self.scene,
+            accel,
+            self.options,
+            self.method,
+            self.progress,
+            self.stop,
+        )?;
         Ok(VariantRender {
             rendered,
             preprocessing,

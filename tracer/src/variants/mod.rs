@@ -20,5 +20,7 @@ pub mod fast_sqrt;
 pub mod set;
 
 pub use diffuse::DiffuseForm;
-pub use dispatch::{RenderWith, VariantRender, render_variant, render_variant_with};
+pub use dispatch::{
+    RenderWith, VariantRender, render_variant, render_variant_until, render_variant_with,
+};
 pub use set::{Accelerator, SqrtMethod, Variant, VariantConfig, VariantError, VariantSet};
