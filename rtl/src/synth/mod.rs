@@ -1,6 +1,10 @@
 //! Synthesis with Yosys for Cyclone IV E: the logic cells, flip-flops and memory bits
 //! of the RTL's blocks, each with its multiplier logic apart.
 //!
+//! Timing lives beside it: [`depth`] measures the longest path between registers in
+//! LUT levels (Yosys's default script, flattened), [`fmax`] turns it into an estimated
+//! clock.
+//!
 //! [`synthesize`] writes a Yosys script into a directory and runs
 //! `yosys -q -l synth.log -s synth.ys` there: `read_verilog` of the files, then
 //! `synth_intel -family cycloneive -top <top> -noflatten`, so that the hierarchy is kept
@@ -63,7 +67,10 @@ use crate::RtlError;
 use crate::operators::write_atomically;
 
 mod comparison;
+pub mod depth;
+pub mod fmax;
 pub use comparison::{ComparisonRow, SYNTH_REASONS, SynthComparison, SynthPlan, synthesize_design};
+pub use depth::{DepthReport, MAX_LUT_LEVELS, logic_depth, operator_depth};
 
 /// The device family passed to `synth_intel`.
 pub const FAMILY: &str = "cycloneive";
