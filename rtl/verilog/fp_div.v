@@ -123,8 +123,8 @@ module fp_div #(
             wire [SW-1:0] out;
             // Stages 2 .. 13 end after iterations 2, 4, ..., 24 (stage n / 2 + 1); the
             // last iteration shares stage 14 with the rounding decision.
-            if (n >= 2 && n % 2 == 0) begin : boundary
-                fp_stage #(.WIDTH(SW), .LATENCY(LATENCY), .STAGES(STAGES), .STAGE(n / 2 + 1))
+            if (n >= 2 && (n & 1) == 0) begin : boundary
+                fp_stage #(.WIDTH(SW), .LATENCY(LATENCY), .STAGES(STAGES), .STAGE((n >> 1) + 1))
                     regs (.clk(clk), .d(done), .q(out));
             end else begin : wire_
                 assign out = done;

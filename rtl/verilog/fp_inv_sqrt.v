@@ -33,7 +33,18 @@ module fp_inv_sqrt #(
 );
     localparam SQRT_STAGES = 13;
     localparam DIV_STAGES = 15;
-    localparam SQRT_LATENCY = LATENCY * SQRT_STAGES / (SQRT_STAGES + DIV_STAGES);
+    // floor(LATENCY * 13 / 28), counted (the library's sources have no division).
+    function integer sqrt_share;
+        input integer latency;
+        integer k;
+        begin
+            k = 0;
+            while ((k + 1) * (SQRT_STAGES + DIV_STAGES) <= latency * SQRT_STAGES)
+                k = k + 1;
+            sqrt_share = k;
+        end
+    endfunction
+    localparam SQRT_LATENCY = sqrt_share(LATENCY);
     wire [31:0] root;
 
     fp_sqrt #(.LATENCY(SQRT_LATENCY)) sqrt_core (.clk(clk), .a(a), .y(root));

@@ -155,16 +155,32 @@ module fp_mul_array (
     output [47:0] c
 );
     localparam LEVELS = 7;
-    // The rows left after `level` levels of 3:2 compression.
+    // The rows left after `level` levels of 3:2 compression (a level turns each group
+    // of three rows into two and passes the one or two left over).
     function integer rows_at;
         input integer level;
-        integer n, l;
-        begin
-            n = 24;
-            for (l = 0; l < level; l = l + 1)
-                n = 2 * (n / 3) + n % 3;
-            rows_at = n;
-        end
+        case (level)
+            0: rows_at = 24;
+            1: rows_at = 16;
+            2: rows_at = 11;
+            3: rows_at = 8;
+            4: rows_at = 6;
+            5: rows_at = 4;
+            6: rows_at = 3;
+            default: rows_at = 2;
+        endcase
+    endfunction
+    // The groups of three among rows_at(level) rows.
+    function integer groups_at;
+        input integer level;
+        case (level)
+            0: groups_at = 8;
+            1: groups_at = 5;
+            2: groups_at = 3;
+            3: groups_at = 2;
+            4: groups_at = 2;
+            default: groups_at = 1;
+        endcase
     endfunction
     genvar l, k;
     generate
@@ -175,7 +191,7 @@ module fp_mul_array (
                     assign v[48*k +: 48] = b[k] ? ({24'd0, a} << k) : 48'd0;
                 end
             end else begin : compress
-                for (k = 0; k < rows_at(l - 1) / 3; k = k + 1) begin : csa
+                for (k = 0; k < groups_at(l - 1); k = k + 1) begin : csa
                     wire [47:0] x = level[l-1].v[48*(3*k) +: 48];
                     wire [47:0] y = level[l-1].v[48*(3*k+1) +: 48];
                     wire [47:0] z = level[l-1].v[48*(3*k+2) +: 48];
@@ -185,9 +201,9 @@ module fp_mul_array (
                     assign v[48*(2*k) +: 48] = x ^ y ^ z;
                     assign v[48*(2*k+1) +: 48] = {carry[46:0], 1'b0};
                 end
-                for (k = 0; k < rows_at(l - 1) % 3; k = k + 1) begin : pass
-                    assign v[48*(2*(rows_at(l - 1) / 3) + k) +: 48] =
-                        level[l-1].v[48*(3*(rows_at(l - 1) / 3) + k) +: 48];
+                for (k = 0; k < rows_at(l - 1) - 3 * groups_at(l - 1); k = k + 1) begin : pass
+                    assign v[48*(2*groups_at(l - 1) + k) +: 48] =
+                        level[l-1].v[48*(3*groups_at(l - 1) + k) +: 48];
                 end
             end
         end

@@ -82,9 +82,10 @@ module fp_sqrt #(
             wire [27:0] rem_next = fits ? {{(28-W){1'b0}}, diff} : shifted;
             wire [SW-1:0] done = {side, xs, root[23:0], fits, rem_next};
             wire [SW-1:0] out;
-            // A stage ends after iterations 2, 4, ..., 24: stage n / 2.
-            if (n >= 2 && n % 2 == 0) begin : boundary
-                fp_stage #(.WIDTH(SW), .LATENCY(LATENCY), .STAGES(STAGES), .STAGE(n / 2))
+            // A stage ends after iterations 2, 4, ..., 24: stage n / 2 (shifts: the
+            // library's sources have no division operator).
+            if (n >= 2 && (n & 1) == 0) begin : boundary
+                fp_stage #(.WIDTH(SW), .LATENCY(LATENCY), .STAGES(STAGES), .STAGE(n >> 1))
                     regs (.clk(clk), .d(done), .q(out));
             end else begin : wire_
                 assign out = done;
