@@ -24,15 +24,13 @@
 use std::collections::BTreeMap;
 use std::fs;
 use std::path::{Path, PathBuf};
-use std::process::{Command, Stdio};
-use std::time::{Duration, Instant};
+use std::time::Duration;
 
 use hwmodel::library::Library;
 use serde::Serialize;
 
-use super::{
-    FAMILY, FF_CELL, INVERTER_CELL, LUT4_CELL, io, is_identifier, parse_stat, spawn_error,
-};
+use super::run::run_limited;
+use super::{FAMILY, FF_CELL, INVERTER_CELL, LUT4_CELL, io, is_identifier, parse_stat};
 use crate::RtlError;
 use crate::operators::{Operator, write_atomically};
 
@@ -125,33 +123,14 @@ pub fn logic_depth(
         }
     }
 
-    let start = Instant::now();
-    let mut child = Command::new("yosys")
-        .current_dir(dir)
-        .args(["-q", "-l", LOG, "-s", SCRIPT])
-        .stdout(Stdio::null())
-        .stderr(Stdio::null())
-        .spawn()
-        .map_err(|e| spawn_error("yosys", &e))?;
-    let status = loop {
-        if let Some(status) = child.try_wait().map_err(|e| spawn_error("yosys", &e))? {
-            break status;
-        }
-        if start.elapsed() > timeout {
-            // Our own child: stop it and reap it.
-            let _ = child.kill();
-            let _ = child.wait();
-            return Err(RtlError::Tool {
-                tool: "yosys",
-                message: format!(
-                    "the depth synthesis of `{top}` did not finish in {} s",
-                    timeout.as_secs()
-                ),
-            });
-        }
-        std::thread::sleep(Duration::from_millis(100));
-    };
-    let seconds = start.elapsed().as_secs_f64();
+    let (status, seconds) = run_limited(
+        "yosys",
+        "yosys",
+        &["-q", "-l", LOG, "-s", SCRIPT],
+        dir,
+        timeout,
+        &format!("the depth synthesis of `{top}`"),
+    )?;
     let log = dir.join(LOG);
     if !status.success() {
         let log_text = fs::read_to_string(&log).unwrap_or_default();

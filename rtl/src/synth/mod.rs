@@ -3,7 +3,7 @@
 //!
 //! Timing lives beside it: [`depth`] measures the longest path between registers in
 //! LUT levels (Yosys's default script, flattened), [`fmax`] turns it into an estimated
-//! clock.
+//! clock, [`ice40`] places and routes an operator with nextpnr-ice40 for a measured one.
 //!
 //! [`synthesize`] writes a Yosys script into a directory and runs
 //! `yosys -q -l synth.log -s synth.ys` there: `read_verilog` of the files, then
@@ -69,8 +69,11 @@ use crate::operators::write_atomically;
 mod comparison;
 pub mod depth;
 pub mod fmax;
+pub mod ice40;
+mod run;
 pub use comparison::{ComparisonRow, SYNTH_REASONS, SynthComparison, SynthPlan, synthesize_design};
 pub use depth::{DepthReport, MAX_LUT_LEVELS, logic_depth, operator_depth};
+pub use ice40::{PnrReport, place_and_route_ice40};
 
 /// The device family passed to `synth_intel`.
 pub const FAMILY: &str = "cycloneive";
