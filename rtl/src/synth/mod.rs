@@ -51,9 +51,12 @@
 //! a LUT, a flip-flop, an M9K or a module of the design is reported in
 //! [`SynthReport::unmapped`].
 //!
-//! Run time is ABC's: about 10 s each for `fp_add_sub` and `fp_mul`, half a minute
-//! for `fp_sqrt`, and more than 10 minutes for `fp_div`, whose 26-step recurrence is
-//! one deep combinational core (with Yosys 0.23 on a loaded 2-core machine).
+//! Run time is ABC's. With the default script, before issue 38 pipelined the
+//! operators, `fp_div`'s 26-step recurrence (then one combinational core) took more
+//! than 20 minutes, hence `abc -fast` here; pipelined, the default script maps each
+//! operator in 2 s (`fp_compare`) to 5 minutes (`fp_inv_sqrt`) on a loaded 2-core
+//! machine (`depth`), and whether the whole design now goes through it in reasonable
+//! time is not measured yet.
 
 use std::collections::{BTreeMap, BTreeSet};
 use std::fs;
