@@ -10,6 +10,11 @@
 // in Yosys's default `abc -lut 4` script) folds the tree back into a ripple, which is
 // smaller and three times as deep.
 //
+// With RTPROF_BEHAVIOURAL_ARITHMETIC defined (the whole-pipeline simulation, rtl::sim)
+// the sum is a plain `+`: the same function, and a Verilator model of the generated
+// design that builds in minutes instead of half an hour. The operator tests
+// (rtl/tests/operators.rs) simulate the prefix tree itself, bit-exact on every input.
+//
 // Verilog-2005, synthesizable; part of the rtprof `rtl` crate.
 module fp_fast_add #(
     parameter W = 26
@@ -20,6 +25,9 @@ module fp_fast_add #(
     output [W-1:0] s,
     output co
 );
+`ifdef RTPROF_BEHAVIOURAL_ARITHMETIC
+    assign {co, s} = {1'b0, a} + {1'b0, b} + {{W{1'b0}}, ci};
+`else
     localparam LEVELS = $clog2(W + 1);
     genvar l, i;
     generate
@@ -49,4 +57,5 @@ module fp_fast_add #(
     // The carry into bit i is the generate of the span below it.
     assign s = level[0].p[W:1] ^ level[LEVELS].g[W-1:0];
     assign co = level[LEVELS].g[W];
+`endif
 endmodule

@@ -146,7 +146,10 @@ endmodule
 // 6, 4, 3, 2 rows: seven levels of one 3-input function per bit). A module of its own
 // so that synthesis keeps it apart: the Yosys reports of `rtl::synth` count the logic
 // of its instances as multiplier logic (Quartus maps a product to the embedded
-// 9 x 9 / 18 x 18 multipliers; Yosys's synth_intel builds it from LUTs).
+// 9 x 9 / 18 x 18 multipliers; Yosys's synth_intel builds it from LUTs). With
+// RTPROF_BEHAVIOURAL_ARITHMETIC defined (the whole-pipeline simulation, rtl::sim) the
+// product is a plain `*` in s and c is zero: the same sum, and a Verilator model that
+// builds in minutes; the operator tests simulate the tree itself.
 /* verilator lint_off DECLFILENAME */
 module fp_mul_array (
     input [23:0] a,
@@ -154,6 +157,10 @@ module fp_mul_array (
     output [47:0] s,
     output [47:0] c
 );
+`ifdef RTPROF_BEHAVIOURAL_ARITHMETIC
+    assign s = {24'd0, a} * {24'd0, b};
+    assign c = 48'd0;
+`else
     localparam LEVELS = 7;
     // The rows left after `level` levels of 3:2 compression (a level turns each group
     // of three rows into two and passes the one or two left over).
@@ -210,5 +217,6 @@ module fp_mul_array (
     endgenerate
     assign s = level[LEVELS].v[47:0];
     assign c = level[LEVELS].v[95:48];
+`endif
 endmodule
 /* verilator lint_on DECLFILENAME */
