@@ -3,10 +3,10 @@
 //! its ports, and its latency, which comes from hwmodel's operator library and nowhere
 //! else).
 //!
-//! Every operator module has a `parameter LATENCY` and computes its result in a
-//! combinational core followed by a LATENCY-deep register pipeline (`fp_delay.v`), so
-//! the result of the inputs of cycle k appears in cycle k + LATENCY (LATENCY = 0:
-//! combinational). The arithmetic follows [`crate::float_policy`]. The modules are
+//! Every operator module has a `parameter LATENCY` and divides its logic into stages
+//! of a few LUT levels, with LATENCY registers spread over them (`fp_stage.v`, built
+//! on the delay line `fp_delay.v`), so the result of the inputs of cycle k appears in
+//! cycle k + LATENCY (LATENCY = 0: combinational). The arithmetic follows [`crate::float_policy`]. The modules are
 //! plain Verilog-2005 for Verilator and for Yosys's `synth_intel -family cycloneive`.
 
 use std::fmt::Write as _;
