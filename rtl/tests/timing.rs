@@ -149,3 +149,30 @@ fn fp_mul_places_and_routes_at_50_mhz_on_an_ice40() {
         report.log.display()
     );
 }
+
+/// The minimum-distance block (written by hand, its kept distance fed back into its
+/// own compare) within the depth too: the loop runs from the compare's result register
+/// through the load select and the compare's first stage.
+#[test]
+#[ignore = "needs yosys"]
+fn the_minimum_distance_block_is_within_the_depth() {
+    let lib = Library::cyclone_iv_e();
+    let pipeline = hwmodel::blocks::Pipeline::build(&lib, &hwmodel::design::Design::thesis());
+    let rtl = rtl::generate::generate(&lib, &pipeline, 6).unwrap_or_else(|e| panic!("{e}"));
+    let d = dir("min_distance");
+    let src = d.join("src");
+    rtl::generate::write(&rtl, &src).unwrap_or_else(|e| panic!("{e}"));
+    let files: Vec<PathBuf> = rtl
+        .files
+        .iter()
+        .filter(|(name, _)| name.ends_with(".v"))
+        .map(|(name, _)| src.join(name))
+        .collect();
+    let report = synth::logic_depth(&d, &files, "min_distance", &[], TIMEOUT)
+        .unwrap_or_else(|e| panic!("{e}"));
+    eprintln!(
+        "min_distance: {} LUT levels ({} -> {}), {} LUT4, {} FF",
+        report.levels, report.from, report.to, report.lut4, report.ff
+    );
+    assert!(report.levels <= synth::MAX_LUT_LEVELS, "{report:?}");
+}
