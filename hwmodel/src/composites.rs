@@ -150,7 +150,7 @@ mod tests {
     }
 
     #[test]
-    fn vector_scale_add_and_normalize_latencies_are_table_7s() {
+    fn vector_scale_add_and_normalize_latencies_follow_table_7() {
         let scale = standalone(|g| {
             let v = vector_input(g, "v");
             let s = g.input("s");
@@ -172,9 +172,12 @@ mod tests {
             let r = normalize(g, v, "n");
             vector_output(g, r);
         });
-        assert_eq!(norm.latency, 19 + 26 + 5);
+        // Table 7's 50 = 19 + 26 + 5 with ALTFP_INV_SQRT's 26; the library's inverse
+        // square root is the RTL's (28, issue 38), which normalize carries.
+        let inv_sqrt = Library::cyclone_iv_e().op(OpKind::InvSqrt).latency;
+        assert_eq!(norm.latency, 19 + inv_sqrt + 5);
         assert_eq!(norm.resources().mult, 3 * 7 + 34 + 3 * 7);
-        // v waits 19 + 26 = 45 cycles for its scale: three words in memory.
-        assert_eq!(norm.balancing.mem_bits, 3 * 32 * 45);
+        // v waits 19 + inv_sqrt cycles for its scale: three words in memory.
+        assert_eq!(norm.balancing.mem_bits, 3 * 32 * u64::from(19 + inv_sqrt));
     }
 }

@@ -782,10 +782,12 @@ mod tests {
         let f = find(&findings, "EP4CE115");
         assert!(f.contains("fits") && f.contains("multipliers"), "{f}");
 
-        // Worst table-8 error: intersection memory bits, +154.2 % in the sample.
+        // Worst table-8 error: intersection memory bits, +168.4 % in the sample (the
+        // model's own figure: its delay lines in memory, with the 15-cycle divider of
+        // issue 38; +154.2 % with ALTFP_DIV's 6).
         let f = find(&findings, "table 8");
         assert!(
-            f.contains("+154.2 %") && f.contains("intersection") && f.contains("memory bits"),
+            f.contains("+168.4 %") && f.contains("intersection") && f.contains("memory bits"),
             "{f}"
         );
 

@@ -3,10 +3,10 @@
 //! its ports, and its latency, which comes from hwmodel's operator library and nowhere
 //! else).
 //!
-//! Every operator module has a `parameter LATENCY` and computes its result in a
-//! combinational core followed by a LATENCY-deep register pipeline (`fp_delay.v`), so
-//! the result of the inputs of cycle k appears in cycle k + LATENCY (LATENCY = 0:
-//! combinational). The arithmetic follows [`crate::float_policy`]. The modules are
+//! Every operator module has a `parameter LATENCY` and divides its logic into stages
+//! of a few LUT levels, with LATENCY registers spread over them (`fp_stage.v`, built
+//! on the delay line `fp_delay.v`), so the result of the inputs of cycle k appears in
+//! cycle k + LATENCY (LATENCY = 0: combinational). The arithmetic follows [`crate::float_policy`]. The modules are
 //! plain Verilog-2005 for Verilator and for Yosys's `synth_intel -family cycloneive`.
 
 use std::fmt::Write as _;
@@ -33,9 +33,28 @@ pub const DELAY: SourceFile = SourceFile {
     text: include_str!("../verilog/fp_delay.v"),
 };
 
+/// The pipeline's building blocks every clocked operator may use: the stage
+/// registers that spread an operator's LATENCY over its stages, the prefix adder and
+/// the leading-zero count that keep a stage's logic shallow (issue 38).
+pub const STAGE: SourceFile = SourceFile {
+    name: "fp_stage.v",
+    text: include_str!("../verilog/fp_stage.v"),
+};
+pub const FAST_ADD: SourceFile = SourceFile {
+    name: "fp_fast_add.v",
+    text: include_str!("../verilog/fp_fast_add.v"),
+};
+pub const LZC: SourceFile = SourceFile {
+    name: "fp_lzc.v",
+    text: include_str!("../verilog/fp_lzc.v"),
+};
+
+/// The files every clocked operator reads besides its own.
+const SHARED: [SourceFile; 4] = [DELAY, STAGE, FAST_ADD, LZC];
+
 /// Every source file of the library: the operators in [`Operator::ALL`] order, then
-/// the delay line they share.
-pub const SOURCES: [SourceFile; 13] = [
+/// the delay line and the building blocks they share.
+pub const SOURCES: [SourceFile; 16] = [
     Operator::AddSub.source(),
     Operator::Multiply.source(),
     Operator::Divide.source(),
@@ -49,6 +68,9 @@ pub const SOURCES: [SourceFile; 13] = [
     Operator::InvSqrt.source(),
     Operator::ToU8.source(),
     DELAY,
+    STAGE,
+    FAST_ADD,
+    LZC,
 ];
 
 /// The operators of the Verilog library.
@@ -174,18 +196,18 @@ impl Operator {
 
     /// The files a design using this operator must read: its own, those of the modules
     /// it instantiates (`fp_inv_sqrt` is built from `fp_sqrt` and `fp_div`) and, for
-    /// every operator with a clock, the delay line.
+    /// every operator with a clock, the delay line and the pipeline's building blocks.
     pub fn files(self) -> Vec<SourceFile> {
-        match self {
-            Operator::Const => vec![self.source()],
+        let own = match self {
+            Operator::Const => return vec![self.source()],
             Operator::InvSqrt => vec![
                 self.source(),
                 Operator::Sqrt.source(),
                 Operator::Divide.source(),
-                DELAY,
             ],
-            _ => vec![self.source(), DELAY],
-        }
+            _ => vec![self.source()],
+        };
+        own.into_iter().chain(SHARED).collect()
     }
 
     /// The operator library row this module implements; `None` for the constant, which
@@ -369,7 +391,7 @@ mod tests {
             [
                 ("fp_add_sub", 7),
                 ("fp_mul", 5),
-                ("fp_div", 6),
+                ("fp_div", 15),
                 ("fp_sqrt", 16),
                 ("fp_compare", 3),
                 ("fp_from_int", 6),
@@ -377,7 +399,7 @@ mod tests {
                 ("fp_const", 0),
                 ("fp_select", 0),
                 ("fp_register", 1),
-                ("fp_inv_sqrt", 26),
+                ("fp_inv_sqrt", 28),
                 ("fp_to_u8", 6),
             ]
         );
@@ -390,7 +412,7 @@ mod tests {
         assert!(Operator::Sqrt.latency_as(&lib, OpKind::Divide).is_err());
         assert_eq!(
             Operator::InvSqrt.latency_as(&lib, OpKind::InvSqrt).unwrap(),
-            26
+            28
         );
         assert_eq!(Operator::ToU8.latency_as(&lib, OpKind::Convert).unwrap(), 6);
         assert!(Operator::InvSqrt.latency_as(&lib, OpKind::Sqrt).is_err());
@@ -454,7 +476,7 @@ mod tests {
             assert_eq!(files[0], op.source());
             assert!(files.iter().all(|f| SOURCES.contains(f)));
         }
-        assert_eq!(Operator::InvSqrt.files().len(), 4);
+        assert_eq!(Operator::InvSqrt.files().len(), 3 + SHARED.len());
     }
 
     /// The text without `//` line comments and `/* */` block comments.

@@ -149,6 +149,10 @@ pub fn build(rtl: &GeneratedRtl, root: &Path) -> Result<PathBuf, RtlError> {
     let output = verilator_command(&staging, TOP, "Vsim", 2)
         // The generated modules leave inputs unused by design (constants, monitors).
         .args(["-Wno-lint", "-Wno-style"])
+        // The operators' prefix adders as `+` and the multiplier's Wallace tree as `*`
+        // (fp_fast_add.v, fp_mul.v): the same sums and products, and a model that
+        // compiles in minutes; the operator tests simulate the trees themselves.
+        .arg("+define+RTPROF_BEHAVIOURAL_ARITHMETIC")
         .args(&sources)
         .arg(generate::TESTBENCH.name)
         .output()

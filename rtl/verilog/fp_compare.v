@@ -9,10 +9,11 @@
 // false (zeros are equal); any comparison with a NaN is false; -inf and +inf order
 // like numbers. The result is one bit, registered LATENCY times.
 //
-// Datapath: zeros and NaNs are decided first; otherwise differing signs decide, and
-// equal signs compare the 31-bit magnitudes (exponent and fraction, an unsigned
-// compare), reversed for negative numbers. A combinational core followed by a
-// LATENCY-deep register pipeline (fp_delay).
+// Datapath, in STAGES = 2 (fp_stage spreads LATENCY registers over them): first the
+// flags (zeros, NaNs, signs) and the two 31-bit magnitude comparisons (exponent and
+// fraction, unsigned; 9 LUT levels as Yosys maps them, within the 12-level goal, so
+// they do without the prefix adder and its fourfold area); then the decision: zeros
+// and NaNs first, differing signs, else the magnitudes, reversed for negative numbers.
 //
 // Verilog-2005, synthesizable; part of the rtprof `rtl` crate.
 module fp_compare #(
@@ -23,6 +24,9 @@ module fp_compare #(
     input [31:0] b,
     output lt
 );
+    localparam STAGES = 2;
+
+    // Stage 1: flags and magnitude comparisons.
     wire sa = a[31];
     wire sb = b[31];
     wire [7:0] ea = a[30:23];
@@ -34,19 +38,24 @@ module fp_compare #(
     // Magnitudes with subnormals flushed.
     wire [30:0] ma = a_zero ? 31'd0 : a[30:0];
     wire [30:0] mb = b_zero ? 31'd0 : b[30:0];
+    wire [4:0] s1_d = {a_nan || b_nan || (a_zero && b_zero), sa, sb, ma > mb, ma < mb};
+    wire [4:0] s1;
+    fp_stage #(.WIDTH(5), .LATENCY(LATENCY), .STAGES(STAGES), .STAGE(1)) st1 (.clk(clk), .d(s1_d), .q(s1));
+    wire never, sa2, sb2, a_gt_b, a_lt_b;
+    assign {never, sa2, sb2, a_gt_b, a_lt_b} = s1;
 
+    // Stage 2: the decision.
     reg r;
     always @* begin
-        if (a_nan || b_nan || (a_zero && b_zero))
+        if (never)
             r = 1'b0;
-        else if (sa != sb)
+        else if (sa2 != sb2)
             // One is negative: a < b iff a is the negative one (not both zero here).
-            r = sa;
-        else if (sa)
-            r = (ma > mb);
+            r = sa2;
+        else if (sa2)
+            r = a_gt_b;
         else
-            r = (ma < mb);
+            r = a_lt_b;
     end
-
-    fp_delay #(.WIDTH(1), .LATENCY(LATENCY)) delay (.clk(clk), .d(r), .q(lt));
+    fp_stage #(.WIDTH(1), .LATENCY(LATENCY), .STAGES(STAGES), .STAGE(2)) st2 (.clk(clk), .d(r), .q(lt));
 endmodule

@@ -15,24 +15,38 @@
 //   * every NaN result (a NaN input, a negative non-zero input, -inf) is the quiet NaN
 //     0x7FC00000.
 //
-// Datapath: the combinational cores of fp_sqrt and fp_div (both instantiated with
-// LATENCY = 0, so this module needs fp_sqrt.v, fp_div.v and fp_delay.v), the divider's
-// dividend the constant 1.0, followed by one LATENCY-deep register pipeline
-// (fp_delay); the two recurrences are deep logic, meant to be spread over the
-// registers by retiming.
+// Datapath: fp_sqrt followed by fp_div with the constant dividend 1.0 (so this module
+// needs fp_sqrt.v and fp_div.v besides the shared building blocks), each pipelined in
+// its own stages: LATENCY is split between them in proportion to their stage counts
+// (13 and 15), so at the library's latency, 28, each runs at its own design point
+// with at most its own depth between registers. 28 rather than the thesis's 26
+// (ALTFP_INV_SQRT, built on multipliers): the two digit recurrences (51 iterations of
+// about 5 LUT levels) and their two roundings do not fit 26 stages of 12 levels.
 //
 // Verilog-2005, synthesizable; part of the rtprof `rtl` crate.
 module fp_inv_sqrt #(
-    parameter LATENCY = 26
+    parameter LATENCY = 28
 ) (
     input clk,
     input [31:0] a,
     output [31:0] y
 );
-    wire [31:0] root, r;
+    localparam SQRT_STAGES = 13;
+    localparam DIV_STAGES = 15;
+    // floor(LATENCY * 13 / 28), counted (the library's sources have no division).
+    function integer sqrt_share;
+        input integer latency;
+        integer k;
+        begin
+            k = 0;
+            while ((k + 1) * (SQRT_STAGES + DIV_STAGES) <= latency * SQRT_STAGES)
+                k = k + 1;
+            sqrt_share = k;
+        end
+    endfunction
+    localparam SQRT_LATENCY = sqrt_share(LATENCY);
+    wire [31:0] root;
 
-    fp_sqrt #(.LATENCY(0)) sqrt_core (.clk(clk), .a(a), .y(root));
-    fp_div #(.LATENCY(0)) div_core (.clk(clk), .a(32'h3F80_0000), .b(root), .y(r));
-
-    fp_delay #(.WIDTH(32), .LATENCY(LATENCY)) delay (.clk(clk), .d(r), .q(y));
+    fp_sqrt #(.LATENCY(SQRT_LATENCY)) sqrt_core (.clk(clk), .a(a), .y(root));
+    fp_div #(.LATENCY(LATENCY - SQRT_LATENCY)) div_core (.clk(clk), .a(32'h3F80_0000), .b(root), .y(y));
 endmodule

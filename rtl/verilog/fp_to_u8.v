@@ -13,7 +13,8 @@
 // significand {1, f} shifted right by 149 - e (a shift of at most 23 bits; e < 126 is
 // below one half and gives 0) is floor(2 a): its top bits the integer part and its
 // lowest bit the half, which rounds up. A sum of 256 (a in [255.5, 256)) saturates to
-// 255. A combinational core followed by a LATENCY-deep register pipeline (fp_delay).
+// 255. STAGES = 2 (fp_stage spreads LATENCY registers over them): the flags and the
+// shift, then the rounding and saturation.
 //
 // Verilog-2005, synthesizable; part of the rtprof `rtl` crate.
 module fp_to_u8 #(
@@ -23,35 +24,29 @@ module fp_to_u8 #(
     input [31:0] a,
     output [7:0] y
 );
-    reg [7:0] r;
+    localparam STAGES = 2;
 
-    reg sa, a_nan;
-    reg [7:0] ea;
-    reg [4:0] shift;
+    // Stage 1: flags and floor(2 a).
+    wire sa = a[31];
+    wire [7:0] ea = a[30:23];
+    wire a_nan = (ea == 8'hFF) && (a[22:0] != 23'd0);
+    // e in [126, 134]: shift = 149 - e in [15, 23], computed on the exponent's low five
+    // bits (149 - e = 21 - e modulo 32); twice = floor(2 a) < 512.
+    wire [4:0] shift = 5'd21 - ea[4:0];
     // Only twice[8:0] matters: a >= 256 saturates before it is looked at.
     /* verilator lint_off UNUSEDSIGNAL */
-    reg [23:0] twice;
+    wire [23:0] twice = {1'b1, a[22:0]} >> shift;
     /* verilator lint_on UNUSEDSIGNAL */
-    reg [8:0] sum;
+    // Zero: NaN, negative, zero, subnormal or below one half; saturate: 256 or more.
+    wire [10:0] s1_d = {a_nan || sa || ea < 8'd126, ea > 8'd134, twice[8:0]};
+    wire [10:0] s1;
+    fp_stage #(.WIDTH(11), .LATENCY(LATENCY), .STAGES(STAGES), .STAGE(1)) st1 (.clk(clk), .d(s1_d), .q(s1));
+    wire zero2, big2;
+    wire [8:0] twice2;
+    assign {zero2, big2, twice2} = s1;
 
-    always @* begin
-        sa = a[31];
-        ea = a[30:23];
-        a_nan = (ea == 8'hFF) && (a[22:0] != 23'd0);
-
-        // e in [126, 134]: shift = 149 - e in [15, 23], computed on the exponent's
-        // low five bits (149 - e = 21 - e modulo 32); twice = floor(2 a) < 512.
-        shift = 5'd21 - ea[4:0];
-        twice = {1'b1, a[22:0]} >> shift;
-        sum = {1'b0, twice[8:1]} + {8'd0, twice[0]};
-
-        if (a_nan || sa || ea < 8'd126)
-            r = 8'd0;  // NaN, negative, zero, subnormal or below one half
-        else if (ea > 8'd134 || sum[8])
-            r = 8'hFF;  // 255.5 or more, +inf: saturate
-        else
-            r = sum[7:0];
-    end
-
-    fp_delay #(.WIDTH(8), .LATENCY(LATENCY)) delay (.clk(clk), .d(r), .q(y));
+    // Stage 2: round half up, saturate.
+    wire [8:0] sum = {1'b0, twice2[8:1]} + {8'd0, twice2[0]};
+    wire [7:0] r = zero2 ? 8'd0 : (big2 || sum[8]) ? 8'hFF : sum[7:0];
+    fp_stage #(.WIDTH(8), .LATENCY(LATENCY), .STAGES(STAGES), .STAGE(2)) st2 (.clk(clk), .d(r), .q(y));
 endmodule

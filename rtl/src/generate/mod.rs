@@ -282,7 +282,7 @@ mod tests {
             s.count(OpKind::Multiply) + s.count(OpKind::MultiplyRegistered)
         );
         assert_eq!(count("fp_sqrt #(.LATENCY(16))"), 1);
-        assert_eq!(count("fp_div #(.LATENCY(6))"), 2);
+        assert_eq!(count("fp_div #(.LATENCY(15))"), 2);
         assert_eq!(count("fp_compare #(.LATENCY(3))"), s.count(OpKind::Compare));
         // −b − √disc and −b + √disc: the sign of b flipped on the wire.
         assert_eq!(count("{~n"), 2);

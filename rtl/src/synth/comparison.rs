@@ -25,9 +25,10 @@ Why the columns differ:
   - No DSP inference: multipliers are built of LUTs (mult LUT4) where Quartus uses the
     embedded 9x9 multipliers; subtract them to compare with the LE columns.
   - These are rtprof's own operators (rtl/verilog), not the ALTFP cores the model's
-    library rows (table 7) were measured on: a combinational core followed by its
-    latency in output registers (add/sub: 7 x 32 = 224 FF), where an ALTFP core
-    pipelines inside (415 registers), hence fewer FF and deeper logic.
+    library rows (table 7) were measured on: pipelined in their stages with prefix
+    adders (add/sub: 508 FF where ALTFP_ADD_SUB has 415 registers), with the divider
+    and the inverse square root as digit recurrences (15 and 28 cycles) where the
+    ALTFP cores use tables and embedded multipliers.
   - A logic element holds one LUT4 and one flip-flop: the design needs between
     max(LUT4, FF) and LUT4 + FF of them.
   - The minimum-distance block carries its payload 3 cycles beside the compare (the

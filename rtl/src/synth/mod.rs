@@ -1,6 +1,10 @@
 //! Synthesis with Yosys for Cyclone IV E: the logic cells, flip-flops and memory bits
 //! of the RTL's blocks, each with its multiplier logic apart.
 //!
+//! Timing lives beside it: [`depth`] measures the longest path between registers in
+//! LUT levels (Yosys's default script, flattened), [`fmax`] turns it into an estimated
+//! clock, [`ice40`] places and routes an operator with nextpnr-ice40 for a measured one.
+//!
 //! [`synthesize`] writes a Yosys script into a directory and runs
 //! `yosys -q -l synth.log -s synth.ys` there: `read_verilog` of the files, then
 //! `synth_intel -family cycloneive -top <top> -noflatten`, so that the hierarchy is kept
@@ -47,9 +51,12 @@
 //! a LUT, a flip-flop, an M9K or a module of the design is reported in
 //! [`SynthReport::unmapped`].
 //!
-//! Run time is ABC's: about 10 s each for `fp_add_sub` and `fp_mul`, half a minute
-//! for `fp_sqrt`, and more than 10 minutes for `fp_div`, whose 26-step recurrence is
-//! one deep combinational core (with Yosys 0.23 on a loaded 2-core machine).
+//! Run time is ABC's. With the default script, before issue 38 pipelined the
+//! operators, `fp_div`'s 26-step recurrence (then one combinational core) took more
+//! than 20 minutes, hence `abc -fast` here; pipelined, the default script maps each
+//! operator in 2 s (`fp_compare`) to 5 minutes (`fp_inv_sqrt`) on a loaded 2-core
+//! machine (`depth`), and whether the whole design now goes through it in reasonable
+//! time is not measured yet.
 
 use std::collections::{BTreeMap, BTreeSet};
 use std::fs;
@@ -63,7 +70,13 @@ use crate::RtlError;
 use crate::operators::write_atomically;
 
 mod comparison;
+pub mod depth;
+pub mod fmax;
+pub mod ice40;
+mod run;
 pub use comparison::{ComparisonRow, SYNTH_REASONS, SynthComparison, SynthPlan, synthesize_design};
+pub use depth::{DepthReport, MAX_LUT_LEVELS, logic_depth, operator_depth};
+pub use ice40::{PnrReport, place_and_route_ice40};
 
 /// The device family passed to `synth_intel`.
 pub const FAMILY: &str = "cycloneive";

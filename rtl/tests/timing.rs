@@ -1,0 +1,178 @@
+//! Timing evidence: every operator of the Verilog library, at its latency in hwmodel's
+//! Cyclone IV E library, has at most `rtl::synth::MAX_LUT_LEVELS` (12) LUT levels
+//! between registers after Yosys's default `synth_intel -family cycloneive`, which the
+//! estimated-Fmax rule (`rtl::synth::fmax`) puts at 50 MHz or more; and the depth tool
+//! itself measures a design whose depth is known.
+//!
+//! The last test places and routes one operator with nextpnr-ice40.
+//!
+//! Needs `yosys` and `nextpnr-ice40` (`scripts/install-rtl-tools.sh`):
+//! `cargo test -p rtl --test timing -- --ignored`.
+
+use std::path::PathBuf;
+use std::time::Duration;
+
+use hwmodel::library::Library;
+use rtl::Operator;
+use rtl::synth::{self, fmax};
+
+/// Per run; the deepest operators take about a minute on a loaded 2-core machine.
+const TIMEOUT: Duration = Duration::from_secs(900);
+
+fn dir(name: &str) -> PathBuf {
+    PathBuf::from(env!("CARGO_TARGET_TMPDIR"))
+        .join("rtl-timing")
+        .join(name)
+}
+
+fn check(op: Operator) {
+    let lib = Library::cyclone_iv_e();
+    let report = synth::operator_depth(op, &lib, &dir(op.module_name()), TIMEOUT)
+        .unwrap_or_else(|e| panic!("{e}"));
+    let fmax = report.estimated_fmax_mhz();
+    eprintln!(
+        "{} (LATENCY {}): {} LUT levels ({} -> {}), {} LUT4, {} FF, est. {fmax:.1} MHz, {:.0} s",
+        op.module_name(),
+        op.latency(&lib),
+        report.levels,
+        report.from,
+        report.to,
+        report.lut4,
+        report.ff,
+        report.seconds
+    );
+    assert!(
+        report.other_cells.is_empty(),
+        "{}: unmapped cells {:?}",
+        op.module_name(),
+        report.other_cells
+    );
+    assert!(
+        report.levels <= synth::MAX_LUT_LEVELS,
+        "{}: {} LUT levels between registers (from {} to {}), more than {}",
+        op.module_name(),
+        report.levels,
+        report.from,
+        report.to,
+        synth::MAX_LUT_LEVELS
+    );
+    assert!(fmax >= fmax::THESIS_CLOCK_MHZ, "{fmax} MHz");
+    // A clocked operator registers its result: at least one flip-flop per cycle of
+    // latency (a constant output bit, like fp_fast_sqrt's sign, needs none).
+    assert!(
+        report.ff >= u64::from(op.latency(&lib)),
+        "{}: {} flip-flops",
+        op.module_name(),
+        report.ff
+    );
+}
+
+macro_rules! depth_tests {
+    ($($name:ident: $op:expr;)*) => {$(
+        #[test]
+        #[ignore = "needs yosys"]
+        fn $name() {
+            check($op);
+        }
+    )*};
+}
+
+depth_tests! {
+    fp_add_sub_is_within_the_depth: Operator::AddSub;
+    fp_mul_is_within_the_depth: Operator::Multiply;
+    fp_div_is_within_the_depth: Operator::Divide;
+    fp_sqrt_is_within_the_depth: Operator::Sqrt;
+    fp_inv_sqrt_is_within_the_depth: Operator::InvSqrt;
+    fp_compare_is_within_the_depth: Operator::Compare;
+    fp_from_int_is_within_the_depth: Operator::FromInt;
+    fp_to_u8_is_within_the_depth: Operator::ToU8;
+    fp_fast_sqrt_is_within_the_depth: Operator::FastSqrt;
+    fp_select_is_within_the_depth: Operator::Select;
+    fp_register_is_within_the_depth: Operator::Register;
+}
+
+/// The tool against designs of known depth: an AND of 16 registered bits needs two
+/// levels of 4-input LUTs (16 → 4 → 1) and one of 64 bits three; the first is no
+/// deeper because its inputs are registered apart from its output.
+#[test]
+#[ignore = "needs yosys"]
+fn the_depth_of_a_wide_and_is_its_lut_tree() {
+    for (bits, levels) in [(16, 2), (64, 3)] {
+        let name = format!("and{bits}");
+        let d = dir(&name);
+        std::fs::create_dir_all(&d).unwrap();
+        let file = d.join("and.v");
+        std::fs::write(
+            &file,
+            "module wide_and #(parameter N = 16) (input clk, input [N-1:0] a, output reg y);\n\
+             reg [N-1:0] r;\n\
+             always @(posedge clk) begin r <= a; y <= &r; end\n\
+             endmodule\n",
+        )
+        .unwrap();
+        let report = synth::logic_depth(&d, &[file], "wide_and", &[("N", bits)], TIMEOUT)
+            .unwrap_or_else(|e| panic!("{e}"));
+        assert_eq!(report.levels, levels, "{bits} bits: {report:?}");
+        assert_eq!(report.ff, bits as u64 + 1);
+    }
+}
+
+/// Real place and route: the multiplier, inputs registered, on an iCE40 HX8K meets the
+/// thesis's 50 MHz by nextpnr's own timing analysis (before issue 38 its path from the
+/// inputs to the first register alone was 49.95 ns).
+#[test]
+#[ignore = "needs yosys and nextpnr-ice40"]
+fn fp_mul_places_and_routes_at_50_mhz_on_an_ice40() {
+    let lib = Library::cyclone_iv_e();
+    let report = synth::place_and_route_ice40(
+        Operator::Multiply,
+        &lib,
+        &dir("pnr-fp_mul"),
+        fmax::THESIS_CLOCK_MHZ,
+        TIMEOUT,
+    )
+    .unwrap_or_else(|e| panic!("{e}"));
+    eprintln!(
+        "fp_mul on iCE40 {}: {:.2} MHz after routing, {} of {} logic cells, synthesis {:.0} s, place and route {:.0} s",
+        synth::ice40::DEVICE,
+        report.fmax_mhz,
+        report.logic_cells,
+        report.device_logic_cells,
+        report.synth_seconds,
+        report.pnr_seconds
+    );
+    assert!(report.logic_cells > 0 && report.logic_cells <= report.device_logic_cells);
+    assert!(
+        report.fmax_mhz >= fmax::THESIS_CLOCK_MHZ,
+        "{:.2} MHz (log: {})",
+        report.fmax_mhz,
+        report.log.display()
+    );
+}
+
+/// The minimum-distance block (written by hand, its kept distance fed back into its
+/// own compare) within the depth too: the loop runs from the compare's result register
+/// through the load select and the compare's first stage.
+#[test]
+#[ignore = "needs yosys"]
+fn the_minimum_distance_block_is_within_the_depth() {
+    let lib = Library::cyclone_iv_e();
+    let pipeline = hwmodel::blocks::Pipeline::build(&lib, &hwmodel::design::Design::thesis());
+    let rtl = rtl::generate::generate(&lib, &pipeline, 6).unwrap_or_else(|e| panic!("{e}"));
+    let d = dir("min_distance");
+    let src = d.join("src");
+    rtl::generate::write(&rtl, &src).unwrap_or_else(|e| panic!("{e}"));
+    let files: Vec<PathBuf> = rtl
+        .files
+        .iter()
+        .filter(|(name, _)| name.ends_with(".v"))
+        .map(|(name, _)| src.join(name))
+        .collect();
+    let report = synth::logic_depth(&d, &files, "min_distance", &[], TIMEOUT)
+        .unwrap_or_else(|e| panic!("{e}"));
+    eprintln!(
+        "min_distance: {} LUT levels ({} -> {}), {} LUT4, {} FF",
+        report.levels, report.from, report.to, report.lut4, report.ff
+    );
+    assert!(report.levels <= synth::MAX_LUT_LEVELS, "{report:?}");
+}
