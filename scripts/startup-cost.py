@@ -18,7 +18,7 @@ render, if OLD prints marks) run in the same rounds, for a before/after comparis
 the same machine state.
 
 The breakdown: with RTPROF_TRACE_STARTUP=1 rtprof prints, at its end, CLOCK_MONOTONIC
-time stamps of its phase boundaries (src/startup.rs). This script takes the spawn time
+time stamps of its phase boundaries (terminal/src/startup.rs). This script takes the spawn time
 and the wait4 return on the same clock, so the time before main (fork, exec, dynamic
 loading and relocation, Rust runtime init) and after the last mark (returning from
 main, destructors, exit, wait) are measured too. Each phase is the median over the

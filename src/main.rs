@@ -11,7 +11,6 @@
 )]
 
 mod cli;
-mod startup;
 
 use clap::{CommandFactory, FromArgMatches};
 use std::process::ExitCode;
@@ -22,9 +21,9 @@ const PROGRESS_HELP: &str = "Progress bars draw on stderr when it is a terminal 
     lines in a pipe or log (CI); RTPROF_PROGRESS=never turns them off; auto is the default.";
 
 fn main() -> ExitCode {
-    startup::start();
+    terminal::startup::start();
     let code = run();
-    startup::finish();
+    terminal::startup::finish();
     code
 }
 
@@ -41,7 +40,7 @@ fn run() -> ExitCode {
         Ok(args) => args,
         Err(error) => return usage_error(&error),
     };
-    startup::mark("args");
+    terminal::startup::mark("args");
     let Err(error) = cli::run(args) else {
         return ExitCode::SUCCESS;
     };

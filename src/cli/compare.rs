@@ -3,7 +3,7 @@
 //! against the first image or variant.
 
 use super::Format;
-use super::progress::Bars;
+use terminal::progress::Bars;
 use super::scene_args::{RenderFlags, ShadingFlags};
 use anyhow::{Result, bail};
 use runner::compare::SideBySide;

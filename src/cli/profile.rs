@@ -3,7 +3,7 @@
 //! a flamegraph, a differential flamegraph against another variant, and Amdahl
 //! projections. Calls come from a counted render of the same scene and variant.
 
-use super::progress::Bars;
+use terminal::progress::Bars;
 use super::scene_args::{RenderFlags, SCENE_HELP, named_after, note_if_slow, parse_scene};
 use anyhow::{Context, Result};
 use runner::pool::thread_pool;
@@ -74,7 +74,7 @@ pub fn run(args: &ProfileArgs) -> Result<()> {
         frequency: args.frequency,
         name: &name,
         min_samples: args.min_samples,
-        stop: super::interrupt::install(),
+        stop: terminal::interrupt::install(),
     };
 
     note_if_slow(&scene, &options, &set, args.render.threads)?;

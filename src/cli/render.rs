@@ -1,9 +1,9 @@
 //! `rtprof render`: uncounted render to an image file, by the tracer or (with
 //! `--reference`) by the independent f64 reference renderer.
 
-use super::progress::Bars;
+use terminal::progress::Bars;
 use super::scene_args::{SceneArgs, ShadingFlags, named_after};
-use crate::startup;
+
 use anyhow::Result;
 use runner::reference_job::render_reference;
 use std::io::Write;
@@ -38,11 +38,11 @@ pub fn run(args: &RenderArgs) -> Result<()> {
         return run_reference(args, &output);
     }
     let run = args.scene.run::<NoCount>(args.shading.mode())?;
-    startup::mark("render");
-    startup::took("render.preprocessing", run.preprocessing);
-    startup::took("render.tracing", run.tracing);
+    terminal::startup::mark("render");
+    terminal::startup::took("render.preprocessing", run.preprocessing);
+    terminal::startup::took("render.tracing", run.tracing);
     write_image(&output, &run.rendered.frame)?;
-    startup::mark("image");
+    terminal::startup::mark("image");
     // One write for the report: stderr is unbuffered, and each piece of a formatted
     // line would otherwise be its own write.
     let report = format!(
@@ -53,7 +53,7 @@ pub fn run(args: &RenderArgs) -> Result<()> {
         run.rendered.frame.height
     );
     std::io::stderr().lock().write_all(report.as_bytes())?;
-    startup::mark("report");
+    terminal::startup::mark("report");
     Ok(())
 }
 
@@ -65,9 +65,9 @@ fn run_reference(args: &RenderArgs, output: &std::path::Path) -> Result<()> {
         args.shading.mode(),
         &Bars::delayed(),
     )?;
-    startup::mark("render");
+    terminal::startup::mark("render");
     write_image(output, &run.frame)?;
-    startup::mark("image");
+    terminal::startup::mark("image");
     let report = format!(
         "{}\nwrote {} ({}x{})\n",
         run.timing_report(&args.scene.scene),
@@ -76,6 +76,6 @@ fn run_reference(args: &RenderArgs, output: &std::path::Path) -> Result<()> {
         run.frame.height
     );
     std::io::stderr().lock().write_all(report.as_bytes())?;
-    startup::mark("report");
+    terminal::startup::mark("report");
     Ok(())
 }

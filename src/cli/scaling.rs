@@ -5,7 +5,7 @@
 //! the log-log chart scaling.svg.
 
 use super::Format;
-use super::progress::Bars;
+use terminal::progress::Bars;
 use super::scene_args::parse_size;
 use anyhow::{Context, Result, bail};
 use runner::pool::thread_pool;
@@ -61,7 +61,7 @@ pub fn run(args: &ScalingArgs) -> Result<()> {
     std::fs::create_dir_all(&args.output)
         .with_context(|| format!("cannot create directory {}", args.output.display()))?;
     let pool = thread_pool(args.threads)?;
-    let stop = super::interrupt::install();
+    let stop = terminal::interrupt::install();
     let study = pool.install(|| run_scaling(&plan, &Bars::default(), stop))?;
     let files = write_study(&study, &args.output)?;
     print!(

@@ -1,7 +1,7 @@
 //! Arguments shared by the commands that render a scene, and the render driver they
 //! share: load, build, run in a thread pool with a progress bar, time each phase.
 
-use super::progress::Bars;
+use terminal::progress::Bars;
 use anyhow::Result;
 use runner::render_job::{RenderRequest, RenderSettings, SceneRender, render_scene};
 use runner::scene_input::SceneInput;
@@ -197,7 +197,7 @@ impl SceneArgs {
                 ..self.render.settings()
             },
             mode,
-            stop: super::interrupt::install(),
+            stop: terminal::interrupt::install(),
         };
         // Loaded twice only without an accelerator, where the render costs far more.
         if request.variants.config().accel.tests_everything() {
@@ -205,7 +205,7 @@ impl SceneArgs {
             let options = request.settings.options(&scene, mode);
             note_if_slow(&scene, &options, &request.variants, self.render.threads)?;
         }
-        crate::startup::mark("estimate");
+        terminal::startup::mark("estimate");
         Ok(render_scene(&request, &Bars::delayed())?)
     }
 }

@@ -71,7 +71,7 @@ pub fn run(args: &ServeArgs) -> Result<()> {
             );
         }
     }
-    let stop = super::interrupt::install();
+    let stop = terminal::interrupt::install();
     while !stop.load(std::sync::atomic::Ordering::SeqCst) {
         std::thread::sleep(std::time::Duration::from_millis(100));
     }

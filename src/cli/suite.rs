@@ -3,7 +3,7 @@
 //! then gates the run against an earlier one.
 
 use super::Outcome;
-use super::progress::Bars;
+use terminal::progress::Bars;
 use anyhow::Result;
 use runner::RunError;
 use runner::definition::SuiteDef;
@@ -87,7 +87,7 @@ pub fn run(args: &SuiteArgs) -> Result<()> {
         .unwrap_or_default();
     let suite = Suite::prepare(def, args.quick, &base_dir, args.scenes.as_deref())?
         .with_shard(args.shard)?;
-    let stop = super::interrupt::install();
+    let stop = terminal::interrupt::install();
     let pdf = args.pdf.choice();
     let run = DirRun {
         threads: args.threads,

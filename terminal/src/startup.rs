@@ -14,6 +14,7 @@
 //! runtime init) and after the last mark (exit). Unset, each mark is one relaxed
 //! atomic load.
 
+use reports::format::fixed;
 use std::io::Write;
 use std::sync::Mutex;
 use std::sync::atomic::{AtomicBool, Ordering};
@@ -84,9 +85,10 @@ pub fn finish() {
                 format!("at {label} +0.000 ms (CLOCK_MONOTONIC {ns} ns)")
             }
             Entry::At(label, ns) => {
-                format!("at {label} +{:.3} ms", ns.saturating_sub(main) as f64 / 1e6)
+                let ms = ns.saturating_sub(main) as f64 / 1e6;
+                format!("at {label} +{} ms", fixed(ms, 3))
             }
-            Entry::Took(label, d) => format!("took {label} {:.3} ms", d.as_secs_f64() * 1e3),
+            Entry::Took(label, d) => format!("took {label} {} ms", fixed(d.as_secs_f64() * 1e3, 3)),
         };
         text.push_str("rtprof startup: ");
         text.push_str(&line);
