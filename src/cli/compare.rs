@@ -3,12 +3,12 @@
 //! against the first image or variant.
 
 use super::Format;
-use terminal::progress::Bars;
 use super::scene_args::{RenderFlags, ShadingFlags};
 use anyhow::{Result, bail};
 use runner::compare::SideBySide;
 use runner::scene_input::SceneInput;
 use std::path::{Path, PathBuf};
+use terminal::progress::Bars;
 use tracer::VariantSet;
 
 #[derive(clap::Args, Debug)]

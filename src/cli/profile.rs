@@ -3,13 +3,13 @@
 //! a flamegraph, a differential flamegraph against another variant, and Amdahl
 //! projections. Calls come from a counted render of the same scene and variant.
 
-use terminal::progress::Bars;
 use super::scene_args::{RenderFlags, SCENE_HELP, named_after, note_if_slow, parse_scene};
 use anyhow::{Context, Result};
 use runner::pool::thread_pool;
 use runner::profile_job::{DEFAULT_MIN_SAMPLES, ProfileJob};
 use runner::scene_input::SceneInput;
 use std::path::PathBuf;
+use terminal::progress::Bars;
 use tracer::VariantSet;
 
 #[derive(clap::Args, Debug)]

@@ -1,8 +1,8 @@
 //! `rtprof render`: uncounted render to an image file, by the tracer or (with
 //! `--reference`) by the independent f64 reference renderer.
 
-use terminal::progress::Bars;
 use super::scene_args::{SceneArgs, ShadingFlags, named_after};
+use terminal::progress::Bars;
 
 use anyhow::Result;
 use runner::reference_job::render_reference;

@@ -5,12 +5,12 @@
 //! the log-log chart scaling.svg.
 
 use super::Format;
-use terminal::progress::Bars;
 use super::scene_args::parse_size;
 use anyhow::{Context, Result, bail};
 use runner::pool::thread_pool;
 use runner::scaling::{Family, ScalingPlan, run_scaling, write_study};
 use std::path::PathBuf;
+use terminal::progress::Bars;
 
 #[derive(clap::Args, Debug)]
 pub struct ScalingArgs {

@@ -1,11 +1,11 @@
 //! Arguments shared by the commands that render a scene, and the render driver they
 //! share: load, build, run in a thread pool with a progress bar, time each phase.
 
-use terminal::progress::Bars;
 use anyhow::Result;
 use runner::render_job::{RenderRequest, RenderSettings, SceneRender, render_scene};
 use runner::scene_input::SceneInput;
 use std::path::{Path, PathBuf};
+use terminal::progress::Bars;
 use tracer::{Limits, RenderOptions, RenderWith, Scene, ShadingMode, VariantSet};
 
 #[derive(clap::Args, Debug)]

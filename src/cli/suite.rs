@@ -3,7 +3,6 @@
 //! then gates the run against an earlier one.
 
 use super::Outcome;
-use terminal::progress::Bars;
 use anyhow::Result;
 use runner::RunError;
 use runner::definition::SuiteDef;
@@ -12,6 +11,7 @@ use runner::suite::Suite;
 use runner::suite_dir::{DirRun, RunWritten, run_into_dir};
 use std::path::{Path, PathBuf};
 use std::time::Instant;
+use terminal::progress::Bars;
 
 #[derive(clap::Args, Debug)]
 pub struct SuiteArgs {
