@@ -31,6 +31,7 @@ pub mod html;
 pub mod npy;
 pub mod pdf;
 pub mod pixel_maps;
+mod print;
 pub mod scaling_text;
 pub mod sections;
 pub mod text;

@@ -30,7 +30,7 @@ pub struct GateFlags {
     /// its 95 % interval exclude no change) to be slower or faster. The default is the
     /// measured run-to-run noise (docs/gate.md).
     #[arg(long, value_name = "PCT", default_value_t = results::NOISE_THRESHOLD * 100.0,
-          value_parser = super::suite::parse_threshold)]
+          value_parser = parse_threshold)]
     threshold: f64,
     /// Gate runs that are not comparable (another suite, frame size, thread count or
     /// machine) anyway; the output says what differs.
@@ -73,4 +73,12 @@ pub fn run(args: &GateArgs) -> Result<()> {
     let gate = args.options.gate(&old, &new)?;
     print!("{}", render(&gate, args.format)?);
     outcome(&gate)
+}
+
+/// A `--threshold` percentage.
+fn parse_threshold(text: &str) -> Result<f64, String> {
+    match text.trim().parse::<f64>() {
+        Ok(p) if p.is_finite() && (0.0..=1000.0).contains(&p) => Ok(p),
+        _ => Err(format!("'{text}' is not a percentage between 0 and 1000")),
+    }
 }

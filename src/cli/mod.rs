@@ -3,10 +3,12 @@
 
 mod compare;
 mod count;
+mod format;
 mod gate;
 mod hw;
 mod hw_rtl;
 mod merge;
+mod outcome;
 mod profile;
 mod render;
 mod report;
@@ -18,6 +20,8 @@ mod suite;
 mod variants;
 
 use clap::{Parser, Subcommand};
+pub use format::Format;
+pub use outcome::Outcome;
 
 /// Profiles a Whitted ray tracer on NFF scenes and finds its bottlenecks.
 #[derive(Parser, Debug)]
@@ -63,46 +67,6 @@ enum Command {
     /// hardware and the gate, open the reports (http://127.0.0.1:8080/).
     Serve(serve::ServeArgs),
 }
-
-/// How a table is printed: aligned text for a terminal, GitHub-flavoured Markdown (a
-/// pull-request comment, a CI job summary), CSV or JSON.
-#[derive(clap::ValueEnum, Clone, Copy, Debug, Default, PartialEq, Eq)]
-pub enum Format {
-    #[default]
-    Text,
-    Markdown,
-    Csv,
-    Json,
-}
-
-/// An end that is neither success nor bad input (exit 2), with its exit code.
-#[derive(Debug)]
-pub struct Outcome {
-    pub exit_code: u8,
-    pub message: String,
-}
-
-impl Outcome {
-    /// A check that ran and failed (the regression gate).
-    pub const CHECK_FAILED: u8 = 1;
-    /// Some parts of a suite failed; the rest was measured and written.
-    pub const PARTS_FAILED: u8 = 3;
-    /// Stopped by Ctrl-C: 128 + SIGINT, as a shell reports it.
-    pub const INTERRUPTED: u8 = 130;
-
-    pub fn new(exit_code: u8, message: impl Into<String>) -> Self {
-        let message = message.into();
-        Outcome { exit_code, message }
-    }
-}
-
-impl std::fmt::Display for Outcome {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        f.write_str(&self.message)
-    }
-}
-
-impl std::error::Error for Outcome {}
 
 /// Runs one command.
 pub fn run(cli: Cli) -> anyhow::Result<()> {

@@ -49,13 +49,6 @@ pub struct SuiteArgs {
     pdf: super::report::PdfFlag,
 }
 
-pub(super) fn parse_threshold(text: &str) -> Result<f64, String> {
-    match text.trim().parse::<f64>() {
-        Ok(p) if p.is_finite() && (0.0..=1000.0).contains(&p) => Ok(p),
-        _ => Err(format!("'{text}' is not a percentage between 0 and 1000")),
-    }
-}
-
 /// The error for a suite stopped by Ctrl-C after `done` of `total` scenes.
 fn interrupted(output: &Path, done: usize, total: usize) -> anyhow::Error {
     Outcome::new(Outcome::INTERRUPTED, discarded_message(output, done, total)).into()

@@ -19,43 +19,25 @@ use std::collections::BTreeMap;
 
 mod pixel_maps;
 mod profile;
+mod scene_spec;
 use pixel_maps::sample_pixel_maps;
 use profile::{BASELINE_FLAT, BVH_FLAT, sample_profile};
+use scene_spec::{SceneSpec, variant_name};
 
 use results::{
-    AmdahlFigures, AmdahlRow, Band, Build, BvhQuality, CodeKind, CriterionEstimate, DeviceUse,
-    Efficiency, Estimate, FailedPart, Failure, FlatRow, HardwareResult, HwRow, InstructionCount,
-    Machine, MachinePeak, PixelMap, Profile, ProfileResult, ProfileView, Quality, RayRates,
-    Results, SCHEMA, SceneFamily, SceneHardware, SceneResult, SuiteInfo, TimeCovers, TimingPolicy,
-    VariantName, VariantPixelMaps, VariantResult,
+    Band, Build, BvhQuality, CodeKind, CriterionEstimate, DeviceUse, Efficiency, Estimate,
+    FailedPart, Failure, HardwareResult, HwRow, InstructionCount, Machine, MachinePeak,
+    ProfileResult, Quality, RayRates, Results, SCHEMA, SceneFamily, SceneHardware, SceneResult,
+    SuiteInfo, TimeCovers, TimingPolicy, VariantName, VariantResult,
 };
 
 /// The variants of the sample, baseline first.
 pub const SAMPLE_VARIANTS: [&str; 6] =
     ["baseline", "simd", "bvh", "fast-sqrt", "ortho", "pixel-avg"];
 
-/// The name of one of [`SAMPLE_VARIANTS`] (all are tracer's single variants).
-fn variant_name(name: &str) -> VariantName {
-    tracer::Variant::ALL
-        .into_iter()
-        .find(|v| v.name() == name)
-        .map_or_else(VariantName::reference, VariantName::from)
-}
-
 /// Frame-time constants of the thesis's design (eq. 49): 50 MHz, 3 cycles per primitive.
 const HW_CLOCK_HZ: f64 = 50e6;
 const HW_FILL_CYCLES: u64 = 342;
-
-/// One scene of the sample: name, family, spheres, cylinders, polygons, size.
-struct SceneSpec {
-    name: &'static str,
-    family: SceneFamily,
-    spheres: u64,
-    cylinders: u64,
-    polygons: u64,
-    width: u32,
-    height: u32,
-}
 
 const SCENES: [SceneSpec; 11] = [
     tb("balls1", SceneFamily::Balls, 1, 0),

@@ -7,6 +7,7 @@
 
 pub mod amdahl;
 mod c_format;
+mod error;
 pub mod export;
 pub mod flat;
 pub mod folded;
@@ -15,6 +16,8 @@ pub mod gprof;
 pub mod gprof_text;
 pub mod names;
 pub mod perf_clock;
+mod phase_handler;
+mod sample_options;
 pub mod sampler;
 pub mod session;
 pub mod share_interval;

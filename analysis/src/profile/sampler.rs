@@ -25,99 +25,21 @@
 //!   are process-wide): a second concurrent run gets [`ProfileError::Busy`].
 
 use super::names::clean_symbol;
-use super::perf_clock::WorkThreads;
 use super::session::Sampling;
-use super::timer::{Timer, TimerChoice};
+use super::timer::Timer;
 use super::{Stack, StackSamples};
 use std::collections::BTreeMap;
-use std::sync::atomic::{AtomicBool, AtomicU64, AtomicUsize, Ordering};
 use std::time::{Duration, Instant};
+
+// The sampler's inputs and errors, where callers have always found them.
+pub use super::error::{ProfileError, RepeatedError};
+pub use super::sample_options::{
+    DEFAULT_MAX_RUNS, DEFAULT_MAX_WALL, DEFAULT_MIN_SAMPLES, PhaseProbe, SampleOptions,
+};
+pub use super::session::{process_cpu_time, process_peak_resident_bytes};
 
 /// The one frame of samples that caught no profiled code.
 pub const SCHEDULER_FRAME: &str = "[scheduler and idle]";
-
-/// Why a profile could not be taken.
-#[derive(Debug, thiserror::Error)]
-pub enum ProfileError {
-    #[error("cannot start the sampling profiler: {0}")]
-    Start(String),
-    #[error("cannot build the profile report: {0}")]
-    Report(String),
-    #[error(
-        "no samples were taken: the profiled work ran for only {0:?}; give it more work (e.g. a larger --size)"
-    )]
-    NoSamples(Duration),
-    #[error("another sampling run is under way in this process (one at a time)")]
-    Busy,
-}
-
-/// Why a repeated sampling run failed: the profiler, or one run of the work.
-#[derive(Debug, thiserror::Error)]
-pub enum RepeatedError<E> {
-    #[error(transparent)]
-    Profile(ProfileError),
-    #[error("run {run} of the sampled work failed: {error}")]
-    Work { run: u64, error: E },
-}
-
-/// Read in the SIGPROF handler on the interrupted thread: a key for what that thread
-/// is doing (for rtprof, `tracer::phase_stack_key`: its phase stack, 0 = none). Must
-/// be async-signal-safe: no allocation, no lock, no lazily initialised thread-local.
-pub type PhaseProbe = fn() -> u64;
-
-/// Least samples a profile gathers by default ([`sample_repeated`] repeats the work
-/// until the signals reach it).
-pub const DEFAULT_MIN_SAMPLES: u64 = 1000;
-/// Most runs of the work per profile by default, however fast it is.
-pub const DEFAULT_MAX_RUNS: u64 = 10_000;
-/// Longest a profile keeps repeating by default (a slow or starved machine still
-/// ends, with fewer samples than asked).
-pub const DEFAULT_MAX_WALL: Duration = Duration::from_secs(120);
-
-/// How to sample.
-#[derive(Clone, Copy, Debug)]
-pub struct SampleOptions<'a> {
-    /// Sampling rate asked of the timer, Hz of CPU time; `None`: the timer's default
-    /// ([`Timer::default_frequency`]).
-    pub frequency: Option<i32>,
-    /// Which timer; `None`: as `RTPROF_SAMPLER` says (auto when unset).
-    pub timer: Option<TimerChoice>,
-    /// The threads besides the calling one that run the work: each gets its own perf
-    /// event. `None`: the work runs on the calling thread (setitimer samples the whole
-    /// process either way).
-    pub threads: Option<WorkThreads<'a>>,
-    /// Repeat until at least this many signals were seen ([`sample_repeated`]).
-    pub min_samples: u64,
-    /// ... but at most this many runs,
-    pub max_runs: u64,
-    /// ... and no more runs once this much wall time has passed.
-    pub max_wall: Duration,
-    /// Read at each signal for [`SampledRun::phase_keys`]; `None`: no phase view.
-    pub probe: Option<PhaseProbe>,
-}
-
-impl SampleOptions<'_> {
-    /// `frequency` Hz, the default minimum and caps, no probe.
-    pub fn new(frequency: i32) -> Self {
-        SampleOptions {
-            frequency: Some(frequency),
-            ..SampleOptions::timer_default()
-        }
-    }
-
-    /// The timer's own default rate, the default minimum and caps, no probe.
-    pub fn timer_default() -> Self {
-        SampleOptions {
-            frequency: None,
-            timer: None,
-            threads: None,
-            min_samples: DEFAULT_MIN_SAMPLES,
-            max_runs: DEFAULT_MAX_RUNS,
-            max_wall: DEFAULT_MAX_WALL,
-            probe: None,
-        }
-    }
-}
 
 /// The sampling run as it goes, for work that decides itself when it has done enough.
 pub struct LiveSamples {
@@ -128,7 +50,7 @@ impl LiveSamples {
     /// SIGPROF signals seen so far in this run (each is one native sample unless
     /// pprof dropped it, e.g. in a blocklisted library, and one phase sample).
     pub fn signals(&self) -> u64 {
-        SIGNALS.load(Ordering::Relaxed)
+        super::phase_handler::signals_so_far()
     }
 }
 
@@ -193,33 +115,6 @@ pub fn effective_rate(samples: u64, cpu_seconds: f64) -> f64 {
     } else {
         0.0
     }
-}
-
-/// The process's resource use so far, if the kernel tells.
-fn own_usage() -> Option<libc::rusage> {
-    let mut usage = std::mem::MaybeUninit::<libc::rusage>::uninit();
-    // SAFETY: getrusage writes a complete `rusage` into the pointer on success.
-    let ok = unsafe { libc::getrusage(libc::RUSAGE_SELF, usage.as_mut_ptr()) } == 0;
-    // SAFETY: initialised by the successful call above.
-    ok.then(|| unsafe { usage.assume_init() })
-}
-
-/// CPU time of the whole process so far (all threads, user + system).
-pub fn process_cpu_time() -> Duration {
-    let Some(usage) = own_usage() else {
-        return Duration::ZERO;
-    };
-    let time = |t: libc::timeval| {
-        Duration::from_secs(t.tv_sec.max(0) as u64) + Duration::from_micros(t.tv_usec.max(0) as u64)
-    };
-    time(usage.ru_utime) + time(usage.ru_stime)
-}
-
-/// The most memory the process has held resident so far, bytes (Linux reports the
-/// maximum resident set size in KiB); `None` where the kernel does not say.
-pub fn process_peak_resident_bytes() -> Option<u64> {
-    let kib = own_usage()?.ru_maxrss;
-    (kib > 0).then(|| kib as u64 * 1024)
 }
 
 /// Runs `work` once under the sampling profiler at `frequency` Hz, without a phase
@@ -378,226 +273,6 @@ fn clean_stacks(
         *merged.entry(stack).or_default() += count.max(0) as u64;
     }
     merged
-}
-
-/// Held while a sampling run is under way; released on drop (also on a panic).
-pub(super) struct BusyFlag;
-
-static BUSY: AtomicBool = AtomicBool::new(false);
-
-impl BusyFlag {
-    pub(super) fn take() -> Result<Self, ProfileError> {
-        BUSY.compare_exchange(false, true, Ordering::AcqRel, Ordering::Acquire)
-            .map(|_| BusyFlag)
-            .map_err(|_| ProfileError::Busy)
-    }
-}
-
-impl Drop for BusyFlag {
-    fn drop(&mut self) {
-        BUSY.store(false, Ordering::Release);
-    }
-}
-
-// The signal handler's state. Statics, because a signal handler has no other way in;
-// written only while no handler of ours is installed or recording (see
-// `PhaseHandler`), read in the handler with atomics only.
-
-/// Slots of the phase-key table (a power of two). Keys are phase stacks (4 bits a
-/// level), so a render has tens of distinct keys, not thousands.
-const KEY_SLOTS: usize = 1 << KEY_SLOT_BITS;
-const KEY_SLOT_BITS: u32 = 10;
-/// Open addressing: a slot's key (0 = free), claimed by compare-and-swap.
-static KEYS: [AtomicU64; KEY_SLOTS] = [const { AtomicU64::new(0) }; KEY_SLOTS];
-static KEY_COUNTS: [AtomicU64; KEY_SLOTS] = [const { AtomicU64::new(0) }; KEY_SLOTS];
-/// Samples whose key was 0 (outside any phase): 0 cannot be a table key.
-static OUTSIDE_COUNT: AtomicU64 = AtomicU64::new(0);
-/// Samples whose key found no free slot.
-static DROPPED: AtomicU64 = AtomicU64::new(0);
-/// Signals seen while recording.
-static SIGNALS: AtomicU64 = AtomicU64::new(0);
-/// The probe (a `PhaseProbe` as an address), 0 = none.
-static PROBE: AtomicUsize = AtomicUsize::new(0);
-/// Whether the handler records (cleared before the table is read).
-static RECORDING: AtomicBool = AtomicBool::new(false);
-/// Handlers of ours running now (the table is read only once this is 0).
-static IN_HANDLER: AtomicUsize = AtomicUsize::new(0);
-/// The handler ours replaced (pprof's): its address and whether it takes siginfo.
-static PREVIOUS_HANDLER: AtomicUsize = AtomicUsize::new(0);
-static PREVIOUS_SIGINFO: AtomicBool = AtomicBool::new(false);
-
-/// What the phase handler recorded over one run.
-pub(crate) struct PhaseCounts {
-    pub(crate) keys: BTreeMap<u64, u64>,
-    pub(crate) dropped: u64,
-    pub(crate) signals: u64,
-}
-
-/// Our SIGPROF handler, installed over pprof's for the run; puts pprof's back on
-/// `finish` or drop.
-pub(super) struct PhaseHandler {
-    /// pprof's action, restored as it was.
-    previous: libc::sigaction,
-    restored: bool,
-}
-
-impl PhaseHandler {
-    pub(super) fn install(probe: Option<PhaseProbe>) -> Result<Self, ProfileError> {
-        for (key, count) in KEYS.iter().zip(&KEY_COUNTS) {
-            key.store(0, Ordering::Relaxed);
-            count.store(0, Ordering::Relaxed);
-        }
-        OUTSIDE_COUNT.store(0, Ordering::Relaxed);
-        DROPPED.store(0, Ordering::Relaxed);
-        SIGNALS.store(0, Ordering::Relaxed);
-        PROBE.store(probe.map_or(0, |p| p as usize), Ordering::Relaxed);
-        // SAFETY: all-zero is a valid `sigaction` (no handler, empty mask, no flags).
-        let mut previous: libc::sigaction = unsafe { std::mem::zeroed() };
-        // SAFETY: a null new action only reads the current one into `previous`.
-        if unsafe { libc::sigaction(libc::SIGPROF, std::ptr::null(), &mut previous) } != 0 {
-            return Err(ProfileError::Start(format!(
-                "cannot read the SIGPROF action: {}",
-                std::io::Error::last_os_error()
-            )));
-        }
-        // Stored before ours is installed, so its first signal already chains.
-        PREVIOUS_HANDLER.store(previous.sa_sigaction, Ordering::SeqCst);
-        PREVIOUS_SIGINFO.store(previous.sa_flags & libc::SA_SIGINFO != 0, Ordering::SeqCst);
-        RECORDING.store(true, Ordering::SeqCst);
-        // SAFETY: as above.
-        let mut ours: libc::sigaction = unsafe { std::mem::zeroed() };
-        ours.sa_sigaction = on_sigprof as *const () as usize;
-        ours.sa_flags = libc::SA_SIGINFO | libc::SA_RESTART;
-        // SAFETY: `ours` is a complete action whose handler has the 3-argument
-        // signature SA_SIGINFO calls for; the mask is emptied in place.
-        let installed = unsafe {
-            libc::sigemptyset(&mut ours.sa_mask);
-            libc::sigaction(libc::SIGPROF, &ours, std::ptr::null_mut())
-        } == 0;
-        if !installed {
-            RECORDING.store(false, Ordering::SeqCst);
-            return Err(ProfileError::Start(format!(
-                "cannot install the phase handler: {}",
-                std::io::Error::last_os_error()
-            )));
-        }
-        Ok(PhaseHandler {
-            previous,
-            restored: false,
-        })
-    }
-
-    /// Stops recording, waits out handlers still running, puts pprof's handler back
-    /// and reads the table.
-    pub(super) fn finish(mut self) -> Result<PhaseCounts, ProfileError> {
-        self.restore()?;
-        let mut keys = BTreeMap::new();
-        for (key, count) in KEYS.iter().zip(&KEY_COUNTS) {
-            let key = key.load(Ordering::Acquire);
-            if key != 0 {
-                *keys.entry(key).or_default() += count.load(Ordering::Acquire);
-            }
-        }
-        let with_probe = PROBE.load(Ordering::Relaxed) != 0;
-        let outside = OUTSIDE_COUNT.load(Ordering::Acquire);
-        if with_probe && outside > 0 {
-            keys.insert(0, outside);
-        }
-        Ok(PhaseCounts {
-            keys,
-            dropped: DROPPED.load(Ordering::Acquire),
-            signals: SIGNALS.load(Ordering::Acquire),
-        })
-    }
-
-    fn restore(&mut self) -> Result<(), ProfileError> {
-        if self.restored {
-            return Ok(());
-        }
-        self.restored = true;
-        // A handler that starts after this sees RECORDING false and only chains; one
-        // that started before has counted itself in IN_HANDLER (both SeqCst), so
-        // once IN_HANDLER is 0 nothing writes the table any more.
-        RECORDING.store(false, Ordering::SeqCst);
-        while IN_HANDLER.load(Ordering::SeqCst) != 0 {
-            std::hint::spin_loop();
-        }
-        // SAFETY: `previous` is the action read from the kernel at install.
-        if unsafe { libc::sigaction(libc::SIGPROF, &self.previous, std::ptr::null_mut()) } != 0 {
-            return Err(ProfileError::Report(format!(
-                "cannot restore the profiler's SIGPROF handler: {}",
-                std::io::Error::last_os_error()
-            )));
-        }
-        Ok(())
-    }
-}
-
-impl Drop for PhaseHandler {
-    fn drop(&mut self) {
-        // On the error and panic paths; `finish` has restored already otherwise.
-        let _ = self.restore();
-    }
-}
-
-/// The SIGPROF handler: count the signal, record the probe's key, call pprof's
-/// handler (which takes the native stack). Async-signal-safe: atomics only, no
-/// allocation, no lock; the probe must be async-signal-safe too.
-extern "C" fn on_sigprof(
-    signal: libc::c_int,
-    info: *mut libc::siginfo_t,
-    context: *mut libc::c_void,
-) {
-    IN_HANDLER.fetch_add(1, Ordering::SeqCst);
-    if RECORDING.load(Ordering::SeqCst) {
-        SIGNALS.fetch_add(1, Ordering::Relaxed);
-        let probe = PROBE.load(Ordering::Relaxed);
-        if probe != 0 {
-            // SAFETY: PROBE holds a `PhaseProbe` stored as its address.
-            let probe = unsafe { std::mem::transmute::<usize, PhaseProbe>(probe) };
-            record_key(probe());
-        }
-    }
-    let previous = PREVIOUS_HANDLER.load(Ordering::SeqCst);
-    if previous != libc::SIG_DFL && previous != libc::SIG_IGN {
-        if PREVIOUS_SIGINFO.load(Ordering::SeqCst) {
-            type Action = extern "C" fn(libc::c_int, *mut libc::siginfo_t, *mut libc::c_void);
-            // SAFETY: the kernel action had SA_SIGINFO, so its handler has this type.
-            let action = unsafe { std::mem::transmute::<usize, Action>(previous) };
-            action(signal, info, context);
-        } else {
-            type Handler = extern "C" fn(libc::c_int);
-            // SAFETY: without SA_SIGINFO a handler takes the signal number only.
-            let handler = unsafe { std::mem::transmute::<usize, Handler>(previous) };
-            handler(signal);
-        }
-    }
-    IN_HANDLER.fetch_sub(1, Ordering::SeqCst);
-}
-
-/// Counts one sample of `key` in the lock-free table (called from the handler).
-fn record_key(key: u64) {
-    if key == 0 {
-        OUTSIDE_COUNT.fetch_add(1, Ordering::Relaxed);
-        return;
-    }
-    // Fibonacci hashing: the top bits of key x 2^64/phi.
-    let home = (key.wrapping_mul(0x9E37_79B9_7F4A_7C15) >> (64 - KEY_SLOT_BITS)) as usize;
-    for step in 0..KEY_SLOTS {
-        let slot = (home + step) & (KEY_SLOTS - 1);
-        let current = KEYS[slot].load(Ordering::Acquire);
-        let ours = current == key
-            || (current == 0
-                && match KEYS[slot].compare_exchange(0, key, Ordering::AcqRel, Ordering::Acquire) {
-                    Ok(_) => true,
-                    Err(claimed) => claimed == key,
-                });
-        if ours {
-            KEY_COUNTS[slot].fetch_add(1, Ordering::Relaxed);
-            return;
-        }
-    }
-    DROPPED.fetch_add(1, Ordering::Relaxed);
 }
 
 /// Drops a frame that repeats its caller's name: a function split by the compiler

@@ -12,10 +12,10 @@
 
 use std::time::{Duration, Instant};
 
+use super::error::ProfileError;
 use super::perf_clock::{ThreadClocks, period_ns};
-use super::sampler::{
-    BusyFlag, PhaseCounts, PhaseHandler, ProfileError, SampleOptions, process_cpu_time,
-};
+use super::phase_handler::{BusyFlag, PhaseCounts, PhaseHandler};
+use super::sample_options::SampleOptions;
 use super::timer::{PERF_DEFAULT_FREQUENCY, SAMPLER_ENV, Timer, TimerChoice};
 
 /// Libraries a signal handler must not unwind through (it can deadlock; pprof's advice).
@@ -186,4 +186,31 @@ fn stop_itimer_prof() -> Result<(), ProfileError> {
         )));
     }
     Ok(())
+}
+
+/// The process's resource use so far, if the kernel tells.
+fn own_usage() -> Option<libc::rusage> {
+    let mut usage = std::mem::MaybeUninit::<libc::rusage>::uninit();
+    // SAFETY: getrusage writes a complete `rusage` into the pointer on success.
+    let ok = unsafe { libc::getrusage(libc::RUSAGE_SELF, usage.as_mut_ptr()) } == 0;
+    // SAFETY: initialised by the successful call above.
+    ok.then(|| unsafe { usage.assume_init() })
+}
+
+/// CPU time of the whole process so far (all threads, user + system).
+pub fn process_cpu_time() -> Duration {
+    let Some(usage) = own_usage() else {
+        return Duration::ZERO;
+    };
+    let time = |t: libc::timeval| {
+        Duration::from_secs(t.tv_sec.max(0) as u64) + Duration::from_micros(t.tv_usec.max(0) as u64)
+    };
+    time(usage.ru_utime) + time(usage.ru_stime)
+}
+
+/// The most memory the process has held resident so far, bytes (Linux reports the
+/// maximum resident set size in KiB); `None` where the kernel does not say.
+pub fn process_peak_resident_bytes() -> Option<u64> {
+    let kib = own_usage()?.ru_maxrss;
+    (kib > 0).then(|| kib as u64 * 1024)
 }

@@ -12,12 +12,13 @@
 //! The computations are plain functions of the results (tested by hand); the section
 //! only lays them out.
 
+use super::family_groups::FAMILY_GROUPS;
 use super::fpga_answer::{FpgaAnswer, break_even_table, fpga_answer};
 use crate::document::{Block, Builder, Cell, Column, Inline, Section, Table, Tone};
 use crate::findings::geometric_mean;
 use crate::format;
 use crate::results::thesis_profile::{TABLE_6, TABLE_6_EYE_RAYS, TABLE_6_SCENE};
-use crate::results::{Band, Profile, Results, SceneFamily, VariantName, Verdict};
+use crate::results::{Band, Profile, Results, VariantName, Verdict};
 
 pub fn answers(b: &mut Builder) -> Section {
     let mut s = b.section(
@@ -242,18 +243,6 @@ fn table6_table(rows: &[Table6Comparison]) -> Table {
     }
     t
 }
-
-/// The families of scenes a report groups variants by, in order: the thesis's test
-/// bench (its three families together), the SPD, generated scenes, the rest.
-pub const FAMILY_GROUPS: [(&str, &[SceneFamily]); 4] = [
-    (
-        "thesis test bench",
-        &[SceneFamily::Balls, SceneFamily::Cylinder, SceneFamily::Both],
-    ),
-    ("SPD", &[SceneFamily::Spd]),
-    ("generated", &[SceneFamily::Generated]),
-    ("other", &[SceneFamily::Other]),
-];
 
 /// A variant in one family group: geometric-mean speed-up and verdicts.
 #[derive(Clone, Debug, Default, PartialEq)]

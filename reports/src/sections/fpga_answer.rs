@@ -4,7 +4,7 @@
 //! primitive count up to which the pipeline is faster; and the thesis's own software
 //! at its gains' ends beside rtprof's baseline.
 
-use super::answers::FAMILY_GROUPS;
+use super::family_groups::FAMILY_GROUPS;
 use crate::document::{Cell, Column, Table, Tone};
 use crate::format;
 use crate::results::{Results, SceneHardware, SoftwarePeer, VariantName};

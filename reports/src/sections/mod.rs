@@ -32,6 +32,7 @@ pub(crate) mod benchmarks;
 pub(crate) mod bvh_quality;
 pub(crate) mod closing;
 pub(crate) mod comparison;
+pub mod family_groups;
 pub mod fpga_answer;
 pub mod hardware;
 pub mod images;

@@ -3,7 +3,8 @@
 //! Embree in both its modes, single rays (`embree`) and packets (`embree-packets`),
 //! per family of scenes, when the run has them (`rtprof suite --embree`).
 
-use super::answers::{FAMILY_GROUPS, VariantLine};
+use super::answers::VariantLine;
+use super::family_groups::FAMILY_GROUPS;
 use crate::format;
 
 /// Embree's modes as the report names them, by variant name.

@@ -105,7 +105,7 @@ fn matrix(r: &crate::results::Results, lines: &[answers::VariantLine]) -> Table 
     columns.extend(variants.iter().map(|l| Column::number(l.variant.as_str())));
     let mut t = Table::new(columns).dense();
     let width = 2 + variants.len() as u32;
-    for (g, (family, members)) in answers::FAMILY_GROUPS.iter().enumerate() {
+    for (g, (family, members)) in super::family_groups::FAMILY_GROUPS.iter().enumerate() {
         let scenes: Vec<&SceneResult> = r
             .scenes
             .iter()

@@ -1,6 +1,7 @@
 //! The sample's per-pixel maps of `rings`: each map sums to its variant's count.
 
-use super::*;
+use super::scene_spec::SceneSpec;
+use results::{PixelMap, VariantPixelMaps, VariantResult};
 
 /// The variants whose per-pixel maps the sample has.
 const MAPPED_VARIANTS: [&str; 3] = ["baseline", "bvh", "simd"];

@@ -1,6 +1,7 @@
 //! The sample's profile of `rings` (baseline and `bvh`): flat rows, Amdahl figures.
 
-use super::*;
+use super::scene_spec::variant_name;
+use results::{AmdahlFigures, AmdahlRow, FlatRow, Profile, ProfileView, SceneResult};
 
 /// Flat-profile functions of `rings` (baseline): name, % time, inclusive %, count key.
 pub(super) const BASELINE_FLAT: [(&str, f64, f64, Option<&str>); 13] = [
