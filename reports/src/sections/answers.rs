@@ -535,8 +535,8 @@ fn variants_table(lines: &[VariantLine], families: &[usize]) -> Table {
 
 #[cfg(test)]
 mod tests {
+    use super::*;
     use crate::results::{FlatRow, SceneFamily};
-    use crate::results::FlatRow;
     use testkit::sample::sample_results;
 
     fn test_bench(f: SceneFamily) -> bool {
