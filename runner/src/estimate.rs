@@ -103,6 +103,21 @@ pub fn brute_force(
     }))
 }
 
+/// Says on `progress` how long a long brute-force render will take ([`brute_force`]),
+/// before it starts; says nothing otherwise.
+pub fn note_if_slow(
+    scene: &Scene,
+    options: &RenderOptions,
+    variants: &VariantSet,
+    threads: Option<u16>,
+    progress: &dyn crate::progress::Progress,
+) -> Result<(), RunError> {
+    if let Some(note) = brute_force(scene, options, variants, threads)?.and_then(|e| e.note()) {
+        progress.note(&note);
+    }
+    Ok(())
+}
+
 /// "about 40 s", "about 2 min", "about 3 h": a guess shown as one.
 fn rough_duration(seconds: f64) -> String {
     if seconds < 90.0 {

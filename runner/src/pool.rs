@@ -45,6 +45,15 @@ pub fn check_threads(threads: u64) -> Result<u16, ThreadsError> {
     }
 }
 
+/// Parses a `--threads` count by [`check_threads`]'s rule.
+pub fn parse_threads(text: &str) -> Result<u16, String> {
+    let n: u64 = text
+        .trim()
+        .parse()
+        .map_err(|_| format!("'{text}' is not a thread count: give a whole number such as 2"))?;
+    check_threads(n).map_err(|e| e.to_string())
+}
+
 /// A rayon pool of `threads` workers (default: one per core), named `rtprof-worker-N`
 /// so that profiles and debuggers show whose stack is whose. A count beyond
 /// [`check_threads`]'s rule is refused.

@@ -26,21 +26,51 @@ pub struct RenderRequest<'a> {
     pub stop: &'a AtomicBool,
 }
 
-/// How to render a scene: the settings every rendering command takes.
+// How to render a scene: the settings every rendering command takes. With the `clap`
+// feature they are the command line's render flags, declared here once. (A plain
+// comment: clap would take a doc comment as the about of every command that
+// flattens these flags.)
 #[derive(Clone, Debug, Default)]
+#[cfg_attr(feature = "clap", derive(clap::Args))]
 pub struct RenderSettings {
-    /// Image size (default: the scene's resolution).
+    /// Image size WxH [default: the scene's resolution].
+    #[cfg_attr(feature = "clap", arg(long, value_name = "WxH", value_parser = parse_size))]
     pub size: Option<(u32, u32)>,
-    /// SPD corner sampling.
+    /// SPD procedure: rays through pixel corners ((W+1)x(H+1)), each pixel the mean of four.
+    #[cfg_attr(feature = "clap", arg(long))]
     pub spd: bool,
+    /// Worker threads (default: one per core).
+    #[cfg_attr(feature = "clap", arg(long, value_name = "N", value_parser = crate::pool::parse_threads))]
     pub threads: Option<u16>,
-    /// Ray-tree depth (default: the SPD's 5).
+    /// Ray-tree depth: the eye ray is level 1, each reflection or refraction one more
+    /// (default: 5, the SPD rule; at most --max-ray-depth).
+    #[cfg_attr(feature = "clap", arg(long, value_name = "N"))]
     pub depth: Option<u32>,
+    /// How the bvh variant builds its tree: binned_sah (surface area heuristic) or
+    /// midpoint (the middle of the widest axis).
+    #[cfg_attr(
+        feature = "clap",
+        arg(long, value_name = "B", default_value = "binned_sah")
+    )]
+    pub bvh_builder: tracer::BvhBuilder,
+    #[cfg_attr(feature = "clap", command(flatten))]
     pub limits: Limits,
     /// Record each sample's work ([`tracer::SampleStats`], for per-pixel maps).
+    #[cfg_attr(feature = "clap", arg(skip))]
     pub per_sample: bool,
-    /// How the `bvh` variant builds its tree.
-    pub bvh_builder: tracer::BvhBuilder,
+}
+
+/// Parses `WxH` such as `640x480` (the size limits are checked when rendering, so
+/// that `--max-side` and friends can raise them).
+pub fn parse_size(text: &str) -> Result<(u32, u32), String> {
+    let bad = || format!("'{text}' is not a size: expected WxH such as 640x480");
+    let (w, h) = text.split_once(['x', 'X']).ok_or_else(bad)?;
+    let w: u32 = w.trim().parse().map_err(|_| bad())?;
+    let h: u32 = h.trim().parse().map_err(|_| bad())?;
+    if w == 0 || h == 0 {
+        return Err(format!("image size {w}x{h} must be positive"));
+    }
+    Ok((w, h))
 }
 
 /// Largest scene whose end-point overlap `rtprof count` computes (it clips every
@@ -105,6 +135,14 @@ pub fn render_scene<C: tracer::RenderWith>(
         .limits
         .check_size(u64::from(width), u64::from(height))
         .map_err(|e| refuse(e.to_string()))?;
+    // A long brute-force render first says how long it will take.
+    crate::estimate::note_if_slow(
+        &scene,
+        &options,
+        &req.variants,
+        req.settings.threads,
+        progress,
+    )?;
     let rows = options.sample_rows();
     let workers = Workers::new(workers_for(req.settings.threads, rows))?;
     progress.begin("tracing", rows);

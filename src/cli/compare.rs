@@ -3,9 +3,10 @@
 //! against the first image or variant.
 
 use super::Format;
-use super::scene_args::{RenderFlags, ShadingFlags};
+use super::scene_args::ShadingFlags;
 use anyhow::{Result, bail};
 use runner::compare::SideBySide;
+use runner::render_job::RenderSettings;
 use runner::scene_input::SceneInput;
 use std::path::{Path, PathBuf};
 use terminal::progress::Bars;
@@ -31,7 +32,7 @@ pub struct CompareArgs {
           value_parser = clap::value_parser!(u32).range(1..=1000))]
     repeats: u32,
     #[command(flatten)]
-    render: RenderFlags,
+    render: RenderSettings,
     #[command(flatten)]
     shading: ShadingFlags,
     /// Print the result as JSON (the same as --format json).
@@ -78,7 +79,7 @@ fn side_by_side(args: &CompareArgs, scene_arg: &Path, list: &str) -> Result<()> 
     let report = SideBySide {
         input: &input,
         sets: &sets,
-        settings: &args.render.settings(),
+        settings: &args.render,
         mode: args.shading.mode(),
         repeats: args.repeats,
         out: args.output.as_deref(),

@@ -52,7 +52,10 @@ pub fn run(args: &CountArgs) -> Result<()> {
 
 /// The per-pixel maps of the counted render `counted` and three timed ones, into `dir`.
 fn write_pixel_stats(args: &CountArgs, counted: &SceneRender<Count>, dir: &Path) -> Result<()> {
-    let options = args.scene.render.options(&counted.scene);
+    let options = args
+        .scene
+        .render
+        .options(&counted.scene, ShadingMode::Color);
     let pool = thread_pool(args.scene.render.threads)?;
     let name = args.scene.scene.to_string();
     let never = AtomicBool::new(false);

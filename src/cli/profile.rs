@@ -3,10 +3,11 @@
 //! a flamegraph, a differential flamegraph against another variant, and Amdahl
 //! projections. Calls come from a counted render of the same scene and variant.
 
-use super::scene_args::{RenderFlags, SCENE_HELP, named_after, note_if_slow, parse_scene};
+use super::scene_args::{SCENE_HELP, named_after, parse_scene};
 use anyhow::{Context, Result};
 use runner::pool::thread_pool;
 use runner::profile_job::{DEFAULT_MIN_SAMPLES, ProfileJob};
+use runner::render_job::RenderSettings;
 use runner::scene_input::SceneInput;
 use std::path::PathBuf;
 use terminal::progress::Bars;
@@ -23,7 +24,7 @@ pub struct ProfileArgs {
     #[arg(long, value_name = "V")]
     diff_with: Option<String>,
     #[command(flatten)]
-    render: RenderFlags,
+    render: RenderSettings,
     /// Sampling rate asked of the timer, Hz of CPU time [default: 4000 with the perf
     /// cpu-clock timer, 1000 with setitimer, which delivers at most the kernel's tick
     /// rate; times use the measured CPU time per sample]. RTPROF_SAMPLER=auto|perf|setitimer
@@ -57,8 +58,8 @@ pub fn run(args: &ProfileArgs) -> Result<()> {
         .as_deref()
         .map(VariantSet::parse)
         .transpose()?;
-    let scene = args.render.limits.load(&args.scene)?;
-    let options = args.render.options(&scene);
+    let scene = args.scene.load(&args.render.limits)?;
+    let options = args.render.options(&scene, tracer::ShadingMode::Color);
     let dir = match &args.output {
         Some(dir) => dir.clone(),
         None => named_after(&args.scene, "profile-", ""),
@@ -77,8 +78,8 @@ pub fn run(args: &ProfileArgs) -> Result<()> {
         stop: terminal::interrupt::install(),
     };
 
-    note_if_slow(&scene, &options, &set, args.render.threads)?;
     let progress = Bars::delayed();
+    runner::estimate::note_if_slow(&scene, &options, &set, args.render.threads, &progress)?;
     let report = job.report(&set, other.as_ref(), args.measure_overhead, &progress)?;
     let saved = report.save(&dir, "")?;
     if args.json {

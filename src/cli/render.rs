@@ -61,7 +61,7 @@ pub fn run(args: &RenderArgs) -> Result<()> {
 fn run_reference(args: &RenderArgs, output: &std::path::Path) -> Result<()> {
     let run = render_reference(
         &args.scene.scene,
-        &args.scene.render.settings(),
+        &args.scene.render,
         args.shading.mode(),
         &Bars::delayed(),
     )?;

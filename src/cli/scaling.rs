@@ -5,9 +5,9 @@
 //! the log-log chart scaling.svg.
 
 use super::Format;
-use super::scene_args::parse_size;
 use anyhow::{Context, Result, bail};
 use runner::pool::thread_pool;
+use runner::render_job::parse_size;
 use runner::scaling::{Family, ScalingPlan, run_scaling, write_study};
 use std::path::PathBuf;
 use terminal::progress::Bars;
@@ -36,7 +36,7 @@ pub struct ScalingArgs {
     #[arg(long, value_name = "SECONDS")]
     budget: Option<f64>,
     /// Worker threads (default: one per core).
-    #[arg(long, value_name = "N", value_parser = super::scene_args::parse_threads)]
+    #[arg(long, value_name = "N", value_parser = runner::pool::parse_threads)]
     threads: Option<u16>,
     /// What to print: a table, Markdown, CSV or JSON.
     #[arg(long, value_enum, default_value_t = Format::Text)]

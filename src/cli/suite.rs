@@ -38,7 +38,7 @@ pub struct SuiteArgs {
     #[arg(long)]
     embree: bool,
     /// Worker threads for the renders (default: one per core).
-    #[arg(long, value_name = "N", value_parser = super::scene_args::parse_threads)]
+    #[arg(long, value_name = "N", value_parser = runner::pool::parse_threads)]
     threads: Option<u16>,
     /// Run shard I of N: every Nth scene (all its variants), for `rtprof merge`.
     #[arg(long, value_name = "I/N", value_parser = runner::shard::parse_shard)]

@@ -220,6 +220,21 @@ impl BvhBuilder {
     }
 }
 
+impl std::str::FromStr for BvhBuilder {
+    type Err = String;
+
+    /// A builder by name (`--bvh-builder`); the error lists the names.
+    fn from_str(name: &str) -> Result<Self, String> {
+        Self::parse(name).ok_or_else(|| {
+            let names: Vec<&str> = Self::ALL.iter().map(|b| b.name()).collect();
+            format!(
+                "unknown builder '{name}'; choose one of {}",
+                names.join(", ")
+            )
+        })
+    }
+}
+
 impl std::fmt::Display for BvhBuilder {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         f.pad(self.name())

@@ -1,43 +1,64 @@
-//! The sizes an NFF scene and its render may ask for, refused before anything is
-//! allocated; each error names the limit to raise.
+//! The sizes an NFF scene and its render may ask for ([`Limits`]), refused before
+//! anything is allocated; each error names the limit to raise. The defaults
+//! ([`Limits::DEFAULT`]) are generous for real scenes. With the `clap` feature the
+//! limits are also the command line's `--max-*` flags, declared here once.
 
 use crate::color::Rgb;
 
-/// Sizes refused before allocating, each raisable by setting its field. The defaults
-/// are generous for real scenes; every error names the field to raise.
+// Sizes refused before allocating, each raisable by setting its field. The defaults
+// (`Limits::DEFAULT`) are generous for real scenes; every error names the field to
+// raise. With the `clap` feature these are also the command line's flags (the field
+// `max_side` is `--max-side`), so a limit, its default and its help live here only.
+// (A plain comment: clap would take a doc comment as the about of every command that
+// flattens these flags.)
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[cfg_attr(feature = "clap", derive(clap::Args))]
+#[cfg_attr(
+    feature = "clap",
+    command(next_help_heading = "Limits (raise them for very large inputs)")
+)]
 pub struct Limits {
-    /// Largest accepted width or height, in pixels (default 16,384).
+    /// Largest image width or height, pixels.
+    #[cfg_attr(feature = "clap", arg(long, value_name = "PIXELS", default_value_t = Limits::DEFAULT.max_side))]
     pub max_side: u32,
-    /// Largest accepted width × height (default 64 Mi pixels).
+    /// Largest image, width x height, pixels.
+    #[cfg_attr(feature = "clap", arg(long, value_name = "PIXELS", default_value_t = Limits::DEFAULT.max_pixels))]
     pub max_pixels: u64,
-    /// Largest framebuffer, [`Limits::FRAMEBUFFER_BYTES_PER_PIXEL`] bytes per pixel
-    /// (default 1 GiB).
+    /// Largest framebuffer, bytes (12 a pixel: one f32 RGB triple).
+    #[cfg_attr(feature = "clap", arg(long, value_name = "BYTES", default_value_t = Limits::DEFAULT.max_framebuffer_bytes))]
     pub max_framebuffer_bytes: u64,
-    /// Largest vertex count of one `p` or `pp` (default 65,536).
+    /// Most vertices of one polygon or patch.
+    #[cfg_attr(feature = "clap", arg(long, value_name = "N", default_value_t = Limits::DEFAULT.max_polygon_vertices))]
     pub max_polygon_vertices: u64,
-    /// Most primitives in one scene, all kinds together (default 10 million).
+    /// Most primitives in a scene, all kinds together.
+    #[cfg_attr(feature = "clap", arg(long, value_name = "N", default_value_t = Limits::DEFAULT.max_primitives))]
     pub max_primitives: u64,
-    /// Ceiling of the settable maximum ray-tree depth,
-    /// [`RenderOptions::max_depth`](crate::RenderOptions::max_depth) (default 64: a
-    /// transmitting scene can double its rays per level, and every level is a stack
-    /// frame of the recursive shader).
+    /// Ceiling of the ray-tree depth (a transmitting scene can double its rays per
+    /// level, and every level is a stack frame of the recursive shader).
+    #[cfg_attr(feature = "clap", arg(long, value_name = "N", default_value_t = Limits::DEFAULT.max_ray_depth))]
     pub max_ray_depth: u32,
-    /// Largest scene file or text, in bytes (default 1 GiB).
+    /// Largest scene file or text, bytes.
+    #[cfg_attr(feature = "clap", arg(long, value_name = "BYTES", default_value_t = Limits::DEFAULT.max_file_bytes))]
     pub max_file_bytes: u64,
+}
+
+impl Limits {
+    /// The defaults: 16,384 pixels a side, 64 Mi pixels, a 1 GiB framebuffer, 65,536
+    /// vertices a polygon, 10 million primitives, depth 64, 1 GiB of scene.
+    pub const DEFAULT: Limits = Limits {
+        max_side: 16_384,
+        max_pixels: 64 * 1024 * 1024,
+        max_framebuffer_bytes: 1 << 30,
+        max_polygon_vertices: 1 << 16,
+        max_primitives: 10_000_000,
+        max_ray_depth: 64,
+        max_file_bytes: 1 << 30,
+    };
 }
 
 impl Default for Limits {
     fn default() -> Self {
-        Self {
-            max_side: 16_384,
-            max_pixels: 64 * 1024 * 1024,
-            max_framebuffer_bytes: 1 << 30,
-            max_polygon_vertices: 1 << 16,
-            max_primitives: 10_000_000,
-            max_ray_depth: 64,
-            max_file_bytes: 1 << 30,
-        }
+        Self::DEFAULT
     }
 }
 
