@@ -44,24 +44,7 @@ fn run() -> ExitCode {
     let Err(error) = cli::run(args) else {
         return ExitCode::SUCCESS;
     };
-    let message = format!("{error:#}");
-    let message = runner::messages::name_the_flag(&runner::messages::one_line(&message));
-    if let Some(runner::RunError::Stopped) = error.downcast_ref::<runner::RunError>() {
-        // Ctrl-C during a render: it stopped within a row, and wrote nothing.
-        eprintln!("rtprof: interrupted: the render was cancelled; no output was written");
-        return ExitCode::from(cli::Outcome::INTERRUPTED);
-    }
-    match error.downcast_ref::<cli::Outcome>() {
-        Some(outcome) => {
-            eprintln!("rtprof: {message}");
-            ExitCode::from(outcome.exit_code)
-        }
-        None => {
-            eprintln!("rtprof: error: {message}");
-            // Bad input or usage: exit code 2 (1 is kept for failed checks).
-            ExitCode::from(2)
-        }
-    }
+    ExitCode::from(terminal::exit::report(error.as_ref()))
 }
 
 /// Help and version go to stdout as clap prints them (exit 0); a usage mistake is one

@@ -264,6 +264,40 @@ fn target_dir() -> Option<PathBuf> {
         .find(|t| t.join("criterion").is_dir() || t.join("gungraun").is_dir())
 }
 
+// Where the benchmark harnesses saved their figures (`cargo bench -p benches`); with
+// the `clap` feature, the --criterion and --instructions flags of `suite` and `report`.
+// (A plain comment: clap would take a doc comment as the about of those commands.)
+#[derive(Clone, Debug, Default)]
+#[cfg_attr(feature = "clap", derive(clap::Args))]
+pub struct BenchmarkDirs {
+    /// Add criterion's estimates (mean, median, 95 % intervals) from this directory,
+    /// e.g. target/criterion [suite default: <target dir>/criterion when present].
+    #[cfg_attr(feature = "clap", arg(long, value_name = "DIR"))]
+    pub criterion: Option<std::path::PathBuf>,
+    /// Add gungraun's instruction counts from this directory [default: `gungraun`
+    /// beside the criterion directory, when present].
+    #[cfg_attr(feature = "clap", arg(long, value_name = "DIR"))]
+    pub instructions: Option<std::path::PathBuf>,
+}
+
+impl BenchmarkDirs {
+    /// Refuses a given directory that does not exist, before any long work.
+    pub fn check(&self) -> Result<(), BenchImportError> {
+        check_dirs(self.criterion.as_deref(), self.instructions.as_deref())
+    }
+
+    /// Reads the benchmark figures into `results` (replacing any it had); the lines say
+    /// what it added. `discover` looks in the cargo target directory when none is given.
+    pub fn add_to(
+        &self,
+        results: &mut results::Results,
+        discover: bool,
+    ) -> Result<Vec<String>, BenchImportError> {
+        let (criterion, instructions) = (self.criterion.as_deref(), self.instructions.as_deref());
+        add_to_results(results, criterion, instructions, discover)
+    }
+}
+
 /// Refuses a given harness directory that is not a directory (before a long run).
 pub fn check_dirs(
     criterion: Option<&Path>,

@@ -8,7 +8,6 @@ mod gate;
 mod hw;
 mod hw_rtl;
 mod merge;
-mod outcome;
 mod profile;
 mod render;
 mod report;
@@ -21,7 +20,7 @@ mod variants;
 
 use clap::{Parser, Subcommand};
 pub use format::Format;
-pub use outcome::Outcome;
+pub use terminal::exit::Outcome;
 
 /// Profiles a Whitted ray tracer on NFF scenes and finds its bottlenecks.
 #[derive(Parser, Debug)]

@@ -2,7 +2,6 @@
 //! several files (two machines, two commits) it adds a side-by-side comparison.
 
 use anyhow::{Context, Result};
-use results::Results;
 use runner::report_files::{Pdf, load_runs, write_reports};
 use std::path::PathBuf;
 
@@ -15,7 +14,7 @@ pub struct ReportArgs {
     #[arg(short, long, value_name = "DIR")]
     output: Option<PathBuf>,
     #[command(flatten)]
-    benchmarks: BenchmarkDirs,
+    benchmarks: runner::benchmarks::BenchmarkDirs,
     #[command(flatten)]
     pdf: PdfFlag,
 }
@@ -35,40 +34,12 @@ impl PdfFlag {
     }
 }
 
-// Where the benchmark harnesses saved their figures (`cargo bench -p benches`).
-#[derive(clap::Args, Debug, Default)]
-pub struct BenchmarkDirs {
-    /// Add criterion's estimates (mean, median, 95 % intervals) from this directory,
-    /// e.g. target/criterion [suite default: <target dir>/criterion when present].
-    #[arg(long, value_name = "DIR")]
-    pub criterion: Option<PathBuf>,
-    /// Add gungraun's instruction counts from this directory [default: `gungraun`
-    /// beside the criterion directory, when present].
-    #[arg(long, value_name = "DIR")]
-    pub instructions: Option<PathBuf>,
-}
-
-impl BenchmarkDirs {
-    /// Refuses a given directory that does not exist, before any long work.
-    pub fn check(&self) -> Result<()> {
-        let (criterion, instructions) = (self.criterion.as_deref(), self.instructions.as_deref());
-        Ok(runner::benchmarks::check_dirs(criterion, instructions)?)
-    }
-
-    /// Reads the benchmark figures into `results` (replacing any it had), saying what
-    /// it added; `discover` looks in the cargo target directory when none is given.
-    pub fn add_to(&self, results: &mut Results, discover: bool) -> Result<(), runner::RunError> {
-        let (criterion, instructions) = (self.criterion.as_deref(), self.instructions.as_deref());
-        let added = runner::benchmarks::add_to_results(results, criterion, instructions, discover)?;
-        added.iter().for_each(|line| eprintln!("{line}"));
-        Ok(())
-    }
-}
-
 pub fn run(args: &ReportArgs) -> Result<()> {
     let mut runs = load_runs(&args.results)?;
     if let Some(main_run) = runs.first_mut() {
-        args.benchmarks.add_to(&mut main_run.results, false)?;
+        for line in args.benchmarks.add_to(&mut main_run.results, false)? {
+            eprintln!("{line}");
+        }
     }
     let dir = args
         .output

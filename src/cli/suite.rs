@@ -44,7 +44,7 @@ pub struct SuiteArgs {
     #[arg(long, value_name = "I/N", value_parser = runner::shard::parse_shard)]
     shard: Option<results::Shard>,
     #[command(flatten)]
-    benchmarks: super::report::BenchmarkDirs,
+    benchmarks: runner::benchmarks::BenchmarkDirs,
     #[command(flatten)]
     pdf: super::report::PdfFlag,
 }
@@ -89,8 +89,11 @@ pub fn run(args: &SuiteArgs) -> Result<()> {
         pdf,
         keep_partial: None,
     };
-    let add_benchmarks =
-        &mut |results: &mut results::Results| args.benchmarks.add_to(results, true);
+    let add_benchmarks = &mut |results: &mut results::Results| -> Result<(), RunError> {
+        let added = args.benchmarks.add_to(results, true)?;
+        added.iter().for_each(|line| eprintln!("{line}"));
+        Ok(())
+    };
     let RunWritten { results, pages } =
         match run_into_dir(&suite, &args.output, &run, add_benchmarks) {
             Ok(written) => written,

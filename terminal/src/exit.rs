@@ -1,0 +1,67 @@
+//! How a command ends: success, a failed check (1), bad input (2), parts failed (3) or
+//! an interrupt (130), and the one line it prints on stderr. Commands return
+//! [`Outcome`] for the ends that are not bad input; [`report`] turns any error into its
+//! line and exit code.
+
+use std::error::Error;
+
+/// An end that is neither success nor bad input (exit 2), with its exit code.
+#[derive(Debug)]
+pub struct Outcome {
+    pub exit_code: u8,
+    pub message: String,
+}
+
+impl Outcome {
+    /// A check that ran and failed (the regression gate).
+    pub const CHECK_FAILED: u8 = 1;
+    /// Some parts of a suite failed; the rest was measured and written.
+    pub const PARTS_FAILED: u8 = 3;
+    /// Stopped by Ctrl-C: 128 + SIGINT, as a shell reports it.
+    pub const INTERRUPTED: u8 = 130;
+
+    pub fn new(exit_code: u8, message: impl Into<String>) -> Self {
+        let message = message.into();
+        Outcome { exit_code, message }
+    }
+}
+
+impl std::fmt::Display for Outcome {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(&self.message)
+    }
+}
+
+impl std::error::Error for Outcome {}
+
+/// Prints `error` on stderr as one line and returns the exit code: an [`Outcome`]'s
+/// own, 130 for a render stopped by Ctrl-C, 2 (bad input or usage) for anything else
+/// (1 is kept for failed checks). The line joins the error's causes with ": " and
+/// names the flag that raises a limit.
+pub fn report(error: &(dyn Error + 'static)) -> u8 {
+    let message = causes(error)
+        .map(ToString::to_string)
+        .collect::<Vec<_>>()
+        .join(": ");
+    let message = runner::messages::name_the_flag(&runner::messages::one_line(&message));
+    if causes(error).any(|e| matches!(e.downcast_ref(), Some(runner::RunError::Stopped))) {
+        // Ctrl-C during a render: it stopped within a row, and wrote nothing.
+        eprintln!("rtprof: interrupted: the render was cancelled; no output was written");
+        return Outcome::INTERRUPTED;
+    }
+    match error.downcast_ref::<Outcome>() {
+        Some(outcome) => {
+            eprintln!("rtprof: {message}");
+            outcome.exit_code
+        }
+        None => {
+            eprintln!("rtprof: error: {message}");
+            2
+        }
+    }
+}
+
+/// The error and its sources, outermost first.
+fn causes<'a>(error: &'a (dyn Error + 'static)) -> impl Iterator<Item = &'a (dyn Error + 'static)> {
+    std::iter::successors(Some(error), |&e| e.source())
+}
