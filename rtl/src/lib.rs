@@ -31,6 +31,7 @@ pub mod generate;
 pub mod operators;
 pub mod sim;
 pub mod synth;
+pub mod system;
 
 use std::path::PathBuf;
 
