@@ -317,8 +317,7 @@ pub fn simulate_scene(
         1.0,
     )
     .cycles;
-    let max_cycles =
-        upload + 2 * render + u64::from(PIXEL_DIVIDE) * trace_pixels + 100_000;
+    let max_cycles = upload + 2 * render + u64::from(PIXEL_DIVIDE) * trace_pixels + 100_000;
     run_program(
         program,
         &[

@@ -79,10 +79,7 @@ pub fn header_words(setup: &FrameSetup) -> Result<[u32; HEADER_WORDS], RtlError>
     words[1] =
         sixteen("per_unit", setup.per_unit)? | sixteen("prim_count", setup.prim_count)? << 16;
     words[2] = u32::from(setup.background) | fields << 8;
-    for (slot, value) in words[3..]
-        .iter_mut()
-        .zip(setup.vectors.iter().flatten())
-    {
+    for (slot, value) in words[3..].iter_mut().zip(setup.vectors.iter().flatten()) {
         *slot = value.to_bits();
     }
     Ok(words)

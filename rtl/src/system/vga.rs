@@ -341,7 +341,10 @@ pub fn decode(samples: &[VgaSample]) -> Result<DecodedFrame, RtlError> {
             }
         }
     }
-    let h_visible = all_equal("the visible run", visible.iter().map(|(a, b)| (b - a) as u64))?;
+    let h_visible = all_equal(
+        "the visible run",
+        visible.iter().map(|(a, b)| (b - a) as u64),
+    )?;
     let h_back = all_equal("the horizontal back porch", backs)?;
     let h_front = all_equal("the horizontal front porch", fronts)?;
     let (first, last) = match (visible.first(), visible.last()) {
@@ -403,10 +406,10 @@ mod tests {
             for v in 0..t.v_total() {
                 for h in 0..t.h_total() {
                     let on = h < t.h_visible && v < t.v_visible;
-                    let hs = (t.h_visible + t.h_front..t.h_visible + t.h_front + t.h_sync)
-                        .contains(&h);
-                    let vs = (t.v_visible + t.v_front..t.v_visible + t.v_front + t.v_sync)
-                        .contains(&v);
+                    let hs =
+                        (t.h_visible + t.h_front..t.h_visible + t.h_front + t.h_sync).contains(&h);
+                    let vs =
+                        (t.v_visible + t.v_front..t.v_visible + t.v_front + t.v_sync).contains(&v);
                     let g = if on { (h + 3 * v) as u8 } else { 0 };
                     out.push(VgaSample {
                         hsync: hs != t.hsync_negative,
@@ -436,7 +439,10 @@ mod tests {
             // Starting mid-frame: the first vsync pulse comes before the frame decoded.
             let d = decode(&pins(&t, 3, t.frame_clocks() as usize / 2 + 7)).unwrap();
             assert!(d.measurement.matches(&t), "{:?}", d.measurement);
-            assert_eq!((d.measurement.blank_not_black, d.measurement.not_gray), (0, 0));
+            assert_eq!(
+                (d.measurement.blank_not_black, d.measurement.not_gray),
+                (0, 0)
+            );
             assert_eq!((d.image.width, d.image.height), (t.h_visible, t.v_visible));
             assert_eq!(d.image.gray_at(5, 2), Some(11));
         }
