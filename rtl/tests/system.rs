@@ -74,14 +74,17 @@ fn a_scene_sent_through_the_uart_comes_out_of_the_vga_as_the_emulators_picture()
         sim::reference_image(&pipeline, &hw, FRAME.0, FRAME.1).unwrap_or_else(|e| panic!("{e}"));
     let diff = sim::compare_images(&out.frame.image, &reference);
     eprintln!(
-        "both7 at {}x{}: {} bytes uploaded (line idle at cycle {}), loaded at {:?}, done at {:?}; \
-         VGA {:?}; {} of {} pixels differ from {source}; built in {:.0} s, ran in {:.1} s",
+        "both7 at {}x{}: {} bytes uploaded (line idle at cycle {}), loaded at {:?}, done at {:?} \
+         (prologue {}, model {} cycles); VGA {:?}; {} of {} pixels differ from {source}; \
+         built in {:.0} s, ran in {:.1} s",
         FRAME.0,
         FRAME.1,
         out.stream_bytes,
         out.tx_end,
         out.loaded,
         out.done,
+        system.pipeline.prologue,
+        hwmodel::frame_timing::frame_timing(&pipeline, 7, FRAME.0, FRAME.1, 1.0).cycles,
         out.frame.measurement,
         diff.differing_pixels,
         reference.pixels.len(),
@@ -238,7 +241,7 @@ fn the_uart_loader_writes_the_words_the_serializer_sent() {
 /// the longest path between registers, at the thesis's parameters.
 #[test]
 #[ignore = "needs yosys"]
-fn the_loader_and_the_vga_controller_synthesize_within_12_lut_levels() {
+fn the_loader_and_the_vga_controller_synthesize_within_12_lut_levels_and_the_frame_fits_m9ks() {
     let dir = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("rtl-system-synth");
     std::fs::create_dir_all(&dir).unwrap();
     let mut files = Vec::new();
@@ -286,4 +289,15 @@ fn the_loader_and_the_vga_controller_synthesize_within_12_lut_levels() {
         assert!(fmax >= fmax::THESIS_CLOCK_MHZ);
         assert!(report.lut4 > 0 && report.ff > 0);
     }
+    // The frame memory at 640 x 480: 2,457,600 bits in 300 M9Ks of 8,192 data bits
+    // (1 Ki bytes each), of the EP4CE115's 432.
+    let report = synth::synthesize(&dir.join("frame"), &files, "vga_frame_buffer", &[])
+        .unwrap_or_else(|e| panic!("{e}"));
+    eprintln!(
+        "vga_frame_buffer 640x480: {:?}, {:.0} s",
+        report.total, report.seconds
+    );
+    assert!(report.unmapped.is_empty(), "{:?}", report.unmapped);
+    assert_eq!(report.total.mem_bits, 640 * 480 * 8);
+    assert_eq!(report.total.m9k, 300);
 }

@@ -25,14 +25,17 @@ pub mod uart;
 pub mod vga;
 
 use std::fmt::Write as _;
+use std::path::{Path, PathBuf};
 
 use hwmodel::blocks::{ADDRESS_BITS, Pipeline};
+use hwmodel::hw_scene::HwScene;
 use hwmodel::library::Library;
 
 use crate::RtlError;
 use crate::generate::{self, GeneratedRtl, TOP};
 use crate::operators::SourceFile;
-use crate::sim::FRAME_VECTORS;
+use crate::operators::write_atomically;
+use crate::sim::{FRAME_VECTORS, frame_setup};
 use vga::VgaTiming;
 
 /// The system's hand-written modules.
@@ -125,6 +128,47 @@ pub fn generate_system(
         pipeline: rtl,
         config,
     })
+}
+
+/// Writes `system`'s files and its testbench into `dir` (created if needed), each
+/// atomically; returns how many.
+pub fn write(system: &GeneratedSystem, dir: &Path) -> Result<usize, RtlError> {
+    std::fs::create_dir_all(dir).map_err(|source| RtlError::Io {
+        path: dir.to_path_buf(),
+        source,
+    })?;
+    let testbench = &run::TESTBENCH_SYSTEM;
+    for (name, text) in system
+        .files
+        .iter()
+        .map(|(n, t)| (n.as_str(), t.as_str()))
+        .chain([(testbench.name, testbench.text)])
+    {
+        write_atomically(&dir.join(name), text)?;
+    }
+    Ok(system.files.len() + 1)
+}
+
+/// The file [`write_upload`] writes.
+pub const UPLOAD_FILE: &str = "scene_upload.bin";
+
+/// Writes the UART upload of `scene` for `system` (at its frame size) into
+/// `dir/`[`UPLOAD_FILE`]: the bytes a host sends to the `uart_rx` pin.
+pub fn write_upload(
+    system: &GeneratedSystem,
+    pipeline: &Pipeline,
+    scene: &HwScene,
+    dir: &Path,
+) -> Result<PathBuf, RtlError> {
+    let t = &system.config.timing;
+    let setup = frame_setup(pipeline, scene, t.h_visible, t.v_visible)?;
+    let stream = uart::scene_stream(&setup)?;
+    let path = dir.join(UPLOAD_FILE);
+    tracer::image_io::write_atomically(&path, &stream).map_err(|source| RtlError::Io {
+        path: path.clone(),
+        source,
+    })?;
+    Ok(path)
 }
 
 fn parameters(list: &[(&str, u32)]) -> String {
