@@ -308,7 +308,7 @@ pub fn decode(samples: &[VgaSample]) -> Result<DecodedFrame, RtlError> {
         vsyncs.iter().map(|(a, b)| (b - a) as u64),
     )?;
     let whole_lines = |what: &str, clocks: u64| {
-        if clocks % line_clocks == 0 {
+        if clocks.is_multiple_of(line_clocks) {
             Ok(clocks / line_clocks)
         } else {
             Err(decode_error(format!(
