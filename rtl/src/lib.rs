@@ -13,7 +13,10 @@
 //!   `tests/pipeline.rs`);
 //! - [`synth`]: Yosys synthesis for Cyclone IV E, per block, beside the model and the
 //!   thesis's table 8 ([`synth::SynthComparison`], `rtprof hw synth`;
-//!   `tests/synthesis.rs`).
+//!   `tests/synthesis.rs`);
+//! - [`system`]: the thesis's whole system around the pipeline: the UART scene loader
+//!   and its upload's framing, the frame memory, the VGA controller (`rtprof hw rtl
+//!   --system`; `tests/system.rs`, `docs/rtl-system.md`).
 //!
 //! The tool tests are ignored by default (`cargo test -p rtl -- --ignored`;
 //! `scripts/install-rtl-tools.sh` installs Verilator, g++ and Yosys).
@@ -31,6 +34,7 @@ pub mod generate;
 pub mod operators;
 pub mod sim;
 pub mod synth;
+pub mod system;
 
 use std::path::PathBuf;
 

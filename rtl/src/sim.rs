@@ -122,8 +122,22 @@ pub fn default_build_root() -> PathBuf {
 /// Compiles `rtl` with Verilator under `root` (in `root/<hash>`, reused when the files
 /// are unchanged) and returns the simulator program.
 pub fn build(rtl: &GeneratedRtl, root: &Path) -> Result<PathBuf, RtlError> {
+    build_model(&rtl.files, TOP, generate::TESTBENCH.name, &[], root)
+}
+
+/// Compiles the Verilog of `files` with `top` as the top module (Verilator's
+/// `extra_args` added, e.g. `-G` parameters) and the C++ testbench `testbench` (one of
+/// `files`) under `root`, in `root/<hash>` (reused when the files and arguments are
+/// unchanged), and returns the simulator program.
+pub fn build_model(
+    files: &[(String, String)],
+    top: &str,
+    testbench: &str,
+    extra_args: &[String],
+    root: &Path,
+) -> Result<PathBuf, RtlError> {
     let mut hasher = DefaultHasher::new();
-    rtl.files.hash(&mut hasher);
+    (files, top, testbench, extra_args).hash(&mut hasher);
     let hash = format!("{:016x}", hasher.finish());
     let dir = root.join(&hash);
     let program = dir.join("obj").join("Vsim");
@@ -139,22 +153,25 @@ pub fn build(rtl: &GeneratedRtl, root: &Path) -> Result<PathBuf, RtlError> {
         BUILDS.fetch_add(1, Ordering::Relaxed)
     ));
     let _ = fs::remove_dir_all(&staging);
-    generate::write(rtl, &staging)?;
-    let sources: Vec<String> = rtl
-        .files
+    fs::create_dir_all(&staging).map_err(io(&staging))?;
+    for (name, text) in files {
+        write_atomically(&staging.join(name), text)?;
+    }
+    let sources: Vec<String> = files
         .iter()
         .map(|(name, _)| name.clone())
         .filter(|n| n.ends_with(".v"))
         .collect();
-    let output = verilator_command(&staging, TOP, "Vsim", 2)
+    let output = verilator_command(&staging, top, "Vsim", 2)
         // The generated modules leave inputs unused by design (constants, monitors).
         .args(["-Wno-lint", "-Wno-style"])
         // The operators' prefix adders as `+` and the multiplier's Wallace tree as `*`
         // (fp_fast_add.v, fp_mul.v): the same sums and products, and a model that
         // compiles in minutes; the operator tests simulate the trees themselves.
         .arg("+define+RTPROF_BEHAVIOURAL_ARITHMETIC")
+        .args(extra_args)
         .args(&sources)
-        .arg(generate::TESTBENCH.name)
+        .arg(testbench)
         .output()
         .map_err(|_| tool_missing("verilator"))?;
     if !output.status.success() || !staging.join("obj").join("Vsim").exists() {
@@ -186,18 +203,94 @@ pub fn build(rtl: &GeneratedRtl, root: &Path) -> Result<PathBuf, RtlError> {
     }
 }
 
+/// The names of the frame vectors the top reads (its ports `<name>_x|y|z`), in the
+/// order the testbench's input and the UART loader's stream carry them.
+pub const FRAME_VECTORS: [&str; 7] = [
+    "scan_line",
+    "row_step",
+    "column_step",
+    "eye",
+    "view_dir",
+    "light",
+    "light_dir",
+];
+
+/// One frame's set-up as the scene block holds it: the top's frame registers and the
+/// scene memory's words. What the testbench's input and the UART loader's stream carry.
+#[derive(Clone, Debug, PartialEq)]
+pub struct FrameSetup {
+    pub width: u32,
+    pub height: u32,
+    /// Primitives per intersection unit, c = ⌈n/K⌉.
+    pub per_unit: u32,
+    pub prim_count: u32,
+    /// The background's gray level.
+    pub background: u8,
+    /// The frame vectors, in [`FRAME_VECTORS`] order.
+    pub vectors: [[f32; 3]; 7],
+    /// Per primitive, its memory words (the MIF's 9, then the rsqrt-free shading's 5).
+    pub words: Vec<Vec<u32>>,
+}
+
+/// The set-up of `scene` at `width`×`height` on `pipeline`: the frame constants and
+/// the scene memory's words (read back from the scene's MIF).
+pub fn frame_setup(
+    pipeline: &Pipeline,
+    scene: &HwScene,
+    width: u32,
+    height: u32,
+) -> Result<FrameSetup, RtlError> {
+    let k = FrameConstants::new(scene, width, height);
+    let n = scene.primitives.len() as u64;
+    let units = pipeline.design.units.max(1);
+    let per_unit = cycles_per_pixel(n, units) / 3;
+    // The memory's words as the MIF holds them (`rtprof hw mif`), read back from it.
+    let mif = hwmodel::mif::parse_mif(&hwmodel::mif::to_mif(scene))
+        .map_err(|e| RtlError::Generate(format!("the scene's MIF does not read back: {e}")))?;
+    let words = scene
+        .primitives
+        .iter()
+        .zip(mif.chunks(HwPrimitive::WORDS))
+        .map(|(p, words)| {
+            let mut words = words.to_vec();
+            if pipeline.design.no_rsqrt_shading {
+                words.extend(shading_words(p, scene.light).map(f32::to_bits));
+            }
+            words
+        })
+        .collect();
+    let too_big = |what: &str, v: u64| {
+        RtlError::Generate(format!("{what} {v} does not fit the top's 16-bit register"))
+    };
+    Ok(FrameSetup {
+        width,
+        height,
+        per_unit: u32::try_from(per_unit).map_err(|_| too_big("per_unit", per_unit))?,
+        prim_count: u32::try_from(n).map_err(|_| too_big("prim_count", n))?,
+        background: to_gray8(scene.background_gray),
+        vectors: [
+            k.rays.scan_line,
+            k.rays.pixel_height,
+            k.rays.pixel_width,
+            scene.eye,
+            view_direction(scene),
+            scene.light,
+            light_direction(scene.light),
+        ],
+        words,
+    })
+}
+
 /// The testbench's input for `scene` at `width`×`height` on `pipeline`: the frame
-/// constants and the scene memory's words (read back from the scene's MIF).
+/// set-up ([`frame_setup`]) and a cycle limit.
 pub fn testbench_input(
     pipeline: &Pipeline,
     scene: &HwScene,
     width: u32,
     height: u32,
 ) -> Result<String, RtlError> {
-    let k = FrameConstants::new(scene, width, height);
+    let setup = frame_setup(pipeline, scene, width, height)?;
     let n = scene.primitives.len() as u64;
-    let units = pipeline.design.units.max(1);
-    let per_unit = cycles_per_pixel(n, units) / 3;
     let timing = frame_timing(pipeline, n, width, height, 1.0);
     let mut out = String::new();
     let hex = |v: [f32; 3]| {
@@ -208,38 +301,18 @@ pub fn testbench_input(
             v[2].to_bits()
         )
     };
-    let forward = view_direction(scene);
     writeln!(
         out,
-        "width {width}\nheight {height}\nper_unit {per_unit}\nprim_count {n}\nmax_cycles {}\nbackground {}",
+        "width {width}\nheight {height}\nper_unit {}\nprim_count {n}\nmax_cycles {}\nbackground {}",
+        setup.per_unit,
         timing.cycles * 2 + 100_000,
-        to_gray8(scene.background_gray)
+        setup.background
     )
     .ok();
-    for (name, v) in [
-        ("scan_line", k.rays.scan_line),
-        ("row_step", k.rays.pixel_height),
-        ("column_step", k.rays.pixel_width),
-        ("eye", scene.eye),
-        ("view_dir", forward),
-        ("light", scene.light),
-        ("light_dir", light_direction(scene.light)),
-    ] {
+    for (name, v) in FRAME_VECTORS.iter().zip(setup.vectors) {
         writeln!(out, "{name} {}", hex(v)).ok();
     }
-    // The memory's words as the MIF holds them (`rtprof hw mif`), read back from it.
-    let mif = hwmodel::mif::parse_mif(&hwmodel::mif::to_mif(scene))
-        .map_err(|e| RtlError::Generate(format!("the scene's MIF does not read back: {e}")))?;
-    for (i, (p, words)) in scene
-        .primitives
-        .iter()
-        .zip(mif.chunks(HwPrimitive::WORDS))
-        .enumerate()
-    {
-        let mut words = words.to_vec();
-        if pipeline.design.no_rsqrt_shading {
-            words.extend(shading_words(p, scene.light).map(f32::to_bits));
-        }
+    for (i, words) in setup.words.iter().enumerate() {
         for (field, w) in words.iter().enumerate() {
             writeln!(out, "word {i} {field} {w:08X}").ok();
         }

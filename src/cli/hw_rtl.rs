@@ -10,6 +10,7 @@ use hwmodel::library::Library;
 use rtl::generate::{self, MAX_UNITS};
 use rtl::sim::{self, SimCheck};
 use rtl::synth::{SynthComparison, SynthPlan};
+use rtl::system::SystemConfig;
 use runner::hardware_files::hardware_scene;
 use runner::scene_input::SceneInput;
 use std::path::PathBuf;
@@ -47,6 +48,11 @@ pub struct RtlArgs {
     output: PathBuf,
     #[arg(long, value_name = "WxH", value_parser = super::scene_args::parse_size, help = SIZE_HELP)]
     size: Option<(u32, u32)>,
+    /// Also write the whole system (docs/rtl-system.md): the UART scene loader, the
+    /// frame memory and the VGA controller at 640x480, 60 Hz, around the pipeline
+    /// (raycaster_system.v), and with SCENE its upload at 640x480 (scene_upload.bin).
+    #[arg(long)]
+    system: bool,
 }
 
 #[derive(clap::Args, Debug)]
@@ -85,6 +91,19 @@ pub fn rtl(args: &RtlArgs) -> Result<()> {
             .unwrap_or((tracer_scene.view.width, tracer_scene.view.height));
         written += sim::write_scene_files(&args.output, &pipeline, hw, width, height)?.len();
     }
+    let system = if args.system {
+        let config = SystemConfig::thesis(rtl.depth_bits)?;
+        let system = rtl::system::generate_system(&lib, &pipeline, config)?;
+        // The system's files hold the pipeline's again: count the new ones.
+        written += rtl::system::write(&system, &args.output)? - rtl.files.len();
+        if let Some((_, hw)) = &scene {
+            rtl::system::write_upload(&system, &pipeline, hw, &args.output)?;
+            written += 1;
+        }
+        Some(system)
+    } else {
+        None
+    };
     println!(
         "wrote {written} files to {} ({} design, scene memory of {} primitives)",
         args.output.display(),
@@ -93,6 +112,21 @@ pub fn rtl(args: &RtlArgs) -> Result<()> {
     );
     for b in &rtl.blocks {
         println!("  {:<14} {:>4} cycles", b.name, b.latency);
+    }
+    if let Some(system) = &system {
+        let t = &system.config.timing;
+        println!(
+            "system: {}.v, VGA {}x{} with VESA timing, UART {} clock cycles a bit{}",
+            rtl::system::SYSTEM_TOP,
+            t.h_visible,
+            t.v_visible,
+            system.config.clocks_per_bit,
+            if scene.is_some() {
+                format!(", the scene's upload in {}", rtl::system::UPLOAD_FILE)
+            } else {
+                String::new()
+            }
+        );
     }
     println!(
         "simulate: rtprof hw sim {}{}",
