@@ -329,7 +329,7 @@
     input.value = String(g.default ?? g.min ?? 1);
     $('generator-param-label').textContent = g.parameter ? g.parameter[0].toUpperCase() + g.parameter.slice(1) : 'Parameter';
     $('generator-range').textContent = g.range ?? '';
-    $('generator-summary').textContent = g.summary ? `Default: ${g.summary}.`.replace(/\.\.$/, '.') : '';
+    $('generator-summary').textContent = g.summary ? `${g.summary}.`.replace(/\.\.$/, '.') : '';
     updateGeneratorPreview();
   }
 
@@ -1335,8 +1335,12 @@
     img.addEventListener('mousemove', (ev) => {
       const rect = img.getBoundingClientRect();
       if (rect.width <= 0 || !img.naturalWidth) return;
-      const x = Math.floor(((ev.clientX - rect.left) / rect.width) * img.naturalWidth);
-      const y = Math.floor(((ev.clientY - rect.top) / rect.height) * img.naturalHeight);
+      // The picture inside the element's box (object-fit: contain letterboxes it).
+      const fit = Math.min(rect.width / img.naturalWidth, rect.height / img.naturalHeight);
+      const left = rect.left + (rect.width - img.naturalWidth * fit) / 2;
+      const top = rect.top + (rect.height - img.naturalHeight * fit) / 2;
+      const x = Math.floor((ev.clientX - left) / fit);
+      const y = Math.floor((ev.clientY - top) / fit);
       if (x >= 0 && y >= 0 && x < img.naturalWidth && y < img.naturalHeight) ask(x, y);
     });
   }
