@@ -262,9 +262,9 @@ async fn events(
                 return None;
             }
             if !first {
-                match tokio::time::timeout(TICK, receiver.changed()).await {
-                    Ok(Err(_)) => return None,
-                    Ok(Ok(())) | Err(_) => {}
+                // A change or a tick: either way the job is sent; a closed channel ends.
+                if let Ok(Err(_)) = tokio::time::timeout(TICK, receiver.changed()).await {
+                    return None;
                 }
             }
             let job = receiver.borrow_and_update().clone().with_text();
