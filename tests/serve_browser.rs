@@ -1,8 +1,11 @@
 //! The web app end to end in a real headless Chromium, driven over the DevTools
 //! protocol: open the page, pick balls3, select baseline and bvh, run, follow the job
 //! through its live progress (server-sent events) to the end, see both images and the
-//! difference map, open the report. Needs Debian's `chromium` (`.ci/run` installs it);
-//! `RTPROF_SCREENSHOTS=DIR` keeps a screenshot of each view there.
+//! difference map, read a figure the page shows against the report's cell for it,
+//! zoom, re-run and show two jobs side by side, open the report; the layout at 420 px
+//! (no sideways scroll), the Tab order, and a killed server noticed within 5 s. Needs
+//! Debian's `chromium` (`.ci/run` installs it); `RTPROF_SCREENSHOTS=DIR` keeps a
+//! screenshot of each view there, at 1280 and at 420 px.
 
 mod serve;
 
@@ -135,6 +138,31 @@ impl Browser {
         }
     }
 
+    /// The viewport's width (CSS pixels), as a window of that size would have it.
+    fn set_width(&mut self, width: u32) {
+        self.call(
+            "Emulation.setDeviceMetricsOverride",
+            json!({"width": width, "height": 1000, "deviceScaleFactor": 1, "mobile": false}),
+        );
+    }
+
+    /// Presses Tab once, as a keyboard does.
+    fn tab(&mut self) {
+        for kind in ["keyDown", "keyUp"] {
+            self.call(
+                "Input.dispatchKeyEvent",
+                json!({"type": kind, "key": "Tab", "code": "Tab", "windowsVirtualKeyCode": 9}),
+            );
+        }
+    }
+
+    /// The document scrolls sideways: its width past the viewport's, in CSS pixels.
+    fn overflow(&mut self) -> i64 {
+        self.eval("document.scrollingElement.scrollWidth - window.innerWidth")
+            .as_i64()
+            .unwrap()
+    }
+
     fn navigate(&mut self, url: &str) {
         self.call("Page.navigate", json!({"url": url}));
         self.wait_for(
@@ -171,14 +199,47 @@ impl Drop for Browser {
     }
 }
 
+/// The screenshot directory of `RTPROF_SCREENSHOTS`, created.
+fn screenshots() -> Option<PathBuf> {
+    let dir = std::env::var_os("RTPROF_SCREENSHOTS").map(PathBuf::from)?;
+    std::fs::create_dir_all(&dir).unwrap();
+    Some(dir)
+}
+
+/// Shows tab `name` (by a click, as a user would).
+fn show(browser: &mut Browser, name: &str) {
+    browser.eval(&format!("document.getElementById('tab-{name}').click()"));
+}
+
+const TABS: [&str; 5] = ["pick", "run", "view", "open", "gate"];
+
+/// At 420 px every tab fits the screen: no sideways scroll (one screenshot each).
+fn check_narrow(browser: &mut Browser, shots: Option<&Path>, prefix: &str) {
+    browser.set_width(420);
+    for name in TABS {
+        show(browser, name);
+        std::thread::sleep(Duration::from_millis(150));
+        let overflow = browser.overflow();
+        let wide = if overflow > 0 {
+            browser.eval("[...document.querySelectorAll('body *')].filter(e => e.getBoundingClientRect().right > window.innerWidth + 1 && e.offsetParent).slice(0, 8).map(e => e.tagName + '.' + e.className + '#' + e.id + ' ' + Math.round(e.getBoundingClientRect().right)).join(', ')")
+        } else {
+            Value::Null
+        };
+        assert!(
+            overflow <= 0,
+            "{name} at 420 px scrolls sideways by {overflow} px: {wide}"
+        );
+        browser.screenshot(shots, &format!("{prefix}-{name}-420"));
+    }
+    browser.set_width(1280);
+}
+
 #[test]
 #[ignore = "needs chromium (Debian package chromium; .ci/run installs it)"]
 fn pick_run_view_open_in_a_real_browser() {
+    let started = Instant::now();
     let data = temp_dir("serve-browser");
-    let shots: Option<PathBuf> = std::env::var_os("RTPROF_SCREENSHOTS").map(PathBuf::from);
-    if let Some(dir) = &shots {
-        std::fs::create_dir_all(dir).unwrap();
-    }
+    let shots = screenshots();
     let shots = shots.as_deref();
     let server = Served::start(&data);
     let mut browser = Browser::launch(&data.join("chromium"));
@@ -196,57 +257,79 @@ fn pick_run_view_open_in_a_real_browser() {
     );
     browser.screenshot(shots, "1-pick");
 
-    // Run: baseline (always) and bvh, with the hardware model and a profile; a small frame.
-    browser.eval("document.getElementById('tab-run').click()");
+    // Run: baseline (always) and bvh, with a profile, the hardware model and the
+    // per-pixel maps; a small frame. The estimate says what it costs before Run.
+    show(&mut browser, "run");
     browser.eval("document.querySelector('input[name=variant][value=bvh]').click()");
-    browser.eval("['profile', 'hardware'].forEach(p => document.querySelector(`input[name=part][value=${p}]`).click())");
-    browser.eval("(() => { for (const [id, v] of [['width', '96'], ['height', '72']]) { const e = document.getElementById(id); e.value = v; e.dispatchEvent(new Event('input', {bubbles: true})); } })()");
+    browser.eval("['profile', 'hardware', 'pixel_maps'].forEach(p => document.querySelector(`input[name=part][value=${p}]`).click())");
+    browser.eval("(() => { for (const [id, v] of [['width', '64'], ['height', '48']]) { const e = document.getElementById(id); e.value = v; e.dispatchEvent(new Event('input', {bubbles: true})); } })()");
     let checked = browser
         .eval("[...document.querySelectorAll('input[name=variant]:checked')].map(b => b.value)");
     assert_eq!(checked, json!(["baseline", "bvh"]));
+    let estimate = browser.wait_for(
+        "/primitives/.test(document.getElementById('estimate').textContent) && document.getElementById('estimate').textContent",
+        Duration::from_secs(30),
+    );
+    let primitives = tracer::builtin_scenes::find("balls3").unwrap().primitives as u64;
+    assert!(
+        estimate
+            .as_str()
+            .unwrap()
+            .contains(&reports::format::kind_count(primitives, "primitives")),
+        "{estimate}"
+    );
     browser.screenshot(shots, "2-run");
-    // Count the live events the page receives, and the progress it shows.
+    // The form survives a reload (localStorage).
+    browser.navigate(&server.url);
+    browser.wait_for(
+        "document.querySelector('input[name=variant][value=bvh]')?.checked && document.getElementById('width').value === '64'",
+        Duration::from_secs(30),
+    );
+    assert_eq!(
+        browser.eval("document.getElementById('chosen-scene').textContent"),
+        "balls3"
+    );
+    // Count the live events the page receives.
     browser.eval(
         "(() => { const Real = window.EventSource; window.__events = []; \
            window.EventSource = function (url) { const s = new Real(url); \
-             s.addEventListener('job', e => window.__events.push(JSON.parse(e.data).progress.fraction)); return s; }; \
-           window.EventSource.prototype = Real.prototype; window.EventSource.CLOSED = Real.CLOSED; \
-           window.__shown = []; setInterval(() => window.__shown.push(document.getElementById('job-progress').value), 20); })()",
+             s.addEventListener('job', e => window.__events.push(JSON.parse(e.data).text.progress)); return s; }; \
+           window.EventSource.prototype = Real.prototype; window.EventSource.CLOSED = Real.CLOSED; })()",
     );
-    browser.eval("document.getElementById('run-button').click()");
+    show(&mut browser, "run");
+    browser.eval("document.getElementById('run-button').focus(); document.getElementById('run-button').click()");
+    // Focus goes to the View tab, not to the page's body.
+    let focused = browser.wait_for(
+        "document.activeElement && document.activeElement.id === 'tab-view' && document.activeElement.id",
+        Duration::from_secs(30),
+    );
+    assert_eq!(focused, "tab-view");
     browser.wait_for(
-        "/done/.test(document.getElementById('job-status').textContent)",
+        "document.querySelector('#view-badge .badge')?.textContent === 'done'",
         Duration::from_secs(600),
     );
     let events = browser.eval("window.__events");
-    let fractions: Vec<f64> = events
+    let lines: Vec<&str> = events
         .as_array()
         .unwrap()
         .iter()
-        .filter_map(Value::as_f64)
+        .filter_map(Value::as_str)
         .collect();
-    assert!(
-        fractions.len() >= 3,
-        "the page got {} live events",
-        fractions.len()
+    assert!(lines.len() >= 3, "the page got {} live events", lines.len());
+    // Each stage said by name, in order.
+    let first = |what: &str| lines.iter().position(|l| l.contains(what));
+    let (scenes, profiling) = (
+        first("step 2 of 4: rendering"),
+        first("step 3 of 4: profiling"),
     );
     assert!(
-        fractions.iter().any(|f| *f > 0.0 && *f < 1.0),
-        "no progress between start and end: {fractions:?}"
-    );
-    assert_eq!(fractions.last(), Some(&1.0));
-    assert!(
-        fractions.windows(2).all(|w| w[0] <= w[1]),
-        "the progress went back: {fractions:?}"
-    );
-    let shown = browser.eval("window.__shown.filter(v => v > 0 && v < 1).length");
-    assert!(
-        shown.as_u64().unwrap() > 0,
-        "the progress bar never showed a partial value"
+        scenes.is_some() && profiling.is_some() && scenes < profiling,
+        "{lines:?}"
     );
     eprintln!(
-        "live progress: {} events, fractions {fractions:?}; the bar showed a partial value {shown} times",
-        fractions.len()
+        "live progress: {} events, e.g. {:?}",
+        lines.len(),
+        lines.get(lines.len() / 2)
     );
 
     // View: both images and the difference map, loaded (decoded, not broken).
@@ -259,43 +342,195 @@ fn pick_run_view_open_in_a_real_browser() {
         &format!("({loaded})('img.heat-map') >= 1"),
         Duration::from_secs(30),
     );
-    let captions = browser.eval("[...document.querySelectorAll('figure.variant-image')].map(f => f.textContent).join(' | ')");
-    let captions = captions.as_str().unwrap();
-    assert!(
-        captions.contains("baseline") && captions.contains("bvh"),
-        "{captions}"
-    );
     let sizes = browser.eval("[...document.querySelectorAll('figure.variant-image img')].map(i => [i.naturalWidth, i.naturalHeight])");
-    assert_eq!(sizes, json!([[96, 72], [96, 72]]));
-    // The counts table has the eye rays of a 96 x 72 frame for both variants.
-    let rays = browser.eval("[...document.querySelectorAll('#counts-table tr')].find(r => r.textContent.includes('rays.primary'))?.textContent");
-    assert!(
-        rays.as_str().unwrap_or_default().matches("6,912").count() == 2,
+    assert_eq!(sizes, json!([[64, 48], [64, 48]]));
+    // The counts table has the eye rays of a 64 x 48 frame for both variants.
+    let rays = browser.eval("[...document.querySelectorAll('.counts-table tr')].find(r => r.textContent.includes('rays.primary'))?.textContent");
+    assert_eq!(
+        rays.as_str().unwrap_or_default().matches("3,072").count(),
+        2,
         "{rays}"
     );
+    // bvh's node visits are its own work: not coloured as a cost.
+    let visits = browser.eval("[...document.querySelectorAll('.counts-table tr')].filter(r => /bvh|node/.test(r.cells[0].textContent)).map(r => r.cells[2].className)");
+    assert!(
+        visits
+            .as_array()
+            .unwrap()
+            .iter()
+            .all(|c| !c.as_str().unwrap().contains("tone-more")),
+        "{visits}"
+    );
+    // Hovering a pixel reads the per-pixel maps there.
+    browser.eval("(() => { const img = document.querySelector('figure.variant-image img'); const r = img.getBoundingClientRect(); img.dispatchEvent(new MouseEvent('mousemove', {clientX: r.left + r.width / 2, clientY: r.top + r.height / 2, bubbles: true})); })()");
+    let readout = browser.wait_for(
+        "document.querySelector('.pixel-readout')?.textContent",
+        Duration::from_secs(30),
+    );
+    // The middle of the 64 x 48 picture (its border may shift it by one).
+    let readout = readout.as_str().unwrap();
+    assert!(
+        ["pixel (31, 23)", "pixel (32, 24)"]
+            .iter()
+            .any(|p| readout.contains(p)),
+        "{readout}"
+    );
+    // Both variants' maps, with bvh's node visits, read from the NumPy arrays.
+    assert!(readout.contains("accel.nodes_visited"), "{readout}");
+    // The page formats no number: what it shows of bvh and baseline is the report's cell.
+    let page_speedup = browser.eval("document.querySelectorAll('figure.variant-image')[1].querySelector('.speedup').textContent.replace(' vs baseline', '')");
+    let page_median = browser.eval("document.querySelectorAll('figure.variant-image')[0].querySelector('.median').textContent.replace('median ', '')");
     browser.screenshot(shots, "3-view");
+    // The zoom viewer.
+    browser.eval("document.querySelector('figure.variant-image .image-button').click()");
+    browser.wait_for(
+        "document.getElementById('viewer').open",
+        Duration::from_secs(10),
+    );
+    browser.eval("document.getElementById('viewer-in').click(); document.getElementById('viewer-in').click()");
+    let zoomed = browser.eval("document.getElementById('viewer-image').style.transform");
+    assert!(
+        zoomed.as_str().unwrap().contains("scale(1.5625)"),
+        "{zoomed}"
+    );
+    browser.screenshot(shots, "3-view-zoom");
+    browser.eval("document.getElementById('viewer-close').click()");
+
+    // Run again: a second job of the same request, then both side by side.
+    browser.eval("document.getElementById('rerun-button').click()");
+    browser.wait_for(
+        "document.getElementById('view-title').textContent === 'Job #2' && document.querySelector('#view-badge .badge')?.textContent === 'done'",
+        Duration::from_secs(600),
+    );
+    browser.eval("(() => { const s = document.getElementById('beside-select'); s.value = '1'; s.dispatchEvent(new Event('change', {bubbles: true})); })()");
+    let sides = browser.wait_for(
+        "document.querySelectorAll('.side-by-side .side').length === 2 && [...document.querySelectorAll('.side-title')].map(h => h.textContent)",
+        Duration::from_secs(30),
+    );
+    assert_eq!(sides, json!(["Job #2", "Job #1"]));
+    browser.screenshot(shots, "3-view-side-by-side");
+    check_narrow(&mut browser, shots, "3-view-side-by-side");
+    browser.eval("(() => { const s = document.getElementById('beside-select'); s.value = ''; s.dispatchEvent(new Event('change', {bubbles: true})); })()");
 
     // Open: the report in the browser.
-    browser.eval("document.getElementById('tab-open').click()");
+    browser.eval("document.querySelector('#history-list .job-row[data-id=\"1\"]').click()");
+    show(&mut browser, "open");
     browser.screenshot(shots, "4-open");
     let href = browser.eval("document.getElementById('open-report').href");
     let href = href.as_str().unwrap().to_string();
-    assert!(href.ends_with("/files/report.html"), "{href}");
-    // The gate of the run against itself, as the page shows it.
-    browser.eval("document.getElementById('tab-gate').click()");
-    browser.eval("(() => { for (const id of ['gate-old', 'gate-new']) { const s = document.getElementById(id); s.value = s.options[s.options.length - 1].value; s.dispatchEvent(new Event('change', {bubbles: true})); } document.getElementById('gate-button').click(); })()");
+    assert!(href.ends_with("/jobs/1/files/report.html"), "{href}");
+    // The gate of the two runs, as the page shows it.
+    show(&mut browser, "gate");
+    browser.eval("document.getElementById('gate-button').click()");
     browser.wait_for(
-        "/passed/i.test(document.getElementById('gate-output').textContent)",
+        "/passed|failed/i.test(document.getElementById('gate-output').textContent)",
         Duration::from_secs(30),
     );
     browser.screenshot(shots, "5-gate");
+    check_narrow(&mut browser, shots, "6");
+
     browser.navigate(&href);
-    let text = browser.wait_for(
-        "document.body && document.body.innerText.includes('balls3') && document.body.innerText",
+    // The report's cells for bvh and baseline on balls3: the speed-up matrix.
+    let cell = |column: &str| {
+        format!(
+            "(() => {{ for (const t of document.querySelectorAll('table')) {{ \
+               const heads = [...t.querySelectorAll('thead th')].map(th => th.childNodes[0]?.textContent.trim()); \
+               const col = heads.indexOf('{column}'); if (col < 0 || heads[0] !== 'scene') continue; \
+               for (const tr of t.querySelectorAll('tbody tr')) {{ const c = [...tr.children]; \
+                 if (c.length === heads.length && c[0].childNodes[0]?.textContent.trim() === 'balls3') \
+                   return c[col].childNodes[0].textContent.trim(); }} }} return null; }})()"
+        )
+    };
+    let report_speedup = browser.wait_for(&cell("bvh"), Duration::from_secs(30));
+    let report_median = browser.eval(&cell("baseline"));
+    eprintln!(
+        "page: bvh {page_speedup}, baseline {page_median}; report: bvh {report_speedup}, baseline {report_median}"
+    );
+    assert_eq!(page_speedup, report_speedup);
+    assert_eq!(page_median, report_median);
+    let title = browser.eval("document.title");
+    assert_eq!(
+        title, "rtprof report: balls3",
+        "titled by its scene, not the host"
+    );
+    browser.screenshot(shots, "7-report");
+    drop(browser);
+    drop(server);
+    std::fs::remove_dir_all(&data).unwrap();
+    eprintln!(
+        "the browser test took {:.0} s",
+        started.elapsed().as_secs_f64()
+    );
+}
+
+#[test]
+#[ignore = "needs chromium (Debian package chromium; .ci/run installs it)"]
+fn the_keyboard_reaches_pick_before_history_and_gate_by_tab() {
+    let data = temp_dir("serve-browser-keys");
+    let server = Served::start(&data);
+    // One finished job, so that History has a row to reach.
+    let id = server.submit(json!({"scene": "balls1", "size": [8, 6], "threads": 1}));
+    server.wait_until(&id, Duration::from_secs(300), |j| j["status"] == "done");
+    let mut browser = Browser::launch(&data.join("chromium"));
+    browser.navigate(&server.url);
+    browser.wait_for(
+        "document.querySelector('#history-list .job-row')",
         Duration::from_secs(30),
     );
-    assert!(text.as_str().unwrap().contains("bvh"));
-    browser.screenshot(shots, "6-report");
+    let mut order = Vec::new();
+    for _ in 0..60 {
+        browser.tab();
+        let at = browser.eval(
+            "(e => e.id || (e.classList.contains('job-row') ? 'job-row' : e.tagName))(document.activeElement)",
+        );
+        order.push(at.as_str().unwrap_or_default().to_string());
+    }
+    let position = |what: &str| order.iter().position(|x| x == what);
+    let (pick, gate, history) = (
+        position("tab-pick"),
+        position("tab-gate"),
+        position("job-row"),
+    );
+    eprintln!("Tab order: {order:?}");
+    assert!(pick.is_some() && history.is_some(), "{order:?}");
+    assert!(pick < history, "Pick after History: {order:?}");
+    assert!(gate.is_some(), "Gate is not on the Tab path: {order:?}");
+    drop(browser);
+    drop(server);
+    std::fs::remove_dir_all(&data).unwrap();
+}
+
+#[test]
+#[ignore = "needs chromium (Debian package chromium; .ci/run installs it)"]
+fn a_killed_server_shows_a_banner_within_5_s() {
+    let data = temp_dir("serve-browser-killed");
+    let shots = screenshots();
+    let mut server = Served::start(&data);
+    let mut browser = Browser::launch(&data.join("chromium"));
+    browser.navigate(&server.url);
+    browser.wait_for(
+        "document.querySelectorAll('#scene option').length > 1",
+        Duration::from_secs(30),
+    );
+    check_narrow(&mut browser, shots.as_deref(), "0-empty");
+    assert_eq!(
+        browser.eval("document.getElementById('lost-banner').hidden"),
+        true
+    );
+    server.child.kill().unwrap();
+    server.child.wait().unwrap();
+    let killed = Instant::now();
+    browser.wait_for(
+        "!document.getElementById('lost-banner').hidden",
+        Duration::from_secs(5),
+    );
+    let noticed = killed.elapsed();
+    eprintln!(
+        "a killed server: the banner after {:.1} s",
+        noticed.as_secs_f64()
+    );
+    assert!(noticed < Duration::from_secs(5));
+    browser.screenshot(shots.as_deref(), "8-server-lost");
     drop(browser);
     drop(server);
     std::fs::remove_dir_all(&data).unwrap();

@@ -27,6 +27,12 @@ fn a_killed_server_restarts_with_its_history_and_the_interrupted_job_marked() {
         j["progress"]["stage"] == "scenes"
     });
     drop(first); // SIGKILL: no chance to clean up.
+    let killed_at = std::time::SystemTime::now()
+        .duration_since(std::time::UNIX_EPOCH)
+        .unwrap()
+        .as_secs();
+    // The server stays down a while: that time is not the job's.
+    std::thread::sleep(Duration::from_secs(3));
     let dir = data.join("jobs").join(&killed);
     let saved: Value =
         serde_json::from_slice(&std::fs::read(dir.join("job.json")).unwrap()).unwrap();
@@ -48,6 +54,15 @@ fn a_killed_server_restarts_with_its_history_and_the_interrupted_job_marked() {
     let interrupted = find(&killed);
     assert_eq!(interrupted["status"], "interrupted", "{interrupted}");
     assert!(interrupted["finished"].is_string());
+    // It ended at its last written file, before the kill, not at the restart.
+    let (started, finished) = (
+        interrupted["started_unix"].as_u64().unwrap(),
+        interrupted["finished_unix"].as_u64().unwrap(),
+    );
+    assert!(
+        started <= finished && finished <= killed_at,
+        "{started} {finished} {killed_at}"
+    );
     // Its staged outputs are kept under partial/, with no results.json.
     let files = serve::files(&interrupted);
     assert!(files.iter().all(|f| f.starts_with("partial/")), "{files:?}");

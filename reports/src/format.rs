@@ -326,6 +326,52 @@ pub fn join_list(items: &[String]) -> String {
     }
 }
 
+/// A number with at most three significant digits and no trailing zeros: "15",
+/// "0.5", "2.35" (a band's edge, a threshold).
+pub fn trimmed(v: f64) -> String {
+    let text = significant(v);
+    if text.contains('.') {
+        text.trim_end_matches('0').trim_end_matches('.').to_string()
+    } else {
+        text
+    }
+}
+
+/// An elapsed time in whole seconds, as a clock reads it: "42 s", "3 min 05 s",
+/// "1 h 02 min".
+pub fn elapsed(seconds: u64) -> String {
+    let (h, m, s) = (seconds / 3600, seconds / 60 % 60, seconds % 60);
+    if h > 0 {
+        format!("{h} h {m:02} min")
+    } else if m > 0 {
+        format!("{m} min {s:02} s")
+    } else {
+        format!("{s} s")
+    }
+}
+
+/// A guess of a duration, shown as one: "about 40 s", "about 2 min", "about 3 h".
+pub fn rough_duration(seconds: f64) -> String {
+    if !seconds.is_finite() || seconds < 0.0 {
+        DASH.to_string()
+    } else if seconds < 90.0 {
+        format!("about {:.0} s", seconds)
+    } else if seconds < 90.0 * 60.0 {
+        format!("about {:.0} min", seconds / 60.0)
+    } else {
+        format!("about {:.0} h", seconds / 3600.0)
+    }
+}
+
+/// An RFC 3339 UTC time as a reader scans it: "2026-11-27 20:11:25 UTC" (the text as
+/// is when it is not of that form).
+pub fn timestamp(rfc3339: &str) -> String {
+    match rfc3339.strip_suffix('Z').and_then(|t| t.split_once('T')) {
+        Some((date, time)) => format!("{date} {} UTC", time.split('.').next().unwrap_or(time)),
+        None => rfc3339.to_string(),
+    }
+}
+
 /// A PDF's length: "report.pdf: 48 pages, of which the main body (answers and
 /// chapters) 16".
 pub fn pdf_pages(total: usize, main_body: usize) -> String {
@@ -339,6 +385,22 @@ pub fn pdf_pages(total: usize, main_body: usize) -> String {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn page_helpers_write_clocks_guesses_and_edges() {
+        assert_eq!(trimmed(15.0), "15");
+        assert_eq!(trimmed(0.5), "0.5");
+        assert_eq!(trimmed(2.345), "2.35");
+        assert_eq!(trimmed(1234.0), "1234");
+        assert_eq!(elapsed(42), "42 s");
+        assert_eq!(elapsed(185), "3 min 05 s");
+        assert_eq!(elapsed(3720), "1 h 02 min");
+        assert_eq!(rough_duration(40.2), "about 40 s");
+        assert_eq!(rough_duration(125.0), "about 2 min");
+        assert_eq!(rough_duration(3.0 * 3600.0), "about 3 h");
+        assert_eq!(timestamp("2026-11-27T20:11:25Z"), "2026-11-27 20:11:25 UTC");
+        assert_eq!(timestamp("not a time"), "not a time");
+    }
 
     #[test]
     fn counts_group_thousands_with_commas() {

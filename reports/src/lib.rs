@@ -29,6 +29,7 @@ pub mod gallery;
 pub mod gate_text;
 pub mod html;
 pub mod npy;
+pub mod page_values;
 pub mod pdf;
 pub mod pixel_maps;
 mod print;

@@ -39,7 +39,7 @@ impl BruteForceEstimate {
                 "note: brute force over {} primitives at {}: {}; --variant bvh is usually far faster",
                 reports::format::count(self.primitives as u64),
                 reports::format::size(self.width, self.height),
-                rough_duration(self.seconds)
+                reports::format::rough_duration(self.seconds)
             )
         })
     }
@@ -118,17 +118,6 @@ pub fn note_if_slow(
     Ok(())
 }
 
-/// "about 40 s", "about 2 min", "about 3 h": a guess shown as one.
-fn rough_duration(seconds: f64) -> String {
-    if seconds < 90.0 {
-        format!("about {:.0} s", seconds)
-    } else if seconds < 90.0 * 60.0 {
-        format!("about {:.0} min", seconds / 60.0)
-    } else {
-        format!("about {:.0} h", seconds / 3600.0)
-    }
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -168,8 +157,8 @@ mod tests {
         );
         let quick = BruteForceEstimate { seconds: 4.9, ..e };
         assert_eq!(quick.note(), None);
-        assert_eq!(rough_duration(30.4), "about 30 s");
-        assert_eq!(rough_duration(3.0 * 3600.0), "about 3 h");
+        assert_eq!(reports::format::rough_duration(30.4), "about 30 s");
+        assert_eq!(reports::format::rough_duration(3.0 * 3600.0), "about 3 h");
     }
 
     #[test]

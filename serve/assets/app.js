@@ -1,6 +1,8 @@
 // rtprof serve: the page's script. Vanilla ES2020, no dependencies, no network
 // reference outside this server. Every piece of data is inserted as text
-// (textContent / createElement), never as HTML.
+// (textContent / createElement), never as HTML. It formats no number: every figure
+// comes from the API already written by the reports' formatter (reports::format),
+// so the page and the report cannot write one value two ways.
 'use strict';
 
 (() => {
@@ -10,11 +12,10 @@
   const ACTIVE = new Set(['queued', 'running']);
   const TABS = ['pick', 'run', 'view', 'open', 'gate'];
   const GROUPS = [['builtin', 'built-in'], ['uploaded', 'uploaded']];
-  const POLL_MS = 4000;
-  const COMPARE_WIDTH = 640; // target on-screen width of the comparison slider
+  const POLL_MS = 2000; // also how soon a lost server is noticed without a live job
+  const FORM_KEY = 'rtprof-form';
 
   const token = document.querySelector('meta[name="rtprof-token"]')?.getAttribute('content') ?? '';
-  const intFormat = new Intl.NumberFormat('en-US', { maximumFractionDigits: 0 });
 
   const state = {
     catalog: null, // GET /api/scenes
@@ -23,7 +24,9 @@
     jobs: [], // newest first
     selectedId: null,
     follow: null, // { id, source } the EventSource of the followed job
-    results: new Map(), // job id -> results.json (finished jobs do not change)
+    values: new Map(), // job id -> GET /api/jobs/ID/values (finished jobs do not change)
+    besideId: null, // a second finished job shown beside the selected one
+    lost: false, // the server does not answer
     viewKey: null, // what the results area shows: `${id}:${status}`
     tab: 'pick',
     refreshing: null,
@@ -58,62 +61,6 @@
 
   const isNum = (x) => typeof x === 'number' && Number.isFinite(x);
 
-  function fmtInt(n) {
-    return isNum(n) ? intFormat.format(n) : '—';
-  }
-
-  function fmtFixed(x, digits) {
-    if (!isNum(x)) return '—';
-    return new Intl.NumberFormat('en-US', {
-      minimumFractionDigits: digits,
-      maximumFractionDigits: digits,
-    }).format(x);
-  }
-
-  /** Seconds as milliseconds, with precision that suits the size. */
-  function fmtMs(seconds) {
-    if (!isNum(seconds)) return '—';
-    const ms = seconds * 1000;
-    const digits = ms < 1 ? 3 : ms < 10 ? 2 : ms < 100 ? 1 : 0;
-    return `${fmtFixed(ms, digits)} ms`;
-  }
-
-  function fmtSeconds(seconds) {
-    if (!isNum(seconds)) return '—';
-    return fmtFixed(seconds, seconds < 0.1 ? 4 : 3);
-  }
-
-  function fmtSpeedup(x) {
-    return isNum(x) ? `${fmtFixed(x, 2)}×` : '—';
-  }
-
-  function fmtMean(x) {
-    if (!isNum(x)) return '—';
-    return fmtFixed(x, Math.abs(x) >= 100 ? 1 : 2);
-  }
-
-  function fmtTime(iso) {
-    if (!iso) return '—';
-    const d = new Date(iso);
-    if (Number.isNaN(d.getTime())) return String(iso);
-    const now = new Date();
-    const sameDay = d.toDateString() === now.toDateString();
-    return sameDay
-      ? d.toLocaleTimeString(undefined, { hour: '2-digit', minute: '2-digit', second: '2-digit' })
-      : d.toLocaleString(undefined, { year: 'numeric', month: 'short', day: 'numeric', hour: '2-digit', minute: '2-digit' });
-  }
-
-  function fmtDuration(fromIso, toIso) {
-    const a = Date.parse(fromIso);
-    const b = toIso ? Date.parse(toIso) : Date.now();
-    if (!Number.isFinite(a) || !Number.isFinite(b) || b < a) return null;
-    const s = Math.round((b - a) / 1000);
-    if (s < 60) return `${s} s`;
-    const m = Math.floor(s / 60);
-    if (m < 60) return `${m} min ${s % 60} s`;
-    return `${Math.floor(m / 60)} h ${m % 60} min`;
-  }
-
   /** The URL of a job's file; each path segment is encoded. */
   function fileUrl(jobId, path) {
     const segments = String(path).split('/').filter((s) => s !== '' && s !== '.' && s !== '..');
@@ -125,49 +72,18 @@
     return `${String(dir).replace(/\/+$/, '')}/${name}`;
   }
 
-  /** The band's name and RMS range, as GET /api/scenes gives them (the thesis's table 2). */
-  function bandInfo(band) {
-    return (state.catalog?.bands ?? []).find((b) => b.key === band) ?? null;
-  }
-
-  function bandName(band) {
-    return bandInfo(band)?.name ?? String(band).replace(/_/g, ' ');
-  }
-
-  function bandTitle(band) {
-    const bands = state.catalog?.bands ?? [];
-    const i = bands.findIndex((b) => b.key === band);
-    if (i < 0) return `RMS band: ${bandName(band)}`;
-    const low = i === 0 ? 0 : bands[i - 1].upper_edge;
-    const high = bands[i].upper_edge;
-    const range = high == null ? `RMS ≥ ${low}` : `${low} ≤ RMS < ${high}`;
-    return `RMS band: ${bands[i].name} (${range}; thesis table 2)`;
-  }
-
+  /** A band chip from the API's band values (name, key, thesis range as title). */
   function bandChip(band) {
     if (!band) return null;
-    return el('span', { class: `band band-${cssPart(band)}`, title: bandTitle(band) },
-      bandName(band));
+    return el('span', { class: `band band-${cssPart(band.key)}`, title: band.title }, band.name);
   }
 
   function statusBadge(status) {
     return el('span', { class: `badge status-${cssPart(status)}` }, String(status ?? 'unknown'));
   }
 
-  function jobScene(job) {
-    const req = job?.request ?? {};
-    const run = Array.isArray(req.run) ? req.run : [];
-    if (run.includes('suite')) return 'quick suite';
-    return req.scene ?? '—';
-  }
-
-  function jobVariants(job) {
-    const req = job?.request ?? {};
-    const run = Array.isArray(req.run) ? req.run : [];
-    if (run.includes('suite')) return 'all variants';
-    const v = Array.isArray(req.variants) ? req.variants : [];
-    return v.length ? v.join(', ') : 'baseline';
-  }
+  const jobScene = (job) => job?.text?.scene ?? job?.request?.scene ?? '';
+  const jobVariants = (job) => job?.text?.variants ?? '';
 
   function jobById(id) {
     return state.jobs.find((j) => j.id === id) ?? null;
@@ -207,6 +123,7 @@
     } catch (err) {
       throw new ApiError(`cannot reach the rtprof server (${err.message})`, 0, null);
     }
+    serverBack();
     const text = await response.text();
     let data = null;
     if (text) {
@@ -235,7 +152,10 @@
     box.replaceChildren();
   }
 
-  /** Shows a message in the status area; errors stay until dismissed. */
+  /**
+   * Shows a message in the status area, a fixed strip that moves nothing on the page;
+   * a newer message replaces an older one. Errors stay until dismissed.
+   */
   function showMessage(text, kind = 'error') {
     const box = $('message');
     box.className = `message message-${kind}`;
@@ -249,9 +169,33 @@
   }
 
   function reportError(err, context) {
+    if (err instanceof ApiError && err.status === 0) {
+      serverLost();
+      return;
+    }
     const text = err instanceof Error ? err.message : String(err);
     showMessage(context ? `${context}: ${text}` : text, 'error');
     if (!(err instanceof ApiError)) console.error(err);
+  }
+
+  /** The server stopped answering: say so, stop the clocks, keep trying. */
+  function serverLost() {
+    if (state.lost) return;
+    state.lost = true;
+    stopFollowing();
+    const banner = $('lost-banner');
+    banner.hidden = false;
+    document.body.classList.add('server-lost');
+  }
+
+  /** It answers again: the banner goes, the jobs are read again. */
+  function serverBack() {
+    if (!state.lost) return;
+    state.lost = false;
+    $('lost-banner').hidden = true;
+    document.body.classList.remove('server-lost');
+    state.viewKey = null;
+    refreshJobs().catch(() => {});
   }
 
   // ---------------------------------------------------------------- tabs
@@ -263,7 +207,8 @@
       const on = t === name;
       const button = $(`tab-${t}`);
       button.setAttribute('aria-selected', String(on));
-      button.tabIndex = on ? 0 : -1;
+      // Every tab is on the Tab path (Gate too), arrows move between them as well.
+      button.tabIndex = 0;
       $(`panel-${t}`).hidden = !on;
       if (on && focus) button.focus();
     }
@@ -320,14 +265,7 @@
     }
   }
 
-  function sceneLabel(s) {
-    const bits = [s.id];
-    const extra = [];
-    if (s.family) extra.push(s.family);
-    if (isNum(s.primitives)) extra.push(`${fmtInt(s.primitives)} primitive${s.primitives === 1 ? '' : 's'}`);
-    if (extra.length) bits.push(`(${extra.join(', ')})`);
-    return bits.join(' ');
-  }
+  const sceneLabel = (s) => s.label ?? s.id;
 
   function renderSceneSelect() {
     const select = $('scene');
@@ -367,6 +305,7 @@
     $('run-scene').textContent = id ?? 'none';
     const select = $('scene');
     if ([...select.options].some((o) => o.value === id)) select.value = id;
+    updateEstimate();
   }
 
   function currentGenerator() {
@@ -389,8 +328,8 @@
     if (isNum(g.max)) input.max = String(g.max); else input.removeAttribute('max');
     input.value = String(g.default ?? g.min ?? 1);
     $('generator-param-label').textContent = g.parameter ? g.parameter[0].toUpperCase() + g.parameter.slice(1) : 'Parameter';
-    $('generator-range').textContent = `${g.parameter ?? 'parameter'} ${g.min}–${g.max}, default ${g.default}.`;
-    $('generator-summary').textContent = g.summary ? `Default: ${g.summary}.`.replace(/\.\.$/, '.') : '';
+    $('generator-range').textContent = g.range ?? '';
+    $('generator-summary').textContent = g.summary ? `${g.summary}.`.replace(/\.\.$/, '.') : '';
     updateGeneratorPreview();
   }
 
@@ -408,7 +347,7 @@
     const raw = $('generator-param').value.trim();
     const n = Number(raw);
     if (raw === '' || !Number.isInteger(n) || (isNum(g.min) && n < g.min) || (isNum(g.max) && n > g.max)) {
-      showMessage(`${g.label ?? g.prefix}: the ${g.parameter ?? 'parameter'} must be a whole number from ${g.min} to ${g.max}.`);
+      showMessage(`${g.label ?? g.prefix}: the ${g.parameter ?? 'parameter'} must be a whole number in the range ${g.range ?? ''}`);
       return;
     }
     const id = `${g.prefix}:${n}`;
@@ -417,6 +356,8 @@
     renderSceneSelect();
     chooseScene(id);
     showMessage(`Scene ${id} chosen.`, 'info');
+    saveForm();
+    updateEstimate();
   }
 
   function defaultUploadName(fileName) {
@@ -439,11 +380,6 @@
       showUploadError('Choose an NFF file first.');
       return;
     }
-    const max = state.catalog?.limits?.max_upload_bytes;
-    if (isNum(max) && file.size > max) {
-      showUploadError(`The file has ${fmtInt(file.size)} bytes; the limit is ${fmtInt(max)}.`);
-      return;
-    }
     const name = $('upload-name').value.trim() || defaultUploadName(file.name);
     const button = $('upload-button');
     button.disabled = true;
@@ -458,8 +394,7 @@
       if (scene?.id) chooseScene(scene.id);
       $('upload-form').reset();
       updateUploadPlaceholder();
-      const prims = isNum(scene?.primitives) ? `, ${fmtInt(scene.primitives)} primitives` : '';
-      showMessage(`Uploaded ${scene?.id ?? name}${prims}; it is now the chosen scene.`, 'info');
+      showMessage(`Uploaded ${scene?.label ?? name}; it is now the chosen scene.`, 'info');
     } catch (err) {
       if (err instanceof ApiError && [400, 413, 422].includes(err.status)) {
         const line = isNum(err.body?.line) && !String(err.message).includes(`:${err.body.line}`)
@@ -543,21 +478,9 @@
     for (const id of ['width', 'height']) {
       if (isNum(limits.max_side)) $(id).max = String(limits.max_side);
     }
-    const bits = ['Leave threads empty to use every core.'];
-    const size = [];
-    if (isNum(limits.max_side)) size.push(`each side at most ${fmtInt(limits.max_side)} pixels`);
-    if (isNum(limits.max_pixels)) size.push(`at most ${fmtInt(limits.max_pixels)} pixels in all`);
-    if (size.length) bits.push(`Image size: ${size.join(', ')}.`);
-    $('size-hint').textContent = bits.join(' ');
-    if (isNum(limits.max_upload_bytes)) {
-      $('upload-limit').textContent = `Up to ${fmtSize(limits.max_upload_bytes)}.`;
-    }
-  }
-
-  function fmtSize(bytes) {
-    if (bytes >= 1 << 20) return `${fmtFixed(bytes / (1 << 20), 0)} MiB`;
-    if (bytes >= 1 << 10) return `${fmtFixed(bytes / (1 << 10), 0)} KiB`;
-    return `${fmtInt(bytes)} bytes`;
+    if (isNum(limits.max_threads)) $('threads').max = String(limits.max_threads);
+    $('size-hint').textContent = limits.size_text ?? '';
+    $('upload-limit').textContent = limits.upload_text ?? '';
   }
 
   function readPositiveInt(id, label) {
@@ -578,13 +501,6 @@
       .map((b) => b.value).filter((v) => v !== 'baseline')];
     const width = readPositiveInt('width', 'The width');
     const height = readPositiveInt('height', 'The height');
-    const limits = state.catalog?.limits ?? {};
-    if (isNum(limits.max_side) && (width > limits.max_side || height > limits.max_side)) {
-      throw new Error(`A side can be at most ${fmtInt(limits.max_side)} pixels.`);
-    }
-    if (isNum(limits.max_pixels) && width * height > limits.max_pixels) {
-      throw new Error(`${fmtInt(width)} × ${fmtInt(height)} is more than ${fmtInt(limits.max_pixels)} pixels.`);
-    }
     const body = { scene, variants, size: [width, height], run };
     if ($('threads').value.trim() !== '') body.threads = readPositiveInt('threads', 'Threads');
     return body;
@@ -598,24 +514,110 @@
       showMessage(err.message);
       return;
     }
+    saveForm();
     const button = $('run-button');
     button.disabled = true;
     button.textContent = 'Starting…';
+    try {
+      await submit(body);
+    } finally {
+      button.disabled = false;
+      button.textContent = 'Run';
+    }
+  }
+
+  /** Queues a job and shows it in View, the View tab focused (not the page's body). */
+  async function submit(body) {
     try {
       const job = await api('POST', '/api/jobs', { body });
       if (job?.id == null) throw new Error('the server did not return a job');
       upsertJob(job);
       renderHistory();
       renderGateSelects();
-      selectJob(job.id, { tab: 'view' });
+      selectJob(job.id, { tab: 'view', focus: true });
       showMessage(`Job #${job.id} started (${jobScene(job)}).`, 'info');
       refreshJobs().catch(() => {});
     } catch (err) {
       reportError(err, 'Run');
-    } finally {
-      button.disabled = false;
-      button.textContent = 'Run';
     }
+  }
+
+  // ---------------------------------------------------------------- the form, kept
+
+  /** The Run form in localStorage, so that a reload keeps it. */
+  function saveForm() {
+    const form = {
+      scene: state.chosenScene,
+      generated: state.generated,
+      variants: [...document.querySelectorAll('input[name="variant"]:checked')].map((b) => b.value),
+      parts: [...document.querySelectorAll('input[name="part"]:checked')].map((b) => b.value),
+      width: $('width').value,
+      height: $('height').value,
+      threads: $('threads').value,
+    };
+    try {
+      localStorage.setItem(FORM_KEY, JSON.stringify(form));
+    } catch (_) {
+      // Storage refused (private mode): the form is simply not kept.
+    }
+  }
+
+  function restoreForm() {
+    let form;
+    try {
+      form = JSON.parse(localStorage.getItem(FORM_KEY) ?? 'null');
+    } catch (_) {
+      form = null;
+    }
+    if (!form || typeof form !== 'object') return;
+    if (Array.isArray(form.generated)) state.generated = form.generated.filter((g) => typeof g === 'string');
+    for (const id of ['width', 'height', 'threads']) {
+      if (typeof form[id] === 'string') $(id).value = form[id];
+    }
+    if (Array.isArray(form.variants)) {
+      for (const box of document.querySelectorAll('input[name="variant"]')) {
+        if (box.value !== 'baseline') box.checked = form.variants.includes(box.value);
+      }
+    }
+    if (Array.isArray(form.parts)) {
+      for (const box of document.querySelectorAll('input[name="part"]')) box.checked = form.parts.includes(box.value);
+      onPartsChange();
+    }
+    if (typeof form.scene === 'string' && form.scene) {
+      renderSceneSelect();
+      chooseScene(form.scene);
+    }
+  }
+
+  // ---------------------------------------------------------------- the estimate
+
+  let estimateTimer = null;
+  let estimateAsked = 0;
+
+  /** Asks the server what the chosen scene and size would cost (after a pause in typing). */
+  function updateEstimate() {
+    clearTimeout(estimateTimer);
+    estimateTimer = setTimeout(async () => {
+      const box = $('estimate');
+      const scene = state.chosenScene;
+      const width = $('width').value.trim();
+      const height = $('height').value.trim();
+      const threads = $('threads').value.trim();
+      if (!scene || !width || !height) {
+        box.textContent = '';
+        return;
+      }
+      const asked = ++estimateAsked;
+      const query = new URLSearchParams({ scene, width, height });
+      if (threads) query.set('threads', threads);
+      box.textContent = 'Estimating…';
+      try {
+        const estimate = await api('GET', `/api/estimate?${query}`);
+        if (asked === estimateAsked) box.textContent = `Before you run: ${estimate?.text ?? ''}.`;
+      } catch (err) {
+        if (asked === estimateAsked) box.textContent = err.status === 0 ? '' : `No estimate: ${err.message}`;
+      }
+    }, 300);
   }
 
   // ---------------------------------------------------------------- History
@@ -650,7 +652,11 @@
           // While a job is followed, its events are newer than any list that crossed them.
           const followed = state.follow ? jobById(state.follow.id) : null;
           state.jobs = jobs.map((j) => (followed && j.id === followed.id && !FINAL.has(j.status) ? followed : j));
-          renderHistory();
+          const signature = JSON.stringify(state.jobs.map((j) => [j.id, j.status, j.text?.elapsed]));
+          if (signature !== state.historySignature) {
+            state.historySignature = signature;
+            renderHistory();
+          }
           renderGateSelects();
           const selected = jobById(state.selectedId);
           if (selected && !(state.follow && state.follow.id === selected.id)) updateView(selected);
@@ -671,7 +677,6 @@
     }
     list.replaceChildren(...state.jobs.map((job) => {
       const selected = job.id === state.selectedId;
-      const fraction = job.progress?.fraction;
       const row = el('button', {
         type: 'button',
         class: `job-row${selected ? ' selected' : ''}`,
@@ -685,14 +690,8 @@
         statusBadge(job.status)),
       el('span', { class: 'job-variants' }, jobVariants(job)),
       el('span', { class: 'job-row-bottom' },
-        el('time', { class: 'job-created', datetime: job.created ?? null, title: job.created ?? null }, fmtTime(job.created)),
-        ACTIVE.has(job.status) && isNum(fraction)
-          ? el('span', { class: 'job-fraction' }, `${Math.round(fraction * 100)} %`)
-          : null),
-      ACTIVE.has(job.status)
-        ? el('span', { class: 'job-mini-progress', 'aria-hidden': 'true' },
-          el('span', { style: { width: `${Math.round((isNum(fraction) ? fraction : 0) * 100)}%` } }))
-        : null);
+        el('time', { class: 'job-created', datetime: job.created ?? null }, job.text?.created ?? ''),
+        job.text?.elapsed ? el('span', { class: 'job-fraction' }, job.text.elapsed) : null));
       return el('li', {}, row);
     }));
     if (focusedId != null) list.querySelector(`.job-row[data-id="${CSS.escape(focusedId)}"]`)?.focus();
@@ -708,7 +707,7 @@
 
   // ---------------------------------------------------------------- selection and live progress
 
-  async function selectJob(id, { tab } = {}) {
+  async function selectJob(id, { tab, focus = false } = {}) {
     if (id == null) return;
     id = String(id);
     if (state.selectedId !== id) {
@@ -717,7 +716,7 @@
       if (state.follow && state.follow.id !== id) stopFollowing();
     }
     markSelectedRow();
-    if (tab) showTab(tab); else writeHash();
+    if (tab) showTab(tab, { focus }); else writeHash();
     let job = jobById(id);
     if (!job) {
       try {
@@ -764,11 +763,13 @@
       updateView(job);
     });
     source.addEventListener('error', () => {
-      if (source.readyState === EventSource.CLOSED && state.follow?.source === source) {
-        state.follow = null;
-        refreshJob(id);
-      }
-      // Otherwise the browser reconnects by itself and the server sends the job again.
+      if (state.follow?.source !== source) return;
+      // The stream of a running job never ends by itself: the server is gone (or
+      // restarting). Say so at once, stop the clock, and let the poll find it again.
+      source.close();
+      state.follow = null;
+      serverLost();
+      refreshJob(id);
     });
   }
 
@@ -799,7 +800,7 @@
     const button = $('cancel-button');
     button.disabled = true;
     try {
-      const job = await api('DELETE', `/api/jobs/${encodeURIComponent(id)}`);
+      const job = await api('POST', `/api/jobs/${encodeURIComponent(id)}/cancel`);
       if (job?.id != null) {
         upsertJob(job);
         renderHistory();
@@ -817,15 +818,45 @@
     }
   }
 
+  /** Re-runs the selected job: the same request, a new job. */
+  function rerunJob() {
+    const job = jobById(state.selectedId);
+    if (job?.request) submit(job.request);
+  }
+
+  /** Deletes the selected finished job and its files (after asking). */
+  async function deleteJob() {
+    const id = state.selectedId;
+    const job = jobById(id);
+    if (!job || !FINAL.has(job.status)) return;
+    if (!window.confirm(`Delete job #${id} and all its files?`)) return;
+    try {
+      await api('DELETE', `/api/jobs/${encodeURIComponent(id)}`);
+    } catch (err) {
+      reportError(err, 'Delete');
+      return;
+    }
+    state.jobs = state.jobs.filter((j) => j.id !== id);
+    state.values.delete(id);
+    if (state.besideId === id) state.besideId = null;
+    state.selectedId = null;
+    state.viewKey = null;
+    $('view-job').hidden = true;
+    $('view-empty').hidden = false;
+    renderHistory();
+    renderGateSelects();
+    renderOpen(null);
+    writeHash();
+    showMessage(`Job #${id} deleted.`, 'info');
+    $('tab-view').focus();
+  }
+
+  /** Every POLL_MS: the jobs not followed live, and whether the server still answers. */
   function poll() {
     if (document.hidden) return;
-    const stale = state.jobs.some((j) => ACTIVE.has(j.status) && !(state.follow && state.follow.id === j.id));
-    if (stale) refreshJobs().catch(() => {});
-    else if (state.follow) {
-      // Keep the running time in the meta list moving.
-      const job = jobById(state.follow.id);
-      if (job) renderJobHead(job);
-    }
+    refreshJobs().catch((err) => {
+      if (err instanceof ApiError && err.status === 0) serverLost();
+    });
   }
 
   // ---------------------------------------------------------------- View
@@ -849,7 +880,7 @@
       return;
     }
     if (state.follow?.id === job.id) stopFollowing();
-    const key = `${job.id}:${job.status}`;
+    const key = `${job.id}:${job.status}:${state.besideId ?? ''}`;
     if (state.viewKey === key) return;
     state.viewKey = key;
     if (job.status === 'done') loadResults(job);
@@ -861,43 +892,54 @@
     $('view-badge').replaceChildren(statusBadge(job.status));
 
     const req = job.request ?? {};
+    const text = job.text ?? {};
     const meta = [
-      ['Scene', jobScene(job)],
-      ['Variants', jobVariants(job)],
+      ['Scene', text.scene],
+      ['Variants', text.variants],
       ['Parts', Array.isArray(req.run) && req.run.length ? req.run.join(', ') : 'render'],
-      ['Size', Array.isArray(req.size) ? `${req.size[0]} × ${req.size[1]}` : '—'],
-      ['Threads', req.threads == null ? 'all cores' : String(req.threads)],
-      ['Created', fmtTime(job.created)],
+      ['Size', text.size],
+      ['Threads', text.threads],
+      ['Created', text.created],
     ];
-    if (job.started) meta.push(['Started', fmtTime(job.started)]);
-    if (job.finished) meta.push(['Finished', fmtTime(job.finished)]);
-    const took = job.started ? fmtDuration(job.started, job.finished) : null;
-    if (took) meta.push([job.finished ? 'Took' : 'Running for', took]);
-    $('view-meta').replaceChildren(...meta.map(([k, v]) => el('div', { class: 'meta-item' }, el('dt', {}, k), el('dd', {}, v))));
+    if (text.started) meta.push(['Started', text.started]);
+    if (text.finished) meta.push(['Finished', text.finished]);
+    if (text.elapsed) meta.push([job.finished ? 'Took' : 'Running for', text.elapsed]);
+    $('view-meta').replaceChildren(...meta.map(([k, v]) => el('div', { class: 'meta-item' }, el('dt', {}, k), el('dd', {}, v ?? ''))));
 
+    // The bar shows the current stage's own share when the runner counts it, and
+    // moves without a share (indeterminate) when it does not.
     const progress = $('job-progress');
-    const fraction = job.progress?.fraction;
-    if (job.status === 'done') progress.value = 1;
-    else if (isNum(fraction)) progress.value = Math.min(1, Math.max(0, fraction));
-    else if (job.status === 'queued' || job.status === 'running') progress.removeAttribute('value');
-    progress.classList.toggle('final', FINAL.has(job.status));
-    progress.dataset.status = cssPart(job.status);
+    const active = ACTIVE.has(job.status);
+    progress.hidden = !active;
+    if (isNum(text.stage_fraction)) progress.value = text.stage_fraction;
+    else progress.removeAttribute('value');
+    $('job-status').textContent = active ? (text.progress || String(job.status)) : '';
 
-    const p = job.progress ?? {};
-    let status = String(job.status ?? 'unknown');
-    if (p.message && ACTIVE.has(job.status)) status += ` — ${p.message}`;
-    else if (p.message && job.status !== 'done') status += ` — stopped at: ${p.message}`;
-    else if (p.stage && ACTIVE.has(job.status)) status += ` — ${p.stage}${isNum(p.done) && isNum(p.total) ? ` ${p.done}/${p.total}` : ''}`;
-    if (ACTIVE.has(job.status) && isNum(fraction)) status += ` (${Math.round(fraction * 100)} %)`;
-    $('job-status').textContent = status;
-
+    // A failure is an error; a cancel or an interruption is what the user or the
+    // machine did, said plainly.
     const error = $('job-error');
-    error.textContent = job.error ? `Error: ${job.error}` : '';
+    error.textContent = job.error ? (job.status === 'failed' ? `Error: ${job.error}` : job.error) : '';
+    error.className = job.status === 'failed' ? 'error-box' : 'note-box';
     error.hidden = !job.error;
 
     const cancel = $('cancel-button');
-    cancel.hidden = !ACTIVE.has(job.status);
-    cancel.disabled = !ACTIVE.has(job.status);
+    cancel.hidden = !active;
+    cancel.disabled = !active;
+    $('rerun-button').hidden = active;
+    $('delete-button').hidden = active;
+    renderBesideSelect(job);
+  }
+
+  /** The select of a second finished job to show beside this one. */
+  function renderBesideSelect(job) {
+    const select = $('beside-select');
+    const others = state.jobs.filter((j) => j.status === 'done' && j.id !== job.id);
+    const wrap = $('beside');
+    wrap.hidden = job.status !== 'done' || !others.length;
+    const current = state.besideId;
+    select.replaceChildren(el('option', { value: '' }, 'nothing'),
+      ...others.map((j) => el('option', { value: j.id }, `#${j.id} · ${jobScene(j)} · ${jobVariants(j)}`)));
+    select.value = others.some((j) => j.id === current) ? current : '';
   }
 
   function renderUnfinished(job) {
@@ -923,77 +965,74 @@
       el('a', { href: fileUrl(jobId, f), target: '_blank', rel: 'noopener' }, f))));
   }
 
+  /** A finished job's figures, written by the server (GET /api/jobs/ID/values). */
+  async function values(id) {
+    let v = state.values.get(id);
+    if (!v) {
+      v = await api('GET', `/api/jobs/${encodeURIComponent(id)}/values`);
+      if (!v || typeof v !== 'object') throw new Error('the figures are empty');
+      state.values.set(id, v);
+    }
+    return v;
+  }
+
   async function loadResults(job) {
     const box = $('results');
-    let results = state.results.get(job.id);
-    if (!results) {
-      box.replaceChildren(el('p', { class: 'muted placeholder' }, 'Loading results…'));
-      try {
-        results = await api('GET', fileUrl(job.id, 'results.json'));
-      } catch (err) {
-        if (state.selectedId === job.id) {
-          state.viewKey = null;
-          box.replaceChildren(el('p', { class: 'error-box' }, `Cannot load results.json: ${err.message}`));
-        }
-        reportError(err, `Results of job #${job.id}`);
-        return;
+    const beside = state.besideId ? jobById(state.besideId) : null;
+    if (!state.values.has(job.id)) box.replaceChildren(el('p', { class: 'muted placeholder' }, 'Loading results…'));
+    let mine;
+    let theirs = null;
+    try {
+      mine = await values(job.id);
+      if (beside) theirs = await values(beside.id);
+    } catch (err) {
+      if (state.selectedId === job.id) {
+        state.viewKey = null;
+        box.replaceChildren(el('p', { class: 'error-box' }, `Cannot load the results: ${err.message}`));
       }
-      if (!results || typeof results !== 'object') {
-        box.replaceChildren(el('p', { class: 'error-box' }, 'results.json is empty or not an object.'));
-        return;
-      }
-      state.results.set(job.id, results);
+      reportError(err, `Results of job #${job.id}`);
+      return;
     }
     if (state.selectedId !== job.id) return;
     try {
-      renderResults(job, results);
+      if (theirs) {
+        box.replaceChildren(el('div', { class: 'side-by-side' },
+          el('div', { class: 'side' }, el('h3', { class: 'side-title' }, `Job #${job.id}`), ...renderResults(job, mine)),
+          el('div', { class: 'side' }, el('h3', { class: 'side-title' }, `Job #${beside.id}`), ...renderResults(beside, theirs))));
+      } else {
+        box.replaceChildren(...renderResults(job, mine));
+      }
     } catch (err) {
       box.replaceChildren(el('p', { class: 'error-box' }, `Cannot show the results: ${err.message}`));
       console.error(err);
     }
   }
 
-  function renderResults(job, results) {
-    const box = $('results');
-    const scenes = Array.isArray(results.scenes) ? results.scenes : [];
+  /** The blocks of one job's results. */
+  function renderResults(job, v) {
+    const scenes = Array.isArray(v.scenes) ? v.scenes : [];
     const blocks = [];
-
-    const failures = Array.isArray(results.failures) ? results.failures : [];
-    if (failures.length) blocks.push(renderFailures(failures));
-
+    if (v.failures?.length) {
+      blocks.push(el('section', { class: 'result-block failures' },
+        el('h3', {}, v.failures_title),
+        el('p', { class: 'hint' }, 'These parts of the run failed; the rest of the results stand.'),
+        el('ul', {}, v.failures.map((f) => el('li', {}, el('strong', {}, f.place), ': ', f.message)))));
+    }
     const sceneBox = el('div', { class: 'scene-results' });
     if (scenes.length > 1) {
-      const picker = el('select', { id: 'result-scene' },
-        scenes.map((s, i) => el('option', { value: String(i) },
-          `${s.name} (${s.width}×${s.height}, ${fmtInt(s.primitives)} primitives)`)));
+      const picker = el('select', { class: 'result-scene' },
+        scenes.map((sc, i) => el('option', { value: String(i) }, sc.option)));
       picker.addEventListener('change', () => {
-        sceneBox.replaceChildren(...renderScene(job, scenes[Number(picker.value)] ?? scenes[0]));
+        const i = Number(picker.value);
+        sceneBox.replaceChildren(...renderScene(job, scenes[i] ?? scenes[0], i));
       });
-      blocks.push(el('div', { class: 'scene-picker' },
-        el('label', { class: 'field', for: 'result-scene' }, `Scene (${scenes.length} in this run)`), picker));
+      blocks.push(el('label', { class: 'field scene-picker' }, v.scene_picker, picker));
     }
     blocks.push(sceneBox);
-    if (scenes.length) sceneBox.replaceChildren(...renderScene(job, scenes[0]));
+    if (scenes.length) sceneBox.replaceChildren(...renderScene(job, scenes[0], 0));
     else sceneBox.replaceChildren(el('p', { class: 'muted' }, 'The run has no scenes.'));
-
-    if (results.profile) blocks.push(renderProfile(job, results.profile));
-
-    box.replaceChildren(...blocks);
-  }
-
-  function failurePart(part) {
-    if (part && typeof part === 'object' && part.variant) return `variant ${part.variant}`;
-    return String(part ?? 'unknown');
-  }
-
-  function renderFailures(failures) {
-    return el('section', { class: 'result-block failures' },
-      el('h3', {}, `Failures (${failures.length})`),
-      el('p', { class: 'hint' }, 'These parts of the run failed; the rest of the results stand.'),
-      el('ul', {}, failures.map((f) => el('li', {},
-        el('strong', {}, failurePart(f.part)),
-        f.scene ? ` on ${f.scene}` : '',
-        ': ', f.message ?? ''))));
+    if (v.profile) blocks.push(renderProfile(job, v.profile));
+    return blocks;
   }
 
   function block(title, detail, ...children) {
@@ -1002,28 +1041,22 @@
       ...children);
   }
 
-  function renderScene(job, scene) {
-    const variants = Array.isArray(scene.variants) ? scene.variants : [];
-    const out = [];
-    const counts = scene.primitive_counts && typeof scene.primitive_counts === 'object'
-      ? Object.entries(scene.primitive_counts).filter(([, n]) => n).map(([k, n]) => `${fmtInt(n)} ${k}`).join(', ')
-      : '';
-    out.push(el('div', { class: 'scene-summary' },
-      el('h3', {}, scene.name ?? 'scene'),
-      el('span', { class: 'detail' },
-        `${scene.width} × ${scene.height} pixels · ${fmtInt(scene.primitives)} primitives${counts ? ` (${counts})` : ''}${scene.family ? ` · family ${scene.family}` : ''}`)));
-
+  function renderScene(job, scene, index) {
+    const out = [el('div', { class: 'scene-summary' },
+      el('h3', {}, scene.name),
+      el('span', { class: 'detail' }, scene.summary))];
+    const variants = scene.variants ?? [];
     if (variants.length) {
-      out.push(renderImages(job, scene, variants));
+      out.push(renderImages(job, scene, variants, index));
       const heat = renderHeatMaps(job, scene, variants);
       if (heat) out.push(heat);
       const compare = renderCompare(job, scene, variants);
       if (compare) out.push(compare);
-      out.push(renderCounts(variants));
+      out.push(renderCounts(scene.counts));
     } else {
       out.push(el('p', { class: 'muted' }, 'No variant ran on this scene.'));
     }
-    if (Array.isArray(scene.pixel_maps) && scene.pixel_maps.length) out.push(renderPixelMaps(job, scene.pixel_maps));
+    if (scene.pixel_maps?.length) out.push(renderPixelMaps(job, scene, index));
     if (scene.hardware) out.push(renderHardware(job, scene.hardware, scene));
     return out;
   }
@@ -1038,53 +1071,57 @@
     });
   }
 
-  function renderImages(job, scene, variants) {
+  /**
+   * An image that opens in the zoom viewer when clicked, and, when the scene has
+   * per-pixel maps, reads the counts under the pointer.
+   */
+  function viewableImage(job, scene, index, src, alt, cls) {
+    const img = pixelImage(src, alt, scene, cls);
+    const button = el('button', { type: 'button', class: 'image-button', title: 'Zoom and pan (click)' }, img);
+    button.addEventListener('click', () => openViewer(job, scene, index, src, alt));
+    if (scene.pixel_maps?.length) attachPixelReadout(img, job, index);
+    return button;
+  }
+
+  function renderImages(job, scene, variants, index) {
     const grid = el('div', { class: 'image-grid' });
     for (const v of variants) {
-      const isBaseline = v.variant === 'baseline';
-      const time = v.time ?? {};
-      const figure = el('figure', { class: `variant-image${isBaseline ? ' reference' : ''}` },
+      grid.append(el('figure', { class: `variant-image${v.reference ? ' reference' : ''}` },
         v.image
-          ? el('a', { href: fileUrl(job.id, v.image), target: '_blank', rel: 'noopener', title: 'Open the image' },
-            pixelImage(fileUrl(job.id, v.image), `${v.variant} render of ${scene.name}`, scene))
+          ? viewableImage(job, scene, index, fileUrl(job.id, v.image), `${v.variant} render of ${scene.name}`)
           : el('div', { class: 'missing' }, 'no image'),
         el('figcaption', {},
           el('span', { class: 'cap-title' }, v.variant),
-          el('span', { class: 'cap-line', title: isNum(time.low) ? `interval ${fmtMs(time.low)} – ${fmtMs(time.high)}` : null },
-            `median ${fmtMs(time.median)}`),
+          el('span', { class: 'cap-line median', title: v.interval ? `interval ${v.interval}` : null },
+            `median ${v.median}`),
           el('span', { class: 'cap-line' },
-            isBaseline
+            v.reference
               ? 'reference'
-              : isNum(v.speedup)
-                ? el('span', {
-                  class: `speedup ${v.speedup >= 1 ? 'faster' : 'slower'}`,
-                  title: Array.isArray(v.speedup_interval) ? `95 % interval ${fmtSpeedup(v.speedup_interval[0])} – ${fmtSpeedup(v.speedup_interval[1])}` : null,
-                }, `${fmtSpeedup(v.speedup)} vs baseline`)
+              : v.speedup
+                ? el('span', { class: `speedup ${v.faster ? 'faster' : 'slower'}`, title: v.speedup_title }, `${v.speedup} vs baseline`)
                 : 'speed-up unknown',
-            v.verdict ? el('span', { class: 'muted' }, ` (${String(v.verdict).replace(/_/g, ' ')})`) : null),
+            v.verdict ? el('span', { class: 'muted' }, ` (${v.verdict})`) : null),
           v.quality
-            ? el('span', { class: 'cap-line' }, bandChip(v.quality.band), ` RMS ${fmtFixed(v.quality.rms, 2)}`)
-            : el('span', { class: 'cap-line muted' }, isBaseline ? 'the reference image' : 'no quality figures')));
-      grid.append(figure);
+            ? el('span', { class: 'cap-line' }, bandChip(v.quality.band), ` ${v.quality.rms}`)
+            : el('span', { class: 'cap-line muted' }, v.reference ? 'the reference image' : 'no quality figures'))));
     }
-    return block('Images', 'side by side; speed-up and RMS against baseline', grid);
+    const hint = scene.pixel_maps?.length
+      ? 'side by side; click an image to zoom, hover it to read its per-pixel counts'
+      : 'side by side; click an image to zoom and pan';
+    return block('Images', hint, grid, scene.pixel_maps?.length ? el('div', { class: 'pixel-readout', 'aria-live': 'polite' }) : null);
   }
 
   function renderHeatMaps(job, scene, variants) {
     const withMaps = variants.filter((v) => v.heat_map);
     if (!withMaps.length) return null;
     const grid = el('div', { class: 'image-grid' }, withMaps.map((v) => el('figure', { class: 'heat-figure' },
-      el('a', { href: fileUrl(job.id, v.heat_map), target: '_blank', rel: 'noopener', title: 'Open the heat map' },
-        pixelImage(fileUrl(job.id, v.heat_map), `difference of ${v.variant} from baseline`, scene, 'heat-map')),
+      viewableImage(job, scene, null, fileUrl(job.id, v.heat_map), `difference of ${v.variant} from baseline`, 'heat-map'),
       el('figcaption', {},
         el('span', { class: 'cap-title' }, `${v.variant} − baseline`),
         v.quality
           ? [
-            el('span', { class: 'cap-line' }, bandChip(v.quality.band), ` RMS ${fmtFixed(v.quality.rms, 2)}`),
-            el('span', { class: 'cap-line muted' },
-              `max |Δ| ${fmtInt(v.quality.max_abs_diff)}`,
-              isNum(v.quality.ssim) ? ` · SSIM ${fmtFixed(v.quality.ssim, 4)}` : '',
-              isNum(v.quality.psnr) ? ` · PSNR ${fmtFixed(v.quality.psnr, 1)} dB` : (v.quality.rms === 0 ? ' · identical' : '')),
+            el('span', { class: 'cap-line' }, bandChip(v.quality.band), ` ${v.quality.rms}`),
+            el('span', { class: 'cap-line muted' }, v.quality.detail),
           ]
           : null))));
     return block('Difference heat maps', 'per-pixel difference from baseline', grid);
@@ -1094,16 +1131,12 @@
     const withImages = variants.filter((v) => v.image);
     if (withImages.length < 2) return null;
     const options = () => withImages.map((v) => el('option', { value: v.variant }, v.variant));
-    const selectA = el('select', { id: 'compare-a' }, options());
-    const selectB = el('select', { id: 'compare-b' }, options());
-    const a0 = withImages.find((v) => v.variant === 'baseline') ?? withImages[0];
+    const selectA = el('select', { class: 'compare-a', 'aria-label': 'Image A' }, options());
+    const selectB = el('select', { class: 'compare-b', 'aria-label': 'Image B' }, options());
+    const a0 = withImages.find((v) => v.reference) ?? withImages[0];
     const b0 = withImages.find((v) => v !== a0) ?? withImages[1];
     selectA.value = a0.variant;
     selectB.value = b0.variant;
-
-    const w = isNum(scene.width) && scene.width > 0 ? scene.width : 160;
-    const h = isNum(scene.height) && scene.height > 0 ? scene.height : 120;
-    const scale = w < COMPARE_WIDTH ? Math.max(1, Math.floor(COMPARE_WIDTH / w)) : 1;
 
     const imgA = el('img', { class: 'compare-img compare-img-a', alt: '', draggable: 'false' });
     const imgB = el('img', { class: 'compare-img compare-img-b', alt: '', draggable: 'false' });
@@ -1112,15 +1145,14 @@
     const labelA = el('span', { class: 'compare-label compare-label-a' });
     const stage = el('div', {
       class: 'compare-stage',
-      style: { width: `${w * scale}px`, aspectRatio: `${w} / ${h}` },
+      style: { aspectRatio: `${scene.width} / ${scene.height}` },
     }, imgA, imgB, divider, labelB, labelA);
 
     const slider = el('input', {
-      type: 'range', id: 'compare-slider', min: '0', max: '100', step: '1', value: '50',
+      type: 'range', class: 'compare-slider', min: '0', max: '100', step: '1', value: '50',
       'aria-label': 'How much of image B covers image A (from the left)',
     });
-    const toggle = el('button', { type: 'button', id: 'compare-toggle', class: 'small' }, 'Toggle A / B');
-    const readout = el('span', { class: 'hint compare-readout' });
+    const toggle = el('button', { type: 'button', class: 'small compare-toggle' }, 'Toggle A / B');
 
     const find = (name) => withImages.find((v) => v.variant === name) ?? withImages[0];
     function setImages() {
@@ -1140,7 +1172,6 @@
       divider.hidden = value === 0 || value === 100;
       labelB.hidden = value === 0;
       labelA.hidden = value === 100;
-      readout.textContent = value === 100 ? 'showing B' : value === 0 ? 'showing A' : `B on the left ${value} %, A on the right`;
     }
     selectA.addEventListener('change', setImages);
     selectB.addEventListener('change', setImages);
@@ -1153,7 +1184,7 @@
     const fromPointer = (ev) => {
       const rect = stage.getBoundingClientRect();
       if (rect.width <= 0) return;
-      slider.value = String(Math.round(Math.min(1, Math.max(0, (ev.clientX - rect.left) / rect.width)) * 100));
+      slider.value = String(Math.min(1, Math.max(0, (ev.clientX - rect.left) / rect.width)) * 100);
       setReveal();
     };
     stage.addEventListener('pointerdown', (ev) => {
@@ -1166,70 +1197,53 @@
     setImages();
     setReveal();
 
-    return block('Compare', `${scale > 1 ? `scaled ${scale}×, ` : ''}B revealed over A`,
+    return block('Compare', 'B revealed over A: drag on the picture or the slider',
       el('div', { class: 'compare-controls' },
         el('label', { class: 'field' }, 'A', selectA),
         el('label', { class: 'field' }, 'B', selectB),
         el('label', { class: 'field grow' }, 'Reveal B', slider),
-        toggle,
-        readout),
+        toggle),
       el('div', { class: 'compare-wrap' }, stage));
   }
 
-  function renderCounts(variants) {
-    const keys = [...new Set(variants.flatMap((v) => Object.keys(v.counts ?? {})))].sort();
-    if (!keys.length) return block('Counts', null, el('p', { class: 'muted' }, 'No counts.'));
-    const baseline = variants.find((v) => v.variant === 'baseline');
-    const table = el('table', { id: 'counts-table', class: 'data' },
+  function renderCounts(counts) {
+    if (!counts?.rows?.length) return block('Counts', null, el('p', { class: 'muted' }, 'No counts.'));
+    const table = el('table', { class: 'data counts-table' },
       el('thead', {}, el('tr', {},
         el('th', { scope: 'col' }, 'counter'),
-        variants.map((v) => el('th', { scope: 'col', class: 'num' }, v.variant)))),
-      el('tbody', {}, keys.map((key) => el('tr', {},
-        el('th', { scope: 'row' }, el('code', {}, key)),
-        variants.map((v) => {
-          const n = v.counts?.[key];
-          const ref = baseline?.counts?.[key];
-          const changed = baseline && v !== baseline && isNum(n) && isNum(ref) && n !== ref;
-          return el('td', {
-            class: `num${changed ? (n < ref ? ' less' : ' more') : ''}`,
-            title: changed && ref ? `${fmtFixed((n / ref) * 100, 1)} % of baseline` : null,
-          }, isNum(n) ? fmtInt(n) : '—');
-        })))));
-    return block('Counts', 'exact, per render; green fewer / red more than baseline',
+        counts.variants.map((v) => el('th', { scope: 'col', class: 'num' }, v)))),
+      el('tbody', {}, counts.rows.map((row) => el('tr', {},
+        el('th', { scope: 'row' }, el('code', {}, row.key)),
+        row.cells.map((c) => el('td', { class: `num tone-${cssPart(c.tone)}`, title: c.title }, c.text))))));
+    return block('Counts', 'exact, per render; green fewer / red more than baseline; work baseline does not do is not coloured',
       el('div', { class: 'table-wrap' }, table));
   }
 
-  function renderPixelMaps(job, sets) {
+  function renderPixelMaps(job, scene, index) {
     const children = [];
-    for (const set of sets) {
-      const maps = Array.isArray(set.maps) ? set.maps : [];
-      children.push(el('h4', {}, set.variant ?? 'variant',
-        el('span', { class: 'detail' }, ` ${set.columns} × ${set.rows} samples`)));
-      children.push(el('div', { class: 'map-grid' }, maps.map((m) => {
+    for (const set of scene.pixel_maps) {
+      children.push(el('h4', {}, set.variant, el('span', { class: 'detail' }, set.detail)));
+      children.push(el('div', { class: 'map-grid' }, set.maps.map((m) => {
         const src = fileUrl(job.id, joinPath(set.directory, m.png));
-        return el('figure', { class: 'pixel-map', title: m.description ?? null },
-          el('a', { href: src, target: '_blank', rel: 'noopener' },
-            el('img', { src, alt: `${m.key} per sample` })),
+        return el('figure', { class: 'pixel-map', title: m.description },
+          // A map's picture carries its legend: no pixel read-out on it (the
+          // renders above read the same maps).
+          viewableImage(job, { ...scene, width: null, height: null, pixel_maps: [] }, null, src, `${m.key} per sample`),
           el('figcaption', {},
             el('span', { class: 'cap-title' }, el('code', {}, m.key)),
-            el('span', { class: 'cap-line muted' }, m.unit ?? ''),
-            el('span', { class: 'cap-line' },
-              `min ${fmtInt(m.min)} · mean ${fmtMean(m.mean)} · max ${fmtInt(m.max)}`)));
+            el('span', { class: 'cap-line muted' }, m.unit),
+            el('span', { class: 'cap-line' }, m.stats)));
       })));
     }
-    return block('Per-pixel maps', 'false colour, one value per sample', ...children);
+    return block('Per-pixel maps', 'false colour, one value per sample; click to zoom', ...children);
   }
 
   function renderHardware(job, hw, scene) {
     const rows = [
-      ['Cycles', fmtInt(hw.cycles)],
-      ['Time on the FPGA model', fmtMs(hw.seconds)],
+      ...hw.rows.map(([k, v]) => [k, v]),
       ['Fits the device', el('span', { class: `badge ${hw.fits ? 'status-done' : 'status-failed'}` }, hw.fits ? 'yes' : 'no')],
-      ['Speed-up vs software', fmtSpeedup(hw.speedup)],
-      ['Software time (diffuse only)', fmtMs(hw.software_seconds?.median)],
-      ['Emulator vs software', [bandChip(hw.emulator_band), ` RMS ${fmtFixed(hw.emulator_rms, 2)}`]],
+      ['Emulator vs software', [bandChip(hw.emulator_band), ` ${hw.emulator_rms}`]],
     ];
-    if (isNum(hw.primitives)) rows.splice(1, 0, ['Primitives', fmtInt(hw.primitives)]);
     const table = el('table', { class: 'kv' }, el('tbody', {}, rows.map(([k, v]) => el('tr', {},
       el('th', { scope: 'row' }, k), el('td', { class: 'num' }, v)))));
     const figures = [];
@@ -1251,51 +1265,138 @@
   function flame(job, path, caption) {
     const url = fileUrl(job.id, path);
     return el('figure', { class: 'flame' },
-      el('object', { type: 'image/svg+xml', data: url, class: 'flame-svg', 'aria-label': caption },
-        el('a', { href: url, target: '_blank', rel: 'noopener' }, `Open ${caption}`)),
       el('figcaption', {}, caption, ' · ',
-        el('a', { href: url, target: '_blank', rel: 'noopener' }, 'open alone')));
+        el('a', { href: url, target: '_blank', rel: 'noopener' }, 'open alone')),
+      el('object', { type: 'image/svg+xml', data: url, class: 'flame-svg', 'aria-label': caption },
+        el('a', { href: url, target: '_blank', rel: 'noopener' }, `Open ${caption}`)));
   }
 
   function renderProfile(job, profile) {
-    const children = [];
-    const base = profile.baseline;
-    const best = profile.best;
-    if (base?.flame_svg) {
-      children.push(flame(job, base.flame_svg,
-        `Flamegraph of ${base.variant ?? 'baseline'} (${fmtInt(base.samples)} samples)`));
+    const children = profile.flames.map((f) => flame(job, f.svg, f.caption));
+    if (profile.speedscope?.length) {
+      children.push(el('p', { class: 'hint speedscope' },
+        'Open in speedscope: download ',
+        profile.speedscope.map(([variant, file], i) => [i ? ' or ' : '',
+          el('a', { href: fileUrl(job.id, file), download: `rtprof-job-${job.id}-speedscope-${variant}.json` }, `${variant}'s profile`)]),
+        ' and drop it on speedscope.app (or open it in the Firefox Profiler); the page itself links to no other site.'));
     }
-    if (best?.flame_svg) {
-      children.push(flame(job, best.flame_svg,
-        `Flamegraph of ${best.variant ?? 'the best variant'}, the best variant (${fmtInt(best.samples)} samples)`));
-    }
-    if (profile.diff_flame_svg) {
-      children.push(flame(job, profile.diff_flame_svg,
-        `Differential flamegraph ${base?.variant ?? 'baseline'} → ${best?.variant ?? 'best'}: what grew`));
-    }
-    if (profile.diff_shrunk_flame_svg) {
-      children.push(flame(job, profile.diff_shrunk_flame_svg,
-        `Differential flamegraph ${base?.variant ?? 'baseline'} → ${best?.variant ?? 'best'}: what shrank`));
-    }
-    const flat = Array.isArray(base?.flat) ? [...base.flat] : [];
-    flat.sort((x, y) => (y.percent ?? 0) - (x.percent ?? 0));
-    if (flat.length) {
-      children.push(el('h4', {}, `Flat profile of ${base.variant ?? 'baseline'}`,
-        el('span', { class: 'detail' }, ` top ${Math.min(10, flat.length)} of ${flat.length} by self time`)));
-      children.push(el('div', { class: 'table-wrap' }, el('table', { id: 'flat-table', class: 'data' },
+    if (profile.flat?.length) {
+      children.push(el('h4', {}, profile.flat_title, el('span', { class: 'detail' }, profile.flat_detail)));
+      children.push(el('div', { class: 'table-wrap' }, el('table', { class: 'data flat-table' },
         el('thead', {}, el('tr', {},
           el('th', { scope: 'col' }, 'function'),
           el('th', { scope: 'col', class: 'num' }, 'self %'),
-          el('th', { scope: 'col', class: 'num' }, 'self seconds'),
+          el('th', { scope: 'col', class: 'num' }, 'self time'),
           el('th', { scope: 'col', class: 'num' }, 'calls'))),
-        el('tbody', {}, flat.slice(0, 10).map((row) => el('tr', { class: row.noise ? 'noise' : null },
+        el('tbody', {}, profile.flat.map((row) => el('tr', { class: row.noise ? 'noise' : null },
           el('td', { class: 'fn' }, el('code', {}, row.name)),
-          el('td', { class: 'num' }, `${fmtFixed(row.percent, 1)} %`),
-          el('td', { class: 'num' }, fmtSeconds(row.self_seconds)),
-          el('td', { class: 'num' }, isNum(row.calls) ? fmtInt(row.calls) : '—')))))));
+          el('td', { class: 'num' }, row.percent),
+          el('td', { class: 'num' }, row.self_seconds),
+          el('td', { class: 'num' }, row.calls)))))));
     }
-    if (!children.length) children.push(el('p', { class: 'muted' }, 'The profile has no flamegraph.'));
-    return block('Profile', `${profile.scene ?? ''}${isNum(profile.width) ? `, ${profile.width} × ${profile.height}` : ''}`, ...children);
+    return block('Profile', profile.detail, ...children);
+  }
+
+  // ---------------------------------------------------------------- pixel read-out and zoom
+
+  /** Reads the per-pixel maps under the pointer (one request at a time). */
+  function attachPixelReadout(img, job, index) {
+    if (index == null) return;
+    let busy = false;
+    let pending = null;
+    const readout = () => img.closest('.result-block')?.querySelector('.pixel-readout')
+      ?? $('viewer-readout');
+    async function ask(x, y) {
+      if (busy) {
+        pending = [x, y];
+        return;
+      }
+      busy = true;
+      try {
+        const v = await api('GET', `/api/jobs/${encodeURIComponent(job.id)}/pixel?scene=${index}&x=${x}&y=${y}`);
+        const box = readout();
+        if (box) {
+          box.replaceChildren(el('strong', {}, v.position),
+            ...v.variants.map((set) => el('span', { class: 'readout-set' },
+              el('span', { class: 'readout-variant' }, set.variant),
+              set.values.map(([k, value]) => el('span', { class: 'readout-value' }, el('code', {}, k), ' ', value)))));
+        }
+      } catch (_) {
+        // A failed read-out is not worth a message: the next move asks again.
+      } finally {
+        busy = false;
+        if (pending) {
+          const [px, py] = pending;
+          pending = null;
+          ask(px, py);
+        }
+      }
+    }
+    img.addEventListener('mousemove', (ev) => {
+      const rect = img.getBoundingClientRect();
+      if (rect.width <= 0 || !img.naturalWidth) return;
+      // The picture inside the element's box (object-fit: contain letterboxes it).
+      const fit = Math.min(rect.width / img.naturalWidth, rect.height / img.naturalHeight);
+      const left = rect.left + (rect.width - img.naturalWidth * fit) / 2;
+      const top = rect.top + (rect.height - img.naturalHeight * fit) / 2;
+      const x = Math.floor((ev.clientX - left) / fit);
+      const y = Math.floor((ev.clientY - top) / fit);
+      if (x >= 0 && y >= 0 && x < img.naturalWidth && y < img.naturalHeight) ask(x, y);
+    });
+  }
+
+  /** The zoom viewer: wheel or +/- to zoom, drag or arrows to pan, 0 to fit, Esc to close. */
+  function openViewer(job, scene, index, src, alt) {
+    const dialog = $('viewer');
+    const img = $('viewer-image');
+    const view = { scale: 1, x: 0, y: 0 };
+    img.src = src;
+    img.alt = alt;
+    $('viewer-title').textContent = alt;
+    $('viewer-readout').replaceChildren();
+    const fresh = img.cloneNode(false);
+    img.replaceWith(fresh);
+    fresh.id = 'viewer-image';
+    if (scene.pixel_maps?.length && index != null) attachPixelReadout(fresh, job, index);
+    const zoom = (factor) => {
+      view.scale = Math.min(64, Math.max(1, view.scale * factor));
+      if (view.scale === 1) { view.x = 0; view.y = 0; }
+      fresh.style.transform = `translate(${view.x}px, ${view.y}px) scale(${view.scale})`;
+    };
+    const stage = $('viewer-stage');
+    stage.onwheel = (ev) => {
+      ev.preventDefault();
+      zoom(ev.deltaY < 0 ? 1.25 : 0.8);
+    };
+    let drag = null;
+    stage.onpointerdown = (ev) => {
+      drag = { x: ev.clientX - view.x, y: ev.clientY - view.y };
+      stage.setPointerCapture(ev.pointerId);
+    };
+    stage.onpointermove = (ev) => {
+      if (!drag) return;
+      view.x = ev.clientX - drag.x;
+      view.y = ev.clientY - drag.y;
+      fresh.style.transform = `translate(${view.x}px, ${view.y}px) scale(${view.scale})`;
+    };
+    stage.onpointerup = () => { drag = null; };
+    dialog.onkeydown = (ev) => {
+      const step = 40;
+      if (ev.key === '+' || ev.key === '=') zoom(1.25);
+      else if (ev.key === '-') zoom(0.8);
+      else if (ev.key === '0') { view.scale = 1; view.x = 0; view.y = 0; zoom(1); }
+      else if (ev.key === 'ArrowLeft') { view.x += step; zoom(1); }
+      else if (ev.key === 'ArrowRight') { view.x -= step; zoom(1); }
+      else if (ev.key === 'ArrowUp') { view.y += step; zoom(1); }
+      else if (ev.key === 'ArrowDown') { view.y -= step; zoom(1); }
+      else return;
+      ev.preventDefault();
+    };
+    $('viewer-in').onclick = () => zoom(1.25);
+    $('viewer-out').onclick = () => zoom(0.8);
+    $('viewer-fit').onclick = () => { view.scale = 1; view.x = 0; view.y = 0; zoom(1); };
+    zoom(1);
+    dialog.showModal();
   }
 
   // ---------------------------------------------------------------- Open
@@ -1322,10 +1423,7 @@
     const json = $('open-results');
     setLink(pdf, has('report.pdf') ? fileUrl(job.id, 'report.pdf') : null);
     setLink(json, has('results.json') ? fileUrl(job.id, 'results.json') : null);
-    if (job) {
-      pdf.setAttribute('download', `rtprof-job-${job.id}-report.pdf`);
-      json.setAttribute('download', `rtprof-job-${job.id}-results.json`);
-    }
+    if (job) json.setAttribute('download', `rtprof-job-${job.id}-results.json`);
     let note = '';
     if (!job) note = 'Select a job in History.';
     else if (ACTIVE.has(job.status)) note = 'The report and results are written when the job is done.';
@@ -1340,14 +1438,20 @@
 
   // ---------------------------------------------------------------- Gate
 
+  let gateKey = null;
+
   function renderGateSelects() {
     const done = state.jobs.filter((j) => j.status === 'done');
+    // Rebuilt only when the finished jobs change (not under a user's open list).
+    const key = done.map((j) => j.id).join(',');
+    if (key === gateKey) return;
+    gateKey = key;
     const oldSel = $('gate-old');
     const newSel = $('gate-new');
     const prevOld = oldSel.value;
     const prevNew = newSel.value;
     const options = () => done.map((j) => el('option', { value: j.id },
-      `#${j.id} · ${jobScene(j)} · ${jobVariants(j)} · ${fmtTime(j.created)}`));
+      `#${j.id} · ${jobScene(j)} · ${jobVariants(j)} · ${j.text?.created ?? ''}`));
     if (!done.length) {
       oldSel.replaceChildren(el('option', { value: '' }, 'no finished jobs'));
       newSel.replaceChildren(el('option', { value: '' }, 'no finished jobs'));
@@ -1428,10 +1532,27 @@
         const [w, h] = button.dataset.size.split('x');
         $('width').value = w;
         $('height').value = h;
+        saveForm();
+        updateEstimate();
       });
     }
     $('run-button').addEventListener('click', startRun);
     $('cancel-button').addEventListener('click', cancelJob);
+    $('rerun-button').addEventListener('click', rerunJob);
+    $('delete-button').addEventListener('click', deleteJob);
+    $('beside-select').addEventListener('change', (ev) => {
+      state.besideId = ev.target.value || null;
+      const job = jobById(state.selectedId);
+      if (job) updateView(job);
+    });
+    $('viewer-close').addEventListener('click', () => $('viewer').close());
+    $('panel-run').addEventListener('change', saveForm);
+    for (const id of ['width', 'height', 'threads']) {
+      $(id).addEventListener('input', () => {
+        saveForm();
+        updateEstimate();
+      });
+    }
     $('history-list').addEventListener('click', (ev) => {
       const row = ev.target.closest('.job-row');
       if (row) selectJob(row.dataset.id, { tab: state.tab === 'open' ? 'open' : 'view' });
@@ -1458,6 +1579,8 @@
         reportError(err, 'Loading jobs');
       }),
     ]);
+    restoreForm();
+    updateEstimate();
     if (hash.job) selectJob(hash.job, {});
     setInterval(poll, POLL_MS);
   }

@@ -14,7 +14,7 @@ use axum::extract::{DefaultBodyLimit, Path, Query, State};
 use axum::http::{StatusCode, header};
 use axum::response::sse::{Event, KeepAlive, Sse};
 use axum::response::{IntoResponse, Response};
-use axum::routing::get;
+use axum::routing::{get, post};
 use futures_util::stream::Stream;
 
 use crate::error::ApiError;
@@ -51,9 +51,13 @@ pub fn router(state: AppState, guard: Guard, max_upload_bytes: u64) -> Router {
                 .layer(DefaultBodyLimit::max(upload_limit)),
         )
         .route("/api/jobs", get(list_jobs).post(submit))
-        .route("/api/jobs/{id}", get(job).delete(cancel))
+        .route("/api/jobs/{id}", get(job).delete(cancel_or_delete))
+        .route("/api/jobs/{id}/cancel", post(cancel))
         .route("/api/jobs/{id}/events", get(events))
         .route("/api/jobs/{id}/files/{*path}", get(file))
+        .route("/api/jobs/{id}/values", get(values))
+        .route("/api/jobs/{id}/pixel", get(pixel))
+        .route("/api/estimate", get(estimate))
         .route("/api/gate", get(gate))
         .fallback(|| async {
             ApiError::not_found("no such page: the API is under /api (docs/serve.md)")
@@ -62,6 +66,7 @@ pub fn router(state: AppState, guard: Guard, max_upload_bytes: u64) -> Router {
             guard,
             crate::guard::guard,
         ))
+        .layer(axum::middleware::map_response(crate::guard::no_framing))
         .with_state(state)
 }
 
@@ -120,7 +125,8 @@ async fn upload(
 }
 
 async fn list_jobs(State(state): State<AppState>) -> Json<serde_json::Value> {
-    Json(serde_json::json!({ "jobs": state.jobs.list() }))
+    let jobs: Vec<Job> = state.jobs.list().into_iter().map(Job::with_text).collect();
+    Json(serde_json::json!({ "jobs": jobs }))
 }
 
 async fn submit(
@@ -134,7 +140,7 @@ async fn submit(
         }
     };
     let jobs = state.jobs;
-    match blocking(move || jobs.submit(request).map(Json)).await {
+    match blocking(move || jobs.submit(request).map(|j| Json(j.with_text()))).await {
         r if r.status() == StatusCode::OK => (StatusCode::ACCEPTED, r).into_response(),
         r => r,
     }
@@ -147,18 +153,103 @@ fn parse_id(text: &str) -> Result<u64, ApiError> {
 }
 
 async fn job(State(state): State<AppState>, Path(id): Path<String>) -> Result<Json<Job>, ApiError> {
-    Ok(Json(state.jobs.get(parse_id(&id)?)?))
+    Ok(Json(state.jobs.get(parse_id(&id)?)?.with_text()))
 }
 
+/// Cancels a queued or running job (202); 409 when it has ended.
 async fn cancel(State(state): State<AppState>, Path(id): Path<String>) -> Response {
     match parse_id(&id).and_then(|id| state.jobs.cancel(id)) {
-        Ok(job) => (StatusCode::ACCEPTED, Json(job)).into_response(),
+        Ok(job) => (StatusCode::ACCEPTED, Json(job.with_text())).into_response(),
         Err(e) => e.into_response(),
     }
 }
 
-/// The job's state now and at every change, as server-sent events named `job`; the
-/// stream ends after a final status.
+/// A queued or running job is cancelled (202, as `POST .../cancel`); a finished one
+/// is deleted with its directory (200).
+async fn cancel_or_delete(State(state): State<AppState>, Path(id): Path<String>) -> Response {
+    let jobs = state.jobs;
+    blocking(move || {
+        let id = parse_id(&id)?;
+        if !jobs.get(id)?.status.is_final() {
+            let job = jobs.cancel(id)?.with_text();
+            return Ok((
+                StatusCode::ACCEPTED,
+                Json(serde_json::to_value(job).unwrap_or_default()),
+            ));
+        }
+        jobs.delete(id)?;
+        Ok((
+            StatusCode::OK,
+            Json(serde_json::json!({ "deleted": id.to_string() })),
+        ))
+    })
+    .await
+}
+
+/// The figures of a finished job as the page shows them, each written by
+/// `reports::format` (`reports::page_values`).
+async fn values(State(state): State<AppState>, Path(id): Path<String>) -> Response {
+    let jobs = state.jobs;
+    blocking(move || {
+        let id = parse_id(&id)?;
+        let results = read_results(&jobs, id)?;
+        Ok(Json(reports::page_values::run_values(&results)))
+    })
+    .await
+}
+
+/// One sample of a finished job's per-pixel maps: `?scene=N&x=X&y=Y` (the scene's
+/// index in the run, the pixel of its image); every map's value there, written.
+async fn pixel(
+    State(state): State<AppState>,
+    Path(id): Path<String>,
+    Query(query): Query<HashMap<String, String>>,
+) -> Response {
+    let jobs = state.jobs;
+    blocking(move || {
+        let id = parse_id(&id)?;
+        let number = |key: &str| {
+            query
+                .get(key)
+                .and_then(|v| v.parse::<u32>().ok())
+                .ok_or_else(|| {
+                    ApiError::invalid(format!("give ?scene=N&x=X&y=Y (no number {key})"))
+                })
+        };
+        let (scene, x, y) = (number("scene")?, number("x")?, number("y")?);
+        let results = read_results(&jobs, id)?;
+        let dir = jobs.store().job_dir(id);
+        crate::pixel::at(&results, &dir, scene as usize, x, y).map(Json)
+    })
+    .await
+}
+
+/// What a job would cost before it runs: the scene's primitives and, for a brute-force
+/// render of a big scene, `runner::estimate`'s time. `?scene=ID&width=W&height=H`
+/// (`&threads=N`).
+async fn estimate(
+    State(state): State<AppState>,
+    Query(query): Query<HashMap<String, String>>,
+) -> Response {
+    let jobs = state.jobs;
+    blocking(move || crate::estimate::of_query(jobs.catalogue(), &query).map(Json)).await
+}
+
+/// A finished job's results.json, read and checked.
+fn read_results(jobs: &Jobs, id: u64) -> Result<results::Results, ApiError> {
+    jobs.get(id)?;
+    let path = jobs.store().job_dir(id).join("results.json");
+    if !path.is_file() {
+        return Err(ApiError::invalid(format!(
+            "job {id} has no results.json: only a finished job has figures"
+        )));
+    }
+    results::Results::read_file(&path).map_err(|e| ApiError::invalid(e.to_string()))
+}
+
+/// The job's state now, at every change and every [`TICK`] while it runs (its clock
+/// moves, and a page notices a lost server within a tick), as server-sent events named
+/// `job`; the stream ends after a final status.
 async fn events(
     State(state): State<AppState>,
     Path(id): Path<String>,
@@ -167,10 +258,16 @@ async fn events(
     let stream = futures_util::stream::unfold(
         (receiver, true, false),
         |(mut receiver, first, ended)| async move {
-            if ended || (!first && receiver.changed().await.is_err()) {
+            if ended {
                 return None;
             }
-            let job = receiver.borrow_and_update().clone();
+            if !first {
+                // A change or a tick: either way the job is sent; a closed channel ends.
+                if let Ok(Err(_)) = tokio::time::timeout(TICK, receiver.changed()).await {
+                    return None;
+                }
+            }
+            let job = receiver.borrow_and_update().clone().with_text();
             let data = serde_json::to_string(&job).unwrap_or_default();
             let event = Event::default().event("job").data(data);
             Some((Ok(event), (receiver, false, job.status.is_final())))
@@ -178,6 +275,9 @@ async fn events(
     );
     Ok(Sse::new(stream).keep_alive(KeepAlive::default()))
 }
+
+/// How often a running job's event stream speaks without a change.
+const TICK: std::time::Duration = std::time::Duration::from_secs(1);
 
 /// The content type of a job's file, by its extension.
 fn content_type(path: &std::path::Path) -> &'static str {
@@ -210,6 +310,8 @@ async fn file(State(state): State<AppState>, Path((id, rel)): Path<(String, Stri
             [
                 (header::CONTENT_TYPE, content_type(&path)),
                 (header::CACHE_CONTROL, "no-cache"),
+                // Shown in the browser (report.pdf opens rather than downloads).
+                (header::CONTENT_DISPOSITION, "inline"),
             ],
             bytes,
         ))
@@ -232,17 +334,7 @@ async fn gate(
                 .and_then(|v| parse_id(v))
         };
         let (old, new) = (id("old")?, id("new")?);
-        let read = |id: u64| {
-            jobs.get(id)?;
-            let path = jobs.store().job_dir(id).join("results.json");
-            if !path.is_file() {
-                return Err(ApiError::invalid(format!(
-                    "job {id} has no results.json: gate two finished jobs"
-                )));
-            }
-            results::Results::read_file(&path).map_err(|e| ApiError::invalid(e.to_string()))
-        };
-        let (old_results, new_results) = (read(old)?, read(new)?);
+        let (old_results, new_results) = (read_results(&jobs, old)?, read_results(&jobs, new)?);
         let options = results::gate::GateOptions {
             threshold: results::NOISE_THRESHOLD,
             force: false,

@@ -91,6 +91,24 @@ pub struct SceneEntry {
     pub group: &'static str,
     pub family: String,
     pub primitives: u64,
+    /// "balls3 (test, 91 primitives)".
+    pub label: String,
+}
+
+impl SceneEntry {
+    pub fn new(id: String, group: &'static str, family: String, primitives: u64) -> Self {
+        let label = format!(
+            "{id} ({family}, {})",
+            reports::page_values::primitives(primitives)
+        );
+        SceneEntry {
+            id,
+            group,
+            family,
+            primitives,
+            label,
+        }
+    }
 }
 
 /// A scene generator: its id is `PREFIX:N`.
@@ -103,6 +121,8 @@ pub struct GeneratorEntry {
     pub max: u32,
     pub default: u32,
     pub summary: String,
+    /// "size factor 1–9, default 3."
+    pub range: String,
 }
 
 #[derive(Clone, Debug, Serialize)]
@@ -136,6 +156,10 @@ pub struct LimitsEntry {
     pub max_upload_bytes: u64,
     /// The most worker threads a job may ask for (`runner::pool::max_threads`).
     pub max_threads: u16,
+    /// The size and thread limits, said: "Image size: each side at most …".
+    pub size_text: String,
+    /// "Up to 64.0 MiB."
+    pub upload_text: String,
 }
 
 /// Everything `GET /api/scenes` lists.
@@ -184,11 +208,13 @@ impl Catalogue {
     /// Everything a job can name.
     pub fn listing(&self) -> Listing {
         let mut scenes: Vec<SceneEntry> = tracer::builtin_scenes::all()
-            .map(|b| SceneEntry {
-                id: b.name.to_string(),
-                group: "builtin",
-                family: b.family.to_string(),
-                primitives: b.primitives as u64,
+            .map(|b| {
+                SceneEntry::new(
+                    b.name.to_string(),
+                    "builtin",
+                    b.family.to_string(),
+                    b.primitives as u64,
+                )
             })
             .collect();
         scenes.extend(self.uploaded());
@@ -202,6 +228,7 @@ impl Catalogue {
                 max: p.max_size_factor,
                 default: p.default_size_factor,
                 summary: p.summary.to_string(),
+                range: String::new(),
             })
             .collect();
         use tracer::generators::{MAX_LATTICE_SIDE, MAX_SPHEREFLAKE_DEPTH};
@@ -213,6 +240,7 @@ impl Catalogue {
             max: MAX_SPHEREFLAKE_DEPTH,
             default: 2,
             summary: "Haines's sphereflake without the ground: 1 + 9 + 81 + ... spheres".into(),
+            range: String::new(),
         });
         generators.push(GeneratorEntry {
             prefix: "lattice".into(),
@@ -222,7 +250,17 @@ impl Catalogue {
             max: MAX_LATTICE_SIDE,
             default: 3,
             summary: "N^3 spheres on a cubic lattice joined by 3 N^2 (N-1) cylinders".into(),
+            range: String::new(),
         });
+        for g in &mut generators {
+            g.range = format!(
+                "{} {}–{}, default {}.",
+                g.parameter,
+                reports::format::count(u64::from(g.min)),
+                reports::format::count(u64::from(g.max)),
+                reports::format::count(u64::from(g.default))
+            );
+        }
         let mut variants: Vec<VariantEntry> = tracer::Variant::ALL
             .iter()
             .filter(|v| v.available() && VariantSet::parse(v.name()).is_ok())
@@ -264,6 +302,13 @@ impl Catalogue {
                 max_pixels: limits.max_pixels,
                 max_upload_bytes: self.max_upload_bytes,
                 max_threads: runner::pool::max_threads().0,
+                size_text: format!(
+                    "Image size: each side at most {} pixels, at most {} pixels in all. Threads: 1 to {}; leave empty to use every core.",
+                    reports::format::count(u64::from(limits.max_side)),
+                    reports::format::count(limits.max_pixels),
+                    reports::format::count(u64::from(runner::pool::max_threads().0))
+                ),
+                upload_text: format!("Up to {}.", reports::format::bytes(self.max_upload_bytes)),
             },
         }
     }
@@ -288,12 +333,12 @@ impl Catalogue {
             .filter_map(|name| {
                 let path = self.upload_path(&name);
                 let scene = tracer::load_nff_with_limits(&path, &Limits::default()).ok()?;
-                Some(SceneEntry {
-                    id: format!("{UPLOAD_PREFIX}{name}"),
-                    group: "uploaded",
-                    family: "other".into(),
-                    primitives: scene.primitive_count() as u64,
-                })
+                Some(SceneEntry::new(
+                    format!("{UPLOAD_PREFIX}{name}"),
+                    "uploaded",
+                    "other".into(),
+                    scene.primitive_count() as u64,
+                ))
             })
             .collect()
     }

@@ -95,6 +95,28 @@ pub async fn guard(State(guard): State<Guard>, request: Request, next: Next) -> 
     }
 }
 
+/// The anti-framing headers of every answer: no other site may frame the page (a
+/// click on Run or Delete through a transparent frame). The job's own files (its
+/// flamegraphs, shown in the page with `<object>`) may be framed by this server's page
+/// and by no one else.
+pub async fn no_framing(uri: axum::http::Uri, mut response: Response) -> Response {
+    let own_file = uri.path().starts_with("/api/jobs/") && uri.path().contains("/files/");
+    let (frame_options, ancestors) = match own_file {
+        true => ("SAMEORIGIN", "frame-ancestors 'self'"),
+        false => ("DENY", "frame-ancestors 'none'"),
+    };
+    let headers = response.headers_mut();
+    headers.insert(
+        header::X_FRAME_OPTIONS,
+        header::HeaderValue::from_static(frame_options),
+    );
+    headers.insert(
+        header::CONTENT_SECURITY_POLICY,
+        header::HeaderValue::from_static(ancestors),
+    );
+    response
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

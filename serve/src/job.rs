@@ -5,6 +5,8 @@
 use serde::{Deserialize, Serialize};
 use tracer::VariantSet;
 
+use reports::format;
+
 use crate::catalogue::{Catalogue, Part};
 use crate::error::ApiError;
 
@@ -149,6 +151,80 @@ pub struct JobProgress {
     pub fraction: f64,
 }
 
+/// The stages a job goes through, in order, and what the page calls them.
+pub const STAGES: [(&str, &str); 4] = [
+    ("machine", "measuring the machine's peaks"),
+    ("scenes", "rendering, counting and timing"),
+    ("profile", "profiling"),
+    ("reports", "writing the reports"),
+];
+
+impl JobProgress {
+    /// The current stage's own share done, when the runner counts its steps (the
+    /// scenes' variants); `None` while a stage runs without a count (the page shows an
+    /// indeterminate bar rather than a made-up share).
+    pub fn stage_fraction(&self) -> Option<f64> {
+        (self.total > 0).then(|| self.done.min(self.total) as f64 / self.total as f64)
+    }
+
+    /// "step 2 of 4: rendering, counting and timing (1 of 3 variants done): 1/1 balls3:
+    /// timing 3 variants".
+    pub fn line(&self) -> String {
+        let Some(at) = STAGES.iter().position(|(key, _)| *key == self.stage) else {
+            return match self.message.is_empty() {
+                true => self.stage.clone(),
+                false => format!("{}: {}", self.stage, self.message),
+            };
+        };
+        let mut line = format!(
+            "step {} of {}: {}",
+            format::count(at as u64 + 1),
+            format::count(STAGES.len() as u64),
+            STAGES[at].1
+        );
+        if self.total > 0 {
+            let what = match self.stage.as_str() {
+                "scenes" => "scene × variant runs",
+                _ => "steps",
+            };
+            line.push_str(&format!(
+                " ({} of {} {what} done)",
+                format::count(self.done.min(self.total)),
+                format::count(self.total)
+            ));
+        }
+        if !self.message.is_empty() {
+            line.push_str(": ");
+            line.push_str(&self.message);
+        }
+        line
+    }
+}
+
+/// A job's figures as the page shows them, written by `reports::format` (the page
+/// formats no number itself). Rebuilt for every answer; never read back.
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
+pub struct JobText {
+    /// "2026-11-27 20:11:25 UTC".
+    pub created: String,
+    pub started: Option<String>,
+    pub finished: Option<String>,
+    /// How long it ran ("3 min 05 s"), or has been running; `None` without a start.
+    pub elapsed: Option<String>,
+    /// "160×120".
+    pub size: String,
+    /// "all cores", "4 threads".
+    pub threads: String,
+    /// "balls3", or "the quick suite".
+    pub scene: String,
+    /// "baseline, bvh", or "every variant".
+    pub variants: String,
+    /// The progress line of a queued or running job (see [`JobProgress::line`]).
+    pub progress: String,
+    /// The current stage's own share, 0 to 1, for the page's bar (`None`: unknown).
+    pub stage_fraction: Option<f64>,
+}
+
 /// A job as the API returns it.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct Job {
@@ -165,6 +241,64 @@ pub struct Job {
     /// `partial/...` for a job that did not finish).
     #[serde(default)]
     pub files: Vec<String>,
+    /// Seconds since the Unix epoch at its start and end, for its duration (older
+    /// job.json files have none).
+    #[serde(default)]
+    pub started_unix: Option<u64>,
+    #[serde(default)]
+    pub finished_unix: Option<u64>,
+    /// Its figures written for the page ([`Job::with_text`]).
+    #[serde(default)]
+    pub text: JobText,
+}
+
+/// Seconds since the Unix epoch now.
+pub fn unix_now() -> u64 {
+    std::time::SystemTime::now()
+        .duration_since(std::time::UNIX_EPOCH)
+        .map_or(0, |d| d.as_secs())
+}
+
+impl Job {
+    /// The job with [`Job::text`] written as of now.
+    pub fn with_text(mut self) -> Job {
+        let request = &self.request;
+        let suite = request.runs(Part::Suite);
+        let end = match self.status.is_final() {
+            true => self.finished_unix,
+            false => Some(unix_now()),
+        };
+        let elapsed = match (self.started_unix, end) {
+            (Some(start), Some(end)) => Some(format::elapsed(end.saturating_sub(start))),
+            _ => None,
+        };
+        let active = !self.status.is_final();
+        self.text = JobText {
+            created: format::timestamp(&self.created),
+            started: self.started.as_deref().map(format::timestamp),
+            finished: self.finished.as_deref().map(format::timestamp),
+            elapsed,
+            size: format::size(request.size[0], request.size[1]),
+            threads: request.threads.map_or_else(
+                || "all cores".to_string(),
+                |n| format::kind_count(n, "threads"),
+            ),
+            scene: match suite {
+                true => "the quick suite".to_string(),
+                false => request.scene.clone(),
+            },
+            variants: match suite {
+                true => "every variant".to_string(),
+                false => request.variants.join(", "),
+            },
+            progress: match active {
+                true => self.progress.line(),
+                false => String::new(),
+            },
+            stage_fraction: self.progress.stage_fraction().filter(|_| active),
+        };
+        self
+    }
 }
 
 #[cfg(test)]

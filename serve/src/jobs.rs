@@ -106,6 +106,9 @@ impl Jobs {
                 },
                 error: None,
                 files: Vec::new(),
+                started_unix: None,
+                finished_unix: None,
+                text: Default::default(),
             };
             self.store
                 .save(&job)
@@ -165,6 +168,7 @@ impl Jobs {
                 self.update(id, true, |job| {
                     job.status = JobStatus::Cancelled;
                     job.finished = Some(runner::machine::now_rfc3339());
+                    job.finished_unix = Some(crate::job::unix_now());
                     job.error = Some("cancelled before it started".into());
                 });
             }
@@ -187,6 +191,35 @@ impl Jobs {
             }
         }
         self.get(id)
+    }
+
+    /// Deletes finished job `id`: its directory and its entry. A queued or running job
+    /// is cancelled instead ([`Jobs::cancel`]); that is a 409 here.
+    pub fn delete(&self, id: u64) -> Result<(), ApiError> {
+        let mut entries = self.lock();
+        let entry = entries.get(&id).ok_or_else(|| unknown(id))?;
+        if !entry.job.status.is_final() {
+            return Err(ApiError::conflict(format!(
+                "job {id} is {}: cancel it first (DELETE /api/jobs/{id}), then delete it",
+                match entry.job.status {
+                    JobStatus::Queued => "queued",
+                    _ => "running",
+                }
+            )));
+        }
+        let dir = self.store.job_dir(id);
+        match std::fs::remove_dir_all(&dir) {
+            Ok(()) => {}
+            Err(e) if e.kind() == std::io::ErrorKind::NotFound => {}
+            Err(e) => {
+                return Err(ApiError::internal(format!(
+                    "cannot delete {}: {e}",
+                    dir.display()
+                )));
+            }
+        }
+        entries.remove(&id);
+        Ok(())
     }
 
     /// Stops taking jobs: the queued ones end as interrupted at once, the running one
@@ -217,6 +250,7 @@ impl Jobs {
                 }
                 job.status = JobStatus::Interrupted;
                 job.finished = Some(runner::machine::now_rfc3339());
+                job.finished_unix = Some(crate::job::unix_now());
                 job.error = Some("the server stopped before this job started; run it again".into());
             });
         }
@@ -252,6 +286,7 @@ impl Jobs {
         self.update(id, true, |job| {
             job.status = JobStatus::Running;
             job.started = Some(runner::machine::now_rfc3339());
+            job.started_unix = Some(crate::job::unix_now());
             job.progress.stage = "starting".into();
         });
         // A stop that came while it was being started.
@@ -273,6 +308,7 @@ impl Jobs {
         };
         self.update(id, true, |job| {
             job.finished = Some(runner::machine::now_rfc3339());
+            job.finished_unix = Some(crate::job::unix_now());
             job.files = files;
             match outcome {
                 Ok(()) => {

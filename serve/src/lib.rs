@@ -19,10 +19,12 @@
 pub mod api;
 pub mod catalogue;
 pub mod error;
+pub mod estimate;
 pub mod guard;
 pub mod job;
 pub mod jobs;
 pub mod page;
+pub mod pixel;
 pub mod store;
 pub mod uploads;
 

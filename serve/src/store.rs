@@ -123,10 +123,16 @@ impl Store {
                 continue;
             };
             if !job.status.is_final() {
+                // It ended when its last file was written, not now: the time the server
+                // was down is not the job's.
+                let last = newest_change(&dir);
                 keep_staged(&dir);
                 job.status = JobStatus::Interrupted;
-                job.finished
-                    .get_or_insert_with(runner::machine::now_rfc3339);
+                job.finished_unix = last.or(job.started_unix);
+                job.finished.get_or_insert_with(|| match job.finished_unix {
+                    Some(at) => results::rfc3339_utc(at),
+                    None => runner::machine::now_rfc3339(),
+                });
                 job.error = Some(
                     "the server stopped while this job was queued or running; run it again".into(),
                 );
@@ -150,6 +156,31 @@ impl Store {
             .map_err(|e| ServeError::Other(format!("cannot serialize server.json: {e}")))?;
         write_atomically(&path, &text).map_err(|e| ServeError::io("write", &path, &e))
     }
+}
+
+/// When anything under `dir` last changed (seconds since the Unix epoch), staging
+/// directories included.
+fn newest_change(dir: &Path) -> Option<u64> {
+    let mut newest = None;
+    let mut pending = vec![dir.to_path_buf()];
+    while let Some(current) = pending.pop() {
+        let Ok(entries) = std::fs::read_dir(&current) else {
+            continue;
+        };
+        for entry in entries.filter_map(Result::ok) {
+            let Ok(meta) = entry.metadata() else { continue };
+            if meta.is_dir() {
+                pending.push(entry.path());
+            }
+            let at = meta
+                .modified()
+                .ok()
+                .and_then(|t| t.duration_since(std::time::UNIX_EPOCH).ok())
+                .map(|d| d.as_secs());
+            newest = newest.max(at);
+        }
+    }
+    newest
 }
 
 /// Renames a dead server's staging directories (`.rtprof-suite-PID.partial`) in a job

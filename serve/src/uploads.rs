@@ -44,10 +44,10 @@ pub fn save(catalogue: &Catalogue, name: &str, bytes: &[u8]) -> Result<SceneEntr
     std::fs::create_dir_all(catalogue.uploads_dir())
         .and_then(|()| tracer::image_io::write_atomically(&path, bytes))
         .map_err(|e| ApiError::internal(format!("cannot keep the scene: {e}")))?;
-    Ok(SceneEntry {
-        id: format!("{UPLOAD_PREFIX}{name}"),
-        group: "uploaded",
-        family: "other".into(),
-        primitives: scene.primitive_count() as u64,
-    })
+    Ok(SceneEntry::new(
+        format!("{UPLOAD_PREFIX}{name}"),
+        "uploaded",
+        "other".into(),
+        scene.primitive_count() as u64,
+    ))
 }

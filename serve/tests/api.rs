@@ -356,6 +356,146 @@ fn a_job_runs_to_the_end_and_its_files_are_served_but_nothing_outside() {
         error.contains("mine 24x18") && error.contains("balls1 8x6"),
         "{error}"
     );
+
+    // The page's figures are the report's: bvh's speed-up as the report's matrix
+    // writes it (its 95 % interval decides the digits), baseline's median as its
+    // time cell does; and both strings are in report.html.
+    let (status, values) = f.get(&format!("/api/jobs/{id}/values"));
+    assert_eq!(status, 200, "{values}");
+    let bvh = &s.variants[1];
+    let [low, high] = bvh.speedup_interval.unwrap();
+    let speedup = reports::format::ratio_estimate(bvh.speedup.unwrap(), low, high).median;
+    let shown = &values["scenes"][0]["variants"][1];
+    assert_eq!(shown["variant"], "bvh");
+    assert_eq!(shown["speedup"], speedup.as_str(), "{shown}");
+    let base = &s.variants[0].time;
+    let median = reports::format::estimate(base.median, base.low, base.high).median;
+    assert_eq!(
+        values["scenes"][0]["variants"][0]["median"],
+        median.as_str()
+    );
+    let report =
+        std::fs::read_to_string(f.data.join("jobs").join(&id).join("report.html")).unwrap();
+    assert!(
+        report.contains(&speedup) && report.contains(&median),
+        "{speedup} {median}"
+    );
+    // Two primitives, said in the plural; one would be in the singular.
+    assert!(
+        values["scenes"][0]["summary"]
+            .as_str()
+            .unwrap()
+            .contains("2 primitives")
+    );
+
+    // report.pdf opens in the browser rather than downloading.
+    let r = f
+        .agent
+        .get(&f.url(&format!("/api/jobs/{id}/files/report.pdf")))
+        .call()
+        .unwrap();
+    assert_eq!(r.headers()["content-type"], "application/pdf");
+    assert_eq!(r.headers()["content-disposition"], "inline");
+
+    // A finished job is deleted with its directory; then it is gone from the list,
+    // and a second DELETE finds nothing.
+    let dir = f.data.join("jobs").join(&other);
+    assert!(dir.is_dir());
+    let r = f
+        .agent
+        .delete(&f.url(&format!("/api/jobs/{other}")))
+        .call()
+        .unwrap();
+    assert_eq!(r.status().as_u16(), 403, "DELETE needs the token");
+    assert!(dir.is_dir());
+    assert_eq!(f.cancel(&other), 200);
+    assert!(!dir.exists(), "{} still there", dir.display());
+    let listed = f.get("/api/jobs").1;
+    assert!(
+        !listed["jobs"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .any(|j| j["id"] == other.as_str()),
+        "{listed}"
+    );
+    assert_eq!(f.get(&format!("/api/jobs/{other}")).0, 404);
+    assert_eq!(f.cancel(&other), 404);
+    // The other job is untouched.
+    assert!(f.data.join("jobs").join(&id).join("results.json").is_file());
+}
+
+#[test]
+fn every_answer_refuses_framing_by_other_sites() {
+    let f = Fixture::new("framing", 4096);
+    for path in [
+        "/",
+        "/assets/app.js",
+        "/api/jobs",
+        "/api/scenes",
+        "/api/jobs/99",
+        "/nothing",
+    ] {
+        let r = f.agent.get(&f.url(path)).call().unwrap();
+        assert_eq!(r.headers()["x-frame-options"], "DENY", "{path}");
+        assert_eq!(
+            r.headers()["content-security-policy"],
+            "frame-ancestors 'none'",
+            "{path}"
+        );
+    }
+    // Refusals too (the guard answers before the route).
+    let r = f
+        .agent
+        .post(&f.url("/api/jobs"))
+        .send_json(json!({}))
+        .unwrap();
+    assert_eq!(r.status().as_u16(), 403);
+    assert_eq!(r.headers()["x-frame-options"], "DENY");
+}
+
+#[test]
+fn the_estimate_counts_primitives_and_times_a_slow_brute_force_render() {
+    let f = Fixture::new("estimate", 4096);
+    // balls2: 1 + 9 + 81 spheres and a polygon (tracer's built-in table).
+    let primitives = tracer::builtin_scenes::find("balls2").unwrap().primitives as u64;
+    let (status, e) = f.get("/api/estimate?scene=balls2&width=64&height=48");
+    assert_eq!(status, 200, "{e}");
+    assert_eq!(e["primitives"], primitives);
+    assert_eq!(
+        e["primitives_text"],
+        format!("{primitives} primitives").as_str()
+    );
+    // Under runner::estimate::MANY_PRIMITIVES: no timing, said so.
+    assert!(e["brute_force"].is_null(), "{e}");
+    assert!(
+        e["text"].as_str().unwrap().contains("brute force is quick"),
+        "{e}"
+    );
+    // SPD balls at size factor 4: 7,382 primitives (Haines's table), a brute-force
+    // render at a large size that the probe times past the note's threshold.
+    let (status, e) = f.get("/api/estimate?scene=spd:balls:4&width=1920&height=1080&threads=1");
+    assert_eq!(status, 200, "{e}");
+    assert_eq!(e["primitives"], 7_382, "{e}");
+    assert!(
+        e["brute_force"].as_str().unwrap().starts_with("about "),
+        "{e}"
+    );
+    assert!(
+        e["text"].as_str().unwrap().contains("7,382 primitives"),
+        "{e}"
+    );
+    // Refusals say what to change.
+    for (query, said) in [
+        ("scene=balls99&width=8&height=8", "unknown scene"),
+        ("scene=balls2&width=8", "width=W&height=H"),
+        ("scene=balls2&width=1048576&height=2", "size 1048576x2"),
+        ("scene=balls2&width=8&height=8&threads=0", "threads 0"),
+    ] {
+        let (status, e) = f.get(&format!("/api/estimate?{query}"));
+        assert_eq!(status, 422, "{query}: {e}");
+        assert!(e["error"].as_str().unwrap().contains(said), "{query}: {e}");
+    }
 }
 
 #[test]
@@ -418,8 +558,14 @@ fn a_running_job_answers_50_concurrent_requests_and_cancels_to_partial_outputs()
         f.get(&format!("/api/jobs/{second}")).1["status"],
         "cancelled"
     );
-    // Cancelling again: 409.
-    assert_eq!(f.cancel(&id), 409);
+    // Cancelling again: 409 (POST .../cancel never deletes, whenever it arrives).
+    let r = f
+        .agent
+        .post(&f.url(&format!("/api/jobs/{id}/cancel")))
+        .header("X-Rtprof-Token", &f.server.token)
+        .send_empty()
+        .unwrap();
+    assert_eq!(r.status().as_u16(), 409);
     // Its outputs are marked partial; no results.json anywhere in it.
     let files = files(&job);
     assert!(files.iter().all(|f| f.starts_with("partial/")), "{files:?}");

@@ -203,7 +203,13 @@ pub fn build(runs: &[Run]) -> Option<Document> {
                     "one run".to_string()
                 }
             ),
-            subject: labels.join(" vs "),
+            // What the report is of: its scenes (a browser tab's title), or the runs
+            // it compares.
+            subject: if runs.len() > 1 {
+                labels.join(" vs ")
+            } else {
+                subject_of(r)
+            },
             reference: THESIS.to_string(),
             generator: format!("rtprof {}", r.build.rtprof_version),
         },
@@ -211,6 +217,17 @@ pub fn build(runs: &[Run]) -> Option<Document> {
         sections: sections_out,
         assets: b.assets,
     })
+}
+
+/// A single run's subject: its scenes ("balls3", "balls3, gears4 and tetra3"), or
+/// their number when there are more than three.
+fn subject_of(r: &crate::results::Results) -> String {
+    let names: Vec<String> = r.scenes.iter().map(|s| s.name.clone()).collect();
+    match names.len() {
+        0 => "no scene".to_string(),
+        1..=3 => crate::format::join_list(&names),
+        n => crate::format::plural(n, "scene"),
+    }
 }
 
 /// What the section builders share: the runs, the charts not yet placed, the assets.
