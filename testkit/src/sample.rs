@@ -19,8 +19,10 @@ use std::collections::BTreeMap;
 
 mod pixel_maps;
 mod profile;
+mod synthesis;
 use pixel_maps::sample_pixel_maps;
 use profile::{BASELINE_FLAT, BVH_FLAT, sample_profile};
+use synthesis::sample_synthesis;
 
 use results::{
     AmdahlFigures, AmdahlRow, Band, Build, BvhQuality, CodeKind, CriterionEstimate, DeviceUse,
@@ -731,6 +733,7 @@ fn sample_hardware() -> HardwareResult {
         family: tables.family.clone(),
         ops: tables.ops.iter().map(HwRow::from_model_row).collect(),
         blocks: tables.blocks.iter().map(HwRow::from_model_row).collect(),
+        synthesis: Some(sample_synthesis()),
         devices: vec![
             DeviceUse {
                 device: "EP4CE115".to_string(),
