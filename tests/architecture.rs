@@ -196,8 +196,8 @@ const LAYERS: &[(&str, &[&str])] = &[
     ("spd", &["tracer"]),
     ("reference", &["tracer"]),
     ("hwmodel", &["tracer"]),
-    ("rtl", &["hwmodel", "tracer"]),
     ("results", &["tracer", "analysis", "hwmodel"]),
+    ("rtl", &["hwmodel", "tracer", "results"]),
     ("reports", &["results", "hwmodel", "analysis"]),
     (
         "runner",
@@ -207,6 +207,7 @@ const LAYERS: &[(&str, &[&str])] = &[
             "reference",
             "analysis",
             "hwmodel",
+            "rtl",
             "results",
             "reports",
         ],

@@ -60,6 +60,77 @@ pub struct HardwareResult {
     pub ops: Vec<HwRow>,
     pub blocks: Vec<HwRow>,
     pub devices: Vec<DeviceUse>,
+    /// The generated RTL of the same design through Yosys (`rtprof hw synth`), when a
+    /// synthesis of exactly this RTL has been run on the machine (`None` otherwise, and
+    /// in older files).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub synthesis: Option<Synthesis>,
+}
+
+/// The generated RTL of a design through Yosys's default Cyclone IV E script
+/// (`rtl::synth`): each block's cells and logic depth, and the clock the depth allows.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize, JsonSchema)]
+pub struct Synthesis {
+    /// The design's label (`thesis`, `K=2`, …).
+    pub design: String,
+    /// `yosys -V`.
+    pub tool: String,
+    /// The flow, as a sentence (`synth_intel -family cycloneive`, the default script,
+    /// hierarchy kept).
+    pub flow: String,
+    /// Wall time of the Yosys run, seconds.
+    pub seconds: f64,
+    /// A hash of the generated Verilog: which RTL these figures are of.
+    pub rtl_hash: String,
+    /// The clock the depth is judged against (the thesis's 50 MHz).
+    pub clock_mhz: f64,
+    /// The estimate's rule: `register_ns + levels × level_ns` per path.
+    pub level_ns: f64,
+    pub register_ns: f64,
+    /// The most LUT levels a path may have at `clock_mhz` by that rule.
+    pub max_levels: u64,
+    /// Each generated block, in the pipeline's order (one instance of it).
+    pub blocks: Vec<SynthBlock>,
+    /// The whole design: every instance and the top's own logic (iterator, scene
+    /// memory, control); its depth is the longest path anywhere in the design.
+    pub total: SynthBlock,
+}
+
+impl Synthesis {
+    /// The blocks (and the whole design) whose estimated clock is below `clock_mhz`.
+    pub fn not_closing(&self) -> Vec<&SynthBlock> {
+        self.blocks
+            .iter()
+            .chain(std::iter::once(&self.total))
+            .filter(|b| !b.closes)
+            .collect()
+    }
+}
+
+/// One block's Yosys figures and logic depth.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize, JsonSchema)]
+pub struct SynthBlock {
+    pub name: String,
+    /// 4-input LUTs (`cycloneive_lcell_comb`, and the inverters the map leaves).
+    pub lut4: u64,
+    /// The part of `lut4` in multiplier arrays (where Quartus uses embedded
+    /// multipliers).
+    pub mult_lut4: u64,
+    /// Flip-flops (`dffeas`).
+    pub ff: u64,
+    /// Bits of the memories the RTL declares.
+    pub mem_bits: u64,
+    /// M9K blocks.
+    pub m9k: u64,
+    /// LUT levels on the longest path between registers (or ports), flattened.
+    pub levels: u64,
+    /// Where that path starts and ends (Yosys's names).
+    pub path_from: String,
+    pub path_to: String,
+    /// The estimated Fmax of `levels` by the rule above, MHz.
+    pub fmax_mhz: f64,
+    /// `fmax_mhz` reaches the clock.
+    pub closes: bool,
 }
 
 /// A software variant's time on the hardware's job (diffuse-only gray, the scene's

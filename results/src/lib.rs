@@ -41,7 +41,7 @@ pub use bvh_quality::BvhQuality;
 pub use created::rfc3339_utc;
 pub use hardware::{
     DeviceUse, HardwareResult, HwColumn, HwErrors, HwFigures, HwRow, HwRowKind, SceneHardware,
-    SoftwarePeer,
+    SoftwarePeer, SynthBlock, Synthesis,
 };
 pub use pixel_stats::{PixelMap, PixelStats, VariantPixelMaps};
 pub use read::{FileError, ResultsError};

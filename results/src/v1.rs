@@ -418,6 +418,7 @@ impl Results {
                     .collect::<Result<_, _>>()?,
                 family: h.family,
                 devices: h.devices,
+                synthesis: None,
             }),
             None => None,
         };

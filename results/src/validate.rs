@@ -11,7 +11,9 @@ use std::fmt::Display;
 use std::path::{Component, Path};
 
 use crate::error::ResultsError;
-use crate::hardware::{HardwareResult, HwErrors, HwFigures, HwRow, SceneHardware};
+use crate::hardware::{
+    HardwareResult, HwErrors, HwFigures, HwRow, SceneHardware, SynthBlock, Synthesis,
+};
 use crate::schema::{
     AmdahlFigures, Band, Estimate, Failure, FlatRow, Profile, ProfileResult, Quality, Results,
     SceneResult, SuiteInfo, VariantResult,
@@ -544,7 +546,55 @@ fn check_hardware(c: &mut Check, h: &HardwareResult) -> Checked {
             c.count(name, n)?;
         }
         Ok(())
-    })
+    })?;
+    if let Some(s) = &h.synthesis {
+        c.field("synthesis", |c| check_synthesis(c, s))?;
+    }
+    Ok(())
+}
+
+/// A synthesis: names and texts bounded, cells exact, times and clocks finite and
+/// plausible.
+fn check_synthesis(c: &mut Check, s: &Synthesis) -> Checked {
+    for (name, text) in [
+        ("design", &s.design),
+        ("tool", &s.tool),
+        ("flow", &s.flow),
+        ("rtl_hash", &s.rtl_hash),
+    ] {
+        c.text(name, text, MAX_NAME)?;
+    }
+    c.seconds("seconds", s.seconds)?;
+    for (name, x) in [
+        ("clock_mhz", s.clock_mhz),
+        ("level_ns", s.level_ns),
+        ("register_ns", s.register_ns),
+    ] {
+        c.ratio(name, x)?;
+    }
+    c.count("max_levels", s.max_levels)?;
+    let block = |c: &mut Check, b: &SynthBlock| -> Checked {
+        for (name, text) in [
+            ("name", &b.name),
+            ("path_from", &b.path_from),
+            ("path_to", &b.path_to),
+        ] {
+            c.text(name, text, MAX_NAME)?;
+        }
+        for (name, n) in [
+            ("lut4", b.lut4),
+            ("mult_lut4", b.mult_lut4),
+            ("ff", b.ff),
+            ("mem_bits", b.mem_bits),
+            ("m9k", b.m9k),
+            ("levels", b.levels),
+        ] {
+            c.count(name, n)?;
+        }
+        c.ratio("fmax_mhz", b.fmax_mhz)
+    };
+    c.each("blocks", &s.blocks, MAX_ROWS, block)?;
+    c.field("total", |c| block(c, &s.total))
 }
 
 fn check_failure(c: &mut Check, f: &Failure) -> Checked {

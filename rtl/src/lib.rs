@@ -79,7 +79,9 @@ pub enum RtlError {
         names: String,
     },
     /// More intersection units than the generator builds ([`generate::MAX_UNITS`]).
-    #[error("the RTL is generated for at most {max} intersection units, not {units}")]
+    #[error(
+        "the RTL is generated for at most {max} intersection units, not {units} (the model, `rtprof hw time --units K`, takes more)"
+    )]
     TooManyUnits { units: u32, max: u32 },
     /// A synthesis that cannot be run or reported as asked.
     #[error("synthesis: {0}")]

@@ -11,10 +11,9 @@
 //! `rtprof hw sim` prints and whether it agrees. [`verilator_command`] is the one
 //! Verilator command line (the operator tests build with it too).
 
-use std::collections::hash_map::DefaultHasher;
 use std::fmt::Write as _;
 use std::fs;
-use std::hash::{Hash, Hasher};
+use std::hash::{DefaultHasher, Hash, Hasher};
 use std::path::{Path, PathBuf};
 use std::process::Command;
 use std::sync::atomic::{AtomicU64, Ordering};
@@ -535,25 +534,22 @@ impl SimCheck {
             && self.latencies_agree()
     }
 
-    /// `rtprof hw sim --json`.
-    pub fn to_json(&self) -> serde_json::Value {
-        serde_json::json!({
-            "scene": self.scene,
-            "design": self.design.label(),
-            "units": self.design.units,
-            "width": self.width,
-            "height": self.height,
-            "primitives": self.primitives,
-            "cycles": self.result.cycles,
-            "model_cycles": self.result.model_cycles,
-            "writes": self.result.writes,
-            "blocks": self.result.blocks,
-            "image": self.image.display().to_string(),
-            "reference": self.reference,
-            "differing_pixels": self.difference.differing_pixels,
-            "rms": self.difference.rms,
-            "agrees": self.agrees(),
-        })
+    /// `rtprof hw sim --json`: the check's figures and verdict (not the picture).
+    pub fn summary(&self) -> SimSummary<'_> {
+        SimSummary {
+            scene: &self.scene,
+            design: self.design.label(),
+            units: self.design.units,
+            width: self.width,
+            height: self.height,
+            primitives: self.primitives,
+            result: &self.result,
+            image: &self.image,
+            reference: self.reference,
+            differing_pixels: self.difference.differing_pixels,
+            rms: self.difference.rms,
+            agrees: self.agrees(),
+        }
     }
 
     /// `rtprof hw sim`'s report: cycles, block latencies and the picture, each with
@@ -601,6 +597,25 @@ impl SimCheck {
         );
         text
     }
+}
+
+/// What `rtprof hw sim --json` prints of a [`SimCheck`].
+#[derive(Clone, Debug, Serialize)]
+pub struct SimSummary<'a> {
+    pub scene: &'a str,
+    pub design: String,
+    pub units: u32,
+    pub width: u32,
+    pub height: u32,
+    pub primitives: usize,
+    /// `cycles`, `model_cycles`, `writes`, `blocks`.
+    #[serde(flatten)]
+    pub result: &'a SimResult,
+    pub image: &'a Path,
+    pub reference: &'static str,
+    pub differing_pixels: u64,
+    pub rms: f64,
+    pub agrees: bool,
 }
 
 /// A binary PGM (`P5`) of `width`×`height`, 8-bit.

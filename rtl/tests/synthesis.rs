@@ -1,6 +1,7 @@
-//! The generated pipeline through Yosys (`synth_intel -family cycloneive`): it maps to
-//! device cells without errors, and each block's flip-flops cover the registers its
-//! structure must hold.
+//! The generated pipeline through Yosys's default `synth_intel -family cycloneive`
+//! script: it maps to device cells without errors, each block's flip-flops cover the
+//! registers its structure must hold, and its longest path between registers is within
+//! `rtl::synth::MAX_LUT_LEVELS`.
 //!
 //! Needs `yosys` (`scripts/install-rtl-tools.sh`): `cargo test -p rtl --test synthesis
 //! -- --ignored`.
@@ -10,7 +11,7 @@ use hwmodel::design::Design;
 use hwmodel::library::{Library, OpKind};
 use rtl::{generate, synth};
 
-fn synthesize(design: Design, block: Option<&str>) -> synth::SynthReport {
+fn synthesize(design: Design, block: Option<&str>) -> synth::SynthComparison {
     let lib = Library::cyclone_iv_e();
     let pipeline = Pipeline::build(&lib, &design);
     let dir = std::env::temp_dir().join(format!(
@@ -19,63 +20,108 @@ fn synthesize(design: Design, block: Option<&str>) -> synth::SynthReport {
         design.label(),
         std::process::id()
     ));
-    let report =
+    let comparison =
         synth::synthesize_design(&lib, &pipeline, block, &dir).unwrap_or_else(|e| panic!("{e}"));
-    let top = &report.top;
+    let s = &comparison.synthesis;
     eprintln!(
-        "{top} ({}): {:?} in {:.0} s; blocks {:?}",
-        design.label(),
-        report.total,
-        report.seconds,
-        report
-            .blocks
+        "{} design ({}), {:.0} s: {:?}",
+        s.design,
+        block.unwrap_or("every block"),
+        s.seconds,
+        s.blocks
             .iter()
-            .map(|b| (b.block.as_str(), b.figures))
+            .chain([&s.total])
+            .map(|b| (
+                b.name.as_str(),
+                b.lut4,
+                b.mult_lut4,
+                b.ff,
+                b.levels,
+                b.fmax_mhz
+            ))
             .collect::<Vec<_>>()
     );
-    assert!(report.unmapped.is_empty(), "{:?}", report.unmapped);
-    assert_eq!(report.check_problems, 0);
-    report
+    assert!(comparison.unmapped.is_empty(), "{:?}", comparison.unmapped);
+    assert_eq!(comparison.check_problems, 0);
+    // The estimate follows the depth by the documented rule.
+    for b in s.blocks.iter().chain([&s.total]) {
+        assert_eq!(b.closes, b.levels <= s.max_levels, "{b:?}");
+        assert!(
+            (b.fmax_mhz - 1000.0 / (s.register_ns + b.levels as f64 * s.level_ns)).abs() < 1e-9
+        );
+    }
+    let _ = std::fs::remove_dir_all(&dir);
+    comparison
 }
 
+/// The minimum-distance block alone (seconds: CI runs it) through the default script:
+/// its registers, and its longest path within the 12 levels (the kept distance fed back
+/// through the load select into the compare's first stage).
 #[test]
 #[ignore = "needs yosys"]
-fn the_minimum_distance_block_synthesizes_with_its_registers() {
-    let report = synthesize(Design::thesis(), Some("min_distance"));
+fn the_minimum_distance_block_synthesizes_with_its_registers_and_depth() {
+    let comparison = synthesize(Design::thesis(), Some("min_distance"));
     let lib = Library::cyclone_iv_e();
+    let s = &comparison.synthesis;
     // The kept registers (5 words and the address: 173 bits, fig. 25) and the payload
     // beside the compare (compare latency × the same 173 bits, plus 3 flag bits).
     let word = 5 * 32 + u64::from(ADDRESS_BITS);
     let compare = u64::from(lib.op(OpKind::Compare).latency);
     assert!(
-        report.total.ff >= word * (1 + compare),
+        s.total.ff >= word * (1 + compare),
         "{} flip-flops < {}",
-        report.total.ff,
+        s.total.ff,
         word * (1 + compare)
     );
-    assert!(report.total.lut4 > 0);
-    assert_eq!(report.total.mult_lut4, 0, "no multiplier in this block");
+    assert!(s.total.lut4 > 0);
+    assert_eq!(s.total.mult_lut4, 0, "no multiplier in this block");
+    assert_eq!(s.blocks.len(), 1);
+    assert_eq!(s.blocks[0], synth_block_named(&s.total, "min_distance"));
+    assert!(
+        s.total.levels > 0 && s.total.levels <= synth::MAX_LUT_LEVELS,
+        "{:?}",
+        s.total
+    );
+    // The model's and the thesis's rows come with it.
+    assert!(
+        comparison
+            .model
+            .iter()
+            .any(|r| r.name == "min_distance" && r.thesis.is_some())
+    );
 }
 
+fn synth_block_named(b: &results::SynthBlock, name: &str) -> results::SynthBlock {
+    results::SynthBlock {
+        name: name.to_string(),
+        ..b.clone()
+    }
+}
+
+/// The whole thesis design through the default script (about 2 minutes of CPU, 3.2 GB):
+/// every block has logic and, but the minimum distance, multipliers; every block within
+/// the 12 levels, and the whole design's path (flattened, across the blocks) at least
+/// as deep as any block's.
 #[test]
-#[ignore = "needs yosys; several minutes"]
+#[ignore = "needs yosys; minutes"]
 fn the_whole_thesis_design_synthesizes_block_by_block() {
-    let blocks = ["primary_ray", "intersection", "min_distance", "shading"];
-    let report = synthesize(Design::thesis(), None);
-    assert_eq!(report.top, generate::TOP);
-    for name in blocks {
-        let b = report
-            .block(name)
-            .unwrap_or_else(|| panic!("no figures for {name}"));
-        assert!(
-            b.figures.lut4 > 0 && b.figures.ff > 0,
-            "{name}: {:?}",
-            b.figures
-        );
+    let comparison = synthesize(Design::thesis(), None);
+    let s = &comparison.synthesis;
+    let names: Vec<&str> = s.blocks.iter().map(|b| b.name.as_str()).collect();
+    assert_eq!(
+        names,
+        ["primary_ray", "intersection", "min_distance", "shading"]
+    );
+    for b in &s.blocks {
+        assert!(b.lut4 > 0 && b.ff > 0, "{b:?}");
+        assert_eq!(b.mult_lut4 > 0, b.name != "min_distance", "{b:?}");
+        assert!(b.lut4 <= s.total.lut4 && b.ff <= s.total.ff, "{b:?}");
     }
-    // Multipliers: 3 + 21·... every block but the minimum distance has some.
-    for name in ["primary_ray", "intersection", "shading"] {
-        let b = report.block(name).map(|b| b.figures.mult_lut4).unwrap_or(0);
-        assert!(b > 0, "{name}: no multiplier logic");
+    for b in &s.blocks {
+        assert!(b.levels <= synth::MAX_LUT_LEVELS, "{b:?}");
     }
+    // The top's own logic is not there yet: 18 levels from the `prim_count` input
+    // through the slot's padding select into an intersection unit's first stage
+    // (docs/hardware-model.md). Its path is measured and reported, not held to 12.
+    assert!(s.total.levels >= s.blocks.iter().map(|b| b.levels).max().unwrap_or(0));
 }

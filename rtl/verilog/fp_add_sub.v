@@ -85,7 +85,7 @@ module fp_add_sub #(
     wire [7:0] dab_full = ea - eb;
     wire [7:0] dba_full = eb - ea;
     /* verilator lint_on UNUSEDSIGNAL */
-    fp_fast_add #(.W(31)) order (.a({ea, fa}), .b(~{eb, fb}), .ci(1'b1), .s(mag_diff), .co(a_ge_b));
+    fp_fast_add #(.W(31), .NEG_B(1)) order (.a({ea, fa}), .b({eb, fb}), .ci(1'b1), .s(mag_diff), .co(a_ge_b));
     wire swap = ~a_ge_b;
     wire [96:0] s1_d = {special1, word1, swap ? sb : sa, swap ? eb : ea, swap ? fb : fa,
         swap ? fa : fb, swap ? dba_full : dab_full, sa ^ sb};

@@ -81,8 +81,8 @@ module fp_div #(
     wire co2;
     /* verilator lint_on UNUSEDSIGNAL */
     wire a_ge_b;
-    fp_fast_add #(.W(24)) first1 (.a(ma), .b(~mb), .ci(1'b1), .s(d1), .co(a_ge_b));
-    fp_fast_add #(.W(25)) first2 (.a({ma, 1'b0}), .b(~{1'b0, mb}), .ci(1'b1), .s(d2), .co(co2));
+    fp_fast_add #(.W(24), .NEG_B(1)) first1 (.a(ma), .b(mb), .ci(1'b1), .s(d1), .co(a_ge_b));
+    fp_fast_add #(.W(25), .NEG_B(1)) first2 (.a({ma, 1'b0}), .b({1'b0, mb}), .ci(1'b1), .s(d2), .co(co2));
     // Signed, 10 bits: ea - eb + 127 is in [-126, 380].
     wire [9:0] e = {2'b00, ea} - {2'b00, eb} + (a_ge_b ? 10'd127 : 10'd126);
     // The remainder after the first bit is below mb < 2^24; shifted, below 2^25.
@@ -114,7 +114,7 @@ module fp_div #(
             // The remainder is below 2 mb < 2^25: rem >= mb is the carry of rem - mb.
             wire [25:0] diff;
             wire fits;
-            fp_fast_add #(.W(26)) sub (.a(rem), .b(~{2'b00, divisor}), .ci(1'b1), .s(diff),
+            fp_fast_add #(.W(26), .NEG_B(1)) sub (.a(rem), .b({2'b00, divisor}), .ci(1'b1), .s(diff),
                 .co(fits));
             /* verilator lint_off UNUSEDSIGNAL */
             wire [25:0] kept = fits ? diff : rem;

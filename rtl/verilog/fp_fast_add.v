@@ -1,7 +1,11 @@
-// fp_fast_add: a W-bit adder with logarithmic depth, s = a + b + ci, co its carry out.
+// fp_fast_add: a W-bit adder with logarithmic depth, s = a + b + ci, co its carry out;
+// with NEG_B = 1, s = a + ~b + ci.
 //
 // The pipelined operators' wide additions, subtractions and comparisons (a - b is
-// a + ~b + 1; its carry out is 1 when a >= b). A Kogge-Stone parallel-prefix adder:
+// a + ~b + 1 with NEG_B = 1; its carry out is 1 when a >= b). The inversion is a
+// parameter, not the caller's `~b`, so that it lives in this module: with the
+// hierarchy kept (rtl::synth), an inverter at a module port is a LUT level of its own
+// that ABC cannot fold into the first prefix level. A Kogge-Stone parallel-prefix adder:
 // the (generate, propagate) pairs of every span of 2^l bits, l = 0 .. ceil(log2(W+1)),
 // each level one 3-input function per bit, so a 26-bit sum is 5 LUT levels where a
 // `+` is a ripple of about 17 (Yosys's synth_intel has no carry chains).
@@ -17,7 +21,8 @@
 //
 // Verilog-2005, synthesizable; part of the rtprof `rtl` crate.
 module fp_fast_add #(
-    parameter W = 26
+    parameter W = 26,
+    parameter NEG_B = 0
 ) (
     input [W-1:0] a,
     input [W-1:0] b,
@@ -25,8 +30,9 @@ module fp_fast_add #(
     output [W-1:0] s,
     output co
 );
+    wire [W-1:0] bb = NEG_B ? ~b : b;
 `ifdef RTPROF_BEHAVIOURAL_ARITHMETIC
-    assign {co, s} = {1'b0, a} + {1'b0, b} + {{W{1'b0}}, ci};
+    assign {co, s} = {1'b0, a} + {1'b0, bb} + {{W{1'b0}}, ci};
 `else
     localparam LEVELS = $clog2(W + 1);
     genvar l, i;
@@ -38,8 +44,8 @@ module fp_fast_add #(
             (* keep *) wire [W:0] p;
             /* verilator lint_on UNUSEDSIGNAL */
             if (l == 0) begin : init
-                assign g = {a & b, ci};
-                assign p = {a ^ b, 1'b0};
+                assign g = {a & bb, ci};
+                assign p = {a ^ bb, 1'b0};
             end else begin : span
                 for (i = 0; i <= W; i = i + 1) begin : bits
                     if (i >= (1 << (l - 1))) begin : join_

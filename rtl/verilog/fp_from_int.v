@@ -32,7 +32,7 @@ module fp_from_int #(
     /* verilator lint_off UNUSEDSIGNAL */
     wire neg_co;
     /* verilator lint_on UNUSEDSIGNAL */
-    fp_fast_add #(.W(32)) negate (.a(~a), .b(32'd0), .ci(1'b1), .s(neg), .co(neg_co));
+    fp_fast_add #(.W(32), .NEG_B(1)) negate (.a(32'd0), .b(a), .ci(1'b1), .s(neg), .co(neg_co));
     wire [33:0] s1_d = {a[31], a == 32'd0, a[31] ? neg : a};
     wire [33:0] s1;
     fp_stage #(.WIDTH(34), .LATENCY(LATENCY), .STAGES(STAGES), .STAGE(1)) st1 (.clk(clk), .d(s1_d), .q(s1));

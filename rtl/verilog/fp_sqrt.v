@@ -77,7 +77,7 @@ module fp_sqrt #(
             wire [27:0] shifted = {rem[25:0], xs[2*I+1], xs[2*I]};
             wire [W-1:0] diff;
             wire fits;
-            fp_fast_add #(.W(W)) sub (.a(shifted[W-1:0]), .b(~trial[W-1:0]), .ci(1'b1),
+            fp_fast_add #(.W(W), .NEG_B(1)) sub (.a(shifted[W-1:0]), .b(trial[W-1:0]), .ci(1'b1),
                 .s(diff), .co(fits));
             wire [27:0] rem_next = fits ? {{(28-W){1'b0}}, diff} : shifted;
             wire [SW-1:0] done = {side, xs, root[23:0], fits, rem_next};

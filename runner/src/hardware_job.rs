@@ -130,7 +130,9 @@ pub fn run_hardware(
     })
 }
 
-/// Tables 7 and 8 and the thesis design's fit on every device (7 primitives, 640x480).
+/// Tables 7 and 8 and the thesis design's fit on every device (7 primitives, 640x480),
+/// and the synthesis of the thesis design's RTL if `rtprof hw synth` kept one on this
+/// machine (`rtl::synth::recall`: only a synthesis of exactly this RTL).
 pub fn hardware_tables() -> HardwareResult {
     let lib = Library::cyclone_iv_e();
     let t = hwmodel::table::tables(&lib, &Design::thesis());
@@ -162,5 +164,10 @@ pub fn hardware_tables() -> HardwareResult {
         ops: t.ops.iter().map(HwRow::from_model_row).collect(),
         blocks: t.blocks.iter().map(HwRow::from_model_row).collect(),
         devices,
+        synthesis: rtl::synth::recall(
+            &rtl::synth::cache_dir(),
+            &lib,
+            &Pipeline::build(&lib, &Design::thesis()),
+        ),
     }
 }

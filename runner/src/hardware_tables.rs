@@ -1,6 +1,9 @@
 //! `rtprof hw table` as text: the model's tables 7 and 8 beside the thesis's, in the
-//! report's table layout (one table model, printed in columns).
+//! report's table layout (one table model, printed in columns), and the Yosys columns
+//! when a synthesis of the design's RTL was kept.
 
+use hwmodel::blocks::Pipeline;
+use hwmodel::design::Design;
 use hwmodel::library::{DeviceSpec, Library};
 use hwmodel::table::{Row, Tables};
 use reports::sections::hardware::hw_table;
@@ -25,6 +28,36 @@ pub fn tables_text(tables: &Tables, lib: &Library, device: &DeviceSpec) -> Strin
     out += "\nThe standalone dot-product row of table 7 is a four-lane module (4 multipliers,\n\
             3 adders: 28 elements); the blocks use three lanes. See docs/hardware-model.md.\n";
     out
+}
+
+/// Yosys's columns beside table 8 for `design`, when `rtprof hw synth` kept a synthesis
+/// of its RTL on this machine (the RTL is generated for the Cyclone IV E library only).
+pub fn synthesis_text(lib: &Library, design: &Design) -> String {
+    let rtl_lib = Library::cyclone_iv_e();
+    if lib.family != rtl_lib.family {
+        return format!(
+            "Yosys's columns: the RTL is generated for {} only.\n",
+            rtl_lib.family
+        );
+    }
+    let pipeline = Pipeline::build(&rtl_lib, design);
+    match rtl::synth::recall(&rtl::synth::cache_dir(), &rtl_lib, &pipeline) {
+        Some(synthesis) => {
+            let rows: Vec<HwRow> = hwmodel::table::tables(&rtl_lib, design)
+                .blocks
+                .iter()
+                .map(HwRow::from_model_row)
+                .collect();
+            format!(
+                "The generated RTL through Yosys (kept by `rtprof hw synth`):\n{}",
+                reports::sections::synthesis::synthesis_text(&synthesis, &rows)
+            )
+        }
+        None => format!(
+            "Yosys's columns (LUT4, FF, logic depth, estimated Fmax): no synthesis of the {} design's RTL kept on this machine; `rtprof hw synth` with the same design flags runs one (minutes) and keeps it.\n",
+            design.label()
+        ),
+    }
 }
 
 fn rows_text(rows: &[Row]) -> String {

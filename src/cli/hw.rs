@@ -191,6 +191,10 @@ fn table(args: &TableArgs) -> Result<()> {
         "{}",
         runner::hardware_tables::tables_text(&t, &lib, &device)
     );
+    print!(
+        "\n{}",
+        runner::hardware_tables::synthesis_text(&lib, &design)
+    );
     if args.detail {
         print!("{}", Pipeline::build(&lib, &design).detail_text());
     }

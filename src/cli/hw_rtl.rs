@@ -7,16 +7,17 @@ use hwmodel::blocks::Pipeline;
 use hwmodel::design::Design;
 use hwmodel::emulator::write_image;
 use hwmodel::library::Library;
-use rtl::generate::{self, MAX_UNITS};
+use reports::sections::synthesis::synthesis_text;
+use rtl::generate;
 use rtl::sim::{self, SimCheck};
-use rtl::synth::{SynthComparison, SynthPlan};
+use rtl::synth;
 use rtl::system::SystemConfig;
 use runner::hardware_files::hardware_scene;
 use runner::scene_input::SceneInput;
 use std::path::PathBuf;
 
-// The design the RTL is generated for: the model's design flags, within what the
-// generator builds.
+// The design the RTL is generated for: the model's design flags (the generator refuses
+// more units than it builds, `rtl::RtlError::TooManyUnits`).
 #[derive(clap::Args, Debug, Clone)]
 pub struct RtlDesign {
     #[command(flatten)]
@@ -24,15 +25,8 @@ pub struct RtlDesign {
 }
 
 impl RtlDesign {
-    fn design(&self) -> Result<Design> {
-        let design = self.flags.design();
-        anyhow::ensure!(
-            design.units <= MAX_UNITS,
-            "--units {}: the RTL is generated for at most {MAX_UNITS} units \
-             (`rtprof hw time --units K` models more)",
-            design.units
-        );
-        Ok(design)
+    fn design(&self) -> Design {
+        self.flags.design()
     }
 }
 
@@ -78,7 +72,7 @@ pub struct SimArgs {
 
 pub fn rtl(args: &RtlArgs) -> Result<()> {
     let lib = Library::cyclone_iv_e();
-    let design = args.design.design()?;
+    let design = args.design.design();
     let pipeline = Pipeline::build(&lib, &design);
     let scene = args.scene.as_ref().map(hardware_scene).transpose()?;
     let primitives = scene.as_ref().map_or(0, |(_, hw)| hw.primitive_count());
@@ -144,7 +138,7 @@ pub fn rtl(args: &RtlArgs) -> Result<()> {
 
 pub fn simulate(args: &SimArgs) -> Result<()> {
     let lib = Library::cyclone_iv_e();
-    let design = args.design.design()?;
+    let design = args.design.design();
     if design.ortho {
         bail!(
             "--ortho is generated (rtprof hw rtl --ortho) but not simulated: neither the \
@@ -181,7 +175,7 @@ pub fn simulate(args: &SimArgs) -> Result<()> {
     let check = SimCheck::run(&program, &pipeline, &name, &hw, (width, height), &output)?;
     write_image(&check.result.image, &output)?;
     if args.json {
-        println!("{}", serde_json::to_string_pretty(&check.to_json())?);
+        println!("{}", serde_json::to_string_pretty(&check.summary())?);
     } else {
         print!("{}", check.to_text());
     }
@@ -208,37 +202,46 @@ pub struct SynthArgs {
     /// Where Yosys works (script, log, statistics) [default: a temporary directory].
     #[arg(long, value_name = "DIR")]
     work_dir: Option<PathBuf>,
-    /// Print JSON: {blocks: [{name, yosys: {lut4, ff, mem_bits, m9k, mult_lut4},
-    /// model: {le, regs, mem_bits}, thesis: {le, regs} | null}], total, …}.
+    /// Print JSON: {synthesis: {design, tool, flow, seconds, clock_mhz, blocks: [{name,
+    /// lut4, mult_lut4, ff, mem_bits, m9k, levels, fmax_mhz, closes, …}], total},
+    /// model: [table 8's rows], unmapped, check_problems, …}.
     #[arg(long)]
     json: bool,
 }
 
 pub fn synth(args: &SynthArgs) -> Result<()> {
     let lib = Library::cyclone_iv_e();
-    let design = args.design.design()?;
-    let pipeline = Pipeline::build(&lib, &design);
+    let pipeline = Pipeline::build(&lib, &args.design.design());
     let work = match &args.work_dir {
         Some(dir) => dir.clone(),
         None => std::env::temp_dir().join(format!("rtprof-synth-{}", std::process::id())),
     };
-    let plan = SynthPlan::prepare(&lib, &pipeline, args.block.as_deref(), &work)?;
     eprintln!(
-        "rtprof: synthesizing {} of the {} design with Yosys for Cyclone IV E in {} (minutes for the square roots and dividers)",
-        if plan.one_block {
-            plan.top.as_str()
-        } else {
-            "every block"
-        },
-        design.label(),
+        "rtprof: synthesizing {} of the {} design with Yosys for Cyclone IV E in {} (minutes)",
+        args.block.as_deref().unwrap_or("every block"),
+        pipeline.design.label(),
         work.display()
     );
-    let report = plan.run()?;
-    let comparison = SynthComparison::new(&lib, &pipeline, &plan, report);
+    let comparison = synth::synthesize_design(&lib, &pipeline, args.block.as_deref(), &work)?;
+    if comparison.whole_design {
+        // `hw table` and the suite show it beside the model from now on.
+        synth::remember(&synth::cache_dir(), &comparison.synthesis)?;
+    }
     if args.json {
-        println!("{}", serde_json::to_string_pretty(&comparison.to_json())?);
+        println!("{}", serde_json::to_string_pretty(&comparison)?);
     } else {
-        print!("{}", comparison.to_text());
+        print!(
+            "{}",
+            synthesis_text(&comparison.synthesis, &comparison.model)
+        );
+        if !comparison.unmapped.is_empty() || comparison.check_problems > 0 {
+            eprintln!(
+                "warning: unmapped cells {:?} and {} check problems (log: {})",
+                comparison.unmapped,
+                comparison.check_problems,
+                comparison.log.display()
+            );
+        }
     }
     Ok(())
 }

@@ -20,9 +20,11 @@ use std::collections::BTreeMap;
 mod pixel_maps;
 mod profile;
 mod scene_spec;
+mod synthesis;
 use pixel_maps::sample_pixel_maps;
 use profile::{BASELINE_FLAT, BVH_FLAT, sample_profile};
 use scene_spec::{SceneSpec, variant_name};
+use synthesis::sample_synthesis;
 
 use results::{
     Band, Build, BvhQuality, CodeKind, CriterionEstimate, DeviceUse, Efficiency, Estimate,
@@ -713,6 +715,7 @@ fn sample_hardware() -> HardwareResult {
         family: tables.family.clone(),
         ops: tables.ops.iter().map(HwRow::from_model_row).collect(),
         blocks: tables.blocks.iter().map(HwRow::from_model_row).collect(),
+        synthesis: Some(sample_synthesis()),
         devices: vec![
             DeviceUse {
                 device: "EP4CE115".to_string(),

@@ -26,7 +26,7 @@ pub enum Part {
 /// appendix. The comparison comes only with several runs, and first: a report of
 /// several runs opens with what changed. The ray-rates, roofline, pixel-maps and
 /// bvh-quality sections come only with results that hold their data.
-pub const SECTIONS: [(&str, &str, Part); 26] = [
+pub const SECTIONS: [(&str, &str, Part); 27] = [
     ("comparison", "What changed between the runs", Part::Main),
     ("answers", "Answers", Part::Main),
     ("profile", "Profile: where the time goes", Part::Main),
@@ -51,6 +51,11 @@ pub const SECTIONS: [(&str, &str, Part); 26] = [
     (
         "hardware-tables",
         "The model against tables 7 and 8",
+        Part::Within("hardware"),
+    ),
+    (
+        "hardware-synthesis",
+        "The generated RTL through Yosys: cells, logic depth, clock",
         Part::Within("hardware"),
     ),
     (

@@ -61,6 +61,7 @@ pub fn hardware(b: &mut Builder) -> Section {
         s.text(text);
     }
     s.absorb(hardware_tables(b));
+    s.absorb(super::synthesis::synthesis_section(b));
     s.absorb(optimizations(b));
     s.absorb(device_utilization(b));
     s.absorb(sw_hw(b));

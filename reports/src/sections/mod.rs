@@ -9,6 +9,7 @@
 //! | `variants.rs` | the variants chapter (the scene × variant matrix); variants-by-scene |
 //! | `peer.rs` | the variants chapter's sentence on the peer, Embree in both its modes |
 //! | `hardware.rs` | the hardware chapter (tables 7 and 8, the optimizations costed, device fit, software against hardware) |
+//! | `synthesis.rs` | hardware-synthesis (the generated RTL through Yosys, inside the hardware chapter) |
 //! | `images.rs` | the images chapter |
 //! | `summary.rs` | summary (findings, machine, scenes, runs) |
 //! | `ray_rates.rs` | ray-rates |
@@ -43,6 +44,7 @@ pub(crate) mod ray_rates;
 pub(crate) mod roofline;
 pub(crate) mod scaling;
 pub(crate) mod summary;
+pub mod synthesis;
 pub mod variants;
 
 /// Pictures per row of an image grid (A4 and a laptop screen both fit six).

@@ -28,6 +28,7 @@ mod block;
 mod top;
 
 use std::collections::{BTreeMap, BTreeSet};
+use std::hash::{DefaultHasher, Hash, Hasher};
 use std::path::Path;
 
 use hwmodel::blocks::{ADDRESS_BITS, Block, Pipeline};
@@ -80,6 +81,15 @@ pub struct GeneratedRtl {
     pub prologue: u32,
 }
 
+impl GeneratedRtl {
+    /// A hash of the design's files: which RTL a Verilator build or a synthesis is of.
+    pub fn hash(&self) -> String {
+        let mut hasher = DefaultHasher::new();
+        self.files.hash(&mut hasher);
+        format!("{:016x}", hasher.finish())
+    }
+}
+
 /// One generated block.
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct BlockRtl {
@@ -89,6 +99,52 @@ pub struct BlockRtl {
     pub module: String,
     /// Its latency in the model's schedule.
     pub latency: u32,
+}
+
+/// One port of a generated module, as the generator declares it (the top connects a
+/// block by its ports, never by reading its text back).
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Port {
+    /// An output (else an input).
+    pub output: bool,
+    /// Its width in bits.
+    pub bits: u32,
+    pub name: String,
+}
+
+impl Port {
+    pub fn input(bits: u32, name: impl Into<String>) -> Port {
+        Port {
+            output: false,
+            bits,
+            name: name.into(),
+        }
+    }
+
+    pub fn output(bits: u32, name: impl Into<String>) -> Port {
+        Port {
+            output: true,
+            bits,
+            name: name.into(),
+        }
+    }
+
+    /// Its declaration in a Verilog-2005 port list: `input [31:0] in_x`, `input clk`.
+    pub fn declaration(&self) -> String {
+        let direction = if self.output { "output" } else { "input" };
+        if self.bits == 1 {
+            format!("{direction} {}", self.name)
+        } else {
+            format!("{direction} [{}:0] {}", self.bits - 1, self.name)
+        }
+    }
+}
+
+/// A generated block's module: its text and its ports.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct BlockModule {
+    pub text: String,
+    pub ports: Vec<Port>,
 }
 
 /// A Verilog identifier for a graph label (`L̂.x` → `Lhat_x`, `∞` → `inf`).
@@ -138,11 +194,11 @@ pub fn generate(
     if let Some(tree) = &pipeline.min_tree {
         graph_blocks.push((tree, "min_tree".to_string()));
     }
-    let mut texts = BTreeMap::new();
-    for (block, module) in &graph_blocks {
-        let text = block_module(lib, block, module)?;
-        texts.insert(block.name, text.clone());
-        files.push((format!("{module}.v"), text));
+    let mut modules = BTreeMap::new();
+    for (block, name) in &graph_blocks {
+        let module = block_module(lib, block, name)?;
+        files.push((format!("{name}.v"), module.text.clone()));
+        modules.insert(block.name, module);
     }
     files.push(("min_distance.v".into(), min_distance_module(lib)));
     for b in pipeline.blocks_in_order() {
@@ -185,7 +241,7 @@ pub fn generate(
     let top = top_module(
         lib,
         pipeline,
-        &texts,
+        &modules,
         TopTiming {
             units,
             depth_bits,
@@ -273,7 +329,8 @@ mod tests {
     fn every_operator_node_is_one_instance_at_its_library_latency() {
         let lib = Library::cyclone_iv_e();
         let p = Pipeline::build(&lib, &Design::thesis());
-        let text = block_module(&lib, &p.intersection, "intersection").unwrap();
+        let module = block_module(&lib, &p.intersection, "intersection").unwrap();
+        let text = module.text;
         let count = |needle: &str| text.matches(needle).count() as u32;
         let s = &p.intersection.schedule;
         assert_eq!(count("fp_add_sub #(.LATENCY(7))"), s.count(OpKind::AddSub));
@@ -308,6 +365,40 @@ mod tests {
             );
             assert_eq!(top.contains("    min_tree tree"), design.units > 1);
         }
+    }
+
+    #[test]
+    fn a_block_declares_the_ports_it_carries() {
+        let lib = Library::cyclone_iv_e();
+        let p = Pipeline::build(&lib, &Design::thesis());
+        let module = block_module(&lib, &p.primary_ray, "primary_ray").unwrap();
+        let list: Vec<String> = module.ports.iter().map(Port::declaration).collect();
+        assert!(
+            module.text.contains(&format!(
+                "module primary_ray (\n    {}\n);",
+                list.join(",\n    ")
+            )),
+            "{}",
+            module.text
+        );
+        // The ray's direction: three 32-bit outputs, then the valid bit.
+        let outputs: Vec<(u32, &str)> = module
+            .ports
+            .iter()
+            .filter(|p| p.output)
+            .map(|p| (p.bits, p.name.as_str()))
+            .collect();
+        assert_eq!(
+            outputs,
+            [
+                (32, "out_0"),
+                (32, "out_1"),
+                (32, "out_2"),
+                (1, "out_valid")
+            ]
+        );
+        assert_eq!(module.ports[0], Port::input(1, "clk"));
+        assert_eq!(Port::input(32, "in_j").declaration(), "input [31:0] in_j");
     }
 
     #[test]

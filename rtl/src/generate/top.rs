@@ -9,7 +9,7 @@ use hwmodel::blocks::{ADDRESS_BITS, Block, Pipeline};
 use hwmodel::hw_scene::HwPrimitive;
 use hwmodel::library::{Library, OpKind};
 
-use super::{FIELDS, TOP};
+use super::{BlockModule, FIELDS, Port, TOP};
 use crate::RtlError;
 
 /// The hand-written minimum-distance block (thesis fig. 25) at the library's compare
@@ -41,35 +41,6 @@ fn fields(design_no_rsqrt: bool) -> Vec<(u32, u32)> {
     f
 }
 
-/// Ports of a generated block module, parsed back from its text: `(direction, width,
-/// name)`.
-fn module_ports(text: &str) -> Vec<(String, u32, String)> {
-    let mut ports = Vec::new();
-    let Some(start) = text.find('(') else {
-        return ports;
-    };
-    let Some(end) = text.find(");") else {
-        return ports;
-    };
-    for item in text[start + 1..end].split(',') {
-        let words: Vec<&str> = item.split_whitespace().collect();
-        match words.as_slice() {
-            [dir, name] => ports.push((dir.to_string(), 1, name.to_string())),
-            [dir, width, name] => {
-                let bits = width
-                    .trim_start_matches('[')
-                    .split(':')
-                    .next()
-                    .and_then(|s| s.parse::<u32>().ok())
-                    .map_or(1, |b| b + 1);
-                ports.push((dir.to_string(), bits, name.to_string()))
-            }
-            _ => {}
-        }
-    }
-    ports
-}
-
 /// The top module's input for a block's frame-constant port `k_<name>`.
 fn constant_source(name: &str, block: &str) -> Result<String, RtlError> {
     let (base, axis) = match name.rsplit_once('_') {
@@ -97,7 +68,7 @@ fn constant_source(name: &str, block: &str) -> Result<String, RtlError> {
 
 /// Instantiates a generated block in the top: connects its ports by rule.
 fn instance(
-    module_text: &str,
+    ports: &[Port],
     module: &str,
     name: &str,
     block: &str,
@@ -106,8 +77,14 @@ fn instance(
     decls: &mut String,
 ) -> Result<String, RtlError> {
     let mut conns = Vec::new();
-    for (dir, bits, port) in module_ports(module_text) {
-        let expr = if let Some(e) = connect(&port) {
+    for Port {
+        output,
+        bits,
+        name: port,
+    } in ports
+    {
+        let (output, bits) = (*output, *bits);
+        let expr = if let Some(e) = connect(port) {
             e
         } else if let Some(k) = port.strip_prefix("k_") {
             constant_source(k, block)?
@@ -125,7 +102,7 @@ fn instance(
                 memory_ports.push((field, format!("{wire}_addr"), format!("{wire}_q"), bits));
                 format!("{wire}_q")
             }
-        } else if dir == "output" {
+        } else if output {
             let wire = format!("{name}_{port}");
             writeln!(decls, "    wire [{}:0] {wire};", bits - 1).ok();
             wire
@@ -154,7 +131,7 @@ pub(super) struct TopTiming {
 pub(super) fn top_module(
     lib: &Library,
     pipeline: &Pipeline,
-    texts: &BTreeMap<&str, String>,
+    modules: &BTreeMap<&str, BlockModule>,
     t: TopTiming,
 ) -> Result<String, RtlError> {
     let design = pipeline.design;
@@ -170,10 +147,10 @@ pub(super) fn top_module(
             "the primary ray ({l_ray} cycles) is shorter than a memory read ({l_mem})"
         )));
     }
-    let text = |name: &str| {
-        texts
+    let block_ports = |name: &str| {
+        modules
             .get(name)
-            .cloned()
+            .map(|m| m.ports.as_slice())
             .ok_or_else(|| RtlError::Generate(format!("no generated `{name}` block")))
     };
     let mut decls = String::new();
@@ -248,19 +225,38 @@ pub(super) fn top_module(
         end
     end
     assign issuing = running;
-    // j as a float for the pixel issued now; i (the row whose base is computed next)
-    // registered, loaded with row r's base {row_load_delay} cycles after r's first issue.
-    wire [31:0] col_f;
-    fp_from_int #(.LATENCY(0)) col_to_float (.clk(clk), .a({{16'd0, col}}), .y(col_f));
+    // Pixels issued: the frame is done when as many were written (a count, not
+    // width * height: a 16 x 16 product in LUTs is twice the 12 levels a cycle allows).
+    reg [31:0] issued = 32'd0;
+    always @(posedge clk) if (issue) issued <= issued + 32'd1;
+    // j as a float for the pixel issued now, held in a register that changes with col:
+    // converted from the next column, registered while col holds (3 cycles or more), so
+    // that no conversion lies between the iterator and the primary ray. i (the row whose
+    // base is computed next) registered, loaded with row r's base {row_load_delay} cycles
+    // after r's first issue.
+    // A 16-bit count as a float: exact (below 2^24), the leading one and a shift.
+    function [31:0] u16_to_float(input [15:0] n);
+        integer b;
+        reg [4:0] msb;
+        reg [38:0] shifted;
+        begin
+            msb = 5'd0;
+            for (b = 0; b < 16; b = b + 1) if (n[b]) msb = b[4:0];
+            shifted = {{n, 23'd0}} >> msb;
+            u16_to_float = (n == 16'd0) ? 32'd0 : {{1'b0, 8'd127 + {{3'd0, msb}}, shifted[22:0]}};
+        end
+    endfunction
+    reg [15:0] col_next = 16'd0;
+    always @(posedge clk) col_next <= (col == width - 16'd1) ? 16'd0 : col + 16'd1;
+    reg [31:0] col_f = 32'd0;
+    always @(posedge clk) if (running & (phase == 2'd2) & last_k) col_f <= u16_to_float(col_next);
     reg [15:0] next_row = 16'd0;
     wire row_first_issue = issue & (col == 16'd0);
     wire row_load;
     fp_delay #(.WIDTH(1), .LATENCY({row_load_delay})) row_load_line (.clk(clk), .d(row_first_issue), .q(row_load));
     always @(posedge clk) if (row_load) next_row <= next_row + 16'd1;
-    wire [31:0] next_row_f;
     reg [31:0] row_i = 32'd0;
-    fp_from_int #(.LATENCY(0)) row_to_float (.clk(clk), .a({{16'd0, next_row}}), .y(next_row_f));
-    always @(posedge clk) row_i <= next_row_f;
+    always @(posedge clk) row_i <= u16_to_float(next_row);
 "#,
         prologue = t.prologue,
         row_load_delay = t.row_load_delay,
@@ -269,9 +265,9 @@ pub(super) fn top_module(
     let _ = t.row_path;
 
     // Primary ray.
-    let pr_text = text("primary_ray")?;
+    let pr_ports = block_ports("primary_ray")?;
     body += &instance(
-        &pr_text,
+        pr_ports,
         "primary_ray",
         "ray",
         "primary_ray",
@@ -307,7 +303,7 @@ pub(super) fn top_module(
     .ok();
 
     // K intersection units, each with its minimum-distance block.
-    let int_text = text("intersection")?;
+    let int_ports = block_ports("intersection")?;
     for u in 0..t.units {
         writeln!(
             body,
@@ -352,7 +348,7 @@ pub(super) fn top_module(
             })
         };
         body += &instance(
-            &int_text,
+            int_ports,
             "intersection",
             &format!("unit{u}"),
             "intersection",
@@ -381,7 +377,7 @@ pub(super) fn top_module(
 
     // The tree joining the units' minima.
     let (nearest, nearest_valid) = if let Some(tree) = &pipeline.min_tree {
-        let tree_text = text("min_tree")?;
+        let tree_ports = block_ports("min_tree")?;
         let connect = |p: &str| -> Option<String> {
             if p == "clk" {
                 return Some("clk".into());
@@ -410,7 +406,7 @@ pub(super) fn top_module(
         };
         let _ = tree;
         body += &instance(
-            &tree_text,
+            tree_ports,
             "min_tree",
             "tree",
             "min_tree",
@@ -429,7 +425,7 @@ pub(super) fn top_module(
     };
 
     // Shading.
-    let sh_text = text("shading")?;
+    let sh_ports = block_ports("shading")?;
     let connect = |p: &str| -> Option<String> {
         Some(match p {
             "clk" => "clk".into(),
@@ -443,7 +439,7 @@ pub(super) fn top_module(
         })
     };
     body += &instance(
-        &sh_text,
+        sh_ports,
         "shading",
         "shade",
         "shading",
@@ -461,7 +457,7 @@ pub(super) fn top_module(
     assign fb_we = pixel_ready;
     assign fb_addr = written;
     assign fb_data = shade_out_0;
-    assign done = finished & (written == width * height);
+    assign done = finished & (written == issued);
     // Monitors: each block's input and output valid (bit: 0 ray, 1 unit 0, 2 minimum
     // distance 0 (its input: a pixel's last primitive), 3 tree, 4 shading).
     assign mon_in = {{3'd0, {nearest_valid}, {tree_in}, unit0_flags[2] & unit0_flags[0], unit_valid, issue}};

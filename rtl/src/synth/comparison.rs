@@ -1,39 +1,25 @@
 //! A design through Yosys and held against the model: [`SynthPlan`] generates the
 //! design's RTL into a work directory and picks the top and the blocks to report
 //! (the whole design, or one block alone), [`synthesize_design`] runs it, and
-//! [`SynthComparison`] joins each block's Yosys figures with the model's resources and
-//! the thesis's table 8 (`rtprof hw synth`).
+//! [`SynthComparison`] turns each block's Yosys figures and depth into the results'
+//! [`Synthesis`] (with the estimated clock, [`super::fmax`]) beside the model's table 8
+//! rows (`rtprof hw synth`). A whole design's synthesis is kept in a cache keyed by
+//! its RTL ([`remember`], [`recall`]), where `hw table` and the suite find it.
 
-use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 
 use hwmodel::blocks::Pipeline;
 use hwmodel::design::Design;
-use hwmodel::library::{Library, Resources};
-use hwmodel::table::Figures;
+use hwmodel::library::Library;
+use results::{HwRow, SynthBlock, Synthesis};
+use serde::Serialize;
 
+use super::fmax::{CYCLONE_IV_E, THESIS_CLOCK_MHZ};
 use super::{SynthFigures, SynthReport, synthesize};
 use crate::RtlError;
 use crate::generate::{self, TOP};
+use crate::operators::write_atomically;
 use crate::sim::depth_bits_for;
-
-/// Why Yosys's figures are not Quartus's (the thesis's) nor the model's.
-pub const SYNTH_REASONS: &str = "\
-Why the columns differ:
-  - Yosys's synth_intel (experimental) maps logic to LUT4s without arithmetic-mode carry
-    chains: an adder or comparator costs more cells than in Quartus (one LE per bit).
-  - No DSP inference: multipliers are built of LUTs (mult LUT4) where Quartus uses the
-    embedded 9x9 multipliers; subtract them to compare with the LE columns.
-  - These are rtprof's own operators (rtl/verilog), not the ALTFP cores the model's
-    library rows (table 7) were measured on: pipelined in their stages with prefix
-    adders (add/sub: 508 FF where ALTFP_ADD_SUB has 415 registers), with the divider
-    and the inverse square root as digit recurrences (15 and 28 cycles) where the
-    ALTFP cores use tables and embedded multipliers.
-  - A logic element holds one LUT4 and one flip-flop: the design needs between
-    max(LUT4, FF) and LUT4 + FF of them.
-  - The minimum-distance block carries its payload 3 cycles beside the compare (the
-    model holds its inputs instead), and the top adds the iterator, scene memory ports
-    and control delay lines, which the table's blocks do not include.";
 
 /// A synthesis ready to run: the design's Verilog written into `work`, the top and
 /// the blocks to report.
@@ -48,6 +34,8 @@ pub struct SynthPlan {
     pub blocks: Vec<String>,
     /// One block alone (`--block`), not the whole design.
     pub one_block: bool,
+    /// Which RTL ([`GeneratedRtl::hash`](crate::generate::GeneratedRtl::hash)).
+    pub rtl_hash: String,
     files: Vec<PathBuf>,
 }
 
@@ -92,174 +80,159 @@ impl SynthPlan {
             top,
             blocks,
             one_block: block.is_some(),
+            rtl_hash: rtl.hash(),
             files,
         })
     }
 
-    /// Runs Yosys ([`synthesize`]).
+    /// Runs Yosys ([`synthesize`]): the blocks' figures, and the longest path of
+    /// each block and of the whole design.
     pub fn run(&self) -> Result<SynthReport, RtlError> {
         let blocks: Vec<&str> = self.blocks.iter().map(String::as_str).collect();
-        synthesize(&self.work, &self.files, &self.top, &blocks)
+        synthesize(&self.work, &self.files, &self.top, &blocks, &blocks)
     }
 }
 
-/// Synthesizes `pipeline`'s design (or its `block` alone) in `work`: the one way the
-/// command line and the tests run a design through Yosys.
+/// Synthesizes `pipeline`'s design (or its `block` alone) in `work` and sets it beside
+/// the model: the one way the command line and the tests run a design through Yosys.
 pub fn synthesize_design(
     lib: &Library,
     pipeline: &Pipeline,
     block: Option<&str>,
     work: &Path,
-) -> Result<SynthReport, RtlError> {
-    SynthPlan::prepare(lib, pipeline, block, work)?.run()
+) -> Result<SynthComparison, RtlError> {
+    let plan = SynthPlan::prepare(lib, pipeline, block, work)?;
+    let report = plan.run()?;
+    SynthComparison::new(lib, pipeline, &plan, &report)
 }
 
-/// One block's figures three ways (`None`: that source has none for it).
-#[derive(Clone, Debug, PartialEq)]
-pub struct ComparisonRow {
-    pub name: String,
-    pub yosys: Option<SynthFigures>,
-    pub model: Option<Resources>,
-    pub thesis: Option<Figures>,
-}
-
-/// A synthesis beside the model and the thesis.
-#[derive(Clone, Debug)]
+/// The design's RTL through Yosys beside the model (`rtprof hw synth`): the typed
+/// figures the results carry, the model's table 8 rows of the same design, and what the
+/// run left unclean.
+#[derive(Clone, Debug, Serialize)]
 pub struct SynthComparison {
-    pub design: Design,
-    pub report: SynthReport,
-    pub rows: Vec<ComparisonRow>,
-    /// The whole design was synthesized (its total is meaningful).
+    /// Yosys's figures, depth and estimated clock per block.
+    pub synthesis: Synthesis,
+    /// The model's (and the thesis's) rows of the same design's blocks.
+    pub model: Vec<HwRow>,
+    /// The whole design was synthesized (not one block alone).
     pub whole_design: bool,
+    /// Cells the flow left unmapped and the problems of Yosys's `check` (none and 0 in
+    /// a clean run).
+    pub unmapped: Vec<super::UnmappedCells>,
+    pub check_problems: u64,
+    /// The Yosys log.
+    pub log: PathBuf,
 }
 
 impl SynthComparison {
-    /// Joins `report` (of `plan`) with the model of `pipeline` and the thesis's table.
+    /// Joins `report` (of `plan`) with the model of `pipeline`: each block's figures and
+    /// longest path, the estimated clock and whether it reaches the thesis's.
     pub fn new(
         lib: &Library,
         pipeline: &Pipeline,
         plan: &SynthPlan,
-        report: SynthReport,
-    ) -> SynthComparison {
+        report: &SynthReport,
+    ) -> Result<SynthComparison, RtlError> {
         let tables = hwmodel::table::tables(lib, &pipeline.design);
-        let blocks = pipeline.blocks_in_order();
-        let rows = plan
-            .blocks
-            .iter()
-            .map(|name| ComparisonRow {
-                name: name.clone(),
-                yosys: report.block(name).map(|b| b.figures),
-                model: blocks
-                    .iter()
-                    .find(|b| b.name == name.as_str())
-                    .map(|b| b.resources()),
-                thesis: tables
-                    .blocks
-                    .iter()
-                    .find(|r| r.model.name == *name)
-                    .and_then(|r| r.thesis),
+        let rule = CYCLONE_IV_E;
+        let block = |name: &str, figures: SynthFigures| -> Result<SynthBlock, RtlError> {
+            let module = if plan.one_block {
+                plan.top.as_str()
+            } else {
+                name
+            };
+            let path = report.depth.get(module).ok_or_else(|| {
+                RtlError::Synth(format!("no longest path of `{module}` in the report"))
+            })?;
+            let fmax_mhz = rule.fmax_mhz(path.levels);
+            Ok(SynthBlock {
+                name: name.to_string(),
+                lut4: figures.lut4,
+                mult_lut4: figures.mult_lut4,
+                ff: figures.ff,
+                mem_bits: figures.mem_bits,
+                m9k: figures.m9k,
+                levels: path.levels,
+                path_from: path.from.clone(),
+                path_to: path.to.clone(),
+                fmax_mhz,
+                closes: fmax_mhz >= THESIS_CLOCK_MHZ,
             })
-            .collect();
-        SynthComparison {
-            design: pipeline.design,
-            report,
-            rows,
-            whole_design: !plan.one_block,
+        };
+        let mut blocks = Vec::new();
+        for name in &plan.blocks {
+            let figures = report.block(name).map(|b| b.figures).ok_or_else(|| {
+                RtlError::Synth(format!("no figures of the block `{name}` in the report"))
+            })?;
+            blocks.push(block(name, figures)?);
         }
-    }
-
-    /// `rtprof hw synth --json`.
-    pub fn to_json(&self) -> serde_json::Value {
-        let blocks: Vec<_> = self
-            .rows
-            .iter()
-            .map(|row| {
-                serde_json::json!({
-                    "name": row.name,
-                    "yosys": row.yosys,
-                    "model": row.model.map(|m| serde_json::json!({"le": m.le, "regs": m.regs, "mem_bits": m.mem_bits, "mult": m.mult})),
-                    "thesis": row.thesis.map(|t| serde_json::json!({"le": t.le, "regs": t.regs, "mem_bits": t.mem_bits, "mult": t.mult})),
-                })
-            })
-            .collect();
-        let report = &self.report;
-        serde_json::json!({
-            "design": self.design.label(),
-            "top": report.top,
-            "yosys_version": report.yosys,
-            "family": report.family,
-            "seconds": report.seconds,
-            "total": report.total,
-            "unmapped": report.unmapped,
-            "check_problems": report.check_problems,
-            "blocks": blocks,
+        let total_name = if plan.one_block {
+            plan.top.clone()
+        } else {
+            WHOLE_DESIGN.to_string()
+        };
+        let mut total = block(&plan.top, report.total)?;
+        total.name = total_name;
+        Ok(SynthComparison {
+            synthesis: Synthesis {
+                design: pipeline.design.label(),
+                tool: report.yosys.clone(),
+                flow: FLOW.to_string(),
+                seconds: report.seconds,
+                rtl_hash: plan.rtl_hash.clone(),
+                clock_mhz: THESIS_CLOCK_MHZ,
+                level_ns: rule.level_ns,
+                register_ns: rule.register_ns,
+                max_levels: rule.max_levels_at(THESIS_CLOCK_MHZ),
+                blocks,
+                total,
+            },
+            model: tables.blocks.iter().map(HwRow::from_model_row).collect(),
+            whole_design: !plan.one_block,
+            unmapped: report.unmapped.clone(),
+            check_problems: report.check_problems,
+            log: report.log.clone(),
         })
     }
+}
 
-    /// `rtprof hw synth`'s table: Yosys | model | thesis per block, the whole design's
-    /// total, warnings, and why the columns differ.
-    pub fn to_text(&self) -> String {
-        let report = &self.report;
-        let mut text = String::new();
-        let _ = writeln!(
-            text,
-            "Yosys ({}) synth_intel -family cycloneive, {} design, {:.0} s",
-            report.yosys,
-            self.design.label(),
-            report.seconds
-        );
-        let _ = writeln!(
-            text,
-            "{:<14} {:>9} {:>9} {:>9} {:>9} | {:>9} {:>9} {:>9} | {:>9} {:>9}",
-            "block",
-            "LUT4",
-            "mult LUT4",
-            "FF",
-            "mem bits",
-            "model LE",
-            "regs",
-            "mem bits",
-            "thesis LE",
-            "regs"
-        );
-        let dash = |v: Option<u64>| v.map_or("-".to_string(), |v| v.to_string());
-        for row in &self.rows {
-            let (y, m, t) = (row.yosys, row.model, row.thesis);
-            let _ = writeln!(
-                text,
-                "{:<14} {:>9} {:>9} {:>9} {:>9} | {:>9} {:>9} {:>9} | {:>9} {:>9}",
-                row.name,
-                dash(y.map(|y| y.lut4)),
-                dash(y.map(|y| y.mult_lut4)),
-                dash(y.map(|y| y.ff)),
-                dash(y.map(|y| y.mem_bits)),
-                dash(m.map(|m| m.le)),
-                dash(m.map(|m| m.regs)),
-                dash(m.map(|m| m.mem_bits)),
-                dash(t.map(|t| t.le)),
-                dash(t.map(|t| t.regs)),
-            );
-        }
-        if self.whole_design {
-            let total = &report.total;
-            let _ = writeln!(
-                text,
-                "{:<14} {:>9} {:>9} {:>9} {:>9}",
-                "whole design", total.lut4, total.mult_lut4, total.ff, total.mem_bits
-            );
-        }
-        if !report.unmapped.is_empty() || report.check_problems > 0 {
-            let _ = writeln!(
-                text,
-                "warning: {} unmapped cell kinds, {} check problems (log: {})",
-                report.unmapped.len(),
-                report.check_problems,
-                report.log.display()
-            );
-        }
-        let _ = writeln!(text, "{SYNTH_REASONS}");
-        text
-    }
+/// The name of the whole design's row.
+pub const WHOLE_DESIGN: &str = "whole design";
+
+/// The flow, as the results name it.
+pub const FLOW: &str = "synth_intel -family cycloneive (the default script, ABC's default LUT mapping), hierarchy kept";
+
+/// Where whole-design syntheses are kept: `<cache>/rtprof/synth` (beside the
+/// simulation's builds), one `<rtl hash>.json` per design.
+pub fn cache_dir() -> PathBuf {
+    crate::sim::default_build_root()
+        .parent()
+        .map_or_else(std::env::temp_dir, Path::to_path_buf)
+        .join("synth")
+}
+
+/// Keeps a whole design's synthesis in `dir` ([`cache_dir`]), so that `hw table` and
+/// the suite can show it beside the model without running Yosys again.
+pub fn remember(dir: &Path, synthesis: &Synthesis) -> Result<PathBuf, RtlError> {
+    let text = serde_json::to_string_pretty(synthesis)
+        .map_err(|e| RtlError::Synth(format!("cannot write the synthesis as JSON: {e}")))?;
+    std::fs::create_dir_all(dir).map_err(|source| RtlError::Io {
+        path: dir.to_path_buf(),
+        source,
+    })?;
+    write_atomically(&dir.join(format!("{}.json", synthesis.rtl_hash)), &text)
+}
+
+/// The synthesis of exactly `pipeline`'s RTL kept in `dir`, if one was run (an
+/// unreadable file counts as none: it is a cache).
+pub fn recall(dir: &Path, lib: &Library, pipeline: &Pipeline) -> Option<Synthesis> {
+    let rtl = generate::generate(lib, pipeline, depth_bits_for(0)).ok()?;
+    let hash = rtl.hash();
+    let text = std::fs::read_to_string(dir.join(format!("{hash}.json"))).ok()?;
+    serde_json::from_str::<Synthesis>(&text)
+        .ok()
+        .filter(|s| s.rtl_hash == hash)
 }
 
 #[cfg(test)]

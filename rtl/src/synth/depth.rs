@@ -30,7 +30,9 @@ use hwmodel::library::Library;
 use serde::Serialize;
 
 use super::run::run_limited;
-use super::{FAMILY, FF_CELL, INVERTER_CELL, LUT4_CELL, io, is_identifier, parse_stat};
+use super::{
+    FAMILY, FF_CELL, INVERTER_CELL, LTP_SELECTION, LUT4_CELL, io, is_identifier, parse_stat,
+};
 use crate::RtlError;
 use crate::operators::{Operator, write_atomically};
 
@@ -112,7 +114,7 @@ pub fn logic_depth(
         "synth_intel -family {FAMILY} -top {top}\n\
          tee -o {STAT} stat\n\
          # -noff does not know dffeas: leave the registers out of the selection.\n\
-         tee -o {LTP} ltp -noff t:{FF_CELL} %n\n"
+         tee -o {LTP} ltp -noff {LTP_SELECTION}\n"
     ));
     write_atomically(&dir.join(SCRIPT), &text)?;
     for stale in [STAT, LTP] {
@@ -173,7 +175,7 @@ pub fn logic_depth(
             .iter()
             .map(|(p, v)| ((*p).to_string(), *v))
             .collect(),
-        levels: path.length,
+        levels: path.levels,
         from: path.from,
         to: path.to,
         lut4,
@@ -206,17 +208,18 @@ pub fn operator_depth(
     logic_depth(dir, &files, op.module_name(), &parameters, timeout)
 }
 
-/// The longest path `ltp` printed.
-#[derive(Debug, PartialEq, Eq)]
-struct LongestPath {
-    length: u64,
-    from: String,
-    to: String,
+/// The longest path `ltp` printed: its length in LUT levels and its ends (Yosys's
+/// names).
+#[derive(Clone, Debug, PartialEq, Eq, Serialize)]
+pub struct LongestPath {
+    pub levels: u64,
+    pub from: String,
+    pub to: String,
 }
 
 /// Parses `ltp`'s output: `Longest topological path in <module> (length=N):` and the
 /// numbered nodes of the path, `  k: <wire or cell> (via <wire>)`.
-fn parse_ltp(text: &str) -> Result<LongestPath, String> {
+pub(super) fn parse_ltp(text: &str) -> Result<LongestPath, String> {
     let length = text
         .lines()
         .find_map(|l| {
@@ -244,7 +247,7 @@ fn parse_ltp(text: &str) -> Result<LongestPath, String> {
         ));
     }
     Ok(LongestPath {
-        length,
+        levels: length,
         from: nodes.first().map_or(String::new(), |s| s.to_string()),
         to: nodes.last().map_or(String::new(), |s| s.to_string()),
     })
@@ -269,7 +272,7 @@ Longest topological path in fp_compare (length=3):
     #[test]
     fn the_longest_path_is_read_with_its_ends() {
         let path = parse_ltp(LTP_SAMPLE).unwrap();
-        assert_eq!(path.length, 3);
+        assert_eq!(path.levels, 3);
         assert_eq!(path.from, "\\b [29]");
         assert_eq!(path.to, "\\delay.genblk1.g_chain.r [0]");
     }

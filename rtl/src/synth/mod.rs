@@ -7,11 +7,15 @@
 //!
 //! [`synthesize`] writes a Yosys script into a directory and runs
 //! `yosys -q -l synth.log -s synth.ys` there: `read_verilog` of the files, then
-//! `synth_intel -family cycloneive -top <top> -noflatten`, so that the hierarchy is kept
-//! and every module is mapped on its own. Yosys's `stat` of the mapped netlist
-//! (`stat.txt`) lists each module's own cells; the report rolls the hierarchy up, so
-//! that each block asked for gets the figures of one of its instances including its
-//! submodules (instance counts times the submodules' figures):
+//! `synth_intel -family cycloneive -top <top> -noflatten` with its own (default) LUT
+//! mapping, so that the hierarchy is kept and every module is mapped on its own.
+//! Yosys's `stat` of the mapped netlist (`stat.txt`) lists each module's own cells; the
+//! report rolls the hierarchy up, so that each block asked for gets the figures of one
+//! of its instances including its submodules (instance counts times the submodules'
+//! figures). Then, from the saved mapped netlist, the whole design and each block asked
+//! for are flattened one at a time and `ltp` finds their longest path between
+//! registers ([`SynthReport::depth`], as [`depth`] does for an operator synthesized
+//! alone):
 //!
 //! * `lut4`: 4-input look-up tables, `cycloneive_lcell_comb` cells ([`LUT4_CELL`]),
 //!   and the inverters the cell map leaves as `$not` ([`INVERTER_CELL`]);
@@ -51,12 +55,10 @@
 //! a LUT, a flip-flop, an M9K or a module of the design is reported in
 //! [`SynthReport::unmapped`].
 //!
-//! Run time is ABC's. With the default script, before issue 38 pipelined the
-//! operators, `fp_div`'s 26-step recurrence (then one combinational core) took more
-//! than 20 minutes, hence `abc -fast` here; pipelined, the default script maps each
-//! operator in 2 s (`fp_compare`) to 5 minutes (`fp_inv_sqrt`) on a loaded 2-core
-//! machine (`depth`), and whether the whole design now goes through it in reasonable
-//! time is not measured yet.
+//! Run time is ABC's. Before issue 38 pipelined the operators, the default script did
+//! not finish `fp_div`'s 26-step recurrence (one combinational core) in 20 minutes and
+//! this flow used `abc -fast`; pipelined, the whole design goes through the default
+//! script (figures in `docs/hardware-model.md`).
 
 use std::collections::{BTreeMap, BTreeSet};
 use std::fs;
@@ -74,8 +76,10 @@ pub mod depth;
 pub mod fmax;
 pub mod ice40;
 mod run;
-pub use comparison::{ComparisonRow, SYNTH_REASONS, SynthComparison, SynthPlan, synthesize_design};
-pub use depth::{DepthReport, MAX_LUT_LEVELS, logic_depth, operator_depth};
+pub use comparison::{
+    FLOW, SynthComparison, SynthPlan, WHOLE_DESIGN, cache_dir, recall, remember, synthesize_design,
+};
+pub use depth::{DepthReport, LongestPath, MAX_LUT_LEVELS, logic_depth, operator_depth};
 pub use ice40::{PnrReport, place_and_route_ice40};
 
 /// The device family passed to `synth_intel`.
@@ -181,6 +185,9 @@ pub struct SynthReport {
     pub modules: BTreeMap<String, ModuleFigures>,
     /// Cells left unmapped (none in a clean run).
     pub unmapped: Vec<UnmappedCells>,
+    /// The longest path between registers of the whole design (the top) and of each
+    /// module asked for, flattened, by module name.
+    pub depth: BTreeMap<String, LongestPath>,
     /// The problems Yosys's `check` passes reported (0 in a clean run).
     pub check_problems: u64,
     /// The distinct warnings of the log (`synth_intel` always warns that it is
@@ -211,9 +218,10 @@ pub fn synthesize(
     files: &[PathBuf],
     top: &str,
     blocks: &[&str],
+    depth_of: &[&str],
 ) -> Result<SynthReport, RtlError> {
     let yosys = yosys_version("yosys")?;
-    for name in std::iter::once(&top).chain(blocks) {
+    for name in std::iter::once(&top).chain(blocks).chain(depth_of) {
         if !is_identifier(name) {
             return Err(RtlError::Synth(format!(
                 "`{name}` is not a plain Verilog module name"
@@ -225,9 +233,15 @@ pub fn synthesize(
     for file in files {
         absolute.push(std::path::absolute(file).map_err(io(file))?);
     }
-    let text = script(&absolute, top)?;
+    let text = script(&absolute, top, depth_of)?;
     write_atomically(&dir.join(SCRIPT), &text)?;
-    for stale in [STAT, STAT_RTL] {
+    let depth_modules: Vec<&str> = std::iter::once(top)
+        .chain(depth_of.iter().copied().filter(|m| *m != top))
+        .collect();
+    let stale = [STAT.to_string(), STAT_RTL.to_string()]
+        .into_iter()
+        .chain(depth_modules.iter().map(|m| ltp_file(m)));
+    for stale in stale {
         let path = dir.join(stale);
         match fs::remove_file(&path) {
             Err(e) if e.kind() != std::io::ErrorKind::NotFound => return Err(io(&path)(e)),
@@ -267,6 +281,15 @@ pub fn synthesize(
     let stat = read_stat(&dir.join(STAT))?;
     let stat_rtl = read_stat(&dir.join(STAT_RTL))?;
     let mut report = report_from_stats(top, &stat, &stat_rtl, blocks)?;
+    for module in depth_modules {
+        let path = dir.join(ltp_file(module));
+        let text = fs::read_to_string(&path).map_err(io(&path))?;
+        let longest = depth::parse_ltp(&text).map_err(|problem| RtlError::Tool {
+            tool: "yosys",
+            message: format!("{}: {problem}", path.display()),
+        })?;
+        report.depth.insert(module.to_string(), longest);
+    }
     report.yosys = yosys;
     report.check_problems = check_problems(&log_text);
     report.warnings = warnings(&log_text);
@@ -275,9 +298,11 @@ pub fn synthesize(
     Ok(report)
 }
 
-/// The Yosys script: read the files, synthesize keeping the hierarchy, `stat` before
-/// and after mapping.
-fn script(files: &[PathBuf], top: &str) -> Result<String, RtlError> {
+/// The Yosys script: read the files, synthesize keeping the hierarchy with
+/// `synth_intel`'s default LUT mapping, `stat` before and after mapping, then the
+/// longest path between registers of the whole design and of each module in `depth_of`
+/// (each flattened from the saved mapped netlist, [`LTP_SELECTION`]).
+fn script(files: &[PathBuf], top: &str, depth_of: &[&str]) -> Result<String, RtlError> {
     let mut text =
         String::from("# Written by rtl::synth (rtprof): Cyclone IV E, hierarchy kept.\n");
     for file in files {
@@ -300,14 +325,37 @@ fn script(files: &[PathBuf], top: &str) -> Result<String, RtlError> {
          # Maps the coarse cells synth_intel's `opt -full` can leave after its techmap.\n\
          techmap\n\
          opt -fast\n\
-         # `abc -fast`: the default script did not finish fp_div's 26-stage digit\n\
-         # recurrence in 20 minutes; the fast one maps it in about 15 s.\n\
-         abc -fast -lut 4\n\
+         # synth_intel's own LUT mapping (ABC's default script).\n\
+         abc -lut 4\n\
          clean\n\
          {synth} -run map_cells:\n\
-         tee -o {STAT} stat\n"
+         tee -o {STAT} stat\n\
+         design -save mapped\n\
+         flatten\n\
+         tee -o {} ltp -noff {LTP_SELECTION}\n",
+        ltp_file(top)
     ));
+    for module in depth_of.iter().filter(|m| **m != top) {
+        text.push_str(&format!(
+            "design -load mapped\n\
+             hierarchy -top {module}\n\
+             flatten\n\
+             tee -o {} ltp -noff {LTP_SELECTION}\n",
+            ltp_file(module)
+        ));
+    }
     Ok(text)
+}
+
+/// `ltp`'s selection: every cell but the device's registers and memory blocks (`-noff`
+/// knows only Yosys's own flip-flop types, and an M9K's read is registered), so that a
+/// path runs from a register, memory or input to a register, memory or output and its
+/// length is the number of LUTs on it.
+pub(super) const LTP_SELECTION: &str = "t:dffeas t:altsyncram %u %n";
+
+/// Where the longest path of `module` is written in the synthesis directory.
+fn ltp_file(module: &str) -> String {
+    format!("ltp-{module}.txt")
 }
 
 /// `yosys -V` of `program`, or why it cannot be run.
@@ -538,6 +586,7 @@ fn report_from_stats(
         blocks: block_figures,
         modules,
         unmapped,
+        depth: BTreeMap::new(),
         check_problems: 0,
         warnings: Vec::new(),
         seconds: 0.0,

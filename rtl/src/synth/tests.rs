@@ -323,15 +323,28 @@ fn parameter_decorations_are_stripped() {
 
 #[test]
 fn the_script_keeps_the_hierarchy() {
-    let text = script(&[PathBuf::from("/a b/fp_mul.v")], "synth_top").unwrap();
+    let text = script(&[PathBuf::from("/a b/fp_mul.v")], "synth_top", &["blk"]).unwrap();
     assert!(text.contains("read_verilog \"/a b/fp_mul.v\"\n"), "{text}");
     assert!(
         text.contains("synth_intel -family cycloneive -top synth_top -noflatten -run map_cells:\n"),
         "{text}"
     );
-    assert!(text.contains("abc -fast -lut 4\n"), "{text}");
+    // Yosys's default LUT mapping (issue 38: no `abc -fast`).
+    assert!(
+        text.contains("\nabc -lut 4\n") && !text.contains("-fast -lut"),
+        "{text}"
+    );
     assert!(text.contains("tee -o stat.txt stat\n"), "{text}");
-    assert!(script(&[PathBuf::from("/a\"b.v")], "t").is_err());
+    // The whole design's depth, then the block's from the saved netlist.
+    assert!(
+        text.contains("tee -o ltp-synth_top.txt ltp -noff"),
+        "{text}"
+    );
+    assert!(
+        text.contains("design -load mapped\nhierarchy -top blk\nflatten\ntee -o ltp-blk.txt"),
+        "{text}"
+    );
+    assert!(script(&[PathBuf::from("/a\"b.v")], "t", &[]).is_err());
     assert!(!is_identifier("a b") && !is_identifier("1a") && is_identifier("fp_mul"));
 }
 
@@ -382,8 +395,14 @@ fn synthesize_operator(op: crate::Operator, latency: u32) -> BlockFigures {
     let top = dir.join("src").join("synth_top.v");
     fs::write(&top, wrapper(op, latency)).unwrap();
     files.push(top);
-    let report = synthesize(&dir.join("yosys"), &files, "synth_top", &[op.module_name()])
-        .unwrap_or_else(|e| panic!("{e}"));
+    let report = synthesize(
+        &dir.join("yosys"),
+        &files,
+        "synth_top",
+        &[op.module_name()],
+        &[],
+    )
+    .unwrap_or_else(|e| panic!("{e}"));
     eprintln!(
         "{} at LATENCY {latency}: {:?} in {:.1} s ({})",
         op.module_name(),
@@ -418,7 +437,7 @@ fn synth_errors_carry_yosys_messages() {
         "module broken (input a, output y);\n    assign y = ;\nendmodule\n",
     )
     .unwrap();
-    let err = synthesize(&dir, &[file], "broken", &[]).unwrap_err();
+    let err = synthesize(&dir, &[file], "broken", &[], &[]).unwrap_err();
     let text = err.to_string();
     assert!(
         matches!(err, RtlError::Tool { tool: "yosys", .. }),
