@@ -4,8 +4,11 @@
 //! or a child module — becomes an edge to the file that defines the item's module.
 //! A path through a re-export (`pub use child::Item` in a `lib.rs` or `mod.rs`) is
 //! followed to the file that defines the item, so a facade does not hide a circle, and
-//! re-exports themselves are plumbing, not imports. Test code (`#[cfg(test)]`) is left
-//! out. A circle means an item sits in the wrong file: the test names the files and the
+//! re-exports themselves are plumbing, not imports. A file naming an item of its parent
+//! module (or an ancestor) is not an edge: in Rust a module's own items are its
+//! children's namespace (`super::Port`), the owner of what they share; circles between
+//! siblings, or between unrelated files, are what this catches. Test code
+//! (`#[cfg(test)]`) is left out. A circle means an item sits in the wrong file: the test names the files and the
 //! edges that close it.
 
 use std::collections::{BTreeMap, BTreeSet};
@@ -238,12 +241,14 @@ fn graph(crate_files: &CrateFiles) -> BTreeMap<ModulePath, BTreeSet<ModulePath>>
     };
     let mut edges = BTreeMap::new();
     for (module, n) in &names {
+        // A module's own items are its children's namespace: a child naming its parent's
+        // (or an ancestor's) item is not an import that can close a circle.
         let targets: BTreeSet<ModulePath> = n
             .imports
             .iter()
             .filter_map(|p| absolute(module, p, crate_files))
             .map(&resolve)
-            .filter(|t| t != *module)
+            .filter(|t| t != *module && !module.starts_with(t))
             .collect();
         edges.insert((*module).clone(), targets);
     }
@@ -405,14 +410,23 @@ fn the_checker_finds_a_circle_through_a_re_export_and_ignores_test_code() {
         ),
     ]);
     assert_eq!(describe(&tested), Vec::<String>::new());
-    // A parent and the child it declares, each using the other's item.
+    // A parent and the child it declares, each using the other's item: the parent's
+    // items are the child's namespace, no circle. Two siblings that do: a circle, even
+    // when one reaches the other through the parent's re-export.
     let family = temp_crate(&[
         ("lib.rs", "mod m;"),
         ("m/mod.rs", "mod child; pub struct P; fn f(_: child::C) {}"),
         ("m/child.rs", "pub struct C; fn g(_: super::P) {}"),
     ]);
+    assert_eq!(describe(&family), Vec::<String>::new());
+    let siblings = temp_crate(&[
+        ("lib.rs", "mod m;"),
+        ("m/mod.rs", "mod a; mod b; pub use b::B;"),
+        ("m/a.rs", "pub struct A; fn f(_: super::B) {}"),
+        ("m/b.rs", "pub struct B; fn g(_: super::a::A) {}"),
+    ]);
     assert_eq!(
-        describe(&family),
-        vec!["m/mod.rs -> m/child.rs, m/child.rs -> m/mod.rs"]
+        describe(&siblings),
+        vec!["m/a.rs -> m/b.rs, m/b.rs -> m/a.rs"]
     );
 }

@@ -291,7 +291,7 @@ fn the_loader_and_the_vga_controller_synthesize_within_12_lut_levels_and_the_fra
     }
     // The frame memory at 640 x 480: 2,457,600 bits in 300 M9Ks of 8,192 data bits
     // (1 Ki bytes each), of the EP4CE115's 432.
-    let report = synth::synthesize(&dir.join("frame"), &files, "vga_frame_buffer", &[])
+    let report = synth::synthesize(&dir.join("frame"), &files, "vga_frame_buffer", &[], &[])
         .unwrap_or_else(|e| panic!("{e}"));
     eprintln!(
         "vga_frame_buffer 640x480: {:?}, {:.0} s",

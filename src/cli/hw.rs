@@ -4,6 +4,8 @@
 //! scene memory as an Altera Memory Initialization File); `rtl`, `sim` and `synth` are
 //! in `hw_rtl.rs`.
 
+mod rtl_commands;
+
 use super::scene_args::{SCENE_HELP, SIZE_HELP, named_after, parse_scene, parse_size};
 use anyhow::Result;
 use hwmodel::blocks::Pipeline;
@@ -32,13 +34,13 @@ enum HwCommand {
     /// Write the scene memory as an Altera Memory Initialization File (.mif).
     Mif(MifArgs),
     /// Write the pipeline as Verilog generated from the model's scheduled graphs.
-    Rtl(super::hw_rtl::RtlArgs),
+    Rtl(rtl_commands::RtlArgs),
     /// Simulate the generated RTL with Verilator: image, cycles per frame and per
     /// block, checked against the model and the emulator.
-    Sim(super::hw_rtl::SimArgs),
+    Sim(rtl_commands::SimArgs),
     /// Synthesize the generated RTL with Yosys for Cyclone IV E: LUT4, flip-flops and
     /// memory per block beside the model and the thesis's table 8.
-    Synth(super::hw_rtl::SynthArgs),
+    Synth(rtl_commands::SynthArgs),
 }
 
 // The design's changes from the thesis's, shared by every `hw` command that takes a
@@ -171,9 +173,9 @@ pub fn run(args: &HwArgs) -> Result<()> {
         HwCommand::Time(a) => time(a),
         HwCommand::Render(a) => render(a),
         HwCommand::Mif(a) => mif(a),
-        HwCommand::Rtl(a) => super::hw_rtl::rtl(a),
-        HwCommand::Sim(a) => super::hw_rtl::simulate(a),
-        HwCommand::Synth(a) => super::hw_rtl::synth(a),
+        HwCommand::Rtl(a) => rtl_commands::rtl(a),
+        HwCommand::Sim(a) => rtl_commands::simulate(a),
+        HwCommand::Synth(a) => rtl_commands::synth(a),
     }
 }
 

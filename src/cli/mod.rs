@@ -6,7 +6,6 @@ mod count;
 mod format;
 mod gate;
 mod hw;
-mod hw_rtl;
 mod merge;
 mod profile;
 mod render;

@@ -1,7 +1,7 @@
 //! `rtprof hw rtl | sim | synth`: the pipeline as generated Verilog, simulated cycle by
 //! cycle with Verilator and synthesized with Yosys, held against the model.
 
-use super::scene_args::{SCENE_HELP, SIZE_HELP, named_after, parse_scene};
+use crate::cli::scene_args::{SCENE_HELP, SIZE_HELP, named_after, parse_scene};
 use anyhow::{Result, bail};
 use hwmodel::blocks::Pipeline;
 use hwmodel::design::Design;
@@ -21,7 +21,7 @@ use std::path::PathBuf;
 #[derive(clap::Args, Debug, Clone)]
 pub struct RtlDesign {
     #[command(flatten)]
-    flags: super::hw::DesignFlags,
+    flags: super::DesignFlags,
 }
 
 impl RtlDesign {
@@ -40,7 +40,7 @@ pub struct RtlArgs {
     /// Output directory for the Verilog, the testbench and the scene's input.
     #[arg(short, long, value_name = "DIR")]
     output: PathBuf,
-    #[arg(long, value_name = "WxH", value_parser = super::scene_args::parse_size, help = SIZE_HELP)]
+    #[arg(long, value_name = "WxH", value_parser = crate::cli::scene_args::parse_size, help = SIZE_HELP)]
     size: Option<(u32, u32)>,
     /// Also write the whole system (docs/rtl-system.md): the UART scene loader, the
     /// frame memory and the VGA controller at 640x480, 60 Hz, around the pipeline
@@ -55,7 +55,7 @@ pub struct SimArgs {
     scene: SceneInput,
     #[command(flatten)]
     design: RtlDesign,
-    #[arg(long, value_name = "WxH", value_parser = super::scene_args::parse_size, help = SIZE_HELP)]
+    #[arg(long, value_name = "WxH", value_parser = crate::cli::scene_args::parse_size, help = SIZE_HELP)]
     size: Option<(u32, u32)>,
     /// Output image, .png or .ppm [default: <scene>-rtl.png, here].
     #[arg(short, long, value_name = "IMG")]
@@ -181,7 +181,7 @@ pub fn simulate(args: &SimArgs) -> Result<()> {
     }
     if !check.agrees() {
         // A failed check, not bad input: exit code 1.
-        return Err(super::Outcome::new(
+        return Err(crate::cli::Outcome::new(
             1,
             "the simulated RTL disagrees with the model or the emulator (see above)",
         )
