@@ -35,10 +35,8 @@ const BINS: usize = 16;
 const MAX_LEAF: usize = 8;
 /// Cost of one traversal step relative to one primitive test, for the SAH.
 const TRAVERSAL_COST: f32 = 0.5;
-/// Cost of testing one pack of [`WIDTH`] lanes (spheres or triangles of the wide BVH)
-/// relative to one primitive test alone, for the leaf decision. Chosen by measurement
-/// (SPD gears and teapot, 1024x1024: 1.0 and 1.5 were slower on gears, 2.0 as fast on
-/// teapot).
+/// Cost of one pack of [`WIDTH`] lanes against one test alone, for the leaf decision
+/// (measured on SPD gears and teapot: 1.0 and 1.5 were slower on gears).
 const PACK_COST: f32 = 2.0;
 /// Traversal stack depth; the build stops splitting before the tree gets deeper.
 const MAX_DEPTH: usize = 48;
@@ -280,10 +278,8 @@ struct BuildItem {
     lane: Lane,
 }
 
-/// How a tree's leaf tests an item: alone, or in a pack of [`WIDTH`] lanes with the
-/// leaf's other items of its kind (the wide BVH's spheres and triangles). A pack costs
-/// about as much whether it holds one item or eight, so a leaf of lane items is worth
-/// splitting only when its children's packs are entered much less often than it.
+/// How a leaf tests an item: alone, or in a pack of [`WIDTH`] lanes with its kind (the
+/// wide BVH's spheres and triangles), which costs about the same for one item or eight.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub(super) enum Lane {
     Alone,
