@@ -68,6 +68,42 @@ fn in_triangle(p: [f64; 2], [a, b, c]: [[f64; 2]; 3], sign: f64) -> bool {
     cross(a, b, p) * sign >= 0.0 && cross(b, c, p) * sign >= 0.0 && cross(c, a, p) * sign >= 0.0
 }
 
+/// What clipping a vertex of the ring would do.
+#[derive(Clone, Copy, Debug, PartialEq)]
+enum Ear {
+    /// Not yet looked at since its neighbours last changed.
+    Unknown,
+    /// Collinear with or repeating a neighbour: it goes without a triangle.
+    Collinear,
+    /// An ear, with the squared length of the diagonal it cuts.
+    Clip(f64),
+    /// Reflex, or another vertex lies in its triangle.
+    Not,
+}
+
+/// The ear status of vertex `b` between `a` and `c` on the ring (`next` walks it).
+fn ear_at(points: &[[f64; 2]], next: &[usize], a: usize, b: usize, c: usize, sign: f64) -> Ear {
+    let corners = [points[a], points[b], points[c]];
+    let turn = cross(corners[0], corners[1], corners[2]) * sign;
+    if turn == 0.0 {
+        // Collinear or repeated: removing the vertex leaves the region as is.
+        return Ear::Collinear;
+    }
+    if turn < 0.0 {
+        return Ear::Not; // reflex
+    }
+    let mut j = next[c];
+    while j != a {
+        let p = points[j];
+        if !corners.contains(&p) && in_triangle(p, corners, sign) {
+            return Ear::Not;
+        }
+        j = next[j];
+    }
+    let (dx, dy) = (corners[2][0] - corners[0][0], corners[2][1] - corners[0][1]);
+    Ear::Clip(dx * dx + dy * dy)
+}
+
 /// Ear clipping of a simple polygon (convex or concave, either orientation) into
 /// triangles of indices into `points`, each with the outline's orientation. Collinear
 /// and repeated vertices are dropped without a triangle. `None` when no ear is left
@@ -89,43 +125,57 @@ pub(crate) fn ear_clip(points: &[[f64; 2]]) -> Option<Vec<[u32; 3]>> {
         return None;
     }
     let sign = area2.signum();
-    let mut ring: Vec<usize> = (0..count).collect();
+    // The ring as a linked list, with each vertex's ear status cached: clipping an
+    // ear changes only its two neighbours' turns, and removing a vertex never puts a
+    // new vertex inside another ear.
+    let mut prev: Vec<usize> = (0..count).map(|i| (i + count - 1) % count).collect();
+    let mut next: Vec<usize> = (0..count).map(|i| (i + 1) % count).collect();
+    let mut status = vec![Ear::Unknown; count];
+    let (mut head, mut left) = (0usize, count);
     let mut triangles = Vec::with_capacity(count - 2);
     let mut clipped_area2 = 0.0;
-    // Where to look for the next ear: next to the last one clipped, so that a convex
-    // run is clipped in one sweep.
-    let mut cursor = 0;
-    while ring.len() > 3 {
-        let m = ring.len();
-        let ear = (0..m).map(|step| (cursor + step) % m).find_map(|k| {
-            let (ia, ib, ic) = (ring[(k + m - 1) % m], ring[k], ring[(k + 1) % m]);
-            let corners = [points[ia], points[ib], points[ic]];
-            let turn = cross(corners[0], corners[1], corners[2]) * sign;
-            if turn == 0.0 {
-                // Collinear or repeated: removing the vertex leaves the region as is.
-                return Some((k, None));
+    while left > 3 {
+        // The ear of the shortest diagonal (the first in ring order on a tie): on a
+        // convex run it clips every other vertex, then every other of the rest, so
+        // the triangles nest like a tree's boxes instead of fanning out as slivers.
+        let pick = |status: &mut [Ear]| {
+            let mut best: Option<(usize, f64)> = None;
+            let mut v = head;
+            for _ in 0..left {
+                if status[v] == Ear::Unknown {
+                    status[v] = ear_at(points, &next, prev[v], v, next[v], sign);
+                }
+                match status[v] {
+                    Ear::Collinear => return Some(v),
+                    Ear::Clip(key) if best.is_none_or(|(_, k)| key < k) => best = Some((v, key)),
+                    _ => {}
+                }
+                v = next[v];
             }
-            if turn < 0.0 {
-                return None; // reflex
-            }
-            let blocked = ring.iter().any(|&j| {
-                let p = points[j];
-                j != ia
-                    && j != ib
-                    && j != ic
-                    && !corners.contains(&p)
-                    && in_triangle(p, corners, sign)
-            });
-            (!blocked).then_some((k, Some([ia, ib, ic])))
+            best.map(|(v, _)| v)
+        };
+        let ear = pick(&mut status).or_else(|| {
+            // Cached refusals are stale only for degenerate outlines (a repeated
+            // vertex blocking an ear): look again with every status fresh.
+            status.iter_mut().for_each(|s| *s = Ear::Unknown);
+            pick(&mut status)
         });
-        let (k, triangle) = ear?;
-        if let Some(t) = triangle {
-            clipped_area2 += cross(points[t[0]], points[t[1]], points[t[2]]) * sign;
-            triangles.push(t.map(|i| i as u32));
+        let b = ear?;
+        let (a, c) = (prev[b], next[b]);
+        if status[b] != Ear::Collinear {
+            clipped_area2 += cross(points[a], points[b], points[c]) * sign;
+            triangles.push([a, b, c].map(|i| i as u32));
         }
-        ring.remove(k);
-        cursor = k.saturating_sub(1);
+        next[a] = c;
+        prev[c] = a;
+        status[a] = Ear::Unknown;
+        status[c] = Ear::Unknown;
+        if head == b {
+            head = c;
+        }
+        left -= 1;
     }
+    let ring = [head, next[head], next[next[head]]];
     let last = [points[ring[0]], points[ring[1]], points[ring[2]]];
     let turn = cross(last[0], last[1], last[2]) * sign;
     if turn < 0.0 {
@@ -175,6 +225,37 @@ mod tests {
         cw.reverse();
         let tris = ear_clip(&cw).unwrap_or_default();
         assert!((area(&cw, &tris) - 7.0).abs() < 1e-12);
+    }
+
+    #[test]
+    fn a_round_outline_is_cut_into_nested_triangles_not_a_fan() {
+        // A regular 64-gon: any triangulation has 62 triangles. A fan from one vertex
+        // (or ear clipping that sweeps round the outline) gives about 30 whose boxes
+        // cover a quarter of the outline's box or more. Clipping the shortest diagonal
+        // first halves the ring level by level: only the last two levels (a square's
+        // two triangles and the four below them) are that large.
+        let n = 64;
+        let ring: Vec<[f64; 2]> = (0..n)
+            .map(|i| {
+                let a = f64::from(i) * std::f64::consts::TAU / f64::from(n);
+                [a.cos(), a.sin()]
+            })
+            .collect();
+        let tris = ear_clip(&ring).unwrap_or_default();
+        assert_eq!(tris.len(), 62);
+        assert!((area(&ring, &tris) - 32.0 * (std::f64::consts::TAU / 64.0).sin()).abs() < 1e-9);
+        let box_area = |t: &[u32; 3]| {
+            let p = t.map(|i| ring[i as usize]);
+            let span = |k: usize| {
+                let (lo, hi) = p.iter().fold((f64::MAX, f64::MIN), |(lo, hi), q| {
+                    (lo.min(q[k]), hi.max(q[k]))
+                });
+                hi - lo
+            };
+            span(0) * span(1)
+        };
+        let large = tris.iter().filter(|t| box_area(t) >= 1.0).count();
+        assert!(large <= 6, "{large} triangles cover a quarter of the box");
     }
 
     #[test]

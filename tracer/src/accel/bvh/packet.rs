@@ -6,6 +6,8 @@
 //! nearest first by the packet's nearest entry, and each child carries the set of rays
 //! that entered it. A leaf tests only those rays, each with its own closest hit so far.
 //! One traversal decision, one stack and one fetch of each node serve the whole packet.
+//! A subtree that only one ray of the packet enters is handed to the single-ray loop
+//! (the same steps in the same order, without the packet's bookkeeping).
 //!
 //! Every ray gets the closest hit it gets alone (the same leaves' tests, each with the
 //! ray's own distance limit), so the picture is the wide BVH's. The work differs a
@@ -14,7 +16,7 @@
 //! steps (`accel.nodes_visited` per live child, [`WIDTH`] `accel.lanes_issued`), leaves
 //! and primitive tests are added to that ray's own counter.
 
-use super::wide::{LEAF, STACK, Slab, WideBvh, WideNode, search_leaf, visit_order};
+use super::wide::{LEAF, STACK, Slab, WideBvh, WideNode, descend, search_leaf, visit_order};
 use crate::accel::BVH_WIDTH as WIDTH;
 use crate::counter::{Counter, Phase, Stat};
 use crate::ray::{Hit, HitBound, Ray};
@@ -167,7 +169,33 @@ fn packet_search<C: Counter, const FROM_EYE: bool, const ANY: bool, const AVX2: 
         t: t_min,
     };
     loop {
-        if current.child & LEAF != 0 {
+        if current.rays & (current.rays - 1) == 0 {
+            // One ray left in this subtree: the single-ray loop does the same steps
+            // without the packet's bookkeeping.
+            let r = current.rays.trailing_zeros() as usize;
+            let found = descend::<C, FROM_EYE, ANY, AVX2>(
+                bvh,
+                &rays[r],
+                &slabs[r],
+                current.child,
+                t_min,
+                reach[r],
+                hits[r],
+                &mut counters[r],
+            );
+            if let Some(hit) = found {
+                hits[r] = Some(hit);
+                if ANY {
+                    t_max[r] = f32::NEG_INFINITY;
+                    searching &= !(1 << r);
+                    if searching == 0 {
+                        return;
+                    }
+                } else {
+                    t_max[r] = hit.t;
+                }
+            }
+        } else if current.child & LEAF != 0 {
             let leaf = &bvh.leaves[(current.child & !LEAF) as usize];
             let mut bits = current.rays;
             while bits != 0 {
@@ -220,7 +248,7 @@ fn packet_search<C: Counter, const FROM_EYE: bool, const ANY: bool, const AVX2: 
                 rays: step.rays[lane as usize],
                 t: step.t[lane as usize],
             };
-            if let Some(next) = visit_order(step.entered, entry, &mut stack, &mut top) {
+            if let Some(next) = visit_order::<_, ANY>(step.entered, entry, &mut stack, &mut top) {
                 current = next;
                 continue;
             }

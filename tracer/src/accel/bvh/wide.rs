@@ -2,10 +2,11 @@
 //! (8.3.3) inside the hierarchy. The binned-SAH binary tree is collapsed into nodes of
 //! up to [`WIDTH`] children whose boxes sit in structure-of-arrays lanes, so one step
 //! tests all the children's boxes at once; the children hit are visited nearest first,
-//! and a shadow ray stops at its first blocker.
+//! and a shadow ray stops at its first blocker (visiting them in lane order, unsorted).
 //!
 //! The binary tree is built over the scene's primitives with polygons and patches
-//! replaced by the triangles of their outlines ([`triangles`]). Leaves are the binary
+//! replaced by the triangles of their outlines ([`triangles`]), its leaves chosen with a
+//! pack of lanes costing about as much as one test alone ([`Lane`](super::Lane)). Leaves are the binary
 //! tree's leaves. Their spheres are packed into lanes too (a leaf's spheres are tested
 //! together, the thesis's units on one leaf), and so are their triangles; cylinders,
 //! cones and the outlines kept whole are tested one by one with the same tests as
@@ -361,22 +362,43 @@ fn search<C: Counter, const FROM_EYE: bool, const ANY: bool, const AVX2: bool>(
     bvh: &WideBvh,
     ray: &Ray<FROM_EYE>,
     t_min: f32,
-    mut t_max: f32,
+    t_max: f32,
     c: &mut C,
 ) -> Option<Hit> {
     let _phase = C::enter_phase(Phase::Traversal);
     if bvh.nodes.is_empty() {
         return None;
     }
-    let reach = t_max;
-    let slab = Slab::new(ray);
-    let mut best: Option<Hit> = None;
+    descend::<C, FROM_EYE, ANY, AVX2>(bvh, ray, &Slab::new(ray), 0, t_min, t_max, None, c)
+}
+
+/// [`search`] below one child (`start`, a child reference), for a ray whose closest
+/// hit so far is `best` (then the query's interval ends at it) within the query's
+/// `reach`: the closest hit, `best` if nothing beats it, or with `ANY` the first
+/// found. The packet traversal hands a subtree that only one of its rays enters to
+/// this loop: the same steps in the same order as in the packet.
+#[allow(clippy::too_many_arguments)]
+#[inline(always)]
+pub(super) fn descend<C: Counter, const FROM_EYE: bool, const ANY: bool, const AVX2: bool>(
+    bvh: &WideBvh,
+    ray: &Ray<FROM_EYE>,
+    slab: &Slab,
+    start: u32,
+    t_min: f32,
+    reach: f32,
+    mut best: Option<Hit>,
+    c: &mut C,
+) -> Option<Hit> {
+    let mut t_max = best.map_or(reach, |b| b.t);
     // Uninitialised: a node step may push up to 7 entries, so the bound is large (kB),
     // and clearing it would cost more than a short query. Only entries below `top` are
     // read, and each was written first.
     let mut stack = [const { MaybeUninit::<Entry>::uninit() }; STACK];
     let mut top = 0usize;
-    let mut current = Entry { child: 0, t: 0.0 };
+    let mut current = Entry {
+        child: start,
+        t: 0.0,
+    };
     loop {
         if current.child & LEAF != 0 {
             c.tally(Stat::LeavesVisited);
@@ -413,7 +435,7 @@ fn search<C: Counter, const FROM_EYE: bool, const ANY: bool, const AVX2: bool>(
                 child: node.child[lane as usize],
                 t: t_near[lane as usize],
             };
-            if let Some(next) = visit_order(mask, entry, &mut stack, &mut top) {
+            if let Some(next) = visit_order::<_, ANY>(mask, entry, &mut stack, &mut top) {
                 current = next;
                 continue;
             }
@@ -451,8 +473,12 @@ impl Waiting for Entry {
 /// two, the far one waits on the stack and the near one is returned; with more, all
 /// wait, sorted with the farthest at the bottom, and `None` says to take the nearest
 /// from the stack (as with none).
+///
+/// With `ANY` (a shadow ray, which stops at any blocker) the order matters less than
+/// its cost: the first child is entered and the others wait in lane order, unsorted,
+/// as Embree's any-hit traversal does.
 #[inline(always)]
-pub(super) fn visit_order<E: Waiting>(
+pub(super) fn visit_order<E: Waiting, const ANY: bool>(
     mask: u32,
     entry: impl Fn(u32) -> E,
     stack: &mut [MaybeUninit<E>],
@@ -465,6 +491,15 @@ pub(super) fn visit_order<E: Waiting>(
     let rest = mask & (mask - 1);
     if rest == 0 {
         // One child entered (the common case).
+        return Some(a);
+    }
+    if ANY {
+        let mut bits = rest;
+        while bits != 0 {
+            stack[*top].write(entry(bits.trailing_zeros()));
+            *top += 1;
+            bits &= bits - 1;
+        }
         return Some(a);
     }
     let b = entry(rest.trailing_zeros());
