@@ -26,6 +26,15 @@ use crate::timing::Estimate;
 /// (docs/gate.md has the measurement).
 pub const NOISE_THRESHOLD: f64 = 0.20;
 
+/// A noise threshold as the command line gives it, in percent (`--threshold 20`):
+/// a number from 0 to 1000.
+pub fn parse_threshold_percent(text: &str) -> Result<f64, String> {
+    match text.trim().parse::<f64>() {
+        Ok(p) if p.is_finite() && (0.0..=1000.0).contains(&p) => Ok(p),
+        _ => Err(format!("'{text}' is not a percentage between 0 and 1000")),
+    }
+}
+
 /// What a comparison of two times says.
 #[derive(
     Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord, Serialize, Deserialize, JsonSchema,
@@ -136,6 +145,15 @@ mod tests {
         assert_eq!(judge_speedup(&e(0.5, 0.45, 0.55), 0.10), Verdict::Slower);
         let r = reciprocal(&e(2.0, 1.6, 2.5));
         assert_eq!((r.median, r.low, r.high), (0.5, 0.4, 0.625));
+    }
+
+    #[test]
+    fn thresholds_are_percentages_from_0_to_1000() {
+        assert_eq!(parse_threshold_percent(" 20 "), Ok(20.0));
+        assert_eq!(parse_threshold_percent("0"), Ok(0.0));
+        for bad in ["-1", "1000.5", "nan", "inf", "twenty"] {
+            assert!(parse_threshold_percent(bad).is_err(), "{bad}");
+        }
     }
 
     #[test]

@@ -17,7 +17,8 @@
 //! Quartus rarely routes it, or routes it without meeting timing. `fits` keeps its
 //! meaning (every resource within the device); [`Fit::state`] adds the third case.
 
-use serde::Serialize;
+use schemars::JsonSchema;
+use serde::{Deserialize, Serialize};
 
 use crate::blocks::Pipeline;
 use crate::design::Design;
@@ -86,7 +87,7 @@ pub fn resources_above_headroom(le: (u64, u64), mem_bits: (u64, u64)) -> Vec<&'s
 }
 
 /// The three verdicts of a fit.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize, JsonSchema)]
 #[serde(rename_all = "snake_case")]
 pub enum FitState {
     /// Every resource within the device, logic and memory within the routing headroom.

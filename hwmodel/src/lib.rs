@@ -18,6 +18,8 @@
 //!   it computes, and its Memory Initialization File;
 //! - [`graph_eval`]: the block graphs evaluated on values, the picture they compute
 //!   (checked against the emulator; the reference for the generated RTL);
+//! - [`what_if`]: the design and device a command chooses (with the `clap` feature,
+//!   the `rtprof hw` flags);
 //! - [`float_policy`]: the arithmetic of the RTL's floating-point operators (rounding,
 //!   flushed subnormals, NaN), which the emulator computes in.
 
@@ -42,3 +44,4 @@ pub mod library;
 pub mod mif;
 pub mod optimizations;
 pub mod table;
+pub mod what_if;

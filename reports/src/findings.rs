@@ -219,7 +219,8 @@ fn hardware_speedup_finding(results: &Results) -> Option<String> {
 /// The fit of a device use: fits, fits on paper only (logic or memory above the routing
 /// headroom, [`hwmodel::device::ROUTING_HEADROOM_PERCENT`]), does not fit.
 pub fn fit_state(d: &DeviceUse) -> FitState {
-    FitState::of(d.fits, &resources_above_headroom_of(d))
+    d.fit_state
+        .unwrap_or_else(|| FitState::of(d.fits, &resources_above_headroom_of(d)))
 }
 
 /// The routing-headroom warning of a device use ([`hwmodel::device::headroom_warning`]),
@@ -833,7 +834,18 @@ mod tests {
         assert_eq!((d.device.as_str(), d.le_capacity), ("EP4CE115", 114_480));
         d.le = le;
         d.fits = le <= d.le_capacity;
+        // The rule applied to the figures, as for a file written before `fit_state`.
+        d.fit_state = None;
         d
+    }
+
+    #[test]
+    fn the_stored_fit_state_is_the_one_shown() {
+        // hwmodel's verdict as the suite stored it wins over the figures' rule.
+        let mut d = ep4ce115_at(83_948);
+        assert_eq!(fit_state(&d), FitState::Fits);
+        d.fit_state = Some(FitState::FitsOnPaper);
+        assert_eq!(fit_state(&d), FitState::FitsOnPaper);
     }
 
     #[test]

@@ -6,6 +6,7 @@
 use crate::document::{Cell, Column, Table, Tone};
 use crate::format;
 use crate::results::gate::{Clock, Entry, GateReport, Measure};
+use crate::table_format::Exports;
 use crate::text;
 
 /// Count changes an entry's cell names before "and n more".
@@ -334,4 +335,16 @@ pub fn to_csv(gate: &GateReport) -> String {
         })
         .collect();
     text::csv(&header, &rows)
+}
+
+impl Exports for GateReport {
+    fn to_text(&self) -> String {
+        to_text(self)
+    }
+    fn to_markdown(&self) -> String {
+        to_markdown(self)
+    }
+    fn to_csv(&self) -> String {
+        to_csv(self)
+    }
 }

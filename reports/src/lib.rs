@@ -35,6 +35,7 @@ pub mod pixel_maps;
 mod print;
 pub mod scaling_text;
 pub mod sections;
+pub mod table_format;
 pub mod text;
 
 pub use results;

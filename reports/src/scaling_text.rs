@@ -5,6 +5,7 @@
 use crate::document::{Cell, Column, Table, Tone};
 use crate::format;
 use crate::results::scaling::{ScalingFit, ScalingPoint, ScalingStudy};
+use crate::table_format::Exports;
 use crate::text;
 
 /// Every point: measured ones with their counts, extrapolated ones marked.
@@ -222,6 +223,18 @@ pub fn to_csv(study: &ScalingStudy) -> String {
         })
         .collect();
     text::csv(&header, &rows)
+}
+
+impl Exports for ScalingStudy {
+    fn to_text(&self) -> String {
+        to_text(self)
+    }
+    fn to_markdown(&self) -> String {
+        to_markdown(self)
+    }
+    fn to_csv(&self) -> String {
+        to_csv(self)
+    }
 }
 
 #[cfg(test)]

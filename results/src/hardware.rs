@@ -9,6 +9,7 @@ pub use hwmodel::table::{
 };
 
 use analysis::{Band, Estimate};
+use hwmodel::device::FitState;
 
 /// One row of tables 7 or 8: the model's figures, the thesis's, the errors (%).
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize, JsonSchema)]
@@ -50,6 +51,11 @@ pub struct DeviceUse {
     pub plls: u32,
     pub pll_capacity: u32,
     pub fits: bool,
+    /// The verdict hwmodel computed: fits, on paper only (above the routing headroom)
+    /// or not. `None` only in files written before the field; readers then apply
+    /// hwmodel's rule to the figures above (`reports::findings::fit_state`).
+    #[serde(default)]
+    pub fit_state: Option<FitState>,
     pub largest_units: Option<u32>,
 }
 

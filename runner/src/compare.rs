@@ -29,6 +29,7 @@ use crate::scene_input::SceneInput;
 use crate::staging::save_png;
 use crate::timing::TimingPolicy;
 use crate::variant_job::VariantMeasurement;
+use reports::table_format::Exports;
 
 /// One variant's row.
 #[derive(Serialize)]
@@ -333,14 +334,16 @@ impl VariantsReport {
         let base = scene.variants.first();
         scene_table(&scene, base, Detail::Compact)
     }
+}
 
+impl Exports for VariantsReport {
     /// The table the command prints.
-    pub fn to_text(&self) -> String {
+    fn to_text(&self) -> String {
         self.heading() + &reports::text::table(&self.table())
     }
 
     /// A GitHub-flavoured Markdown table under a one-line heading.
-    pub fn to_markdown(&self) -> String {
+    fn to_markdown(&self) -> String {
         format!(
             "**{}**\n\n{}",
             self.heading().trim_end(),
@@ -349,7 +352,7 @@ impl VariantsReport {
     }
 
     /// One CSV row per variant, seconds in full: the writer of `variants.csv`.
-    pub fn to_csv(&self) -> String {
+    fn to_csv(&self) -> String {
         reports::exports::scenes_csv(&[self.scene_result()])
     }
 }

@@ -208,6 +208,23 @@ impl SuiteDef {
         Ok(())
     }
 
+    /// The definition with Embree, the peer, in both its modes (`embree`, single rays;
+    /// `embree-packets`) added to every run: `rtprof suite --embree`. Refused when this
+    /// build has no Embree.
+    pub fn with_embree_peers(self) -> Result<Self, RunError> {
+        if !tracer::Variant::Embree.available() {
+            return Err(RunError::Input(
+                "--embree: this rtprof was built without Embree; install libembree-dev and \
+                 build with `cargo build --release --features embree`"
+                    .into(),
+            ));
+        }
+        let peers = [tracer::Variant::Embree, tracer::Variant::EmbreePackets];
+        Ok(peers
+            .into_iter()
+            .fold(self, |def, peer| def.with_variant(peer.name())))
+    }
+
     /// The definition with `variant` (a peer such as `embree`) added to every run: the
     /// suite's variants and the SPD's accelerated run, with or without `--quick`.
     pub fn with_variant(mut self, variant: &str) -> Self {

@@ -28,6 +28,9 @@ pub enum RunError {
     Render { context: String, message: String },
     #[error("{0}")]
     Variant(#[from] tracer::VariantError),
+    /// The generated RTL or its tools (Verilator, Yosys) failed.
+    #[error(transparent)]
+    Rtl(#[from] rtl::RtlError),
     #[error("{0}")]
     Metrics(#[from] analysis::MetricsError),
     #[error("{0}")]
@@ -53,6 +56,15 @@ pub enum RunError {
 }
 
 impl RunError {
+    /// For a suite of `total` scenes stopped on request: the scenes done and the total.
+    pub fn stopped_scenes(&self, total: usize) -> Option<(usize, usize)> {
+        match self {
+            RunError::StoppedAfter { done, total } => Some((*done, *total)),
+            RunError::Stopped => Some((total, total)),
+            _ => None,
+        }
+    }
+
     /// An I/O error on `path`.
     pub fn io(action: &'static str, path: impl Into<PathBuf>, err: &std::io::Error) -> Self {
         RunError::Io {

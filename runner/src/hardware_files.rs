@@ -16,12 +16,15 @@ pub fn hardware_scene(input: &SceneInput) -> Result<(tracer::Scene, HwScene), Ru
 }
 
 /// Renders `scene` with the emulator at `size` (default: the scene's resolution) into
-/// `output` (.png or .ppm); returns what was written, for the user.
+/// `output` (.png or .ppm) [default: `<scene>-hw.png`, here]; returns what was written,
+/// for the user.
 pub fn write_emulator_image(
     scene: &SceneInput,
     size: Option<(u32, u32)>,
-    output: &Path,
+    output: Option<&Path>,
 ) -> Result<String, RunError> {
+    let default = scene.named_after("", "-hw.png");
+    let output = output.unwrap_or(&default);
     // Refuse a bad output name before the work.
     tracer::image_io::ImageFormat::from_path(output).map_err(|e| RunError::Input(e.to_string()))?;
     let (scene, hw) = hardware_scene(scene)?;
@@ -35,8 +38,11 @@ pub fn write_emulator_image(
     ))
 }
 
-/// Writes the scene memory of `scene` to `output`; returns what was written.
-pub fn write_mif(scene: &SceneInput, output: &Path) -> Result<String, RunError> {
+/// Writes the scene memory of `scene` to `output` [default: `<scene>.mif`, here];
+/// returns what was written.
+pub fn write_mif(scene: &SceneInput, output: Option<&Path>) -> Result<String, RunError> {
+    let default = scene.named_after("", ".mif");
+    let output = output.unwrap_or(&default);
     let (_, hw) = hardware_scene(scene)?;
     tracer::image_io::write_atomically(output, hwmodel::mif::to_mif(&hw).as_bytes())
         .map_err(|e| RunError::io("write", output, &e))?;

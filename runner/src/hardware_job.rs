@@ -155,6 +155,7 @@ pub fn hardware_tables() -> HardwareResult {
                 plls: f.plls,
                 pll_capacity: device.plls,
                 fits: f.fits,
+                fit_state: Some(f.state),
                 largest_units: largest_units(&family, device, &Design::thesis(), 7, 640, 480),
             });
         }

@@ -9,6 +9,19 @@ use hwmodel::table::{Row, Tables};
 use reports::sections::hardware::hw_table;
 use results::HwRow;
 
+/// `rtprof hw table`: tables 7 and 8 of `design` on `device`, the Yosys columns when a
+/// synthesis was kept, and with `detail` each block's operators and delay lines.
+pub fn table_text(lib: &Library, device: &DeviceSpec, design: &Design, detail: bool) -> String {
+    let tables = hwmodel::table::tables(lib, design);
+    let mut text = tables_text(&tables, lib, device);
+    text += "\n";
+    text += &synthesis_text(lib, design);
+    if detail {
+        text += &Pipeline::build(lib, design).detail_text();
+    }
+    text
+}
+
 /// Tables 7 and 8 with a heading that names the operator library, device and design.
 pub fn tables_text(tables: &Tables, lib: &Library, device: &DeviceSpec) -> String {
     let unvalidated = |validated: bool| if validated { "" } else { " (unvalidated)" };

@@ -24,6 +24,8 @@
 //! - [`hardware_job`]: the FPGA model, emulator and software time on the same job;
 //! - [`hardware_prediction`]: `rtprof hw time`: frame time, fit and what-ifs;
 //! - [`hardware_tables`]: `rtprof hw table` as text; [`hardware_files`]: `hw render`, `hw mif`;
+//! - [`hardware_rtl`]: `hw rtl | sim | synth`: the generated RTL written, simulated and
+//!   synthesized against the model;
 //! - [`collect`]: measurements into results entries; [`bvh_study`]: the BVH's quality
 //!   per build strategy;
 //! - [`scaling`]: the growth study (`rtprof scaling`), cost per ray against scene size;
@@ -56,6 +58,7 @@ pub mod estimate;
 pub mod hardware_files;
 pub mod hardware_job;
 pub mod hardware_prediction;
+pub mod hardware_rtl;
 pub mod hardware_tables;
 pub mod machine;
 pub mod machine_peak;

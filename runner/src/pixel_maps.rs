@@ -12,11 +12,15 @@ use std::path::Path;
 use results::pixel_stats::{PIXEL_STATS_SCHEMA, PixelMap, PixelStats};
 use tracer::counter::{COUNTERS, CounterDef, STAT_COUNT};
 use tracer::{
-    Count, Counter, NoCount, RenderOptions, Rendered, SampleStats, Sampling, VariantSet,
-    render_variant_until,
+    Count, Counter, NoCount, RenderOptions, Rendered, SampleStats, Sampling, ShadingMode,
+    VariantSet, render_variant_until,
 };
 
+use std::sync::atomic::AtomicBool;
+
 use crate::error::RunError;
+use crate::pool::thread_pool;
+use crate::render_job::{RenderSettings, SceneRender};
 use crate::render_setup::RenderSetup;
 use crate::staging::save;
 use tracer::image_io::encode_png_rgb8;
@@ -321,6 +325,40 @@ pub fn write_maps(dir: &Path, maps: &Maps, context: &MapsContext) -> Result<Pixe
         .map_err(|e| RunError::Report(format!("pixel-stats.json: {e}")))?;
     save(dir, "pixel-stats.json", json.as_bytes())?;
     Ok(stats)
+}
+
+/// `rtprof count --pixel-stats DIR`: the per-pixel maps of the counted render
+/// `counted` (its scene, variants and thread count) and of three timed ones, written
+/// into `dir`; returns the line that says what was written. `settings` are the
+/// render's; `variant` is the variant list as the user gave it.
+pub fn write_maps_of_render(
+    counted: &SceneRender<Count>,
+    name: &str,
+    variant: &str,
+    settings: &RenderSettings,
+    dir: &Path,
+) -> Result<String, RunError> {
+    let options = settings.options(&counted.scene, ShadingMode::Color);
+    let pool = thread_pool(settings.threads)?;
+    let never = AtomicBool::new(false);
+    let setup = RenderSetup {
+        scene: &counted.scene,
+        name,
+        options: &options,
+        pool: &pool,
+        counting_pool: &pool,
+        stop: &never,
+    };
+    let maps = record_maps_of(&setup, &counted.variants, &counted.rendered)?;
+    let context = MapsContext {
+        scene: name,
+        variant,
+        sampling: options.sampling,
+        threads: counted.threads,
+        clock_resolution_ns: tracer::pixel_stats::clock_resolution().as_secs_f64() * 1e9,
+    };
+    let stats = write_maps(dir, &maps, &context)?;
+    Ok(written_line(&stats, dir))
 }
 
 #[cfg(test)]

@@ -60,6 +60,36 @@ pub struct RenderSettings {
     pub per_sample: bool,
 }
 
+/// The help of every command's `--size`: one rule for all of them.
+pub const SIZE_HELP: &str = "Image size WxH [default: the scene's resolution]";
+
+// How to shade: full colour unless one of these is given. (A plain comment: clap would
+// take a doc comment as the about of every command that flattens these flags.)
+#[derive(Clone, Copy, Debug, Default)]
+#[cfg_attr(feature = "clap", derive(clap::Args))]
+pub struct ShadingFlags {
+    /// Full shading converted to gray.
+    #[cfg_attr(feature = "clap", arg(long))]
+    pub gray: bool,
+    /// The thesis hardware's shading: Lambert term of the first light only, gray
+    /// (with or without --gray: it is gray either way).
+    #[cfg_attr(feature = "clap", arg(long))]
+    pub diffuse_only: bool,
+}
+
+impl ShadingFlags {
+    /// The shading mode the flags choose.
+    pub fn mode(&self) -> ShadingMode {
+        if self.diffuse_only {
+            ShadingMode::DiffuseOnly
+        } else if self.gray {
+            ShadingMode::Gray
+        } else {
+            ShadingMode::Color
+        }
+    }
+}
+
 /// Parses `WxH` such as `640x480` (the size limits are checked when rendering, so
 /// that `--max-side` and friends can raise them).
 pub fn parse_size(text: &str) -> Result<(u32, u32), String> {

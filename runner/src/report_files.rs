@@ -42,6 +42,24 @@ pub enum Pdf {
     Skip,
 }
 
+// `--no-pdf`, the same for every command that writes the reports. (A plain comment:
+// clap would take a doc comment as the about of every command that flattens it.)
+#[derive(Clone, Copy, Debug, Default)]
+#[cfg_attr(feature = "clap", derive(clap::Args))]
+pub struct PdfFlag {
+    /// Leave out report.pdf (typesetting it takes seconds; report.html has the same
+    /// content). A report.pdf left in the directory by an earlier run is removed.
+    #[cfg_attr(feature = "clap", arg(long))]
+    pub no_pdf: bool,
+}
+
+impl PdfFlag {
+    /// Whether to write report.pdf.
+    pub fn choice(self) -> Pdf {
+        if self.no_pdf { Pdf::Skip } else { Pdf::Write }
+    }
+}
+
 impl Pdf {
     /// The report documents written, for the messages that list a run's files.
     pub fn documents(self) -> &'static str {
@@ -64,6 +82,37 @@ impl Pdf {
             _ => Ok(()),
         }
     }
+}
+
+/// `rtprof report`: the runs of `paths` (the first the main one, with the benchmark
+/// figures of `benchmarks` added) into reports in `output` [default: the first file's
+/// directory]; returns the lines that say what was added and written.
+pub fn report_from_files(
+    paths: &[PathBuf],
+    output: Option<&Path>,
+    benchmarks: &crate::benchmarks::BenchmarkDirs,
+    pdf: Pdf,
+) -> Result<Vec<String>, RunError> {
+    let mut runs = load_runs(paths)?;
+    let mut lines = Vec::new();
+    if let Some(main_run) = runs.first_mut() {
+        lines = benchmarks.add_to(&mut main_run.results, false)?;
+    }
+    let dir = output
+        .map(Path::to_path_buf)
+        .or_else(|| runs.first().map(|r| r.base_dir.clone()))
+        .filter(|d| !d.as_os_str().is_empty())
+        .unwrap_or_else(|| PathBuf::from("."));
+    std::fs::create_dir_all(&dir).map_err(|e| RunError::io("create", &dir, &e))?;
+    let pages = write_reports(&runs, &dir, pdf)?;
+    lines.push(format!(
+        "wrote {}/{{{}, variants.csv, summary.md}} from {}",
+        dir.display(),
+        pdf.documents(),
+        reports::format::plural(runs.len(), "run")
+    ));
+    lines.extend(pages.map(|p| reports::format::pdf_pages(p.total, p.main_body)));
+    Ok(lines)
 }
 
 /// Writes report.html, report.pdf (unless `pdf` says not), variants.csv (the first

@@ -93,7 +93,31 @@ impl ScalingPlan {
                 "scaling: repeats must be at least 1".into(),
             ));
         }
+        if !(self.budget_seconds.is_finite() && self.budget_seconds > 0.0) {
+            return Err(RunError::Input(format!(
+                "--budget {}: give a positive number of seconds",
+                self.budget_seconds
+            )));
+        }
         Ok(())
+    }
+
+    /// Checks the plan, then runs it on `threads` workers [default: one per core] and
+    /// writes the study into `dir` (created first, so that a bad directory fails before
+    /// the work).
+    pub fn run_into(
+        &self,
+        dir: &Path,
+        threads: Option<u16>,
+        progress: &dyn Progress,
+        stop: &AtomicBool,
+    ) -> Result<(ScalingStudy, StudyFiles), RunError> {
+        self.check()?;
+        std::fs::create_dir_all(dir).map_err(|e| RunError::io("create directory", dir, &e))?;
+        let pool = crate::pool::thread_pool(threads)?;
+        let study = pool.install(|| run_scaling(self, progress, stop))?;
+        let files = write_study(&study, dir)?;
+        Ok((study, files))
     }
 
     /// Points to run (for a progress bar): families × size factors × accelerators.

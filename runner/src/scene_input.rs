@@ -63,6 +63,43 @@ pub enum SceneInput {
 }
 
 impl SceneInput {
+    /// The help of every command's scene argument: one list of what a scene can be.
+    pub const HELP: &str = "NFF file, built-in scene (balls3) or generated scene (spd:rings, \
+                            spd:balls:2 = size factor 2, sphereflake:3); `rtprof scene list` \
+                            names them all";
+
+    /// The scene to write by name (`rtprof scene gen NAME --size-factor N`): an SPD
+    /// database at `size_factor`, or any named scene as it is; a file is not a name.
+    pub fn to_generate(&self, size_factor: Option<u32>) -> Result<SceneInput, RunError> {
+        match (self, size_factor) {
+            (SceneInput::Spd { program, .. }, Some(n)) => {
+                SceneInput::spd(program, n).map_err(|e| RunError::Scene {
+                    scene: format!("{SPD_PREFIX}{}:{n}", program.name),
+                    message: e.to_string(),
+                })
+            }
+            (SceneInput::File(path), _) => Err(RunError::Input(format!(
+                "{} is not a scene name: `rtprof scene list` names the scenes rtprof can write",
+                path.display()
+            ))),
+            (other, Some(_)) => Err(RunError::Input(format!(
+                "--size-factor is for spd:NAME scenes, not {other}"
+            ))),
+            (other, None) => Ok(other.clone()),
+        }
+    }
+
+    /// A scene as a command-line argument (relative paths from the current directory).
+    pub fn parse_arg(text: &str) -> Result<Self, String> {
+        Self::parse(text, Path::new("")).map_err(|e| e.to_string())
+    }
+
+    /// The default output name for a command on this scene: `<prefix><scene
+    /// name><suffix>` in the current directory.
+    pub fn named_after(&self, prefix: &str, suffix: &str) -> std::path::PathBuf {
+        std::path::PathBuf::from(format!("{prefix}{}{suffix}", self.name()))
+    }
+
     /// Reads a scene argument; relative paths start at `base`. A file that exists wins
     /// over a built-in name; `spd:` and `KIND:N` names are checked here (unknown names,
     /// size factors out of range), so a bad argument fails before any work.

@@ -18,6 +18,7 @@
 
 pub mod api;
 pub mod catalogue;
+pub mod config;
 pub mod error;
 pub mod estimate;
 pub mod guard;
@@ -28,10 +29,11 @@ pub mod pixel;
 pub mod store;
 pub mod uploads;
 
-use std::net::{IpAddr, Ipv4Addr, SocketAddr};
-use std::path::PathBuf;
+use std::net::{IpAddr, SocketAddr};
 use std::sync::Arc;
+use std::sync::atomic::{AtomicBool, Ordering};
 
+pub use config::Config;
 pub use error::{ApiError, ServeError};
 
 /// Default largest upload, bytes (64 MiB).
@@ -39,28 +41,6 @@ pub const DEFAULT_MAX_UPLOAD_BYTES: u64 = 64 << 20;
 
 /// How long connections still open at a stop may take to finish.
 const SHUTDOWN_GRACE: std::time::Duration = std::time::Duration::from_secs(2);
-
-/// How to serve.
-#[derive(Clone, Debug)]
-pub struct Config {
-    pub bind: IpAddr,
-    /// 0: any free port.
-    pub port: u16,
-    /// The data directory (jobs, uploads, server.json).
-    pub data: PathBuf,
-    pub max_upload_bytes: u64,
-}
-
-impl Default for Config {
-    fn default() -> Self {
-        Config {
-            bind: IpAddr::V4(Ipv4Addr::LOCALHOST),
-            port: 8080,
-            data: PathBuf::from("rtprof-data"),
-            max_upload_bytes: DEFAULT_MAX_UPLOAD_BYTES,
-        }
-    }
-}
 
 /// A server running on its own threads.
 pub struct Server {
@@ -185,6 +165,36 @@ impl Server {
     /// Whether a job is running now.
     pub fn busy(&self) -> bool {
         self.jobs.busy()
+    }
+
+    /// Serves until `stop` is raised (Ctrl-C), then stops as [`Server::stop`] does.
+    /// `note` hears the one line worth saying before a running job is stopped.
+    pub fn serve_until(self, stop: &AtomicBool, note: impl Fn(&str)) {
+        while !stop.load(Ordering::SeqCst) {
+            std::thread::sleep(std::time::Duration::from_millis(100));
+        }
+        if self.busy() {
+            note(
+                "rtprof serve: stopping the job under way (within a sample row); it is kept as interrupted",
+            );
+        }
+        self.stop();
+    }
+
+    /// Opens the page in the user's browser (xdg-open); the error says what to do.
+    pub fn open_in_browser(&self) -> Result<(), String> {
+        std::process::Command::new("xdg-open")
+            .arg(&self.url)
+            .stdout(std::process::Stdio::null())
+            .stderr(std::process::Stdio::null())
+            .spawn()
+            .map(drop)
+            .map_err(|_| {
+                format!(
+                    "could not start a browser (xdg-open); open {} yourself",
+                    self.url
+                )
+            })
     }
 }
 

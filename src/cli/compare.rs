@@ -2,8 +2,8 @@
 //! one scene (time with a bootstrap interval, speed-up, image error, counts), all
 //! against the first image or variant.
 
-use super::Format;
 use super::scene_args::ShadingFlags;
+use super::{Exports, Format};
 use anyhow::{Result, bail};
 use runner::compare::SideBySide;
 use runner::render_job::RenderSettings;
@@ -51,8 +51,7 @@ pub fn run(args: &CompareArgs) -> Result<()> {
     match (&args.variants, args.inputs.as_slice()) {
         (None, [a, b]) => compare_images(args, a, b),
         (Some(list), [scene]) => side_by_side(args, scene, list),
-        (None, [_]) => bail!("give two images to compare, or a scene with --variants A,B,…"),
-        (Some(_), _) => bail!("--variants takes one scene, not two inputs"),
+        (Some(_), [_, _]) => bail!("--variants takes one scene, not two inputs"),
         _ => bail!("give two images to compare, or a scene with --variants A,B,…"),
     }
 }
@@ -87,14 +86,6 @@ fn side_by_side(args: &CompareArgs, scene_arg: &Path, list: &str) -> Result<()> 
     }
     .run(&Bars::default())?;
     let format = if args.json { Format::Json } else { args.format };
-    print!(
-        "{}",
-        match format {
-            Format::Text => report.to_text(),
-            Format::Markdown => report.to_markdown(),
-            Format::Csv => report.to_csv(),
-            Format::Json => serde_json::to_string_pretty(&report)? + "\n",
-        }
-    );
+    print!("{}", report.render(format)?);
     Ok(())
 }

@@ -1,14 +1,10 @@
 //! `rtprof count`: counted render; prints a table-6-style listing or JSON, and with
-//! `--pixel-stats DIR` writes the per-pixel maps of the counts and of the time.
+//! `--pixel-stats DIR` writes the per-pixel maps of the counts and of the time
+//! (`runner::pixel_maps`).
 
 use super::scene_args::SceneArgs;
 use anyhow::{Context, Result};
-use runner::pixel_maps::{MapsContext, record_maps_of, write_maps, written_line};
-use runner::pool::thread_pool;
-use runner::render_job::SceneRender;
-use runner::render_setup::RenderSetup;
-use std::path::{Path, PathBuf};
-use std::sync::atomic::AtomicBool;
+use std::path::PathBuf;
 use tracer::{Count, ShadingMode};
 
 #[derive(clap::Args, Debug)]
@@ -45,37 +41,11 @@ pub fn run(args: &CountArgs) -> Result<()> {
         eprintln!("{line}");
     }
     if let Some(dir) = &args.pixel_stats {
-        write_pixel_stats(args, &run, dir)?;
+        let name = args.scene.scene.to_string();
+        let (variant, settings) = (&args.scene.variant, &args.scene.render);
+        let written =
+            runner::pixel_maps::write_maps_of_render(&run, &name, variant, settings, dir)?;
+        eprintln!("{written}");
     }
-    Ok(())
-}
-
-/// The per-pixel maps of the counted render `counted` and three timed ones, into `dir`.
-fn write_pixel_stats(args: &CountArgs, counted: &SceneRender<Count>, dir: &Path) -> Result<()> {
-    let options = args
-        .scene
-        .render
-        .options(&counted.scene, ShadingMode::Color);
-    let pool = thread_pool(args.scene.render.threads)?;
-    let name = args.scene.scene.to_string();
-    let never = AtomicBool::new(false);
-    let setup = RenderSetup {
-        scene: &counted.scene,
-        name: &name,
-        options: &options,
-        pool: &pool,
-        counting_pool: &pool,
-        stop: &never,
-    };
-    let maps = record_maps_of(&setup, &counted.variants, &counted.rendered)?;
-    let context = MapsContext {
-        scene: &name,
-        variant: &args.scene.variant,
-        sampling: options.sampling,
-        threads: counted.threads,
-        clock_resolution_ns: tracer::pixel_stats::clock_resolution().as_secs_f64() * 1e9,
-    };
-    let stats = write_maps(dir, &maps, &context)?;
-    eprintln!("{}", written_line(&stats, dir));
     Ok(())
 }

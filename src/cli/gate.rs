@@ -3,7 +3,7 @@
 //! significantly slower or any count changed, 0 otherwise, 2 when the runs cannot be
 //! compared.
 
-use super::{Format, Outcome};
+use super::{Exports, Format, Outcome};
 use anyhow::Result;
 use results::gate::{GateOptions, GateReport};
 use std::path::PathBuf;
@@ -30,7 +30,7 @@ pub struct GateFlags {
     /// its 95 % interval exclude no change) to be slower or faster. The default is the
     /// measured run-to-run noise (docs/gate.md).
     #[arg(long, value_name = "PCT", default_value_t = results::NOISE_THRESHOLD * 100.0,
-          value_parser = parse_threshold)]
+          value_parser = analysis::verdict::parse_threshold_percent)]
     threshold: f64,
     /// Gate runs that are not comparable (another suite, frame size, thread count or
     /// machine) anyway; the output says what differs.
@@ -49,16 +49,6 @@ impl GateFlags {
     }
 }
 
-/// The gate in `format`.
-pub fn render(gate: &GateReport, format: Format) -> Result<String> {
-    Ok(match format {
-        Format::Text => reports::gate_text::to_text(gate),
-        Format::Markdown => reports::gate_text::to_markdown(gate),
-        Format::Csv => reports::gate_text::to_csv(gate),
-        Format::Json => serde_json::to_string_pretty(gate)? + "\n",
-    })
-}
-
 /// Exit 1 when the gate failed.
 pub fn outcome(gate: &GateReport) -> Result<()> {
     if gate.failed() {
@@ -71,14 +61,6 @@ pub fn run(args: &GateArgs) -> Result<()> {
     let old = results::Results::read_file(&args.old)?;
     let new = results::Results::read_file(&args.new)?;
     let gate = args.options.gate(&old, &new)?;
-    print!("{}", render(&gate, args.format)?);
+    print!("{}", gate.render(args.format)?);
     outcome(&gate)
-}
-
-/// A `--threshold` percentage.
-fn parse_threshold(text: &str) -> Result<f64, String> {
-    match text.trim().parse::<f64>() {
-        Ok(p) if p.is_finite() && (0.0..=1000.0).contains(&p) => Ok(p),
-        _ => Err(format!("'{text}' is not a percentage between 0 and 1000")),
-    }
 }

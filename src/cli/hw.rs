@@ -1,20 +1,19 @@
 //! `rtprof hw`: the FPGA pipeline model. `table` (the model next to the thesis's tables
 //! 7 and 8), `time` (frame time, device fit and what-ifs for a scene, optionally against
-//! the measured software), `render` (the image the hardware would show) and `mif` (the
-//! scene memory as an Altera Memory Initialization File); `rtl`, `sim` and `synth` are
-//! in `hw_rtl.rs`.
+//! the measured software), `render` (the image the hardware would show), `mif` (the
+//! scene memory as an Altera Memory Initialization File), and the generated RTL: `rtl`
+//! (Verilog), `sim` (Verilator, against the model) and `synth` (Yosys). The work is
+//! `runner::hardware_*`; the flags of the design and device are `hwmodel::what_if`'s.
 
-mod rtl_commands;
-
-use super::scene_args::{SCENE_HELP, SIZE_HELP, named_after, parse_scene, parse_size};
+use super::Outcome;
+use super::scene_args::{SIZE_HELP, parse_size};
 use anyhow::Result;
-use hwmodel::blocks::Pipeline;
-use hwmodel::design::Design;
-use hwmodel::library::{DeviceSpec, Library, find_device};
-use hwmodel::table::tables;
+use hwmodel::what_if::{DesignFlags, WhatIf, parse_clock_mhz};
 use runner::hardware_prediction::{TimeRequest, time_report};
+use runner::hardware_rtl::{RtlRequest, SimRequest, synthesis_warning};
 use runner::scene_input::SceneInput;
 use std::path::PathBuf;
+use terminal::progress::Bars;
 
 #[derive(clap::Args, Debug)]
 pub struct HwArgs {
@@ -34,64 +33,13 @@ enum HwCommand {
     /// Write the scene memory as an Altera Memory Initialization File (.mif).
     Mif(MifArgs),
     /// Write the pipeline as Verilog generated from the model's scheduled graphs.
-    Rtl(rtl_commands::RtlArgs),
+    Rtl(RtlArgs),
     /// Simulate the generated RTL with Verilator: image, cycles per frame and per
     /// block, checked against the model and the emulator.
-    Sim(rtl_commands::SimArgs),
+    Sim(SimArgs),
     /// Synthesize the generated RTL with Yosys for Cyclone IV E: LUT4, flip-flops and
     /// memory per block beside the model and the thesis's table 8.
-    Synth(rtl_commands::SynthArgs),
-}
-
-// The design's changes from the thesis's, shared by every `hw` command that takes a
-// design (`table`, `time`, `rtl`, `sim`, `synth`).
-#[derive(clap::Args, Debug, Clone)]
-pub struct DesignFlags {
-    /// What-if: the bit-trick square root (one adder, 1 cycle) instead of the IP core.
-    #[arg(long)]
-    fast_sqrt: bool,
-    /// What-if: orthographic primary rays (no normalize; one direction for all rays).
-    #[arg(long)]
-    ortho: bool,
-    /// What-if: shading without the inverse square root (light at infinity).
-    #[arg(long)]
-    no_rsqrt_shading: bool,
-    /// What-if: K parallel intersection units (each with its minimum-distance block).
-    #[arg(long, value_name = "K", default_value_t = 1,
-          value_parser = clap::value_parser!(u32).range(1..=4096))]
-    units: u32,
-}
-
-impl DesignFlags {
-    pub fn design(&self) -> Design {
-        Design {
-            units: self.units,
-            fast_sqrt: self.fast_sqrt,
-            ortho: self.ortho,
-            no_rsqrt_shading: self.no_rsqrt_shading,
-            ..Design::thesis()
-        }
-    }
-}
-
-// Design changes and the device, for `table` and `time`.
-#[derive(clap::Args, Debug, Clone)]
-struct WhatIf {
-    #[command(flatten)]
-    design: DesignFlags,
-    /// Device: the thesis's by default; the others are unvalidated.
-    #[arg(long, value_name = "D", default_value_t = hwmodel::library::default_device_name())]
-    device: String,
-}
-
-impl WhatIf {
-    fn design(&self) -> Design {
-        self.design.design()
-    }
-
-    fn device(&self) -> Result<(Library, DeviceSpec)> {
-        Ok(find_device(&self.device)?)
-    }
+    Synth(SynthArgs),
 }
 
 #[derive(clap::Args, Debug)]
@@ -108,12 +56,12 @@ struct TableArgs {
 
 #[derive(clap::Args, Debug)]
 struct TimeArgs {
-    #[arg(value_name = "SCENE", value_parser = parse_scene, help = SCENE_HELP)]
+    #[arg(value_name = "SCENE", value_parser = SceneInput::parse_arg, help = SceneInput::HELP)]
     scene: SceneInput,
     #[command(flatten)]
     what_if: WhatIf,
     /// Clock in MHz.
-    #[arg(long, value_name = "MHZ", default_value_t = 50.0, value_parser = parse_clock)]
+    #[arg(long, value_name = "MHZ", default_value_t = 50.0, value_parser = parse_clock_mhz)]
     clock: f64,
     #[arg(long, value_name = "WxH", value_parser = parse_size, help = SIZE_HELP)]
     size: Option<(u32, u32)>,
@@ -140,7 +88,7 @@ struct TimeArgs {
 
 #[derive(clap::Args, Debug)]
 struct RenderArgs {
-    #[arg(value_name = "SCENE", value_parser = parse_scene, help = SCENE_HELP)]
+    #[arg(value_name = "SCENE", value_parser = SceneInput::parse_arg, help = SceneInput::HELP)]
     scene: SceneInput,
     /// Output image, .png or .ppm [default: <scene>-hw.png, here].
     #[arg(short, long, value_name = "IMG")]
@@ -151,59 +99,117 @@ struct RenderArgs {
 
 #[derive(clap::Args, Debug)]
 struct MifArgs {
-    #[arg(value_name = "SCENE", value_parser = parse_scene, help = SCENE_HELP)]
+    #[arg(value_name = "SCENE", value_parser = SceneInput::parse_arg, help = SceneInput::HELP)]
     scene: SceneInput,
     /// Output .mif file [default: <scene>.mif, here].
     #[arg(short, long, value_name = "FILE.mif")]
     output: Option<PathBuf>,
 }
 
-fn parse_clock(text: &str) -> Result<f64, String> {
-    match text.trim().parse::<f64>() {
-        Ok(mhz) if mhz.is_finite() && mhz > 0.0 && mhz <= 2000.0 => Ok(mhz),
-        _ => Err(format!(
-            "'{text}' is not a clock: expected MHz between 0 and 2000, e.g. 50"
-        )),
-    }
+#[derive(clap::Args, Debug)]
+struct RtlArgs {
+    /// A scene: size the scene memory for it and write its testbench input.
+    #[arg(value_name = "SCENE", value_parser = SceneInput::parse_arg, help = SceneInput::HELP)]
+    scene: Option<SceneInput>,
+    #[command(flatten)]
+    design: DesignFlags,
+    /// Output directory for the Verilog, the testbench and the scene's input.
+    #[arg(short, long, value_name = "DIR")]
+    output: PathBuf,
+    #[arg(long, value_name = "WxH", value_parser = parse_size, help = SIZE_HELP)]
+    size: Option<(u32, u32)>,
+    /// Also write the whole system (docs/rtl-system.md): the UART scene loader, the
+    /// frame memory and the VGA controller at 640x480, 60 Hz, around the pipeline
+    /// (raycaster_system.v), and with SCENE its upload at 640x480 (scene_upload.bin).
+    #[arg(long)]
+    system: bool,
+}
+
+#[derive(clap::Args, Debug)]
+struct SimArgs {
+    #[arg(value_name = "SCENE", value_parser = SceneInput::parse_arg, help = SceneInput::HELP)]
+    scene: SceneInput,
+    #[command(flatten)]
+    design: DesignFlags,
+    #[arg(long, value_name = "WxH", value_parser = parse_size, help = SIZE_HELP)]
+    size: Option<(u32, u32)>,
+    /// Output image, .png or .ppm [default: <scene>-rtl.png, here].
+    #[arg(short, long, value_name = "IMG")]
+    output: Option<PathBuf>,
+    /// Where Verilator builds the model (reused per design) [default: the user's cache,
+    /// ~/.cache/rtprof/rtl].
+    #[arg(long, value_name = "DIR")]
+    build_dir: Option<PathBuf>,
+    /// Print JSON: {cycles, model_cycles, writes, blocks: [{name, simulated, model}],
+    /// differing_pixels, rms, …}.
+    #[arg(long)]
+    json: bool,
+}
+
+#[derive(clap::Args, Debug)]
+struct SynthArgs {
+    #[command(flatten)]
+    design: DesignFlags,
+    /// Synthesize one block alone (primary_ray, intersection, min_distance, shading,
+    /// min_tree) instead of the whole design: seconds to minutes instead of tens of
+    /// minutes.
+    #[arg(long, value_name = "NAME")]
+    block: Option<String>,
+    /// Where Yosys works (script, log, statistics) [default: a temporary directory].
+    #[arg(long, value_name = "DIR")]
+    work_dir: Option<PathBuf>,
+    /// Print JSON: {synthesis: {design, tool, flow, seconds, clock_mhz, blocks: [{name,
+    /// lut4, mult_lut4, ff, mem_bits, m9k, levels, fmax_mhz, closes, …}], total},
+    /// model: [table 8's rows], unmapped, check_problems, …}.
+    #[arg(long)]
+    json: bool,
 }
 
 pub fn run(args: &HwArgs) -> Result<()> {
     match &args.command {
         HwCommand::Table(a) => table(a),
         HwCommand::Time(a) => time(a),
-        HwCommand::Render(a) => render(a),
-        HwCommand::Mif(a) => mif(a),
-        HwCommand::Rtl(a) => rtl_commands::rtl(a),
-        HwCommand::Sim(a) => rtl_commands::simulate(a),
-        HwCommand::Synth(a) => rtl_commands::synth(a),
+        HwCommand::Render(a) => {
+            let output = a.output.as_deref();
+            let written = runner::hardware_files::write_emulator_image(&a.scene, a.size, output)?;
+            eprintln!("{written}");
+            Ok(())
+        }
+        HwCommand::Mif(a) => {
+            let written = runner::hardware_files::write_mif(&a.scene, a.output.as_deref())?;
+            eprintln!("{written}");
+            Ok(())
+        }
+        HwCommand::Rtl(a) => {
+            let request = RtlRequest {
+                scene: a.scene.as_ref(),
+                design: a.design.design(),
+                output: &a.output,
+                size: a.size,
+                system: a.system,
+            };
+            let written = runner::hardware_rtl::write_rtl(&request)?;
+            let scene = a.scene.as_ref().map(ToString::to_string);
+            print!("{}", written.to_text(&a.output, scene.as_deref()));
+            Ok(())
+        }
+        HwCommand::Sim(a) => simulate(a),
+        HwCommand::Synth(a) => synth(a),
     }
 }
-
-// ---------------------------------------------------------------------------- table
 
 fn table(args: &TableArgs) -> Result<()> {
     let (lib, device) = args.what_if.device()?;
     let design = args.what_if.design();
-    let t = tables(&lib, &design);
     if args.json {
-        println!("{}", serde_json::to_string_pretty(&t)?);
-        return Ok(());
-    }
-    print!(
-        "{}",
-        runner::hardware_tables::tables_text(&t, &lib, &device)
-    );
-    print!(
-        "\n{}",
-        runner::hardware_tables::synthesis_text(&lib, &design)
-    );
-    if args.detail {
-        print!("{}", Pipeline::build(&lib, &design).detail_text());
+        let tables = hwmodel::table::tables(&lib, &design);
+        println!("{}", serde_json::to_string_pretty(&tables)?);
+    } else {
+        let text = runner::hardware_tables::table_text(&lib, &device, &design, args.detail);
+        print!("{text}");
     }
     Ok(())
 }
-
-// ----------------------------------------------------------------------------- time
 
 fn time(args: &TimeArgs) -> Result<()> {
     let (lib, device) = args.what_if.device()?;
@@ -225,26 +231,46 @@ fn time(args: &TimeArgs) -> Result<()> {
     Ok(())
 }
 
-// --------------------------------------------------------------------- render, mif
-
-fn render(args: &RenderArgs) -> Result<()> {
-    let output = match &args.output {
-        Some(path) => path.clone(),
-        None => named_after(&args.scene, "", "-hw.png"),
+fn simulate(args: &SimArgs) -> Result<()> {
+    let request = SimRequest {
+        scene: &args.scene,
+        design: args.design.design(),
+        size: args.size,
+        image: args.output.as_deref(),
+        build_dir: args.build_dir.clone(),
     };
-    let written = runner::hardware_files::write_emulator_image(&args.scene, args.size, &output)?;
-    eprintln!("{written}");
+    let check = runner::hardware_rtl::simulate(&request, &Bars::default())?;
+    if args.json {
+        println!("{}", serde_json::to_string_pretty(&check.summary())?);
+    } else {
+        print!("{}", check.to_text());
+    }
+    if !check.agrees() {
+        // A failed check, not bad input: exit code 1.
+        let message = "the simulated RTL disagrees with the model or the emulator (see above)";
+        return Err(Outcome::new(Outcome::CHECK_FAILED, message).into());
+    }
     Ok(())
 }
 
-fn mif(args: &MifArgs) -> Result<()> {
-    let output = match &args.output {
-        Some(path) => path.clone(),
-        None => named_after(&args.scene, "", ".mif"),
-    };
-    eprintln!(
-        "{}",
-        runner::hardware_files::write_mif(&args.scene, &output)?
-    );
+fn synth(args: &SynthArgs) -> Result<()> {
+    let design = args.design.design();
+    let block = args.block.as_deref();
+    let comparison = runner::hardware_rtl::synthesize(
+        &design,
+        block,
+        args.work_dir.as_deref(),
+        &Bars::default(),
+    )?;
+    if args.json {
+        println!("{}", serde_json::to_string_pretty(&comparison)?);
+    } else {
+        let text =
+            reports::sections::synthesis::synthesis_text(&comparison.synthesis, &comparison.model);
+        print!("{text}");
+        if let Some(warning) = synthesis_warning(&comparison) {
+            eprintln!("{warning}");
+        }
+    }
     Ok(())
 }

@@ -20,7 +20,7 @@ pub struct MergeArgs {
     #[arg(long)]
     allow_mixed: bool,
     #[command(flatten)]
-    pdf: super::report::PdfFlag,
+    pdf: runner::report_files::PdfFlag,
 }
 
 pub fn run(args: &MergeArgs) -> Result<()> {

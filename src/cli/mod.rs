@@ -3,7 +3,6 @@
 
 mod compare;
 mod count;
-mod format;
 mod gate;
 mod hw;
 mod merge;
@@ -18,7 +17,7 @@ mod suite;
 mod variants;
 
 use clap::{Parser, Subcommand};
-pub use format::Format;
+pub use reports::table_format::{Exports, Format};
 pub use terminal::exit::Outcome;
 
 /// Profiles a Whitted ray tracer on NFF scenes and finds its bottlenecks.

@@ -3,7 +3,6 @@
 //! a flamegraph, a differential flamegraph against another variant, and Amdahl
 //! projections. Calls come from a counted render of the same scene and variant.
 
-use super::scene_args::{SCENE_HELP, named_after, parse_scene};
 use anyhow::{Context, Result};
 use runner::pool::thread_pool;
 use runner::profile_job::{DEFAULT_MIN_SAMPLES, ProfileJob};
@@ -15,7 +14,7 @@ use tracer::VariantSet;
 
 #[derive(clap::Args, Debug)]
 pub struct ProfileArgs {
-    #[arg(value_name = "SCENE", value_parser = parse_scene, help = SCENE_HELP)]
+    #[arg(value_name = "SCENE", value_parser = SceneInput::parse_arg, help = SceneInput::HELP)]
     scene: SceneInput,
     /// Variant to profile (combine with ',' or '+').
     #[arg(long, default_value = "baseline", value_name = "V")]
@@ -60,10 +59,10 @@ pub fn run(args: &ProfileArgs) -> Result<()> {
         .transpose()?;
     let scene = args.scene.load(&args.render.limits)?;
     let options = args.render.options(&scene, tracer::ShadingMode::Color);
-    let dir = match &args.output {
-        Some(dir) => dir.clone(),
-        None => named_after(&args.scene, "profile-", ""),
-    };
+    let dir = args
+        .output
+        .clone()
+        .unwrap_or_else(|| args.scene.named_after("profile-", ""));
     std::fs::create_dir_all(&dir)
         .with_context(|| format!("cannot create directory {}", dir.display()))?;
     let pool = thread_pool(args.render.threads)?;

@@ -1,13 +1,13 @@
 //! `rtprof render`: uncounted render to an image file, by the tracer or (with
 //! `--reference`) by the independent f64 reference renderer.
 
-use super::scene_args::{SceneArgs, ShadingFlags, named_after};
+use super::scene_args::{SceneArgs, ShadingFlags};
 use terminal::progress::Bars;
 
 use anyhow::Result;
 use runner::reference_job::render_reference;
 use std::io::Write;
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 use tracer::NoCount;
 use tracer::image_io::{ImageFormat, write_image};
 
@@ -30,7 +30,7 @@ pub struct RenderArgs {
 pub fn run(args: &RenderArgs) -> Result<()> {
     let output = match &args.output {
         Some(path) => path.clone(),
-        None => named_after(&args.scene.scene, "", ".png"),
+        None => args.scene.scene.named_after("", ".png"),
     };
     // Refuse a bad output name before spending the render time.
     ImageFormat::from_path(&output)?;
@@ -41,24 +41,26 @@ pub fn run(args: &RenderArgs) -> Result<()> {
     terminal::startup::mark("render");
     terminal::startup::took("render.preprocessing", run.preprocessing);
     terminal::startup::took("render.tracing", run.tracing);
-    write_image(&output, &run.rendered.frame)?;
+    let frame = &run.rendered.frame;
+    write_image(&output, frame)?;
+    let timing = run.timing_report(&args.scene.scene);
+    report(&timing, &output, (frame.width, frame.height))
+}
+
+/// The timing report and the written file, after the image is written.
+fn report(timing: &str, output: &Path, (width, height): (u32, u32)) -> Result<()> {
     terminal::startup::mark("image");
     // One write for the report: stderr is unbuffered, and each piece of a formatted
     // line would otherwise be its own write.
-    let report = format!(
-        "{}\nwrote {} ({}x{})\n",
-        run.timing_report(&args.scene.scene),
-        output.display(),
-        run.rendered.frame.width,
-        run.rendered.frame.height
-    );
+    let size = reports::format::size(width, height);
+    let report = format!("{timing}\nwrote {} ({size})\n", output.display());
     std::io::stderr().lock().write_all(report.as_bytes())?;
     terminal::startup::mark("report");
     Ok(())
 }
 
 /// `--reference`: the f64 reference render to `output`.
-fn run_reference(args: &RenderArgs, output: &std::path::Path) -> Result<()> {
+fn run_reference(args: &RenderArgs, output: &Path) -> Result<()> {
     let run = render_reference(
         &args.scene.scene,
         &args.scene.render,
@@ -67,15 +69,6 @@ fn run_reference(args: &RenderArgs, output: &std::path::Path) -> Result<()> {
     )?;
     terminal::startup::mark("render");
     write_image(output, &run.frame)?;
-    terminal::startup::mark("image");
-    let report = format!(
-        "{}\nwrote {} ({}x{})\n",
-        run.timing_report(&args.scene.scene),
-        output.display(),
-        run.frame.width,
-        run.frame.height
-    );
-    std::io::stderr().lock().write_all(report.as_bytes())?;
-    terminal::startup::mark("report");
-    Ok(())
+    let timing = run.timing_report(&args.scene.scene);
+    report(&timing, output, (run.frame.width, run.frame.height))
 }

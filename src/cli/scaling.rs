@@ -4,11 +4,10 @@
 //! the BVH's build time and memory. Writes scaling.json, scaling.csv, scaling.md and
 //! the log-log chart scaling.svg.
 
-use super::Format;
-use anyhow::{Context, Result, bail};
-use runner::pool::thread_pool;
+use super::{Exports, Format};
+use anyhow::Result;
 use runner::render_job::parse_size;
-use runner::scaling::{Family, ScalingPlan, run_scaling, write_study};
+use runner::scaling::{Family, ScalingPlan};
 use std::path::PathBuf;
 use terminal::progress::Bars;
 
@@ -50,29 +49,10 @@ pub fn run(args: &ScalingArgs) -> Result<()> {
     }
     plan.size = args.size.unwrap_or(plan.size);
     plan.repeats = args.repeats.unwrap_or(plan.repeats);
-    if let Some(budget) = args.budget {
-        if !(budget.is_finite() && budget > 0.0) {
-            bail!("--budget {budget}: give a positive number of seconds");
-        }
-        plan.budget_seconds = budget;
-    }
-    plan.check()?;
-    // Refused before the work, not after it.
-    std::fs::create_dir_all(&args.output)
-        .with_context(|| format!("cannot create directory {}", args.output.display()))?;
-    let pool = thread_pool(args.threads)?;
+    plan.budget_seconds = args.budget.unwrap_or(plan.budget_seconds);
     let stop = terminal::interrupt::install();
-    let study = pool.install(|| run_scaling(&plan, &Bars::default(), stop))?;
-    let files = write_study(&study, &args.output)?;
-    print!(
-        "{}",
-        match args.format {
-            Format::Text => reports::scaling_text::to_text(&study),
-            Format::Markdown => reports::scaling_text::to_markdown(&study),
-            Format::Csv => reports::scaling_text::to_csv(&study),
-            Format::Json => files.json.clone(),
-        }
-    );
+    let (study, files) = plan.run_into(&args.output, args.threads, &Bars::default(), stop)?;
+    print!("{}", study.render(args.format)?);
     eprintln!("wrote {}", files.line(&args.output));
     Ok(())
 }

@@ -2,8 +2,7 @@
 //! primitive counts; `gen` writes any of them as NFF (an SPD database at any size
 //! factor, a generator, a built-in scene).
 
-use super::scene_args::{SCENE_HELP, parse_scene};
-use anyhow::{Context, Result, bail};
+use anyhow::{Context, Result};
 use runner::scene_input::SceneInput;
 use std::path::PathBuf;
 use tracer::image_io::write_atomically;
@@ -25,7 +24,7 @@ enum SceneCommand {
 
 #[derive(clap::Args, Debug)]
 struct GenArgs {
-    #[arg(value_name = "NAME", value_parser = parse_scene, help = SCENE_HELP)]
+    #[arg(value_name = "NAME", value_parser = SceneInput::parse_arg, help = SceneInput::HELP)]
     name: SceneInput,
     /// SPD size factor (the same as spd:NAME:N) [default: the SPD's own].
     #[arg(long, value_name = "N")]
@@ -46,15 +45,7 @@ pub fn run(args: &SceneArgs) -> Result<()> {
 }
 
 fn generate(args: &GenArgs) -> Result<()> {
-    let input = match (&args.name, args.size_factor) {
-        (SceneInput::Spd { program, .. }, Some(n)) => SceneInput::spd(program, n)?,
-        (SceneInput::File(path), _) => bail!(
-            "{} is not a scene name: `rtprof scene list` names the scenes rtprof can write",
-            path.display()
-        ),
-        (other, Some(_)) => bail!("--size-factor is for spd:NAME scenes, not {other}"),
-        (other, None) => other.clone(),
-    };
+    let input = args.name.to_generate(args.size_factor)?;
     let text = input.text(&tracer::Limits::default())?;
     match &args.output {
         Some(path) => {

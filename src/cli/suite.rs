@@ -2,7 +2,7 @@
 //! `report.html` and `report.pdf` through a staging directory; with `--baseline` it
 //! then gates the run against an earlier one.
 
-use super::Outcome;
+use super::{Exports, Format, Outcome};
 use anyhow::Result;
 use runner::RunError;
 use runner::definition::SuiteDef;
@@ -46,26 +46,14 @@ pub struct SuiteArgs {
     #[command(flatten)]
     benchmarks: runner::benchmarks::BenchmarkDirs,
     #[command(flatten)]
-    pdf: super::report::PdfFlag,
-}
-
-/// The error for a suite stopped by Ctrl-C after `done` of `total` scenes.
-fn interrupted(output: &Path, done: usize, total: usize) -> anyhow::Error {
-    Outcome::new(Outcome::INTERRUPTED, discarded_message(output, done, total)).into()
+    pdf: runner::report_files::PdfFlag,
 }
 
 pub fn run(args: &SuiteArgs) -> Result<()> {
     let started = Instant::now();
     let mut def = SuiteDef::load(args.suite.as_deref())?;
     if args.embree {
-        anyhow::ensure!(
-            tracer::Variant::Embree.available(),
-            "--embree: this rtprof was built without Embree; install libembree-dev and build with \
-             `cargo build --release --features embree`"
-        );
-        for peer in [tracer::Variant::Embree, tracer::Variant::EmbreePackets] {
-            def = def.with_variant(peer.name());
-        }
+        def = def.with_embree_peers()?;
     }
     // Check the inputs first: a bad --baseline or --criterion should fail before the work.
     args.benchmarks.check()?;
@@ -94,18 +82,16 @@ pub fn run(args: &SuiteArgs) -> Result<()> {
         added.iter().for_each(|line| eprintln!("{line}"));
         Ok(())
     };
-    let RunWritten { results, pages } =
-        match run_into_dir(&suite, &args.output, &run, add_benchmarks) {
-            Ok(written) => written,
-            Err(RunError::StoppedAfter { done, total }) => {
-                return Err(interrupted(&args.output, done, total));
+    let written = run_into_dir(&suite, &args.output, &run, add_benchmarks);
+    let RunWritten { results, pages } = written.map_err(|e| -> anyhow::Error {
+        match e.stopped_scenes(suite.scenes.len()) {
+            Some((done, total)) => {
+                let message = discarded_message(&args.output, done, total);
+                Outcome::new(Outcome::INTERRUPTED, message).into()
             }
-            Err(RunError::Stopped) => {
-                let total = suite.scenes.len();
-                return Err(interrupted(&args.output, total, total));
-            }
-            Err(e) => return Err(e.into()),
-        };
+            None => e.into(),
+        }
+    })?;
     let seconds = started.elapsed().as_secs_f64();
     eprint!("{}", suite.summary(&results, seconds, &args.output, pdf));
     if let Some(p) = pages {
@@ -113,11 +99,14 @@ pub fn run(args: &SuiteArgs) -> Result<()> {
     }
     if let Some(old) = old {
         let gate = args.gate.gate(&old, &results)?;
-        let text = super::gate::render(&gate, super::Format::Text)?;
+        let text = gate.render(Format::Text)?;
         print!("{text}");
-        save(&args.output, "gate.txt", text.as_bytes())?;
-        let markdown = super::gate::render(&gate, super::Format::Markdown)?;
-        save(&args.output, "gate.md", markdown.as_bytes())?;
+        for (name, form) in [
+            ("gate.txt", text),
+            ("gate.md", gate.render(Format::Markdown)?),
+        ] {
+            save(&args.output, name, form.as_bytes())?;
+        }
         super::gate::outcome(&gate)?;
     }
     match Suite::failures_message(&results) {

@@ -61,6 +61,34 @@ pub fn report(error: &(dyn Error + 'static)) -> u8 {
     }
 }
 
+/// Output piped into `head` ends quietly, as other Unix tools do, not with a panic:
+/// restores the default action of SIGPIPE. Call it first, before any thread starts.
+pub fn quiet_on_broken_pipe() {
+    // SAFETY: setting a signal's action to its default while only this thread runs.
+    unsafe { libc::signal(libc::SIGPIPE, libc::SIG_DFL) };
+}
+
+/// Prints a command-line parse error and returns its exit code. Help and version go to
+/// stdout as clap prints them (exit 0); a usage mistake is one line on stderr with the
+/// command's usage and a pointer to --help (exit 2), so that a script's log shows what
+/// was wrong without clap's multi-line layout.
+pub fn usage_error(error: &clap::Error) -> u8 {
+    use clap::error::ErrorKind;
+    if matches!(
+        error.kind(),
+        ErrorKind::DisplayHelp
+            | ErrorKind::DisplayVersion
+            | ErrorKind::DisplayHelpOnMissingArgumentOrSubcommand
+    ) {
+        // Printing help cannot fail in a way worth reporting.
+        let _ = error.print();
+        return if error.use_stderr() { 2 } else { 0 };
+    }
+    let message = runner::messages::usage_error(&error.render().to_string());
+    eprintln!("rtprof: error: {message}");
+    2
+}
+
 /// The error and its sources, outermost first.
 fn causes<'a>(error: &'a (dyn Error + 'static)) -> impl Iterator<Item = &'a (dyn Error + 'static)> {
     std::iter::successors(Some(error), |&e| e.source())

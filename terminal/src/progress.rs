@@ -7,6 +7,12 @@ use std::io::Write;
 use std::sync::Mutex;
 use std::time::Duration;
 
+/// The long help (--help) of the commands that draw progress bars: when they draw and
+/// `RTPROF_PROGRESS`, which this module reads.
+pub const HELP: &str = "Progress bars draw on stderr when it is a terminal (a render \
+    only once it has run a second). RTPROF_PROGRESS=always draws them anyway, as plain \
+    lines in a pipe or log (CI); RTPROF_PROGRESS=never turns them off; auto is the default.";
+
 /// The environment variable that says when progress draws.
 pub const VARIABLE: &str = "RTPROF_PROGRESS";
 

@@ -730,6 +730,7 @@ fn sample_hardware() -> HardwareResult {
                 plls: 2,
                 pll_capacity: 4,
                 fits: true,
+                fit_state: Some(hwmodel::device::FitState::Fits),
                 largest_units: Some(1),
             },
             DeviceUse {
@@ -745,6 +746,7 @@ fn sample_hardware() -> HardwareResult {
                 plls: 2,
                 pll_capacity: 8,
                 fits: true,
+                fit_state: Some(hwmodel::device::FitState::Fits),
                 largest_units: Some(5),
             },
         ],

@@ -520,6 +520,8 @@ mod tests {
             .devices[0]
             .clone();
         assert_eq!(d.le_capacity, 114_480);
+        // The rule applied to the figures, as for a file written before `fit_state`.
+        d.fit_state = None;
         // 50 %: fits, the LE cell neutral.
         d.le = 57_240;
         let row = device_row(&d);
