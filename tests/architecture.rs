@@ -216,10 +216,11 @@ const LAYERS: &[(&str, &[&str])] = &[
         "serve",
         &["runner", "reports", "results", "tracer", "spd", "analysis"],
     ),
+    ("terminal", &["runner", "reports", "tracer"]),
     (
         "rtprof",
         &[
-            "runner", "reports", "serve", "rtl", "hwmodel", "results", "tracer",
+            "runner", "reports", "serve", "terminal", "hwmodel", "results", "analysis", "tracer",
         ],
     ),
 ];

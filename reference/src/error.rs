@@ -8,7 +8,7 @@ pub enum ReferenceError {
     Camera(String),
     /// The image size or ray depth is outside the limits.
     #[error("{0}")]
-    Limits(String),
+    Limits(tracer::LimitError),
     /// The stop flag was set during the render: no frame is returned.
     #[error("cancelled: the render was stopped on request before it finished")]
     Cancelled,

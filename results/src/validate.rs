@@ -184,7 +184,7 @@ impl Check {
     fn size(&mut self, width: u32, height: u32) -> Checked {
         tracer::Limits::default()
             .check_size(u64::from(width), u64::from(height))
-            .map_err(|e| self.err(e))
+            .map_err(|e| self.err(e.to_string()))
     }
 
     fn band(&mut self, name: &str, band: Band, rms: f64) -> Checked {

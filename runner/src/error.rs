@@ -26,6 +26,13 @@ pub enum RunError {
     /// A render that failed.
     #[error("{context}: {message}")]
     Render { context: String, message: String },
+    /// An input over one of the tracer's limits; `message` names the limit with
+    /// [`tracer::Limit::hint`], which a front end may replace with how to raise it.
+    #[error("{message}")]
+    OverLimit {
+        message: String,
+        limit: tracer::Limit,
+    },
     #[error("{0}")]
     Variant(#[from] tracer::VariantError),
     /// The generated RTL or its tools (Verilator, Yosys) failed.
@@ -65,6 +72,47 @@ impl RunError {
         }
     }
 
+    /// The limit the input exceeded, when that is the error.
+    pub fn limit(&self) -> Option<tracer::Limit> {
+        match self {
+            RunError::OverLimit { limit, .. } => Some(*limit),
+            _ => None,
+        }
+    }
+
+    /// `message` said of an input, typed by the limit it exceeded (if any): bad input
+    /// ([`RunError::Input`]) otherwise.
+    fn input_over(message: String, limit: Option<tracer::Limit>) -> Self {
+        match limit {
+            Some(limit) => RunError::OverLimit { message, limit },
+            None => RunError::Input(message),
+        }
+    }
+
+    /// A scene that could not be loaded (its message names file and line).
+    pub fn load(err: &tracer::LoadError) -> Self {
+        Self::input_over(err.to_string(), err.limit())
+    }
+
+    /// A scene that could not be parsed (its message names file and line).
+    pub fn parse(err: &tracer::NffError) -> Self {
+        Self::input_over(err.to_string(), err.limit)
+    }
+
+    /// A size or depth of `context` (a file or scene name) the limits refuse.
+    pub fn refused(context: impl std::fmt::Display, err: &tracer::LimitError) -> Self {
+        match err.limit {
+            Some(limit) => RunError::OverLimit {
+                message: format!("{context}: {err}"),
+                limit,
+            },
+            None => RunError::Render {
+                context: context.to_string(),
+                message: err.to_string(),
+            },
+        }
+    }
+
     /// An I/O error on `path`.
     pub fn io(action: &'static str, path: impl Into<PathBuf>, err: &std::io::Error) -> Self {
         RunError::Io {
@@ -77,8 +125,12 @@ impl RunError {
     /// A render error, said of `context` (a file or scene name); a render stopped by its
     /// flag is [`RunError::Stopped`], as the other stops are.
     pub fn render(context: impl std::fmt::Display, err: &tracer::RenderError) -> Self {
-        if *err == tracer::RenderError::Cancelled {
-            return RunError::Stopped;
+        match err {
+            tracer::RenderError::Cancelled => return RunError::Stopped,
+            tracer::RenderError::Size(e) | tracer::RenderError::Depth(e) => {
+                return Self::refused(context, e);
+            }
+            _ => {}
         }
         RunError::Render {
             context: context.to_string(),

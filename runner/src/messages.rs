@@ -1,7 +1,7 @@
 //! Error messages as rtprof prints them: one line each, so that a script's log shows
 //! what was wrong. Clap's multi-line parser errors are joined whole (the missing
-//! argument, the tip naming a similar command or flag), and a limit error names the
-//! flag that raises it rather than the library's field.
+//! argument, the tip naming a similar command or flag), and a limit error says how to
+//! raise the limit it names (rtprof: the flag, not the library's field).
 
 /// A message on one line: the line breaks of a nested message become "; ".
 pub fn one_line(message: &str) -> String {
@@ -39,24 +39,11 @@ pub fn usage_error(clap_text: &str) -> String {
     message + &usage
 }
 
-/// A limit error names the flag that raises it: the tracer says "(limit max_side: raise
-/// it with rtprof's --max-side or tracer::Limits::max_side)", rtprof "(raise it with
-/// --max-side)".
-pub fn name_the_flag(message: &str) -> String {
-    let hint = message.find("(limit ").and_then(|start| {
-        let end = start + message[start..].find(')')?;
-        let (_, rest) = message[start..end].split_once("rtprof's ")?;
-        let (flag, _) = rest.split_once(" or tracer::Limits::")?;
-        Some((start, end, flag))
-    });
-    match hint {
-        Some((start, end, flag)) => format!(
-            "{}(raise it with {flag}){}",
-            &message[..start],
-            &message[end + 1..]
-        ),
-        None => message.to_string(),
-    }
+/// `message` with the hint of `limit` ([`tracer::Limit::hint`]) replaced by how its
+/// reader raises that limit (`--max-side` for rtprof's user): `… (raise it with
+/// --max-side)`.
+pub fn raise_with(message: &str, limit: tracer::Limit, how: &str) -> String {
+    message.replace(&limit.hint(), &format!("(raise it with {how})"))
 }
 
 #[cfg(test)]
@@ -82,19 +69,22 @@ mod tests {
     }
 
     #[test]
-    fn limit_hints_name_the_flag_only() {
+    fn limit_hints_name_the_way_to_raise_them() {
         let limits = tracer::Limits {
             max_side: 10,
             ..tracer::Limits::default()
         };
         let error = limits.check_size(20, 5).unwrap_err();
-        assert!(error.contains("tracer::Limits::max_side"), "{error}");
+        assert_eq!(error.limit, Some(tracer::Limit::MaxSide));
+        assert!(error.to_string().ends_with("(limit tracer::Limits::max_side)"), "{error}");
+        let message = format!("scene.nff: {error}");
         assert_eq!(
-            name_the_flag(&format!("scene.nff: {error}")),
+            raise_with(&message, tracer::Limit::MaxSide, "--max-side"),
             "scene.nff: image size 20x5 exceeds the limit of 10 pixels per side \
              (raise it with --max-side)"
         );
-        assert_eq!(name_the_flag("no limit (here)"), "no limit (here)");
+        // Another limit's hint is not there to replace.
+        assert_eq!(raise_with(&message, tracer::Limit::MaxPixels, "--x"), message);
         assert_eq!(one_line("a\n  b\n\nc"), "a; b; c");
     }
 }

@@ -41,10 +41,7 @@ pub fn render_reference(
     let ref_scene = reference::RefScene::new(&scene);
     let preprocessing = start.elapsed();
     let options = settings.options(&scene, mode);
-    let refuse = |message: String| RunError::Render {
-        context: input.to_string(),
-        message,
-    };
+    let refuse = |e: tracer::LimitError| RunError::refused(input, &e);
     // Refused before the workers and the progress bar start.
     options
         .limits
@@ -63,7 +60,13 @@ pub fn render_reference(
     });
     let tracing = start.elapsed();
     progress.end();
-    let frame = frame.map_err(|e| refuse(e.to_string()))?;
+    let frame = frame.map_err(|e| match e {
+        reference::ReferenceError::Limits(e) => RunError::refused(input, &e),
+        other => RunError::Render {
+            context: input.to_string(),
+            message: other.to_string(),
+        },
+    })?;
     Ok(ReferenceRender {
         scene,
         frame,

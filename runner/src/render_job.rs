@@ -153,18 +153,15 @@ pub fn render_scene<C: tracer::RenderWith>(
     let options = req.settings.options(&scene, req.mode);
     let (width, height) = (options.width, options.height);
     // Refused before the progress bar and the framebuffer exist.
-    let refuse = |message: String| RunError::Render {
-        context: req.scene.to_string(),
-        message,
-    };
+    let refuse = |e: tracer::LimitError| RunError::refused(req.scene, &e);
     options
         .limits
         .check_ray_depth(options.max_depth)
-        .map_err(|e| refuse(e.to_string()))?;
+        .map_err(refuse)?;
     options
         .limits
         .check_size(u64::from(width), u64::from(height))
-        .map_err(|e| refuse(e.to_string()))?;
+        .map_err(refuse)?;
     // A long brute-force render first says how long it will take.
     crate::estimate::note_if_slow(
         &scene,

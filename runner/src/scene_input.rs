@@ -215,7 +215,7 @@ impl SceneInput {
                     .len();
                 limits
                     .check_file_size(length)
-                    .map_err(|m| RunError::Input(format!("{}: {m}", path.display())))?;
+                    .map_err(|e| RunError::refused(path.display(), &e))?;
                 std::fs::read_to_string(path).map_err(|e| RunError::io("read", path, &e))?
             }
             SceneInput::Builtin(b) => b.text.to_string(),
@@ -240,12 +240,14 @@ impl SceneInput {
     /// The parsed scene, within `limits`; parse errors name the file (or the built-in
     /// name) and the line.
     pub fn load(&self, limits: &Limits) -> Result<Scene, RunError> {
-        let input = |e: &dyn fmt::Display| RunError::Input(e.to_string());
         match self {
-            SceneInput::File(path) => load_nff_with_limits(path, limits).map_err(|e| input(&e)),
+            SceneInput::File(path) => {
+                load_nff_with_limits(path, limits).map_err(|e| RunError::load(&e))
+            }
             _ => {
                 let text = self.text(limits)?;
-                parse_nff_with_limits(&text, &self.to_string(), limits).map_err(|e| input(&e))
+                parse_nff_with_limits(&text, &self.to_string(), limits)
+                    .map_err(|e| RunError::parse(&e))
             }
         }
     }

@@ -43,7 +43,10 @@ pub fn report(error: &(dyn Error + 'static)) -> u8 {
         .map(ToString::to_string)
         .collect::<Vec<_>>()
         .join(": ");
-    let message = runner::messages::name_the_flag(&runner::messages::one_line(&message));
+    let mut message = runner::messages::one_line(&message);
+    if let Some(limit) = limit_of(error) {
+        message = runner::messages::raise_with(&message, limit, &flag_of(limit));
+    }
     if causes(error).any(|e| matches!(e.downcast_ref(), Some(runner::RunError::Stopped))) {
         // Ctrl-C during a render: it stopped within a row, and wrote nothing.
         eprintln!("rtprof: interrupted: the render was cancelled; no output was written");
@@ -89,7 +92,69 @@ pub fn usage_error(error: &clap::Error) -> u8 {
     2
 }
 
+/// The limit `error` or one of its causes exceeded, from the typed errors that carry
+/// one.
+fn limit_of(error: &(dyn Error + 'static)) -> Option<tracer::Limit> {
+    causes(error).find_map(|e| {
+        let run = e.downcast_ref::<runner::RunError>().and_then(runner::RunError::limit);
+        run.or_else(|| e.downcast_ref::<tracer::LoadError>()?.limit())
+            .or_else(|| e.downcast_ref::<tracer::NffError>()?.limit)
+            .or_else(|| e.downcast_ref::<tracer::RenderError>()?.limit())
+            .or_else(|| e.downcast_ref::<tracer::LimitError>()?.limit)
+    })
+}
+
+/// The flag that raises `limit`: the one `tracer::Limits` declares for its field.
+fn flag_of(limit: tracer::Limit) -> String {
+    use clap::Args;
+    let flags = tracer::Limits::augment_args(clap::Command::new("limits"));
+    let long = flags
+        .get_arguments()
+        .find(|a| a.get_id() == limit.field())
+        .and_then(clap::Arg::get_long);
+    long.map_or_else(
+        || format!("tracer::Limits::{}", limit.field()),
+        |long| format!("--{long}"),
+    )
+}
+
 /// The error and its sources, outermost first.
 fn causes<'a>(error: &'a (dyn Error + 'static)) -> impl Iterator<Item = &'a (dyn Error + 'static)> {
     std::iter::successors(Some(error), |&e| e.source())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn every_limit_is_raised_by_its_own_flag() {
+        let flags: Vec<String> = tracer::Limit::ALL.into_iter().map(flag_of).collect();
+        assert_eq!(
+            flags,
+            [
+                "--max-side",
+                "--max-pixels",
+                "--max-framebuffer-bytes",
+                "--max-polygon-vertices",
+                "--max-primitives",
+                "--max-ray-depth",
+                "--max-file-bytes"
+            ]
+        );
+    }
+
+    #[test]
+    fn a_limit_is_found_through_the_error_chain() {
+        let limits = tracer::Limits {
+            max_ray_depth: 3,
+            ..tracer::Limits::default()
+        };
+        let refused = limits.check_ray_depth(9).unwrap_err();
+        let run = runner::RunError::refused("scene.nff", &refused);
+        assert_eq!(limit_of(&run), Some(tracer::Limit::MaxRayDepth));
+        let parse = tracer::nff::parse_nff_with_limits("v\nfrom 0 0 0\n", "a.nff", &limits);
+        assert_eq!(parse.err().and_then(|e| e.limit), None);
+        assert_eq!(limit_of(&runner::RunError::Input("x".into())), None);
+    }
 }

@@ -69,7 +69,9 @@ pub use counter::{
     COUNTERS, Count, Counter, CounterDef, Counts, NoCount, Phase, Phased, RayCounts, Stat,
     phase_calls, phase_names, phase_stack_key,
 };
-pub use nff::{Limits, LoadError, NffError, load_nff, load_nff_with_limits, parse_nff};
+pub use nff::{
+    Limit, LimitError, Limits, LoadError, NffError, load_nff, load_nff_with_limits, parse_nff,
+};
 pub use nff_writer::{scene_to_nff, write_scene};
 pub use pixel_stats::SampleStats;
 pub use ray::{Hit, HitBound, PrimKind, PrimRef, Ray};

@@ -16,8 +16,7 @@ use std::io::Read as _;
 use std::path::Path;
 
 mod limits;
-pub use limits::Limits;
-use limits::raise_hint;
+pub use limits::{Limit, LimitError, Limits};
 
 /// A parse error at a place in a file.
 #[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
@@ -28,6 +27,8 @@ pub struct NffError {
     /// the file).
     pub line: usize,
     pub message: String,
+    /// The limit the file exceeded, when that is the error.
+    pub limit: Option<Limit>,
 }
 
 /// Why a scene file could not be loaded.
@@ -40,9 +41,8 @@ pub enum LoadError {
         source: std::io::Error,
     },
     #[error(
-        "{path} is {bytes} bytes, over the limit of {limit} bytes for a scene file \
-         (limit max_file_bytes: raise it with rtprof's --max-file-bytes or \
-         tracer::Limits::max_file_bytes)"
+        "{path} is {bytes} bytes, over the limit of {limit} bytes for a scene file {}",
+        Limit::MaxFileBytes.hint()
     )]
     TooLarge {
         path: String,
@@ -51,6 +51,17 @@ pub enum LoadError {
     },
     #[error(transparent)]
     Parse(#[from] NffError),
+}
+
+impl LoadError {
+    /// The limit the file exceeded, when that is the error.
+    pub fn limit(&self) -> Option<Limit> {
+        match self {
+            LoadError::Io { .. } => None,
+            LoadError::TooLarge { .. } => Some(Limit::MaxFileBytes),
+            LoadError::Parse(e) => e.limit,
+        }
+    }
 }
 
 /// Reads and parses an NFF file with the default limits.
@@ -93,6 +104,7 @@ pub fn load_nff_with_limits(path: &Path, limits: &Limits) -> Result<Scene, LoadE
                 file: name,
                 line,
                 message: "not a text file (invalid UTF-8); NFF scenes are plain ASCII".into(),
+                limit: None,
             }
             .into());
         }
@@ -107,11 +119,12 @@ pub fn parse_nff(text: &str, file: &str) -> Result<Scene, NffError> {
 
 /// Parses NFF text, refusing sizes beyond `limits`.
 pub fn parse_nff_with_limits(text: &str, file: &str, limits: &Limits) -> Result<Scene, NffError> {
-    if let Err(message) = limits.check_file_size(text.len() as u64) {
+    if let Err(e) = limits.check_file_size(text.len() as u64) {
         return Err(NffError {
             file: file.to_string(),
             line: 1,
-            message: format!("the scene text is {message}"),
+            message: format!("the scene text is {e}"),
+            limit: e.limit,
         });
     }
     Parser {
@@ -186,6 +199,15 @@ impl<'a> Parser<'a> {
             file: self.file.to_string(),
             line,
             message: message.into(),
+            limit: None,
+        }
+    }
+
+    /// The error of a size over `limit` (its hint ends the message).
+    fn over_limit(&self, line: usize, limit: Limit, message: String) -> NffError {
+        NffError {
+            limit: Some(limit),
+            ..self.error(line, format!("{message} {}", limit.hint()))
         }
     }
 
@@ -265,12 +287,12 @@ impl<'a> Parser<'a> {
     /// beyond `Limits::max_primitives`.
     fn count_primitive(&mut self, line: usize) -> Result<(), NffError> {
         if self.primitives >= self.limits.max_primitives {
-            return Err(self.error(
+            return Err(self.over_limit(
                 line,
+                Limit::MaxPrimitives,
                 format!(
-                    "too many primitives: the scene exceeds the limit of {} primitives ({})",
-                    self.limits.max_primitives,
-                    raise_hint("max_primitives")
+                    "too many primitives: the scene exceeds the limit of {} primitives",
+                    self.limits.max_primitives
                 ),
             ));
         }
@@ -549,12 +571,12 @@ impl<'a> Parser<'a> {
             ));
         }
         if count as u64 > self.limits.max_polygon_vertices {
-            return Err(self.error(
+            return Err(self.over_limit(
                 line,
+                Limit::MaxPolygonVertices,
                 format!(
-                    "{what} vertex count {count} exceeds the limit of {} ({})",
-                    self.limits.max_polygon_vertices,
-                    raise_hint("max_polygon_vertices")
+                    "{what} vertex count {count} exceeds the limit of {}",
+                    self.limits.max_polygon_vertices
                 ),
             ));
         }
@@ -669,7 +691,10 @@ impl<'a> Parser<'a> {
         }
         self.limits
             .check_size(w as u64, h as u64)
-            .map_err(|m| self.error(line, m))?;
+            .map_err(|e| NffError {
+                limit: e.limit,
+                ..self.error(line, e.to_string())
+            })?;
         Ok((w as u32, h as u32))
     }
 }

@@ -113,15 +113,25 @@ pub enum RenderError {
     #[error("invalid camera: {0}")]
     Camera(String),
     #[error("{0}")]
-    Size(String),
+    Size(crate::LimitError),
     #[error("{0}")]
-    Depth(String),
+    Depth(crate::LimitError),
     /// The intersection structure cannot be used (e.g. a variant this build lacks).
     #[error("{0}")]
     Accelerator(String),
     /// The stop flag was set during the render: the frame is incomplete and not returned.
     #[error("cancelled: the render was stopped on request before it finished")]
     Cancelled,
+}
+
+impl RenderError {
+    /// The limit the render exceeded, when that is the error.
+    pub fn limit(&self) -> Option<crate::Limit> {
+        match self {
+            RenderError::Size(e) | RenderError::Depth(e) => e.limit,
+            _ => None,
+        }
+    }
 }
 
 /// A floating-point framebuffer, row 0 at the top.

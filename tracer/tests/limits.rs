@@ -85,7 +85,12 @@ fn framebuffer_byte_limit() {
     };
     // 5 x 4 pixels x 12 bytes = 240 bytes: at the limit; 7 x 3 x 12 = 252: over.
     assert!(limits.check_size(5, 4).is_ok());
-    let message = limits.check_size(7, 3).err().unwrap_or_default();
+    let error = limits.check_size(7, 3).err();
+    assert_eq!(
+        error.as_ref().and_then(|e| e.limit),
+        Some(tracer::Limit::MaxFramebufferBytes)
+    );
+    let message = error.map(|e| e.to_string()).unwrap_or_default();
     assert!(
         message.contains("252 bytes") && message.contains("limit of 240 bytes"),
         "{message}"
@@ -121,7 +126,7 @@ fn render_checks_its_own_limits_before_allocating() {
         &tracer::RenderMethod::default(),
         &|_| {},
     ) {
-        Err(RenderError::Size(m)) => assert!(m.contains("max_pixels"), "{m}"),
+        Err(RenderError::Size(e)) => assert_eq!(e.limit, Some(tracer::Limit::MaxPixels), "{e}"),
         other => panic!("expected a size error, got {:?}", other.map(|_| ())),
     }
     options.width = 4;
@@ -133,7 +138,7 @@ fn render_checks_its_own_limits_before_allocating() {
         &tracer::RenderMethod::default(),
         &|_| {},
     ) {
-        Err(RenderError::Size(m)) => assert!(m.contains("144 bytes"), "{m}"),
+        Err(RenderError::Size(e)) => assert!(e.to_string().contains("144 bytes"), "{e}"),
         other => panic!("expected a size error, got {:?}", other.map(|_| ())),
     }
 }
@@ -209,7 +214,7 @@ fn ray_depth_limit() {
             &tracer::RenderMethod::default(),
             &|_| {},
         ) {
-            Err(RenderError::Depth(m)) => assert!(m.contains(needle), "{m}"),
+            Err(RenderError::Depth(e)) => assert!(e.to_string().contains(needle), "{e}"),
             other => panic!(
                 "depth {depth}: expected an error, got {:?}",
                 other.map(|_| ())

@@ -62,12 +62,76 @@ impl Default for Limits {
     }
 }
 
-/// How an error names the limit it hit.
-pub(super) fn raise_hint(field: &str) -> String {
-    format!(
-        "limit {field}: raise it with rtprof's --{} or tracer::Limits::{field}",
-        field.replace('_', "-")
-    )
+/// One of the [`Limits`], named by its field. Errors carry it, so that a front end
+/// can say how to raise it in its own terms (rtprof: the flag its field declares).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Limit {
+    MaxSide,
+    MaxPixels,
+    MaxFramebufferBytes,
+    MaxPolygonVertices,
+    MaxPrimitives,
+    MaxRayDepth,
+    MaxFileBytes,
+}
+
+impl Limit {
+    /// Every limit, in the order of [`Limits`]'s fields.
+    pub const ALL: [Limit; 7] = [
+        Limit::MaxSide,
+        Limit::MaxPixels,
+        Limit::MaxFramebufferBytes,
+        Limit::MaxPolygonVertices,
+        Limit::MaxPrimitives,
+        Limit::MaxRayDepth,
+        Limit::MaxFileBytes,
+    ];
+
+    /// The field of [`Limits`] that sets it (with the `clap` feature, also the id of
+    /// the flag that does).
+    pub fn field(self) -> &'static str {
+        match self {
+            Limit::MaxSide => "max_side",
+            Limit::MaxPixels => "max_pixels",
+            Limit::MaxFramebufferBytes => "max_framebuffer_bytes",
+            Limit::MaxPolygonVertices => "max_polygon_vertices",
+            Limit::MaxPrimitives => "max_primitives",
+            Limit::MaxRayDepth => "max_ray_depth",
+            Limit::MaxFileBytes => "max_file_bytes",
+        }
+    }
+
+    /// How an error names it, at the end of its message: `(limit
+    /// tracer::Limits::max_side)`. The one text a front end replaces with its own
+    /// way to raise the limit.
+    pub fn hint(self) -> String {
+        format!("(limit tracer::Limits::{})", self.field())
+    }
+}
+
+/// A size the [`Limits`] refuse: over one of them (`limit`), or impossible whatever
+/// the limits (a zero size or depth: `limit` is `None`).
+#[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
+#[error("{message}{}", limit.map(|l| format!(" {}", l.hint())).unwrap_or_default())]
+pub struct LimitError {
+    pub limit: Option<Limit>,
+    pub message: String,
+}
+
+impl LimitError {
+    fn over(limit: Limit, message: String) -> Self {
+        LimitError {
+            limit: Some(limit),
+            message,
+        }
+    }
+
+    fn impossible(message: String) -> Self {
+        LimitError {
+            limit: None,
+            message,
+        }
+    }
 }
 
 impl Limits {
@@ -76,61 +140,73 @@ impl Limits {
 
     /// Checks an image size against the side, pixel and framebuffer limits; the error
     /// says which limit to raise.
-    pub fn check_size(&self, width: u64, height: u64) -> Result<(), String> {
+    pub fn check_size(&self, width: u64, height: u64) -> Result<(), LimitError> {
         if width == 0 || height == 0 {
-            return Err(format!("image size {width}x{height} must be positive"));
+            return Err(LimitError::impossible(format!(
+                "image size {width}x{height} must be positive"
+            )));
         }
         if width > u64::from(self.max_side) || height > u64::from(self.max_side) {
-            return Err(format!(
-                "image size {width}x{height} exceeds the limit of {} pixels per side ({})",
-                self.max_side,
-                raise_hint("max_side")
+            return Err(LimitError::over(
+                Limit::MaxSide,
+                format!(
+                    "image size {width}x{height} exceeds the limit of {} pixels per side",
+                    self.max_side
+                ),
             ));
         }
         let pixels = width.saturating_mul(height);
         if pixels > self.max_pixels {
-            return Err(format!(
-                "image size {width}x{height} ({pixels} pixels) exceeds the limit of {} pixels ({})",
-                self.max_pixels,
-                raise_hint("max_pixels")
+            return Err(LimitError::over(
+                Limit::MaxPixels,
+                format!(
+                    "image size {width}x{height} ({pixels} pixels) exceeds the limit of {} pixels",
+                    self.max_pixels
+                ),
             ));
         }
         let bytes = pixels.saturating_mul(Self::FRAMEBUFFER_BYTES_PER_PIXEL);
         if bytes > self.max_framebuffer_bytes {
-            return Err(format!(
-                "image size {width}x{height} needs a framebuffer of {bytes} bytes ({} per pixel), over the limit of {} bytes ({})",
-                Self::FRAMEBUFFER_BYTES_PER_PIXEL,
-                self.max_framebuffer_bytes,
-                raise_hint("max_framebuffer_bytes")
+            return Err(LimitError::over(
+                Limit::MaxFramebufferBytes,
+                format!(
+                    "image size {width}x{height} needs a framebuffer of {bytes} bytes ({} per pixel), over the limit of {} bytes",
+                    Self::FRAMEBUFFER_BYTES_PER_PIXEL,
+                    self.max_framebuffer_bytes
+                ),
             ));
         }
         Ok(())
     }
 
     /// Checks a maximum ray-tree depth (the eye ray is depth 1) against the ceiling.
-    pub fn check_ray_depth(&self, depth: u32) -> Result<(), String> {
+    pub fn check_ray_depth(&self, depth: u32) -> Result<(), LimitError> {
         if depth == 0 {
-            return Err(
+            return Err(LimitError::impossible(
                 "maximum ray depth 0: it must be at least 1 (the eye ray is depth 1)".into(),
-            );
+            ));
         }
         if depth > self.max_ray_depth {
-            return Err(format!(
-                "maximum ray depth {depth} exceeds the limit of {} ({})",
-                self.max_ray_depth,
-                raise_hint("max_ray_depth")
+            return Err(LimitError::over(
+                Limit::MaxRayDepth,
+                format!(
+                    "maximum ray depth {depth} exceeds the limit of {}",
+                    self.max_ray_depth
+                ),
             ));
         }
         Ok(())
     }
 
     /// Checks the size of a scene file or text, in bytes.
-    pub fn check_file_size(&self, bytes: u64) -> Result<(), String> {
+    pub fn check_file_size(&self, bytes: u64) -> Result<(), LimitError> {
         if bytes > self.max_file_bytes {
-            return Err(format!(
-                "{bytes} bytes, over the limit of {} bytes for a scene ({})",
-                self.max_file_bytes,
-                raise_hint("max_file_bytes")
+            return Err(LimitError::over(
+                Limit::MaxFileBytes,
+                format!(
+                    "{bytes} bytes, over the limit of {} bytes for a scene",
+                    self.max_file_bytes
+                ),
             ));
         }
         Ok(())
