@@ -76,7 +76,12 @@ mod tests {
         };
         let error = limits.check_size(20, 5).unwrap_err();
         assert_eq!(error.limit, Some(tracer::Limit::MaxSide));
-        assert!(error.to_string().ends_with("(limit tracer::Limits::max_side)"), "{error}");
+        assert!(
+            error
+                .to_string()
+                .ends_with("(limit tracer::Limits::max_side)"),
+            "{error}"
+        );
         let message = format!("scene.nff: {error}");
         assert_eq!(
             raise_with(&message, tracer::Limit::MaxSide, "--max-side"),
@@ -84,7 +89,10 @@ mod tests {
              (raise it with --max-side)"
         );
         // Another limit's hint is not there to replace.
-        assert_eq!(raise_with(&message, tracer::Limit::MaxPixels, "--x"), message);
+        assert_eq!(
+            raise_with(&message, tracer::Limit::MaxPixels, "--x"),
+            message
+        );
         assert_eq!(one_line("a\n  b\n\nc"), "a; b; c");
     }
 }

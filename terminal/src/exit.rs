@@ -96,7 +96,9 @@ pub fn usage_error(error: &clap::Error) -> u8 {
 /// one.
 fn limit_of(error: &(dyn Error + 'static)) -> Option<tracer::Limit> {
     causes(error).find_map(|e| {
-        let run = e.downcast_ref::<runner::RunError>().and_then(runner::RunError::limit);
+        let run = e
+            .downcast_ref::<runner::RunError>()
+            .and_then(runner::RunError::limit);
         run.or_else(|| e.downcast_ref::<tracer::LoadError>()?.limit())
             .or_else(|| e.downcast_ref::<tracer::NffError>()?.limit)
             .or_else(|| e.downcast_ref::<tracer::RenderError>()?.limit())
