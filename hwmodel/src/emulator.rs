@@ -318,8 +318,7 @@ pub fn render_until(
     let rows: Option<Vec<Vec<u8>>> = (0..height)
         .into_par_iter()
         .map(|row| {
-            (!stop.load(Ordering::Relaxed))
-                .then(|| row_pixels(scene, &rays, row, width).collect())
+            (!stop.load(Ordering::Relaxed)).then(|| row_pixels(scene, &rays, row, width).collect())
         })
         .collect();
     Some(HwImage {
@@ -374,12 +373,14 @@ mod tests {
 
     /// A scene of `n` spheres in a row before the camera (every primary ray tests all).
     fn spheres(n: usize) -> HwScene {
-        let mut scene = HwScene::from_scene(&tracer::parse_nff(
-            "v\nfrom 0 0 -10\nat 0 0 0\nup 0 1 0\nangle 40\nhither 1\nresolution 8 8\n\
+        let mut scene = HwScene::from_scene(
+            &tracer::parse_nff(
+                "v\nfrom 0 0 -10\nat 0 0 0\nup 0 1 0\nangle 40\nhither 1\nresolution 8 8\n\
              l 0 10 -10\nf 1 1 1 1 0 0 0 0\ns 0 0 0 1\n",
-            "spheres.nff",
+                "spheres.nff",
+            )
+            .unwrap(),
         )
-        .unwrap())
         .unwrap();
         scene.primitives = (0..n)
             .map(|i| HwPrimitive::sphere([i as f32 * 0.01 - 2.0, 0.0, 0.0], 1.0))
@@ -391,7 +392,10 @@ mod tests {
     fn render_until_gives_the_same_picture_and_stops_within_a_row() {
         let scene = spheres(3);
         let never = AtomicBool::new(false);
-        assert_eq!(render_until(&scene, 24, 16, &never), Some(render(&scene, 24, 16)));
+        assert_eq!(
+            render_until(&scene, 24, 16, &never),
+            Some(render(&scene, 24, 16))
+        );
         assert_eq!(render_until(&scene, 24, 16, &AtomicBool::new(true)), None);
         // A frame of many seconds (500 spheres × 1,000 × 1,000 pixels: 5·10⁸ tests),
         // stopped after 0.2 s: it must end within a second of the flag, on a busy

@@ -176,7 +176,19 @@ impl Suite {
         } else {
             PeakPlan::FULL
         };
-        let peak = measure_peak(&pool, plan);
+        let peak = match measure_peak(&pool, plan, ctx.stop) {
+            Ok(peak) => peak,
+            Err(e) => {
+                ctx.progress.end();
+                return Err(match e {
+                    RunError::Stopped => RunError::StoppedAfter {
+                        done: 0,
+                        total: self.scenes.len(),
+                    },
+                    e => e,
+                });
+            }
+        };
         ctx.progress.end();
         let runner = SceneRunner {
             def: &self.def,
