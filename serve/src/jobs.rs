@@ -88,11 +88,12 @@ impl Jobs {
         let request = request.checked(&self.catalogue)?;
         let job = {
             let mut entries = self.lock();
-            let mut id = entries.keys().next_back().map_or(1, |last| last + 1);
-            // Never into a directory the history skipped (unreadable, left alone).
-            while self.store.job_dir(id).exists() {
-                id += 1;
-            }
+            // Never an id given before (a deleted job's), nor a directory the history
+            // skipped (unreadable, left alone).
+            let id = self
+                .store
+                .next_id(entries.keys().next_back().map_or(1, |last| last + 1))
+                .map_err(|e| ApiError::internal(e.to_string()))?;
             let job = Job {
                 id: id.to_string(),
                 request,
