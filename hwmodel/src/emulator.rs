@@ -52,6 +52,7 @@
 use crate::float_policy as fp;
 use crate::hw_scene::{HwKind, HwPrimitive, HwScene};
 use std::path::Path;
+use std::sync::atomic::{AtomicBool, Ordering};
 use tracer::image_io::{ImageError, write_rgb8};
 
 type V3 = [f32; 3];
@@ -294,16 +295,48 @@ pub fn render(scene: &HwScene, width: u32, height: u32) -> HwImage {
     // the picture is the same on any number of threads.
     let pixels: Vec<u8> = (0..height)
         .into_par_iter()
-        .flat_map_iter(|row| {
-            let row_base = rays.row_base(row);
-            (0..width).map(move |column| pixel_gray(scene, rays.direction(row_base, column)))
-        })
+        .flat_map_iter(|row| row_pixels(scene, &rays, row, width))
         .collect();
     HwImage {
         width,
         height,
         pixels,
     }
+}
+
+/// [`render`] that stops when `stop` is set (read before each row, so it ends within a
+/// row's time): `None` then, never a partial image.
+pub fn render_until(
+    scene: &HwScene,
+    width: u32,
+    height: u32,
+    stop: &AtomicBool,
+) -> Option<HwImage> {
+    use rayon::prelude::*;
+    let rays = PrimaryRays::new(scene, width, height);
+    // A relaxed load a row: nothing beside a row of closest-hit searches.
+    let rows: Option<Vec<Vec<u8>>> = (0..height)
+        .into_par_iter()
+        .map(|row| {
+            (!stop.load(Ordering::Relaxed)).then(|| row_pixels(scene, &rays, row, width).collect())
+        })
+        .collect();
+    Some(HwImage {
+        width,
+        height,
+        pixels: rows?.concat(),
+    })
+}
+
+/// The gray values of row `row`, left to right.
+fn row_pixels<'a>(
+    scene: &'a HwScene,
+    rays: &'a PrimaryRays,
+    row: u32,
+    width: u32,
+) -> impl Iterator<Item = u8> + 'a {
+    let row_base = rays.row_base(row);
+    (0..width).map(move |column| pixel_gray(scene, rays.direction(row_base, column)))
 }
 
 #[cfg(test)]
@@ -336,6 +369,49 @@ mod tests {
         // From the side at mid-height: wall at x = -1, d = 4, m = 1.
         let side = intersect(&cylinder, [-5.0, 0.0, 1.0], [1.0, 0.0, 0.0]);
         assert_eq!((side.distance, side.m), (4.0, 1.0));
+    }
+
+    /// A scene of `n` spheres in a row before the camera (every primary ray tests all).
+    fn spheres(n: usize) -> HwScene {
+        let mut scene = HwScene::from_scene(
+            &tracer::parse_nff(
+                "v\nfrom 0 0 -10\nat 0 0 0\nup 0 1 0\nangle 40\nhither 1\nresolution 8 8\n\
+             l 0 10 -10\nf 1 1 1 1 0 0 0 0\ns 0 0 0 1\n",
+                "spheres.nff",
+            )
+            .unwrap(),
+        )
+        .unwrap();
+        scene.primitives = (0..n)
+            .map(|i| HwPrimitive::sphere([i as f32 * 0.01 - 2.0, 0.0, 0.0], 1.0))
+            .collect();
+        scene
+    }
+
+    #[test]
+    fn render_until_gives_the_same_picture_and_stops_within_a_row() {
+        let scene = spheres(3);
+        let never = AtomicBool::new(false);
+        assert_eq!(
+            render_until(&scene, 24, 16, &never),
+            Some(render(&scene, 24, 16))
+        );
+        assert_eq!(render_until(&scene, 24, 16, &AtomicBool::new(true)), None);
+        // A frame of many seconds (500 spheres × 1,000 × 1,000 pixels: 5·10⁸ tests),
+        // stopped after 0.2 s: it must end within a second of the flag, on a busy
+        // machine too (a row here is about 1 ms of work).
+        let big = spheres(500);
+        let stop = AtomicBool::new(false);
+        let (out, late) = std::thread::scope(|s| {
+            let worker = s.spawn(|| render_until(&big, 1000, 1000, &stop));
+            std::thread::sleep(std::time::Duration::from_millis(200));
+            let raised = std::time::Instant::now();
+            stop.store(true, Ordering::SeqCst);
+            let out = worker.join().unwrap();
+            (out, raised.elapsed())
+        });
+        assert_eq!(out, None, "the frame was stopped, not finished");
+        assert!(late.as_secs_f64() < 1.0, "ended {late:?} after the flag");
     }
 
     #[test]

@@ -129,6 +129,16 @@ pub fn instruction_table(gate: &GateReport) -> Option<Table> {
     Some(t)
 }
 
+/// The first few of `names`, and how many more.
+fn named(names: &[String]) -> String {
+    const NAMED: usize = 5;
+    let mut shown: Vec<String> = names.iter().take(NAMED).cloned().collect();
+    if names.len() > NAMED {
+        shown.push(format!("and {} more", names.len() - NAMED));
+    }
+    shown.join(", ")
+}
+
 /// The first line: passed or FAILED, what was compared, the verdicts and the threshold.
 pub fn headline(gate: &GateReport) -> String {
     let t = gate.tally();
@@ -155,8 +165,10 @@ pub fn headline(gate: &GateReport) -> String {
 /// What the verdicts mean, in one paragraph.
 pub fn rule(gate: &GateReport) -> String {
     format!(
-        "Times are the process CPU time of each render (wall time for older files), gated relative to a render of the same scene timed in the same rounds (each variant ÷ baseline, or ÷ bvh on a scene run without baseline; baseline, or bvh there, ÷ the f64 reference renderer at a smaller frame, or ÷ the calibration kernel in older files), so a busier or slower machine moves both alike. A change is slower or faster only when it exceeds the noise threshold of {} (the run-to-run noise of relative times measured on a shared machine, docs/gate.md; wider for an entry whose own 95 % intervals are, their half-widths summed) and its 95 % interval excludes no change. Any changed count fails.",
-        format::percent(gate.threshold * 100.0, 1)
+        "Times are the process CPU time of each render (wall time for older files), gated relative to a render of the same scene timed in the same rounds (each variant ÷ baseline, or ÷ bvh on a scene run without baseline; baseline, or bvh there, ÷ the f64 reference renderer at a smaller frame, or ÷ the calibration kernel in older files), so a busier or slower machine moves both alike. A change is slower or faster only when it exceeds the noise threshold of {} (the run-to-run noise of relative times measured on a shared machine, docs/gate.md; wider for an entry whose own 95 % intervals are, their half-widths summed, and at least {} for renders shorter than {}) and its 95 % interval excludes no change. Any changed count fails.",
+        format::percent(gate.threshold * 100.0, 1),
+        format::percent(results::gate::SHORT_THRESHOLD * 100.0, 0),
+        format::seconds(results::gate::SHORT_SECONDS)
     )
 }
 
@@ -177,10 +189,23 @@ fn notes(gate: &GateReport) -> Vec<String> {
             new.describe()
         ));
     }
+    let short: Vec<&results::gate::Entry> = gate.entries.iter().filter(|e| e.short()).collect();
+    if !short.is_empty() {
+        notes.push(format!(
+            "note: {} with renders shorter than {} gated at a threshold of {} at least: renders that short move by up to a third between runs with nothing changed ({})",
+            match short.len() {
+                1 => "1 entry".to_string(),
+                n => format!("{} entries", format::count(n as u64)),
+            },
+            format::seconds(results::gate::SHORT_SECONDS),
+            format::percent(results::gate::SHORT_THRESHOLD * 100.0, 0),
+            named(&short.iter().map(|e| format!("{} / {}", e.scene, e.variant)).collect::<Vec<_>>()),
+        ));
+    }
     let widened: Vec<String> = gate
         .entries
         .iter()
-        .filter(|e| e.threshold > gate.threshold)
+        .filter(|e| e.threshold > gate.threshold && !e.short())
         .map(|e| {
             format!(
                 "{} / {} {}",
@@ -191,11 +216,6 @@ fn notes(gate: &GateReport) -> Vec<String> {
         })
         .collect();
     if !widened.is_empty() {
-        const NAMED: usize = 5;
-        let mut named: Vec<String> = widened.iter().take(NAMED).cloned().collect();
-        if widened.len() > NAMED {
-            named.push(format!("and {} more", widened.len() - NAMED));
-        }
         notes.push(format!(
             "note: {} {} gated at a wider threshold than {}, their own intervals being wider: {}",
             widened.len(),
@@ -205,7 +225,7 @@ fn notes(gate: &GateReport) -> Vec<String> {
                 "entries"
             },
             format::percent(gate.threshold * 100.0, 1),
-            named.join(", ")
+            named(&widened)
         ));
     }
     if let Some((e, change)) = gate.largest_change() {

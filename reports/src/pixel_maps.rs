@@ -63,8 +63,16 @@ const VIRIDIS: [[u8; 3]; 11] = [
 const WHITE: Rgb<u8> = Rgb([255, 255, 255]);
 const TEXT: Rgb<u8> = Rgb([0, 0, 0]);
 
-/// Glyphs are this many pixels wide and high.
+/// Glyphs are this many font pixels wide and high.
 const GLYPH: u32 = 8;
+/// The legend is drawn enlarged by one whole step per this many pixels of the
+/// picture's width (font pixels, gaps and bar alike): the page shows a map in a column
+/// of about 300 px, so a 384 px picture (enlarged twice) keeps its text about 12 px
+/// high there, a 640 px one (three times) about 11 px, where the font at its own size
+/// shrank to 4 to 6 px, too small to read.
+const LEGEND_SCALE_WIDTH: u32 = 192;
+/// Space between the title line and the unit line.
+const LINE_GAP: u32 = 2;
 /// Space left and right of the legend's text and colour bar.
 const MARGIN: u32 = 8;
 /// Space above the title, between title and bar, and below the labels.
@@ -73,8 +81,20 @@ const GAP: u32 = 6;
 const LABEL_GAP: u32 = 4;
 const BAR_HEIGHT: u32 = 12;
 
-/// Height of the legend band below the map: title line, colour bar, value labels.
-pub const LEGEND_HEIGHT: u32 = GAP + GLYPH + GAP + BAR_HEIGHT + LABEL_GAP + GLYPH + GAP;
+/// Height of the legend band below the map at its own size (in font pixels): title
+/// line, unit line, colour bar, value labels.
+const LEGEND_UNITS: u32 =
+    GAP + GLYPH + LINE_GAP + GLYPH + GAP + BAR_HEIGHT + LABEL_GAP + GLYPH + GAP;
+
+/// How much the legend of a picture `width` pixels wide is enlarged.
+fn legend_scale(width: u32) -> u32 {
+    (width / LEGEND_SCALE_WIDTH).max(1)
+}
+
+/// Height of the legend band below a map in a picture `width` pixels wide.
+pub fn legend_height(width: u32) -> u32 {
+    LEGEND_UNITS * legend_scale(width)
+}
 
 /// The false-colour picture of a `columns` x `rows` map whose `values` are given row
 /// by row, with its legend band below.
@@ -117,10 +137,8 @@ pub fn false_colour(values: &[f64], columns: u32, rows: u32, legend: &Legend) ->
 pub fn picture_size(columns: u32, rows: u32) -> (u32, u32) {
     let factor = scale_factor(columns, rows);
     let (map_width, map_height) = (columns * factor, rows * factor);
-    (
-        map_width.max(MIN_WIDTH),
-        map_height.saturating_add(LEGEND_HEIGHT),
-    )
+    let width = map_width.max(MIN_WIDTH);
+    (width, map_height.saturating_add(legend_height(width)))
 }
 
 /// The whole enlargement of a `columns` x `rows` map (see [`false_colour`]).
@@ -184,33 +202,43 @@ fn fill(image: &mut RgbImage, x: u32, y: u32, width: u32, height: u32, colour: R
 /// across the width, and the scale's end values under its ends.
 fn draw_legend(image: &mut RgbImage, top: u32, legend: &Legend) {
     let width = image.width();
-    let inner_width = width.saturating_sub(2 * MARGIN);
-    let chars_across = (inner_width / GLYPH) as usize;
+    let k = legend_scale(width);
+    let (margin, glyph) = (MARGIN * k, GLYPH * k);
+    let inner_width = width.saturating_sub(2 * margin);
+    let chars_across = (inner_width / glyph) as usize;
 
-    let title_y = top + GAP;
-    let title = if legend.unit.is_empty() {
-        legend.title.clone()
-    } else {
-        format!("{} ({})", legend.title, legend.unit)
-    };
-    draw_text(image, MARGIN, title_y, &fit(&title, chars_across), TEXT);
+    // The title (the counter's key) on its line, its unit on the next.
+    let title_y = top + GAP * k;
+    draw_text(
+        image,
+        (margin, title_y, k),
+        &fit(&legend.title, chars_across),
+        TEXT,
+    );
+    let unit_y = title_y + (GLYPH + LINE_GAP) * k;
+    draw_text(
+        image,
+        (margin, unit_y, k),
+        &fit(&legend.unit, chars_across),
+        TEXT,
+    );
 
-    let bar_y = title_y + GLYPH + GAP;
+    let bar_y = unit_y + (GLYPH + GAP) * k;
     let bar_last = inner_width.saturating_sub(1).max(1);
     for offset in 0..inner_width {
         let colour = viridis(offset as f64 / bar_last as f64);
-        fill(image, MARGIN + offset, bar_y, 1, BAR_HEIGHT, colour);
+        fill(image, margin + offset, bar_y, 1, BAR_HEIGHT * k, colour);
     }
 
     // Each label gets half the width, less one character to keep them apart.
     let label_chars = (chars_across / 2).saturating_sub(1);
-    let labels_y = bar_y + BAR_HEIGHT + LABEL_GAP;
+    let labels_y = bar_y + (BAR_HEIGHT + LABEL_GAP) * k;
     let min_label = fit(&value_label(legend.min), label_chars);
-    draw_text(image, MARGIN, labels_y, &min_label, TEXT);
+    draw_text(image, (margin, labels_y, k), &min_label, TEXT);
     let max_label = fit(&value_label(legend.max), label_chars);
-    let max_label_width = max_label.chars().count() as u32 * GLYPH;
-    let max_label_x = (MARGIN + inner_width).saturating_sub(max_label_width);
-    draw_text(image, max_label_x, labels_y, &max_label, TEXT);
+    let max_label_width = max_label.chars().count() as u32 * glyph;
+    let max_label_x = (margin + inner_width).saturating_sub(max_label_width);
+    draw_text(image, (max_label_x, labels_y, k), &max_label, TEXT);
 }
 
 /// The least and the greatest value that is a number across `maps`: the one scale
@@ -475,16 +503,20 @@ fn glyph(c: char) -> [u8; 8] {
 }
 
 /// Draws `text` with its top-left corner at (`x`, `y`), clipped to the image.
-fn draw_text(image: &mut RgbImage, x: u32, y: u32, text: &str, colour: Rgb<u8>) {
+fn draw_text(image: &mut RgbImage, (x, y, k): (u32, u32, u32), text: &str, colour: Rgb<u8>) {
+    let step = GLYPH.saturating_mul(k);
     for (index, c) in text.chars().enumerate() {
-        let glyph_x = x.saturating_add((index as u32).saturating_mul(GLYPH));
+        let glyph_x = x.saturating_add((index as u32).saturating_mul(step));
         for (row, bits) in (0u32..).zip(glyph(c)) {
             for column in 0..GLYPH {
                 if bits & (1 << column) != 0 {
-                    let (px, py) = (glyph_x.saturating_add(column), y.saturating_add(row));
-                    if px < image.width() && py < image.height() {
-                        image.put_pixel(px, py, colour);
-                    }
+                    let (px, py) = (glyph_x + column * k, y.saturating_add(row * k));
+                    // Each font pixel a k x k square (clipped to the picture).
+                    let (w, h) = (
+                        k.min(image.width().saturating_sub(px)),
+                        k.min(image.height().saturating_sub(py)),
+                    );
+                    fill(image, px, py, w, h, colour);
                 }
             }
         }
@@ -521,7 +553,7 @@ mod tests {
     fn a_16x8_map_is_enlarged_24_times_to_384_wide() {
         let image = false_colour(&ramp_16x8(), 16, 8, &legend(0.0, 127.0));
         assert_eq!(image.width(), 384);
-        assert_eq!(image.height(), 8 * 24 + LEGEND_HEIGHT);
+        assert_eq!(image.height(), 8 * 24 + legend_height(384));
         // Each value is one 24 x 24 square: the square's corners agree.
         assert_eq!(image.get_pixel(24, 0), image.get_pixel(47, 23));
         assert_ne!(image.get_pixel(23, 0), image.get_pixel(24, 0));
@@ -607,32 +639,45 @@ mod tests {
     fn the_legend_has_a_title_and_a_colour_bar_from_low_to_high() {
         let image = false_colour(&ramp_16x8(), 16, 8, &legend(0.0, 127.0));
         let band_top = 192;
-        // The title line: text between the top gap and the bar.
-        let title_rows = band_top + GAP..band_top + GAP + GLYPH;
+        // A 384 px picture draws its legend twice its own size: 16 px glyphs, readable
+        // at the 300 px the page shows it (a 12 px font there).
+        let k = 2;
+        assert_eq!(legend_scale(384), k);
+        assert_eq!(image.height(), band_top + LEGEND_UNITS * k);
+        let (gap, glyph, margin) = (GAP * k, GLYPH * k, MARGIN * k);
+        // The title line: text between the top gap and the unit line.
+        let title_rows = band_top + gap..band_top + gap + glyph;
         let dark_in_title = title_rows
             .clone()
             .flat_map(|y| (0..384).map(move |x| (x, y)))
             .filter(|&(x, y)| is_dark(image.get_pixel(x, y)))
             .count();
-        assert!(dark_in_title > 50, "{dark_in_title} dark pixels");
+        assert!(
+            dark_in_title > 50 * k as usize,
+            "{dark_in_title} dark pixels"
+        );
         // The title row starts white at the left edge (the margin).
         assert_eq!(*image.get_pixel(0, title_rows.start), WHITE);
 
-        let bar_middle = band_top + GAP + GLYPH + GAP + BAR_HEIGHT / 2;
-        assert_eq!(*image.get_pixel(MARGIN, bar_middle), LOW);
-        assert_eq!(*image.get_pixel(384 - MARGIN - 1, bar_middle), HIGH);
+        let bar_top = title_rows.end + LINE_GAP * k + glyph + gap;
+        let bar_middle = bar_top + BAR_HEIGHT * k / 2;
+        assert_eq!(*image.get_pixel(margin, bar_middle), LOW);
+        assert_eq!(*image.get_pixel(384 - margin - 1, bar_middle), HIGH);
         assert_eq!(*image.get_pixel(0, bar_middle), WHITE, "left margin");
 
         // The labels: "0" at the left, "127" ending at the right margin.
-        let labels = bar_middle + BAR_HEIGHT / 2 + LABEL_GAP..image.height();
+        let labels = bar_top + (BAR_HEIGHT + LABEL_GAP) * k..image.height();
         let dark_at = |xs: std::ops::Range<u32>| {
             labels
                 .clone()
                 .any(|y| xs.clone().any(|x| is_dark(image.get_pixel(x, y))))
         };
-        assert!(dark_at(MARGIN..MARGIN + GLYPH), "min label");
-        assert!(dark_at(384 - MARGIN - GLYPH..384 - MARGIN), "max label");
+        assert!(dark_at(margin..margin + glyph), "min label");
+        assert!(dark_at(384 - margin - glyph..384 - margin), "max label");
         assert!(!dark_at(150..234), "nothing between the labels");
+        // A wider picture enlarges it more: 640 px, three times.
+        assert_eq!(legend_scale(640), 3);
+        assert_eq!(legend_height(640), LEGEND_UNITS * 3);
     }
 
     #[test]
@@ -651,14 +696,17 @@ mod tests {
         assert_eq!(image.width(), 384);
         // A map of nothing still gets its legend.
         let empty = false_colour(&[], 0, 0, &long);
-        assert_eq!((empty.width(), empty.height()), (384, LEGEND_HEIGHT));
+        assert_eq!((empty.width(), empty.height()), (384, legend_height(384)));
     }
 
     #[test]
     fn pixels_without_a_value_are_grey_and_extra_values_ignored() {
         // Three values for a 2 x 2 map: the last pixel has none.
         let image = false_colour(&[0.0, 1.0, 1.0], 2, 2, &legend(0.0, 1.0));
-        assert_eq!((image.width(), image.height()), (384, 384 + LEGEND_HEIGHT));
+        assert_eq!(
+            (image.width(), image.height()),
+            (384, 384 + legend_height(384))
+        );
         assert_eq!(*image.get_pixel(0, 0), LOW);
         assert_eq!(*image.get_pixel(383, 0), HIGH);
         assert_eq!(*image.get_pixel(383, 383), NO_DATA);
@@ -667,7 +715,10 @@ mod tests {
         assert_eq!(*extra.get_pixel(383, 383), LOW);
         // No values and no size.
         let empty = false_colour(&[], 0, 3, &legend(0.0, 1.0));
-        assert_eq!((empty.width(), empty.height()), (384, 3 + LEGEND_HEIGHT));
+        assert_eq!(
+            (empty.width(), empty.height()),
+            (384, 3 + legend_height(384))
+        );
     }
 
     #[test]
@@ -692,7 +743,7 @@ mod tests {
         // '{' points left at its middle: row 3 is 0x07, bits 0-2, so the leftmost
         // three pixels are drawn there and the right side is empty.
         let mut image = RgbImage::from_pixel(8, 8, WHITE);
-        draw_text(&mut image, 0, 0, "{", TEXT);
+        draw_text(&mut image, (0, 0, 1), "{", TEXT);
         assert_eq!(glyph('{')[3], 0x07);
         assert_eq!(*image.get_pixel(0, 3), TEXT);
         assert_eq!(*image.get_pixel(2, 3), TEXT);

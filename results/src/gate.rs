@@ -39,6 +39,20 @@ use crate::variant_name::VariantName;
 /// counts repeat exactly for one build; 1 % leaves room for a rebuilt toolchain's noise.
 pub const INSTRUCTION_THRESHOLD: f64 = 0.01;
 
+/// Renders shorter than this (an entry's own median time in either run, on the gated
+/// clock) are timed too coarsely for the default threshold: at a millisecond or so,
+/// the pool's wake-up, the process clock's reading and the caches' state are a large
+/// share of the time, and they change from run to run, not within one (their
+/// intervals are narrow). Back-to-back default suites gave such renders changes of up
+/// to 31 % with nothing changed, renders of 5 to 20 ms at most 15 % (docs/gate.md).
+/// The references' length does not count: the calibration kernel and the yardstick
+/// are a few milliseconds of fixed work, and entries gated on them did not move so.
+pub const SHORT_SECONDS: f64 = 0.005;
+
+/// The least threshold of an entry with a render shorter than [`SHORT_SECONDS`]: a
+/// change of half again is still caught there, run-to-run noise is not.
+pub const SHORT_THRESHOLD: f64 = 0.5;
+
 /// What an entry's times are measured against.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
 #[serde(rename_all = "snake_case")]
@@ -110,13 +124,22 @@ pub struct Entry {
     /// new / old of the measure, with its 95 % bootstrap interval (1.25: 25 % slower).
     pub change: Estimate,
     /// The noise threshold of this entry's verdict (a fraction): the gate's, or wider
-    /// where the entry's own intervals are ([`entry_threshold`]).
+    /// where the entry's own intervals are ([`entry_threshold`]) or its renders short
+    /// ([`SHORT_THRESHOLD`]).
     pub threshold: f64,
+    /// The shorter median time (seconds) of the entry's render in the two runs, on the
+    /// gated clock: under [`SHORT_SECONDS`] the entry is short.
+    pub shortest_seconds: f64,
     pub verdict: Verdict,
     pub count_changes: Vec<CountChange>,
 }
 
 impl Entry {
+    /// Whether a render it compares is shorter than [`SHORT_SECONDS`].
+    pub fn short(&self) -> bool {
+        self.shortest_seconds < SHORT_SECONDS
+    }
+
     /// Slower, or a count changed.
     pub fn failed(&self) -> bool {
         self.verdict == Verdict::Slower || !self.count_changes.is_empty()
@@ -459,6 +482,8 @@ fn compare_entry(
         pick(&o.samples, &o.cpu_samples),
         pick(&v.samples, &v.cpu_samples),
     );
+    let median_of = |samples: &[f64]| analysis::median(samples).unwrap_or(f64::INFINITY);
+    let shortest = median_of(&o_samples).min(median_of(&v_samples));
     let (measure, old, new, change) = match sticks {
         Some(((old_wall, old_cpu, measure), (new_wall, new_cpu, _))) => {
             let old_ratios = paired_ratios(&o_samples, &pick(old_wall, old_cpu));
@@ -482,7 +507,10 @@ fn compare_entry(
     };
     let change = change.unwrap_or(unknown);
     let (old, new) = (old.unwrap_or(unknown), new.unwrap_or(unknown));
-    let threshold = entry_threshold(threshold, &old, &new);
+    let threshold = match shortest < SHORT_SECONDS {
+        true => entry_threshold(threshold, &old, &new).max(SHORT_THRESHOLD),
+        false => entry_threshold(threshold, &old, &new),
+    };
     Entry {
         scene: new_scene.name.clone(),
         width: new_scene.width,
@@ -496,6 +524,7 @@ fn compare_entry(
         new_seconds: v.time.median,
         change,
         threshold,
+        shortest_seconds: shortest,
         verdict: judge(&change, threshold),
         count_changes: count_changes(o, v),
     }

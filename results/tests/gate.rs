@@ -478,3 +478,32 @@ fn scenes_in_one_run_only_are_listed_not_failed() {
     assert!(!g.failed());
     assert_eq!(g.unmatched, vec!["balls3/bvh (old)".to_string()]);
 }
+
+#[test]
+fn renders_shorter_than_five_milliseconds_need_a_change_of_half_again() {
+    use results::gate::{SHORT_SECONDS, SHORT_THRESHOLD};
+    assert_eq!((SHORT_SECONDS, SHORT_THRESHOLD), (0.005, 0.5));
+    // bvh at 2 ms against a 10 ms baseline: +30 % is the run-to-run noise of renders
+    // that short (docs/gate.md), +60 % is caught.
+    let old = run(0.010, 0.002, 0.010, 1000);
+    let g = default_gate(&old, &run(0.010, 0.0026, 0.010, 1000));
+    let bvh = &g.entries[1];
+    assert!(bvh.short() && bvh.shortest_seconds == 0.002, "{bvh:?}");
+    assert_eq!(bvh.threshold, SHORT_THRESHOLD);
+    assert_eq!(bvh.verdict, Verdict::WithinNoise);
+    assert!(!g.failed());
+    // baseline ÷ the kernel, both at 10 ms: not short, the gate's threshold.
+    assert!(!g.entries[0].short());
+    assert_eq!(g.entries[0].threshold, 0.2);
+    let g = default_gate(&old, &run(0.010, 0.0032, 0.010, 1000));
+    assert_eq!(g.entries[1].verdict, Verdict::Slower);
+    // The same +30 % of a 20 ms bvh against a 100 ms baseline is caught.
+    let g = default_gate(&run(0.1, 0.02, 0.01, 1000), &run(0.1, 0.026, 0.01, 1000));
+    assert!(!g.entries[1].short());
+    assert_eq!(g.entries[1].verdict, Verdict::Slower);
+    // A short reference does not make an entry short (the kernel and the yardstick are
+    // milliseconds of fixed work): baseline at 100 ms ÷ a 3 ms kernel, 30 % slower.
+    let g = default_gate(&run(0.1, 0.02, 0.003, 1000), &run(0.13, 0.026, 0.003, 1000));
+    assert!(!g.entries[0].short());
+    assert_eq!(g.entries[0].verdict, Verdict::Slower);
+}

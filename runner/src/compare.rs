@@ -163,7 +163,13 @@ fn variant_rows(
     progress: &dyn Progress,
 ) -> Result<Vec<VariantRow>, RunError> {
     progress.begin("variants", 0);
-    let all = setup.measure_all(sets, policy, false, &|what| progress.message(what))?;
+    let all = setup.measure_all(
+        sets,
+        policy,
+        false,
+        &|what| progress.message(what),
+        &|done, total| progress.within(crate::progress::TIMED, done, total),
+    )?;
     progress.end();
     let measured: Vec<VariantMeasurement> = all.variants.into_iter().collect::<Result<_, _>>()?;
     let Some(reference) = measured.first() else {

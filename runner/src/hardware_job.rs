@@ -107,7 +107,10 @@ pub fn run_hardware(
     let fits = lib
         .validated_device()
         .is_some_and(|device| fit(&lib, device, demand(&lib, &pipeline, n, width, height)).fits);
-    let emulated = all_threads.install(|| hwmodel::emulator::render(hw, width, height));
+    // The emulator reads the stop flag before each row, as the renders do.
+    let emulated = all_threads
+        .install(|| hwmodel::emulator::render_until(hw, width, height, stop))
+        .ok_or(RunError::Stopped)?;
     let emulator_image = RgbImage::new(width, height, emulated.to_rgb8())?;
     let software = software_time(scene, name, size, pool, policy, stop)?;
     let peer = VariantSet::parse(PEER_VARIANT)?;

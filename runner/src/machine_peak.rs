@@ -18,11 +18,14 @@
 //! bandwidth (about 10 GB/s a core against 200 at opt-level 3 on a Zen 3).
 
 use std::hint::black_box;
+use std::sync::atomic::{AtomicBool, Ordering};
 use std::time::Instant;
 
 use analysis::profile::sampler::process_cpu_time;
 use rayon::prelude::*;
 use results::MachinePeak;
+
+use crate::error::RunError;
 
 /// Lanes of one vector.
 const LANES: usize = 8;
@@ -56,14 +59,24 @@ impl PeakPlan {
     };
 }
 
-/// Measures the roofs on `pool`.
-pub fn measure_peak(pool: &rayon::ThreadPool, plan: PeakPlan) -> MachinePeak {
+/// Seconds of one chunk of a kernel run: each thread reads the stop flag between
+/// chunks, so a stop takes effect within about this (a load every few milliseconds
+/// costs nothing measurable).
+const CHUNK_SECONDS: f64 = 0.005;
+
+/// Measures the roofs on `pool`; [`RunError::Stopped`] within a chunk's time once
+/// `stop` is set.
+pub fn measure_peak(
+    pool: &rayon::ThreadPool,
+    plan: PeakPlan,
+    stop: &AtomicBool,
+) -> Result<MachinePeak, RunError> {
     let threads = pool.current_num_threads();
-    let (peak_gflops, fma_kernel) = fma_peak(pool, plan.fma_seconds);
-    let (scalar_peak_gflops, scalar_kernel) = scalar_peak(pool, plan.fma_seconds);
-    let bandwidth_gbs = stream_bandwidth(pool, plan.stream_elements);
-    let cache_bandwidth_gbs = l1_bandwidth(pool, plan.fma_seconds);
-    MachinePeak {
+    let (peak_gflops, fma_kernel) = fma_peak(pool, plan.fma_seconds, stop)?;
+    let (scalar_peak_gflops, scalar_kernel) = scalar_peak(pool, plan.fma_seconds, stop)?;
+    let bandwidth_gbs = stream_bandwidth(pool, plan.stream_elements, stop)?;
+    let cache_bandwidth_gbs = l1_bandwidth(pool, plan.fma_seconds, stop)?;
+    Ok(MachinePeak {
         peak_gflops,
         bandwidth_gbs,
         cache_bandwidth_gbs,
@@ -72,11 +85,37 @@ pub fn measure_peak(pool: &rayon::ThreadPool, plan: PeakPlan) -> MachinePeak {
         stream_bytes: 3 * 4 * plan.stream_elements as u64,
         scalar_peak_gflops: Some(scalar_peak_gflops),
         scalar_kernel: Some(scalar_kernel),
+    })
+}
+
+/// `Stopped` once `stop` is set.
+fn check(stop: &AtomicBool) -> Result<(), RunError> {
+    match stop.load(Ordering::Relaxed) {
+        true => Err(RunError::Stopped),
+        false => Ok(()),
     }
 }
 
+/// Runs `kernel` for `total` steps in chunks of `chunk`, reading `stop` before each;
+/// the sum of the chunks' results (each chunk starts its chains afresh, which costs
+/// nothing beside its thousands of steps).
+fn chunked(total: u64, chunk: u64, stop: &AtomicBool, kernel: impl Fn(u64) -> f32) -> f32 {
+    let mut left = total;
+    let mut sum = 0.0;
+    while left > 0 && !stop.load(Ordering::Relaxed) {
+        let steps = left.min(chunk.max(1));
+        sum += kernel(steps);
+        left -= steps;
+    }
+    sum
+}
+
 /// GFLOP/s of the FMA chains in SIMD lanes on every thread of `pool` and what they ran.
-fn fma_peak(pool: &rayon::ThreadPool, seconds: f64) -> (f64, String) {
+fn fma_peak(
+    pool: &rayon::ThreadPool,
+    seconds: f64,
+    stop: &AtomicBool,
+) -> Result<(f64, String), RunError> {
     let avx2 = has_avx2_fma();
     let kernel = if avx2 {
         format!("AVX2+FMA, {LANES} lanes × {CHAINS} chains")
@@ -84,50 +123,58 @@ fn fma_peak(pool: &rayon::ThreadPool, seconds: f64) -> (f64, String) {
         format!("portable multiply-add, {LANES} lanes × {CHAINS} chains")
     };
     let flops_per_step = 2 * LANES * CHAINS;
-    let best = best_gflops(pool, seconds, flops_per_step, &|steps, seed| {
+    let best = best_gflops(pool, (seconds, stop), flops_per_step, &|steps, seed| {
         chains(steps, seed, avx2)
-    });
-    (best, kernel)
+    })?;
+    Ok((best, kernel))
 }
 
 /// GFLOP/s of the same chains one lane wide, in scalar instructions (`vfmadd…ss`
 /// where the processor has FMA, a scalar multiply and add otherwise), on every thread
 /// of `pool`, and what they ran.
-fn scalar_peak(pool: &rayon::ThreadPool, seconds: f64) -> (f64, String) {
+fn scalar_peak(
+    pool: &rayon::ThreadPool,
+    seconds: f64,
+    stop: &AtomicBool,
+) -> Result<(f64, String), RunError> {
     let fma = has_fma();
     let kernel = if fma {
         format!("scalar FMA, 1 lane × {CHAINS} chains")
     } else {
         format!("scalar multiply-add, 1 lane × {CHAINS} chains")
     };
-    let best = best_gflops(pool, seconds, 2 * CHAINS, &|steps, seed| {
+    let best = best_gflops(pool, (seconds, stop), 2 * CHAINS, &|steps, seed| {
         scalar_chains(steps, seed, fma)
-    });
-    (best, kernel)
+    })?;
+    Ok((best, kernel))
 }
 
 /// The best GFLOP/s of [`REPEATS`] runs of `kernel` (`steps` from a seed, doing
 /// `flops_per_step` each) on every thread of `pool`, each run sized from a short
-/// probe on one thread to last about `seconds`.
+/// probe on one thread to last about `seconds`, in chunks that read `stop`.
 fn best_gflops(
     pool: &rayon::ThreadPool,
-    seconds: f64,
+    (seconds, stop): (f64, &AtomicBool),
     flops_per_step: usize,
     kernel: &(dyn Fn(u64, f32) -> f32 + Sync),
-) -> f64 {
+) -> Result<f64, RunError> {
     let probe = 20_000u64;
     let start = Instant::now();
     black_box(kernel(probe, 1.0));
     let per_step = start.elapsed().as_secs_f64().max(1e-9) / probe as f64;
     let steps = ((seconds / per_step) as u64).max(probe);
+    let chunk = ((CHUNK_SECONDS / per_step) as u64).max(probe);
     let mut best = 0.0f64;
     for _ in 0..REPEATS {
-        let (sums, elapsed) = on_every_core(pool, |ctx| kernel(steps, 1.0 + ctx.index() as f32));
+        let (sums, elapsed) = on_every_core(pool, |ctx| {
+            chunked(steps, chunk, stop, |n| kernel(n, 1.0 + ctx.index() as f32))
+        });
+        check(stop)?;
         black_box(sums);
         let flops = flops_per_step as f64 * steps as f64 * pool.current_num_threads() as f64;
         best = best.max(flops / elapsed / 1e9);
     }
-    best
+    Ok(best)
 }
 
 /// Runs `work` once on every thread of `pool`; its results and the seconds a thread
@@ -290,7 +337,13 @@ fn has_avx2_fma() -> bool {
 }
 
 /// GB/s of the triad `a = b + s·c` over `n` elements per array, split over `pool`.
-fn stream_bandwidth(pool: &rayon::ThreadPool, n: usize) -> f64 {
+/// A pass reads the stop flag before it starts: one pass over 3 × 32 MiB is a few
+/// hundredths of a second.
+fn stream_bandwidth(
+    pool: &rayon::ThreadPool,
+    n: usize,
+    stop: &AtomicBool,
+) -> Result<f64, RunError> {
     let avx2 = has_avx2_fma();
     pool.install(|| {
         let chunk = n.div_ceil(pool.current_num_threads() * 4).max(1);
@@ -304,6 +357,7 @@ fn stream_bandwidth(pool: &rayon::ThreadPool, n: usize) -> f64 {
         let scalar = black_box(3.0f32);
         let mut best = 0.0f64;
         for _ in 0..REPEATS + 2 {
+            check(stop)?;
             let start = Instant::now();
             a.par_chunks_mut(chunk)
                 .zip(b.par_chunks(chunk).zip(c.par_chunks(chunk)))
@@ -312,7 +366,7 @@ fn stream_bandwidth(pool: &rayon::ThreadPool, n: usize) -> f64 {
             black_box(&a);
             best = best.max((12 * n) as f64 / elapsed / 1e9);
         }
-        best
+        Ok(best)
     })
 }
 
@@ -320,7 +374,11 @@ fn stream_bandwidth(pool: &rayon::ThreadPool, n: usize) -> f64 {
 const L1_ELEMENTS: usize = 512;
 
 /// GB/s of the triad over arrays in each thread's L1, repeated for about `seconds`.
-fn l1_bandwidth(pool: &rayon::ThreadPool, seconds: f64) -> f64 {
+fn l1_bandwidth(
+    pool: &rayon::ThreadPool,
+    seconds: f64,
+    stop: &AtomicBool,
+) -> Result<f64, RunError> {
     let avx2 = has_avx2_fma();
     let run = |passes: u64| {
         let (mut a, b, c) = (
@@ -340,14 +398,16 @@ fn l1_bandwidth(pool: &rayon::ThreadPool, seconds: f64) -> f64 {
     black_box(run(probe));
     let per_pass = start.elapsed().as_secs_f64().max(1e-9) / probe as f64;
     let passes = ((seconds / per_pass) as u64).max(probe);
+    let chunk = ((CHUNK_SECONDS / per_pass) as u64).max(probe);
     let mut best = 0.0f64;
     for _ in 0..REPEATS {
-        let (sums, elapsed) = on_every_core(pool, |_| run(passes));
+        let (sums, elapsed) = on_every_core(pool, |_| chunked(passes, chunk, stop, run));
+        check(stop)?;
         black_box(sums);
         let bytes = (12 * L1_ELEMENTS) as f64 * passes as f64 * pool.current_num_threads() as f64;
         best = best.max(bytes / elapsed / 1e9);
     }
-    best
+    Ok(best)
 }
 
 /// The triad in AVX2 where the processor has it.
@@ -488,13 +548,45 @@ mod tests {
     }
 
     #[test]
+    fn a_stop_ends_the_measurement_within_a_second() {
+        // A plan of many seconds (3 kernels × 3 runs of 3 s), stopped after 0.2 s.
+        let pool = crate::pool::thread_pool(Some(2)).unwrap_or_else(|e| panic!("{e}"));
+        let plan = PeakPlan {
+            fma_seconds: 3.0,
+            stream_elements: 1 << 16,
+        };
+        let stop = AtomicBool::new(false);
+        let (outcome, late) = std::thread::scope(|s| {
+            let worker = s.spawn(|| measure_peak(&pool, plan, &stop));
+            std::thread::sleep(std::time::Duration::from_millis(200));
+            let raised = Instant::now();
+            stop.store(true, Ordering::SeqCst);
+            let outcome = worker.join().unwrap();
+            (outcome, raised.elapsed())
+        });
+        assert!(
+            matches!(outcome, Err(RunError::Stopped)),
+            "stopped, not finished"
+        );
+        assert!(late.as_secs_f64() < 1.0, "ended {late:?} after the flag");
+        // Chunked or not, a kernel does the steps it is asked for.
+        let count = std::sync::atomic::AtomicU64::new(0);
+        let never = AtomicBool::new(false);
+        chunked(1000, 300, &never, |n| {
+            count.fetch_add(n, Ordering::Relaxed);
+            0.0
+        });
+        assert_eq!(count.load(Ordering::Relaxed), 1000);
+    }
+
+    #[test]
     fn the_peaks_are_positive_and_the_ridge_is_their_ratio() {
         let pool = crate::pool::thread_pool(Some(1)).unwrap_or_else(|e| panic!("{e}"));
         let plan = PeakPlan {
             fma_seconds: 0.002,
             stream_elements: 1 << 16,
         };
-        let peak = measure_peak(&pool, plan);
+        let peak = measure_peak(&pool, plan, &AtomicBool::new(false)).unwrap();
         assert!(
             peak.peak_gflops > 0.0 && peak.bandwidth_gbs > 0.0,
             "{peak:?}"

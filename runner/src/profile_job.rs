@@ -31,14 +31,14 @@ use analysis::profile::timer::Timer;
 use analysis::profile::{CallCounts, Stack, StackSamples};
 use results::ProfileView;
 use serde::Serialize;
-use std::sync::atomic::AtomicBool;
+use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
 
 use tracer::{
     Count, Counts, NoCount, Phased, RenderOptions, Scene, VariantSet, render_variant_until,
 };
 
 use crate::error::RunError;
-use crate::progress::Progress;
+use crate::progress::{Progress, SAMPLES};
 
 /// Samples a profile gathers at least, by default: enough for a 95 % interval of
 /// about ±3 points on a 50 % share.
@@ -248,17 +248,29 @@ impl ProfileJob<'_> {
             ..SampleOptions::timer_default()
         };
         let render_seconds = RefCell::new(Vec::new());
+        // The samples gathered of those asked, told as each row ends when the
+        // hundredth they make up grows (at most a hundred calls, none per sample).
+        let wanted = self.min_samples;
+        let told = AtomicU64::new(0);
+        let tell = |gathered: u64| {
+            let shown = gathered.min(wanted);
+            let hundredths = shown * 100 / wanted.max(1);
+            if wanted > 0 && told.fetch_max(hundredths + 1, Ordering::Relaxed) < hundredths + 1 {
+                progress.within(SAMPLES, shown, wanted);
+            }
+        };
+        tell(0);
         let run = sample_repeated(
             &options,
             |name| name.starts_with("tracer::"),
-            || {
+            |live| {
                 let start = Instant::now();
                 let out = self.pool.install(|| {
                     render_variant_until::<Phased>(
                         self.scene,
                         &self.options,
                         set,
-                        &|_| {},
+                        &|_| tell(live.signals()),
                         self.stop,
                     )
                 });
@@ -272,6 +284,11 @@ impl ProfileJob<'_> {
             RepeatedError::Profile(e) => RunError::Profile(e.to_string()),
             RepeatedError::Work { error, .. } => self.fail(&error),
         })?;
+        // Done: all that was asked, or what the caps on runs and time let it gather.
+        if wanted > 0 {
+            let gathered = run.signals.min(wanted);
+            progress.within(SAMPLES, gathered, gathered);
+        }
         let renders = run.output.runs;
         if renders > 1 {
             progress.note(&format!(

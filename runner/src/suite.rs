@@ -176,7 +176,19 @@ impl Suite {
         } else {
             PeakPlan::FULL
         };
-        let peak = measure_peak(&pool, plan);
+        let peak = match measure_peak(&pool, plan, ctx.stop) {
+            Ok(peak) => peak,
+            Err(e) => {
+                ctx.progress.end();
+                return Err(match e {
+                    RunError::Stopped => RunError::StoppedAfter {
+                        done: 0,
+                        total: self.scenes.len(),
+                    },
+                    e => e,
+                });
+            }
+        };
         ctx.progress.end();
         let runner = SceneRunner {
             def: &self.def,
@@ -444,7 +456,12 @@ impl SceneRunner<'_> {
             .iter()
             .map(|name| VariantSet::parse(name))
             .collect::<Result<_, _>>()?;
-        let measured = setup.measure_all(&sets, &self.def.timing(), true, &doing)?;
+        let timed = |done, total| {
+            self.ctx
+                .progress
+                .within(crate::progress::TIMED, done, total)
+        };
+        let measured = setup.measure_all(&sets, &self.def.timing(), true, &doing, &timed)?;
         let truth = self.f64_reference(spec, &setup, &doing, failures)?;
         let mut variants: Vec<VariantResult> = Vec::new();
         let memory = memory_use(&scene, &measured.variants);

@@ -148,6 +148,28 @@ pub fn measure<R: PhaseTimes>(
     })
 }
 
+/// The timed renders a measurement with `samples` so far will take under `policy`:
+/// what it has when it needs no more; otherwise at least the policy's minimum and one
+/// more than it has, and as many as its mean sample so far says `min_seconds` needs
+/// (at most `max_repeats`). An estimate while the work runs, exact at its end.
+pub fn planned_renders(policy: &TimingPolicy, samples: &[f64]) -> u64 {
+    let have = samples.len() as u64;
+    let sum: f64 = samples.iter().sum();
+    let needs_more = have < u64::from(policy.min_repeats)
+        || (sum < policy.min_seconds && have < u64::from(policy.max_repeats));
+    if !needs_more {
+        return have;
+    }
+    let for_time = match have {
+        0 => 0,
+        _ => (policy.min_seconds / (sum / have as f64).max(1e-12)).ceil() as u64,
+    };
+    for_time
+        .min(u64::from(policy.max_repeats))
+        .max(u64::from(policy.min_repeats))
+        .max(have + 1)
+}
+
 /// What [`measure_interleaved`] measured: each render's outcome, in the order given, and
 /// each per-round job's samples (one per round; `None` for a job that failed).
 pub struct Interleaved<R> {
@@ -175,12 +197,15 @@ pub type RoundJob<'a> = Box<dyn FnMut() -> Result<f64, RunError> + 'a>;
 /// every render that still needs samples under `policy`, once. A change of load during
 /// the measurement then hits every render (and the per-round jobs) alike, so their
 /// ratios stay true. A render or per-round job that fails drops out (a render with its
-/// error); the others go on. `stop` is checked before each round.
+/// error); the others go on. `stop` is checked before each round. `timed` hears the
+/// timed renders done and planned after each (see [`planned_renders`]), ending with
+/// all of them done.
 pub fn measure_interleaved<'a, R: PhaseTimes>(
     policy: &TimingPolicy,
     stop: &AtomicBool,
     renders: Vec<RenderJob<'a, R>>,
     each_round: Vec<RoundJob<'a>>,
+    timed: &dyn Fn(u64, u64),
 ) -> Result<Interleaved<R>, RunError> {
     struct Slot<'a, R> {
         render: RenderJob<'a, R>,
@@ -212,6 +237,18 @@ pub fn measure_interleaved<'a, R: PhaseTimes>(
         .into_iter()
         .map(|job| Some((job, Vec::new(), Vec::new())))
         .collect();
+    let tell = |slots: &[Slot<'a, R>]| {
+        let done: usize = slots.iter().map(|s| s.samples.len()).sum();
+        let planned: u64 = slots
+            .iter()
+            .map(|s| match s.error {
+                Some(_) => s.samples.len() as u64,
+                None => planned_renders(policy, &s.samples),
+            })
+            .sum();
+        timed(done as u64, planned);
+    };
+    tell(&slots);
     loop {
         let active: Vec<usize> = (0..slots.len())
             .filter(|&i| slots[i].error.is_none() && needs_more(&slots[i].samples))
@@ -251,6 +288,7 @@ pub fn measure_interleaved<'a, R: PhaseTimes>(
                 Err(RunError::Stopped) => return Err(RunError::Stopped),
                 Err(e) => slot.error = Some(e),
             }
+            tell(&slots);
         }
     }
     let renders = slots
@@ -375,6 +413,7 @@ mod tests {
             &stop,
             vec![fast, slow, failing],
             vec![kernel, failing_job],
+            &|_, _| {},
         )
         .unwrap();
         assert_eq!(m.renders[0].as_ref().unwrap().samples.len(), 8);
@@ -400,7 +439,70 @@ mod tests {
         let policy = TimingPolicy::new(2, 0.0);
         let stop = AtomicBool::new(true);
         let job: RenderJob<'_, Fake> = Box::new(|| Ok(Fake(ms(1), ms(0))));
-        let r = measure_interleaved(&policy, &stop, vec![job], Vec::new());
+        let r = measure_interleaved(&policy, &stop, vec![job], Vec::new(), &|_, _| {});
         assert!(matches!(r, Err(RunError::Stopped)));
+    }
+
+    #[test]
+    fn the_timed_renders_are_told_in_order_up_to_all_of_them() {
+        // A 1/64 s render needs 8 samples for 1/8 s, a 1/16 s one 3 (the minimum), one
+        // that fails after its first sample drops out: 12 renders timed in all.
+        use std::cell::{Cell, RefCell};
+        let policy = TimingPolicy::new(3, 0.125);
+        let stop = AtomicBool::new(false);
+        let runs = Cell::new(0u64);
+        let fast: RenderJob<'_, Fake> = Box::new(|| {
+            runs.set(runs.get() + 1);
+            Ok(Fake(Duration::from_micros(15_625), ms(0)))
+        });
+        let slow: RenderJob<'_, Fake> = Box::new(|| {
+            runs.set(runs.get() + 1);
+            Ok(Fake(Duration::from_micros(62_500), ms(0)))
+        });
+        let failing_runs = Cell::new(0);
+        let failing: RenderJob<'_, Fake> = Box::new(|| {
+            failing_runs.set(failing_runs.get() + 1);
+            match failing_runs.get() {
+                1 => {
+                    runs.set(runs.get() + 1);
+                    Ok(Fake(ms(1), ms(0)))
+                }
+                _ => Err(RunError::Input("broken".into())),
+            }
+        });
+        let told = RefCell::new(Vec::new());
+        measure_interleaved(
+            &policy,
+            &stop,
+            vec![fast, slow, failing],
+            Vec::new(),
+            &|done, total| told.borrow_mut().push((done, total)),
+        )
+        .unwrap();
+        let told = told.into_inner();
+        // Nothing done at first, against three renders each (the policy's minimum).
+        assert_eq!(told[0], (0, 9));
+        // One call per render (the failing one's too), done never back nor past the plan.
+        assert_eq!(told.len() as u64, 1 + runs.get() + 1, "{told:?}");
+        for pair in told.windows(2) {
+            assert!(pair[1].0 >= pair[0].0, "{told:?}");
+        }
+        assert!(told.iter().all(|&(done, total)| done <= total), "{told:?}");
+        assert_eq!(told.last(), Some(&(12, 12)));
+        assert_eq!(runs.get(), 12);
+    }
+
+    #[test]
+    fn the_plan_follows_the_policy() {
+        let policy = TimingPolicy::new(3, 0.125);
+        assert_eq!(planned_renders(&policy, &[]), 3);
+        // 1/64 s a sample: 8 for 1/8 s.
+        assert_eq!(planned_renders(&policy, &[0.015_625]), 8);
+        // 1 s a sample: the minimum.
+        assert_eq!(planned_renders(&policy, &[1.0]), 3);
+        // Done: what it has.
+        assert_eq!(planned_renders(&policy, &[1.0, 1.0, 1.0]), 3);
+        // A microsecond a sample: at most the policy's most.
+        assert_eq!(planned_renders(&policy, &[1e-6; 5]), u64::from(MAX_REPEATS));
     }
 }

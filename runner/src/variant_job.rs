@@ -63,13 +63,15 @@ impl RenderSetup<'_> {
     /// with the gate's yardsticks at the start of each round (when `calibrate`): the f64
     /// reference renderer on the scene at [`yardstick_size`] and the calibration kernel. A set
     /// that fails is reported in its place; the others are measured. `doing` hears what
-    /// is being done (for a progress display).
+    /// is being done and `told` the timed renders done and planned (for a progress
+    /// display).
     pub fn measure_all(
         &self,
         sets: &[VariantSet],
         policy: &TimingPolicy,
         calibrate: bool,
         doing: &dyn Fn(&str),
+        told: &dyn Fn(u64, u64),
     ) -> Result<VariantsMeasured, RunError> {
         let fail = |e: tracer::RenderError| RunError::render(self.name, &e);
         let counts: Vec<Result<Counts, RunError>> = sets
@@ -153,7 +155,7 @@ impl RenderSetup<'_> {
             }));
             each_round.push(Box::new(|| Ok(time_kernel(self.pool))));
         }
-        let measured = measure_interleaved(policy, self.stop, jobs, each_round)?;
+        let measured = measure_interleaved(policy, self.stop, jobs, each_round, told)?;
         let mut each_round = measured.each_round.into_iter();
         let yardstick = each_round.next().flatten().map(|t| ((width, height), t));
         let calibration = each_round.next().flatten();

@@ -149,6 +149,25 @@ pub struct JobProgress {
     pub message: String,
     /// The whole job's share done, 0 to 1 (an estimate of the stages' weights).
     pub fraction: f64,
+    /// The work the message names, in its own count (the timed renders, the
+    /// profiler's samples), when the runner counts it.
+    #[serde(default)]
+    pub within: Option<Within>,
+}
+
+/// A count inside a stage's step: `done` of `total` `what` ("timed renders").
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
+pub struct Within {
+    pub what: String,
+    pub done: u64,
+    pub total: u64,
+}
+
+impl Within {
+    /// The share done, 0 to 1; `None` for a count of nothing.
+    pub fn fraction(&self) -> Option<f64> {
+        (self.total > 0).then(|| self.done.min(self.total) as f64 / self.total as f64)
+    }
 }
 
 /// The stages a job goes through, in order, and what the page calls them.
@@ -160,11 +179,14 @@ pub const STAGES: [(&str, &str); 4] = [
 ];
 
 impl JobProgress {
-    /// The current stage's own share done, when the runner counts its steps (the
-    /// scenes' variants); `None` while a stage runs without a count (the page shows an
+    /// The share of what the line says is under way: the work's own count when the
+    /// runner counts it (timing 4 of 12 renders, 150 of 300 samples), else the stage's
+    /// steps (the scenes' variants); `None` while neither is counted (the page shows an
     /// indeterminate bar rather than a made-up share).
     pub fn stage_fraction(&self) -> Option<f64> {
-        (self.total > 0).then(|| self.done.min(self.total) as f64 / self.total as f64)
+        self.within.as_ref().and_then(Within::fraction).or_else(|| {
+            (self.total > 0).then(|| self.done.min(self.total) as f64 / self.total as f64)
+        })
     }
 
     /// "step 2 of 4: rendering, counting and timing (1 of 3 variants done): 1/1 balls3:
@@ -196,6 +218,14 @@ impl JobProgress {
         if !self.message.is_empty() {
             line.push_str(": ");
             line.push_str(&self.message);
+        }
+        if let Some(w) = self.within.as_ref().filter(|w| w.total > 0) {
+            line.push_str(&format!(
+                " ({} of {} {})",
+                format::count(w.done.min(w.total)),
+                format::count(w.total),
+                w.what
+            ));
         }
         line
     }
@@ -365,5 +395,29 @@ mod tests {
             most.checked(&catalogue()).unwrap().thread_count().unwrap(),
             Some(max)
         );
+    }
+
+    #[test]
+    fn the_line_and_the_bar_follow_the_work_under_way() {
+        let mut p = JobProgress {
+            stage: "scenes".into(),
+            done: 1,
+            total: 4,
+            message: "1/1 balls3: timing 3 variants".into(),
+            ..JobProgress::default()
+        };
+        assert_eq!(p.stage_fraction(), Some(0.25));
+        p.within = Some(Within {
+            what: "timed renders".into(),
+            done: 1_234,
+            total: 4_000,
+        });
+        assert_eq!(
+            p.line(),
+            "step 2 of 4: rendering, counting and timing (1 of 4 scene × variant runs done): \
+             1/1 balls3: timing 3 variants (1,234 of 4,000 timed renders)"
+        );
+        // The bar shows what the line's last count says: 1,234 / 4,000.
+        assert_eq!(p.stage_fraction(), Some(0.3085));
     }
 }

@@ -88,11 +88,12 @@ impl Jobs {
         let request = request.checked(&self.catalogue)?;
         let job = {
             let mut entries = self.lock();
-            let mut id = entries.keys().next_back().map_or(1, |last| last + 1);
-            // Never into a directory the history skipped (unreadable, left alone).
-            while self.store.job_dir(id).exists() {
-                id += 1;
-            }
+            // Never an id given before (a deleted job's), nor a directory the history
+            // skipped (unreadable, left alone).
+            let id = self
+                .store
+                .next_id(entries.keys().next_back().map_or(1, |last| last + 1))
+                .map_err(|e| ApiError::internal(e.to_string()))?;
             let job = Job {
                 id: id.to_string(),
                 request,
@@ -444,13 +445,27 @@ impl ProgressSink<'_> {
             change(&mut job.progress);
             let p = &mut job.progress;
             let (start, end) = stage_span(&p.stage);
-            let within = if p.total > 0 {
-                p.done.min(p.total) as f64 / p.total as f64
-            } else {
-                0.0
+            let fraction = start + (end - start) * stage_share(p);
+            // Never back within a stage (a finished count gives way to the next work
+            // before the stage's step is counted); a new stage starts at its start.
+            p.fraction = match p.fraction >= start && p.fraction <= end {
+                true => p.fraction.max(fraction),
+                false => fraction,
             };
-            p.fraction = start + (end - start) * within;
         });
+    }
+}
+
+/// The share of its stage a job has done: its steps, and the counted work under way
+/// as the next step's share (a stage without steps: that work's share).
+fn stage_share(p: &JobProgress) -> f64 {
+    let within = p.within.as_ref().and_then(crate::job::Within::fraction);
+    match (p.total, within) {
+        (0, within) => within.unwrap_or(0.0),
+        (total, within) => {
+            let done = p.done.min(total) as f64;
+            ((done + within.unwrap_or(0.0)) / total as f64).min(1.0)
+        }
     }
 }
 
@@ -461,6 +476,18 @@ impl runner::Progress for ProgressSink<'_> {
             p.total = total;
             p.done = 0;
             p.message.clear();
+            p.within = None;
+            p.fraction = 0.0;
+        });
+    }
+
+    fn within(&self, what: &str, done: u64, total: u64) {
+        self.change(|p| {
+            p.within = Some(crate::job::Within {
+                what: what.to_string(),
+                done,
+                total,
+            })
         });
     }
 
@@ -469,7 +496,10 @@ impl runner::Progress for ProgressSink<'_> {
             true => format!("{CANCELLING}; {text}"),
             false => text.to_string(),
         };
-        self.change(|p| p.message = text);
+        self.change(|p| {
+            p.message = text;
+            p.within = None;
+        });
     }
 
     fn advance(&self, steps: u64) {

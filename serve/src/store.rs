@@ -13,6 +13,9 @@ use crate::job::{Job, JobStatus};
 /// A job's record in its directory.
 pub const JOB_FILE: &str = "job.json";
 
+/// The data directory's record of the highest job id given ([`Store::next_id`]).
+pub const LAST_ID_FILE: &str = "last-job-id";
+
 /// Where an unfinished job's outputs are kept.
 pub const PARTIAL_DIR: &str = "partial";
 
@@ -78,6 +81,26 @@ impl Store {
     /// The directory of job `id`.
     pub fn job_dir(&self, id: u64) -> PathBuf {
         self.root.join("jobs").join(id.to_string())
+    }
+
+    /// A new job's id, never one given before in this data directory: above the
+    /// highest id recorded in [`LAST_ID_FILE`] (written before the id is used, so a
+    /// deleted newest job's id is not given again, across restarts too), at least
+    /// `at_least` (above the jobs the history holds), and never a directory that
+    /// exists (an unreadable one the history skipped).
+    pub fn next_id(&self, at_least: u64) -> Result<u64, ServeError> {
+        let path = self.root.join(LAST_ID_FILE);
+        let recorded = std::fs::read_to_string(&path)
+            .ok()
+            .and_then(|text| text.trim().parse::<u64>().ok())
+            .unwrap_or(0);
+        let mut id = at_least.max(recorded.saturating_add(1)).max(1);
+        while self.job_dir(id).exists() {
+            id = id.saturating_add(1);
+        }
+        write_atomically(&path, format!("{id}\n").as_bytes())
+            .map_err(|e| ServeError::io("write", &path, &e))?;
+        Ok(id)
     }
 
     /// Writes `job.json` atomically (temporary file, then rename).
@@ -312,5 +335,27 @@ mod tests {
             vec!["images/a.png".to_string(), "results.json".to_string()]
         );
         std::fs::remove_dir_all(&dir).unwrap();
+    }
+
+    #[test]
+    fn job_ids_are_never_given_twice_even_after_the_newest_is_deleted() {
+        let root = std::env::temp_dir().join(format!("rtprof-serve-ids-{}", std::process::id()));
+        let _ = std::fs::remove_dir_all(&root);
+        let store = Store::open(&root).unwrap();
+        assert_eq!(store.next_id(1).unwrap(), 1);
+        std::fs::create_dir_all(store.job_dir(1)).unwrap();
+        assert_eq!(store.next_id(2).unwrap(), 2);
+        std::fs::create_dir_all(store.job_dir(2)).unwrap();
+        // Job 2, the newest, deleted: the history's highest is 1 again, yet 3 comes next.
+        std::fs::remove_dir_all(store.job_dir(2)).unwrap();
+        assert_eq!(store.next_id(2).unwrap(), 3);
+        // Across a restart (the record is on disk), and with every job deleted.
+        std::fs::remove_dir_all(store.job_dir(1)).unwrap();
+        let reopened = Store::open(&root).unwrap();
+        assert_eq!(reopened.next_id(1).unwrap(), 4);
+        // A directory nobody recorded (left by hand) is stepped over.
+        std::fs::create_dir_all(reopened.job_dir(5)).unwrap();
+        assert_eq!(reopened.next_id(1).unwrap(), 6);
+        std::fs::remove_dir_all(&root).unwrap();
     }
 }

@@ -20,6 +20,8 @@ pub const VARIABLE: &str = "RTPROF_PROGRESS";
 #[derive(Default)]
 pub struct Bars {
     bar: Mutex<Option<ProgressBar>>,
+    /// The stage's last message, which a count of the work under way follows.
+    message: Mutex<String>,
     /// Bars show only once their stage has run this long (a quick render shows none).
     delay: Duration,
 }
@@ -107,8 +109,17 @@ impl runner::Progress for Bars {
     }
 
     fn message(&self, text: &str) {
+        if let Ok(mut message) = self.message.lock() {
+            *message = text.to_string();
+        }
         self.current()
             .inspect(|bar| bar.set_message(text.to_string()));
+    }
+
+    fn within(&self, what: &str, done: u64, total: u64) {
+        let message = self.message.lock().map(|m| m.clone()).unwrap_or_default();
+        let text = within_text(&message, what, done, total);
+        self.current().inspect(|bar| bar.set_message(text));
     }
 
     fn advance(&self, steps: u64) {
@@ -124,6 +135,20 @@ impl runner::Progress for Bars {
             Some(bar) => bar.suspend(|| eprintln!("{text}")),
             None => eprintln!("{text}"),
         }
+    }
+}
+
+/// The bar's message with the count of the work under way: "1/3 balls3: timing 3
+/// variants (4 of 12 timed renders)".
+fn within_text(message: &str, what: &str, done: u64, total: u64) -> String {
+    let count = format!(
+        "{} of {} {what}",
+        reports::format::count(done.min(total)),
+        reports::format::count(total)
+    );
+    match message.is_empty() {
+        true => count,
+        false => format!("{message} ({count})"),
     }
 }
 
@@ -175,5 +200,24 @@ impl TermLike for PlainLines {
         writeln!(std::io::stderr().lock(), "{line}")?;
         lines.1 = line;
         Ok(())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::within_text;
+
+    #[test]
+    fn the_bar_says_how_far_the_work_under_way_is() {
+        assert_eq!(
+            within_text("1/3 balls3: timing 3 variants", "timed renders", 4, 12),
+            "1/3 balls3: timing 3 variants (4 of 12 timed renders)"
+        );
+        assert_eq!(
+            within_text("", "samples", 1_500, 3_000),
+            "1,500 of 3,000 samples"
+        );
+        // Never more done than there is.
+        assert_eq!(within_text("", "samples", 5, 3), "3 of 3 samples");
     }
 }

@@ -112,10 +112,44 @@ fn differential_drawing(
 ) -> Result<String, FlamegraphError> {
     let mut svg = Vec::new();
     let mut opts = options(title, "samples");
-    opts.subtitle = subtitle;
+    opts.subtitle = subtitle.clone();
     opts.negate_differentials = negate;
     inferno::flamegraph::from_lines(&mut opts, lines.lines(), &mut svg)?;
-    Ok(String::from_utf8_lossy(&svg).into_owned())
+    let svg = String::from_utf8_lossy(&svg).into_owned();
+    Ok(fit_headings(svg, title, subtitle.as_deref()))
+}
+
+/// The width of a monospace glyph in ems (inferno's `fontwidth` is 0.59), with a
+/// little room: a heading of n characters fits in n × this ems.
+const GLYPH_EMS: f64 = 0.62;
+
+/// `svg` with its title and subtitle shrunk to fit the drawing's width where it is
+/// narrower than they are long: inferno draws them at a fixed 17 and 12 px centred in
+/// a drawing that stretches to its container, so a long heading was cut off at both
+/// ends in the page's column (a 97-character title needs about 1,000 px). A second
+/// style sheet sets each font size to the smaller of inferno's and the share of the
+/// viewport width (`vw`, the drawing's own width when it is embedded) that its
+/// characters fill.
+fn fit_headings(svg: String, title: &str, subtitle: Option<&str>) -> String {
+    let size = |text: &str, px: f64| {
+        let chars = text.chars().count().max(1) as f64;
+        format!("min({px}px, {:.2}vw)", 100.0 / (GLYPH_EMS * chars))
+    };
+    let mut style = format!("#title {{ font-size: {}; }}", size(title, 17.0));
+    if let Some(subtitle) = subtitle {
+        style += &format!(" #subtitle {{ font-size: {}; }}", size(subtitle, 12.0));
+    }
+    match svg.find("</style>") {
+        Some(at) => {
+            let end = at + "</style>".len();
+            format!(
+                "{}<style type=\"text/css\">{style}</style>{}",
+                &svg[..end],
+                &svg[end..]
+            )
+        }
+        None => svg,
+    }
 }
 
 /// A differential flamegraph: the shape of `after`, coloured by the change from
@@ -158,22 +192,24 @@ pub fn differential_svgs(
     title: &str,
 ) -> Result<DifferentialSvgs, FlamegraphError> {
     let change = render_change(before.seconds_per_render, after.seconds_per_render);
-    let subtitle = format!("{change}; frame colours: change in share of samples");
     let (from, to) = (before.label, after.label);
+    // Short titles; how to read the colours goes in the subtitle, with the change.
     let grown = differential_drawing(
         &differential_lines(before.folded, after.folded)?,
-        &format!("{title}: what grew, {from} \u{2192} {to} (drawn on {to}; red grew, blue shrank)"),
-        Some(subtitle.clone()),
+        &format!("{title}: what grew, {from} \u{2192} {to}"),
+        Some(format!(
+            "drawn on {to}: red grew, blue shrank (share of samples); {change}"
+        )),
         false,
     )?;
     // Swapped inputs draw `before`'s shape with delta = before - after; negated, the
     // sign again means after - before, so red still grew and blue shrank.
     let shrunk = differential_drawing(
         &differential_lines(after.folded, before.folded)?,
-        &format!(
-            "{title}: what shrank or vanished, {from} \u{2192} {to} (drawn on {from}; blue shrank, red grew)"
-        ),
-        Some(subtitle),
+        &format!("{title}: what shrank or vanished, {from} \u{2192} {to}"),
+        Some(format!(
+            "drawn on {from}: blue shrank, red grew (share of samples); {change}"
+        )),
         true,
     )?;
     Ok(DifferentialSvgs { grown, shrunk })
@@ -337,6 +373,19 @@ mod tests {
         assert!(
             svgs.grown.contains("what grew") && svgs.shrunk.contains("what shrank or vanished")
         );
+        // The headings shrink to the drawing's width where it is narrower than they are
+        // long: "rings: what shrank or vanished, baseline → bvh" is 46 characters of
+        // 0.62 em, so 100 / 28.52 = 3.51 vw (17 px from a 485 px wide drawing up).
+        let title = "rings: what shrank or vanished, baseline \u{2192} bvh";
+        assert!(svgs.shrunk.contains(&format!(">{title}<")));
+        assert!(
+            svgs.shrunk
+                .contains("#title { font-size: min(17px, 3.51vw); }")
+        );
+        assert!(svgs.shrunk.contains("#subtitle { font-size: min(12px, "));
+        // After inferno's style sheet, so that it wins.
+        let at = |text: &str| svgs.shrunk.find(text).unwrap();
+        assert!(at("#title { text-anchor:middle") < at("#title { font-size: min("));
     }
 
     #[test]

@@ -139,17 +139,19 @@ pub fn sample<T>(
 /// comes first; [`Repeats::stop`] says which). Every run is sampled, so a profile of
 /// `runs` renders stands for all of them: divide counts of work by `runs` for
 /// per-render figures. The first failing run ends the profile with its error.
+/// `run_once` is given the live count of signals (for a progress display: the
+/// fraction of `min_samples` gathered, read during a run too).
 pub fn sample_repeated<E>(
     options: &SampleOptions,
     is_profiled: impl Fn(&str) -> bool,
-    mut run_once: impl FnMut() -> Result<(), E>,
+    mut run_once: impl FnMut(&LiveSamples) -> Result<(), E>,
 ) -> Result<SampledRun<Repeats>, RepeatedError<E>> {
     let run = sample_unchecked(options, is_profiled, |live| {
         let start = Instant::now();
         let mut runs = 0u64;
         loop {
             runs += 1;
-            run_once().map_err(|error| (runs, error))?;
+            run_once(live).map_err(|error| (runs, error))?;
             let stop = if live.signals() >= options.min_samples {
                 Some(Stop::EnoughSamples)
             } else if runs >= options.max_runs {

@@ -198,12 +198,23 @@ fn repeated_work_runs_until_the_minimum_sample_count() {
     };
     // 5 ms of CPU a run: 40 samples take several runs at any rate the kernel gives.
     let mut runs_seen = 0u64;
-    let run = sample_repeated(&options, is_worker, || {
+    let mut live_counts = Vec::new();
+    let run = sample_repeated(&options, is_worker, |live| {
         runs_seen += 1;
         black_box(seventy_thirty(Duration::from_millis(5)));
+        live_counts.push(live.signals());
         Ok::<(), std::fmt::Error>(())
     })
     .unwrap_or_else(|e| panic!("{e}"));
+    // The live count a run reads grows with the runs and is what stopped them.
+    assert!(
+        live_counts.windows(2).all(|w| w[0] <= w[1]),
+        "{live_counts:?}"
+    );
+    assert!(
+        live_counts.last().is_some_and(|&n| n >= 40),
+        "{live_counts:?}"
+    );
     assert_eq!(run.output.stop, Stop::EnoughSamples);
     assert_eq!(run.output.runs, runs_seen);
     assert!(run.output.runs > 1, "{:?}", run.output);
@@ -219,7 +230,7 @@ fn repeats_stop_at_the_run_cap_and_at_the_first_failure() {
         ..SampleOptions::new(1000)
     };
     let mut runs_seen = 0u64;
-    let run = sample_repeated(&capped, is_worker, || {
+    let run = sample_repeated(&capped, is_worker, |_| {
         runs_seen += 1;
         black_box(seventy_thirty(Duration::from_millis(20)));
         Ok::<(), std::fmt::Error>(())
@@ -235,7 +246,7 @@ fn repeats_stop_at_the_run_cap_and_at_the_first_failure() {
     assert_eq!(runs_seen, 3);
 
     let mut runs_seen = 0u64;
-    let failed = sample_repeated(&capped, is_worker, || {
+    let failed = sample_repeated(&capped, is_worker, |_| {
         runs_seen += 1;
         if runs_seen == 2 {
             Err("broken scene")
