@@ -6,9 +6,9 @@
 //! origins and that of its inverse directions (the interval traversal of Benthin et al.
 //! 2012, the frustum test of Embree's coherent packets). One lane step tests a node's
 //! children against that bound: a child no ray of the packet can enter is culled for
-//! all of them at once. Each child that survives is then tested against the packet's
-//! rays, one ray per lane, with the single ray's slab arithmetic, so the rays that enter
-//! it and where are the same bit for bit as with one step per ray.
+//! all of them at once. A leaf that survives is then tested against the packet's rays,
+//! one ray per lane, with the single ray's slab arithmetic, so the rays that enter it
+//! and where are the same bit for bit as with one step per ray.
 //!
 //! The bound never culls a child a ray enters: float subtraction and multiplication
 //! round monotonically, so the bound's corner products (no NaN: all finite but the
@@ -89,9 +89,10 @@ impl Frustum {
 
     /// The children of `node` (bit per lane) that a ray of the packet may enter within
     /// `(t_min, t_far)`, `t_far` the largest reach of the packet's rays: never fewer
-    /// than those a ray enters, computed lane by lane.
+    /// than those a ray enters; and per child a distance no ray enters it before.
+    /// Computed lane by lane.
     #[inline(always)]
-    pub(super) fn cull(&self, node: &WideNode, t_min: f32, t_far: f32) -> u32 {
+    pub(super) fn cull(&self, node: &WideNode, t_min: f32, t_far: f32) -> (u32, [f32; WIDTH]) {
         let mut near = [t_min; WIDTH];
         let mut far = [t_far; WIDTH];
         for axis in 0..3 {
@@ -109,7 +110,7 @@ impl Frustum {
         for i in 0..WIDTH {
             mask |= u32::from(near[i] <= far[i]) << i;
         }
-        mask & node.used
+        (mask & node.used, near)
     }
 
     /// [`Frustum::cull`] in AVX instructions (no NaN arises, so `vminps`/`vmaxps` give
@@ -119,10 +120,15 @@ impl Frustum {
     /// The CPU must have AVX.
     #[cfg(target_arch = "x86_64")]
     #[inline(always)]
-    pub(super) unsafe fn cull_avx2(&self, node: &WideNode, t_min: f32, t_far: f32) -> u32 {
+    pub(super) unsafe fn cull_avx2(
+        &self,
+        node: &WideNode,
+        t_min: f32,
+        t_far: f32,
+    ) -> (u32, [f32; WIDTH]) {
         use std::arch::x86_64::{
             _CMP_LE_OQ, _mm256_cmp_ps, _mm256_load_ps, _mm256_max_ps, _mm256_min_ps,
-            _mm256_movemask_ps, _mm256_mul_ps, _mm256_set1_ps, _mm256_sub_ps,
+            _mm256_movemask_ps, _mm256_mul_ps, _mm256_set1_ps, _mm256_storeu_ps, _mm256_sub_ps,
         };
         // SAFETY: the caller guarantees AVX; the rows are 32-byte aligned (a 64-byte
         // aligned node of 32-byte rows) and 8 floats long.
@@ -142,7 +148,9 @@ impl Frustum {
                 far = _mm256_min_ps(far, t);
             }
             let inside = _mm256_cmp_ps::<_CMP_LE_OQ>(near, far);
-            _mm256_movemask_ps(inside) as u32 & node.used
+            let mut t = [0.0f32; WIDTH];
+            _mm256_storeu_ps(t.as_mut_ptr(), near);
+            (_mm256_movemask_ps(inside) as u32 & node.used, t)
         }
     }
 
@@ -288,14 +296,14 @@ mod tests {
             ([1.5, -1.0, 0.0], [1.6, 1.0, 3.0]),
         ]);
         let expect = 0b1001;
-        assert_eq!(f.cull(&n, 0.0, f32::INFINITY), expect);
+        assert_eq!(f.cull(&n, 0.0, f32::INFINITY).0, expect);
         // A reach that ends before the boxes (t 9) culls them all.
-        assert_eq!(f.cull(&n, 0.0, 8.5), 0);
+        assert_eq!(f.cull(&n, 0.0, 8.5).0, 0);
         if cpu_has_avx2_fma() {
             // SAFETY: the CPU has AVX2.
             unsafe {
-                assert_eq!(f.cull_avx2(&n, 0.0, f32::INFINITY), expect);
-                assert_eq!(f.cull_avx2(&n, 0.0, 8.5), 0);
+                assert_eq!(f.cull_avx2(&n, 0.0, f32::INFINITY).0, expect);
+                assert_eq!(f.cull_avx2(&n, 0.0, 8.5).0, 0);
             }
         }
         // The exact test: box 0 is entered by all four rays, first at t = 9; box 3 by
@@ -369,10 +377,10 @@ mod tests {
                 .iter()
                 .fold(f32::NEG_INFINITY, |a, &b| a.max(b));
             let all = (1u32 << size) - 1;
-            let kept = f.cull(&n, 0.0, t_far);
+            let (kept, bound) = f.cull(&n, 0.0, t_far);
             if avx2 {
                 // SAFETY: the CPU has AVX2.
-                assert_eq!(unsafe { f.cull_avx2(&n, 0.0, t_far) }, kept);
+                assert_eq!(unsafe { f.cull_avx2(&n, 0.0, t_far) }, (kept, bound));
             }
             let mut entered = 0;
             for lane in 0..WIDTH {
@@ -387,6 +395,10 @@ mod tests {
                     }
                 }
                 entered |= u32::from(set != 0) << lane;
+                assert!(
+                    set == 0 || bound[lane] <= nearest,
+                    "entered before the bound"
+                );
                 let lanes = f.rays_entering(&n, lane, all, 0.0, &reach);
                 assert_eq!(lanes, (set, nearest));
                 if avx2 {

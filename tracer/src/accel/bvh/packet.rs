@@ -275,11 +275,12 @@ fn packet_search<C: Counter, const FROM_EYE: bool, const ANY: bool, const AVX2: 
     }
 }
 
-/// One node step of the packet with its bound: the node's children are tested against
-/// the bound in one lane step, counted on the packet's first ray in `rays` (`live`
-/// boxes, [`WIDTH`] lanes); each child kept is tested against the rays in `rays`, a ray
-/// per lane, counted on each ray as one box in one lane (the lanes of rays not in the
-/// set on the first ray).
+/// One node step of the packet with its bound (Embree's coherent traversal): the node's
+/// children are tested against the bound in one lane step, counted on the packet's
+/// first ray in `rays` (`live` boxes, [`WIDTH`] lanes). Interior children kept are
+/// visited by all of `rays`, entered at the bound's distance; each leaf kept is tested
+/// against the rays in `rays`, a ray per lane, counted on each ray as one box in one
+/// lane (the lanes of rays not in the set on the first ray).
 #[inline(always)]
 fn bound_step<C: Counter, const AVX2: bool>(
     f: &Frustum,
@@ -296,7 +297,7 @@ fn bound_step<C: Counter, const AVX2: bool>(
         bits &= bits - 1;
     }
     #[cfg(target_arch = "x86_64")]
-    let kept = if AVX2 {
+    let (kept, near) = if AVX2 {
         // SAFETY: `AVX2` is set only inside `packet_search_avx2`, which runs only on
         // CPUs with AVX2 and FMA.
         unsafe { f.cull_avx2(node, t_min, t_far) }
@@ -304,13 +305,21 @@ fn bound_step<C: Counter, const AVX2: bool>(
         f.cull(node, t_min, t_far)
     };
     #[cfg(not(target_arch = "x86_64"))]
-    let kept = f.cull(node, t_min, t_far);
+    let (kept, near) = f.cull(node, t_min, t_far);
     let mut out = Step {
         entered: 0,
         rays: [0; WIDTH],
         t: [f32::INFINITY; WIDTH],
     };
-    let mut bits = kept;
+    // Interior children take the packet's rays and the bound's distance; only leaves
+    // are tested ray by ray (their primitives' tests cost more than a lane step).
+    let leaves = kept & node.leaves;
+    out.entered = kept & !leaves;
+    for lane in 0..WIDTH {
+        out.rays[lane] = rays;
+        out.t[lane] = near[lane];
+    }
+    let mut bits = leaves;
     while bits != 0 {
         let lane = bits.trailing_zeros() as usize;
         bits &= bits - 1;
@@ -329,7 +338,7 @@ fn bound_step<C: Counter, const AVX2: bool>(
     }
     if C::ENABLED {
         let live = u64::from(node.used.count_ones());
-        let tested = u64::from(kept.count_ones());
+        let tested = u64::from(leaves.count_ones());
         let idle = (PACKET as u64 - u64::from(rays.count_ones())) * tested;
         let first = &mut counters[rays.trailing_zeros() as usize];
         first.tally_n(Stat::NodesVisited, live);
@@ -530,6 +539,71 @@ mod tests {
                 assert_eq!(counters[0], alone, "{ray:?}");
             }
         }
+    }
+
+    #[test]
+    fn packets_on_the_spd_scenes_find_each_rays_own_hits_and_blockers() {
+        use crate::camera::{Camera, Sampling};
+        use crate::counter::Counter as _;
+        let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../shared/spd");
+        let mut bounded = 0;
+        for name in [
+            "balls", "gears", "jacks", "lattice", "mount", "rings", "sample", "shells", "sombrero",
+            "teapot", "tetra", "tree",
+        ] {
+            let path = dir.join(format!("{name}.nff"));
+            let scene = crate::nff::load_nff(&path).unwrap_or_else(|e| panic!("{e}"));
+            let (w, h) = (40, 24);
+            let camera =
+                Camera::perspective(&scene.view, w, h, Sampling::PixelCenters, &mut NoCount)
+                    .unwrap_or_else(|e| panic!("{e}"));
+            for wide in both_paths(&scene) {
+                for row in 0..h {
+                    // Rows in packets of 8 neighbouring eye rays, as the renderer traces them.
+                    let eye: Vec<Ray> = (0..w)
+                        .map(|col| camera.ray(col, row, &mut NoCount))
+                        .collect();
+                    for group in eye.chunks(PACKET) {
+                        let slabs: Vec<Slab> = group.iter().map(Slab::new).collect();
+                        bounded += usize::from(Frustum::of(&slabs).is_some());
+                        let mut hits = vec![None; group.len()];
+                        let mut counters = vec![NoCount; group.len()];
+                        wide.closest_hits(group, &mut hits, &mut counters);
+                        // Shadow rays from the hits toward the first light, as a packet.
+                        let mut shadow = Vec::new();
+                        let mut reach = Vec::new();
+                        for (ray, hit) in group.iter().zip(&hits) {
+                            let alone = wide.closest_hit(ray, 0.0, &mut NoCount);
+                            assert_eq!(
+                                hit.map(|h| (h.prim, h.t, h.aux)),
+                                alone.map(|h| (h.prim, h.t, h.aux)),
+                                "{name}: {ray:?}"
+                            );
+                            if let (Some(hit), Some(light)) = (hit, scene.lights.first()) {
+                                let c = &mut NoCount;
+                                let along = c.scale(ray.dir, hit.t);
+                                let point = c.add(ray.origin, along);
+                                let to_light = c.sub(light.position, point);
+                                let dir = c.normalize(to_light);
+                                let offset = c.scale(dir, 1e-3);
+                                let origin = c.add(point, offset);
+                                shadow.push(Ray { origin, dir });
+                                reach.push(c.dot(to_light, dir));
+                            }
+                        }
+                        let mut blocked = vec![false; shadow.len()];
+                        let mut counters = vec![NoCount; shadow.len()];
+                        wide.occluded_packet(&shadow, &reach, &mut blocked, &mut counters);
+                        for ((ray, &reach), &blocked) in shadow.iter().zip(&reach).zip(&blocked) {
+                            let alone = wide.occluded(ray, 0.0, reach, &mut NoCount);
+                            assert_eq!(blocked, alone, "{name}: {ray:?} to {reach}");
+                        }
+                    }
+                }
+            }
+        }
+        // Most packets of eye rays have a bound (the test covers the bound's path).
+        assert!(bounded > 12 * 2 * 24 * 4, "{bounded}");
     }
 
     #[test]
