@@ -6,9 +6,9 @@
 //! origins and that of its inverse directions (the interval traversal of Benthin et al.
 //! 2012, the frustum test of Embree's coherent packets). One lane step tests a node's
 //! children against that bound: a child no ray of the packet can enter is culled for
-//! all of them at once. A leaf that survives is then tested against the packet's rays,
-//! one ray per lane, with the single ray's slab arithmetic, so the rays that enter it
-//! and where are the same bit for bit as with one step per ray.
+//! all of them at once. Each child that survives is then tested against the packet's
+//! rays, one ray per lane, with the single ray's slab arithmetic, so the rays that enter
+//! it and where are the same bit for bit as with one step per ray.
 //!
 //! The bound never culls a child a ray enters: float subtraction and multiplication
 //! round monotonically, so the bound's corner products (no NaN: all finite but the
@@ -43,11 +43,25 @@ impl Frustum {
     /// The bound of the rays with these slab constants (at most [`PACKET`], at least
     /// one), or `None` when along some axis a ray is parallel to it (an infinite inverse
     /// direction) or the rays go both ways.
+    #[inline(always)]
     pub(super) fn of(slabs: &[Slab]) -> Option<Frustum> {
         let first = slabs.first()?;
+        let mut origin = [[0.0; PACKET]; 3];
+        let mut inv_dir = [[0.0; PACKET]; 3];
+        for lane in 0..PACKET {
+            let slab = if lane < slabs.len() {
+                &slabs[lane]
+            } else {
+                first
+            };
+            for axis in 0..3 {
+                origin[axis][lane] = slab.origin[axis];
+                inv_dir[axis][lane] = slab.inv_dir[axis];
+            }
+        }
         let mut f = Frustum {
-            origin: [[0.0; PACKET]; 3],
-            inv_dir: [[0.0; PACKET]; 3],
+            origin,
+            inv_dir,
             near_row: [0; 3],
             near_origin: [0.0; 3],
             far_row: [0; 3],
@@ -56,20 +70,23 @@ impl Frustum {
             inv_hi: [0.0; 3],
         };
         for axis in 0..3 {
-            let negative = first.inv_dir[axis] < 0.0;
-            let (mut o_lo, mut o_hi) = (f32::INFINITY, f32::NEG_INFINITY);
-            let (mut i_lo, mut i_hi) = (f32::INFINITY, f32::NEG_INFINITY);
+            let (o, inv) = (&f.origin[axis], &f.inv_dir[axis]);
+            let (mut o_lo, mut o_hi) = (o[0], o[0]);
+            let (mut i_lo, mut i_hi) = (inv[0], inv[0]);
+            // Plain comparisons: a NaN or an infinity fails the check below.
+            let mut finite = true;
             for lane in 0..PACKET {
-                let slab = slabs.get(lane).unwrap_or(first);
-                let (o, inv) = (slab.origin[axis], slab.inv_dir[axis]);
-                if !o.is_finite() || !inv.is_finite() || (inv < 0.0) != negative {
-                    return None;
-                }
-                f.origin[axis][lane] = o;
-                f.inv_dir[axis][lane] = inv;
-                (o_lo, o_hi) = (o_lo.min(o), o_hi.max(o));
-                (i_lo, i_hi) = (i_lo.min(inv), i_hi.max(inv));
+                o_lo = if o[lane] < o_lo { o[lane] } else { o_lo };
+                o_hi = if o[lane] > o_hi { o[lane] } else { o_hi };
+                i_lo = if inv[lane] < i_lo { inv[lane] } else { i_lo };
+                i_hi = if inv[lane] > i_hi { inv[lane] } else { i_hi };
+                finite &= (o[lane] - o[lane] == 0.0) & (inv[lane] - inv[lane] == 0.0);
             }
+            // One sign per axis: both ends of the interval on the same side of 0.
+            if !finite || !((i_lo > 0.0) | (i_hi < 0.0)) {
+                return None;
+            }
+            let negative = i_hi < 0.0;
             // Entry at (near plane - origin) / dir: earliest from the origin nearest
             // that plane; exit latest from the origin farthest from the far plane.
             (f.near_row[axis], f.near_origin[axis]) = if negative {

@@ -33,7 +33,7 @@ pub const PACKET: usize = 8;
 
 /// Rays a node step needs for the packet's bound to pay (one lane step for the bound,
 /// one per child kept, against one per ray without it).
-const BOUND_FROM: u32 = 4;
+const BOUND_FROM: u32 = 5;
 
 /// A node or leaf waiting to be visited by the rays in `rays` (bit per ray), with the
 /// nearest distance at which one of them enters it.
@@ -275,12 +275,12 @@ fn packet_search<C: Counter, const FROM_EYE: bool, const ANY: bool, const AVX2: 
     }
 }
 
-/// One node step of the packet with its bound (Embree's coherent traversal): the node's
-/// children are tested against the bound in one lane step, counted on the packet's
-/// first ray in `rays` (`live` boxes, [`WIDTH`] lanes). Interior children kept are
-/// visited by all of `rays`, entered at the bound's distance; each leaf kept is tested
-/// against the rays in `rays`, a ray per lane, counted on each ray as one box in one
-/// lane (the lanes of rays not in the set on the first ray).
+/// One node step of the packet with its bound: the node's children are tested against
+/// the bound in one lane step, counted on the packet's first ray in `rays` (`live`
+/// boxes, [`WIDTH`] lanes); each child kept is tested against the rays in `rays`, a ray
+/// per lane, counted on each ray as one box in one lane (the lanes of rays not in the
+/// set on the first ray). The rays that enter each child, and where, are those of the
+/// step ray by ray, so the packet splits as it would without the bound.
 #[inline(always)]
 fn bound_step<C: Counter, const AVX2: bool>(
     f: &Frustum,
@@ -297,7 +297,7 @@ fn bound_step<C: Counter, const AVX2: bool>(
         bits &= bits - 1;
     }
     #[cfg(target_arch = "x86_64")]
-    let (kept, near) = if AVX2 {
+    let (kept, _) = if AVX2 {
         // SAFETY: `AVX2` is set only inside `packet_search_avx2`, which runs only on
         // CPUs with AVX2 and FMA.
         unsafe { f.cull_avx2(node, t_min, t_far) }
@@ -305,21 +305,13 @@ fn bound_step<C: Counter, const AVX2: bool>(
         f.cull(node, t_min, t_far)
     };
     #[cfg(not(target_arch = "x86_64"))]
-    let (kept, near) = f.cull(node, t_min, t_far);
+    let (kept, _) = f.cull(node, t_min, t_far);
     let mut out = Step {
         entered: 0,
         rays: [0; WIDTH],
         t: [f32::INFINITY; WIDTH],
     };
-    // Interior children take the packet's rays and the bound's distance; only leaves
-    // are tested ray by ray (their primitives' tests cost more than a lane step).
-    let leaves = kept & node.leaves;
-    out.entered = kept & !leaves;
-    for lane in 0..WIDTH {
-        out.rays[lane] = rays;
-        out.t[lane] = near[lane];
-    }
-    let mut bits = leaves;
+    let mut bits = kept;
     while bits != 0 {
         let lane = bits.trailing_zeros() as usize;
         bits &= bits - 1;
@@ -338,7 +330,7 @@ fn bound_step<C: Counter, const AVX2: bool>(
     }
     if C::ENABLED {
         let live = u64::from(node.used.count_ones());
-        let tested = u64::from(leaves.count_ones());
+        let tested = u64::from(kept.count_ones());
         let idle = (PACKET as u64 - u64::from(rays.count_ones())) * tested;
         let first = &mut counters[rays.trailing_zeros() as usize];
         first.tally_n(Stat::NodesVisited, live);

@@ -54,8 +54,6 @@ pub(super) struct WideNode {
     /// Bit per used slot: an empty box can still give a slab interval (a negative
     /// direction turns +inf..-inf into -inf..+inf), so unused slots are masked out.
     pub(super) used: u32,
-    /// Bit per slot holding a leaf.
-    pub(super) leaves: u32,
 }
 
 impl WideNode {
@@ -70,7 +68,6 @@ impl WideNode {
         ],
         child: [EMPTY; WIDTH],
         used: 0,
-        leaves: 0,
     };
 
     fn set(&mut self, lane: usize, bounds: Aabb, child: u32, leaf: bool) {
@@ -81,7 +78,6 @@ impl WideNode {
         }
         self.child[lane] = if leaf { child | LEAF } else { child };
         self.used |= 1 << lane;
-        self.leaves |= u32::from(leaf) << lane;
     }
 
     fn children(&self) -> usize {
