@@ -12,7 +12,6 @@
 //! BVH the bottleneck moves from the primitive tests to this traversal: compare
 //! `tests.*` and `accel.*` between `baseline` and `bvh`.
 
-mod frustum;
 mod packet;
 mod quality;
 mod triangles;

@@ -57,7 +57,7 @@ pub(super) struct WideNode {
 }
 
 impl WideNode {
-    pub(super) const UNUSED: WideNode = WideNode {
+    const UNUSED: WideNode = WideNode {
         bounds: [
             [f32::INFINITY; WIDTH],
             [f32::INFINITY; WIDTH],
@@ -626,8 +626,8 @@ fn closest_lane(
 /// A ray's slab-test constants.
 #[derive(Clone, Copy, Debug)]
 pub(super) struct Slab {
-    pub(super) origin: [f32; 3],
-    pub(super) inv_dir: [f32; 3],
+    origin: [f32; 3],
+    inv_dir: [f32; 3],
 }
 
 impl Slab {
@@ -725,13 +725,13 @@ impl Slab {
 
 /// `a` if it is the larger, else `b` (a NaN `a` gives `b`: the x86 `maxps` rule).
 #[inline(always)]
-pub(super) fn max_or_second(a: f32, b: f32) -> f32 {
+fn max_or_second(a: f32, b: f32) -> f32 {
     if a > b { a } else { b }
 }
 
 /// `a` if it is the smaller, else `b` (a NaN `a` gives `b`: the x86 `minps` rule).
 #[inline(always)]
-pub(super) fn min_or_second(a: f32, b: f32) -> f32 {
+fn min_or_second(a: f32, b: f32) -> f32 {
     if a < b { a } else { b }
 }
 
