@@ -429,6 +429,74 @@ mod tests {
         }
     }
 
+    /// The twelve SPD scenes at small size: packets of eye rays along rows (as the
+    /// renderer makes them) and of their shadow rays find what each ray finds alone.
+    #[test]
+    fn packets_on_the_spd_scenes_find_each_rays_own_hits_and_blockers() {
+        use crate::camera::{Camera, Sampling};
+        use crate::counter::Counter as _;
+        let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../shared/spd");
+        // Eye rays that hit, shadow rays blocked and not: every outcome is compared.
+        let (mut hit_rays, mut blocked_rays, mut lit_rays) = (0, 0, 0);
+        for name in [
+            "balls", "gears", "jacks", "lattice", "mount", "rings", "sample", "shells", "sombrero",
+            "teapot", "tetra", "tree",
+        ] {
+            let path = dir.join(format!("{name}.nff"));
+            let scene = crate::nff::load_nff(&path).unwrap_or_else(|e| panic!("{e}"));
+            let (w, h) = (40, 24);
+            let camera =
+                Camera::perspective(&scene.view, w, h, Sampling::PixelCenters, &mut NoCount)
+                    .unwrap_or_else(|e| panic!("{e}"));
+            for wide in both_paths(&scene) {
+                for row in 0..h {
+                    // Rows in packets of 8 neighbouring eye rays, as the renderer traces them.
+                    let eye: Vec<Ray> = (0..w)
+                        .map(|col| camera.ray(col, row, &mut NoCount))
+                        .collect();
+                    for group in eye.chunks(PACKET) {
+                        let mut hits = vec![None; group.len()];
+                        let mut counters = vec![NoCount; group.len()];
+                        wide.closest_hits(group, &mut hits, &mut counters);
+                        // Shadow rays from the hits toward the first light, as a packet.
+                        let mut shadow = Vec::new();
+                        let mut reach = Vec::new();
+                        for (ray, hit) in group.iter().zip(&hits) {
+                            let alone = wide.closest_hit(ray, 0.0, &mut NoCount);
+                            assert_eq!(
+                                hit.map(|h| (h.prim, h.t, h.aux)),
+                                alone.map(|h| (h.prim, h.t, h.aux)),
+                                "{name}: {ray:?}"
+                            );
+                            if let (Some(hit), Some(light)) = (hit, scene.lights.first()) {
+                                let c = &mut NoCount;
+                                let along = c.scale(ray.dir, hit.t);
+                                let point = c.add(ray.origin, along);
+                                let to_light = c.sub(light.position, point);
+                                let dir = c.normalize(to_light);
+                                let offset = c.scale(dir, 1e-3);
+                                let origin = c.add(point, offset);
+                                shadow.push(Ray { origin, dir });
+                                reach.push(c.dot(to_light, dir));
+                            }
+                        }
+                        let mut blocked = vec![false; shadow.len()];
+                        let mut counters = vec![NoCount; shadow.len()];
+                        wide.occluded_packet(&shadow, &reach, &mut blocked, &mut counters);
+                        for ((ray, &reach), &blocked) in shadow.iter().zip(&reach).zip(&blocked) {
+                            let alone = wide.occluded(ray, 0.0, reach, &mut NoCount);
+                            assert_eq!(blocked, alone, "{name}: {ray:?} to {reach}");
+                            blocked_rays += usize::from(blocked);
+                            lit_rays += usize::from(!blocked);
+                        }
+                        hit_rays += shadow.len();
+                    }
+                }
+            }
+        }
+        assert!(hit_rays > 10_000 && blocked_rays > 1000 && lit_rays > 1000);
+    }
+
     #[test]
     fn a_packet_of_one_ray_does_the_work_of_the_ray_alone() {
         let scene = mixed_scene();
