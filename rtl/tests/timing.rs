@@ -176,3 +176,74 @@ fn the_minimum_distance_block_is_within_the_depth() {
     );
     assert!(report.levels <= synth::MAX_LUT_LEVELS, "{report:?}");
 }
+
+/// The operators larger than the iCE40 HX8K's 7,680 logic cells: the divider's 13
+/// stages of two quotient digits on prefix adders (8,266 cells after `synth_ice40`),
+/// and the inverse square root, which holds a divider and a square root.
+const LARGER_THAN_THE_HX8K: [Operator; 2] = [Operator::Divide, Operator::InvSqrt];
+
+/// Every clocked operator placed and routed, inputs registered, on an iCE40 HX8K (the
+/// combinational `fp_select` and the clockless `fp_const` have no path between
+/// registers of their own): nextpnr's Fmax after routing at 50 MHz or more, printed
+/// beside the depth and the estimated Fmax on Cyclone IV E (docs/hardware-model.md's
+/// table); the operators too large for the device fail to place, as nextpnr says.
+#[test]
+#[ignore = "needs yosys and nextpnr-ice40; tens of minutes"]
+fn every_clocked_operator_places_and_routes_on_an_ice40() {
+    let lib = Library::cyclone_iv_e();
+    let mut failures = Vec::new();
+    for op in Operator::ALL {
+        if matches!(op, Operator::Const | Operator::Select) {
+            continue;
+        }
+        let name = op.module_name();
+        // Directories of its own: the tests above run beside it on the same operators.
+        let depth = synth::operator_depth(op, &lib, &dir(&format!("every-{name}")), TIMEOUT)
+            .unwrap_or_else(|e| panic!("{e}"));
+        let pnr = synth::place_and_route_ice40(
+            op,
+            &lib,
+            &dir(&format!("every-pnr-{name}")),
+            fmax::THESIS_CLOCK_MHZ,
+            TIMEOUT,
+        );
+        let too_large = LARGER_THAN_THE_HX8K.contains(&op);
+        match pnr {
+            Ok(r) => {
+                eprintln!(
+                    "| {name} | {} | {} | {} | {} | {:.1} MHz | {} | {:.1} MHz |",
+                    op.latency(&lib),
+                    depth.levels,
+                    depth.lut4,
+                    depth.ff,
+                    depth.estimated_fmax_mhz(),
+                    r.logic_cells,
+                    r.fmax_mhz
+                );
+                if too_large {
+                    failures.push(format!("{name}: fits the HX8K now ({r:?})"));
+                } else if r.fmax_mhz < fmax::THESIS_CLOCK_MHZ {
+                    failures.push(format!("{name}: {:.2} MHz", r.fmax_mhz));
+                }
+            }
+            Err(e) => {
+                let text = e.to_string();
+                eprintln!(
+                    "| {name} | {} | {} | {} | {} | {:.1} MHz | does not fit | |",
+                    op.latency(&lib),
+                    depth.levels,
+                    depth.lut4,
+                    depth.ff,
+                    depth.estimated_fmax_mhz()
+                );
+                // nextpnr runs out of logic cells, and nothing else goes wrong.
+                let out_of_cells =
+                    text.contains("no BELs remaining to implement cell type 'ICESTORM_LC'");
+                if !(too_large && out_of_cells) {
+                    failures.push(format!("{name}: {text}"));
+                }
+            }
+        }
+    }
+    assert!(failures.is_empty(), "{failures:#?}");
+}

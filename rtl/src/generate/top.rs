@@ -312,7 +312,10 @@ pub(super) fn top_module(
     wire [{a1}:0] addr{u} = addr{u}_full[{a1}:0];
     reg [{a1}:0] addr{u}_r1 = 0, addr{u}_r2 = 0;
     always @(posedge clk) begin addr{u}_r1 <= addr{u}; addr{u}_r2 <= addr{u}_r1; end
-    wire pad{u} = ({{{pad_zeros}'d0, addr{u}_r2}} >= prim_count);"#,
+    // The padding flag of addr{u}_r2, registered beside it (compared on addr{u}_r1 a
+    // cycle before): no compare between the registers and the unit's first stage.
+    reg pad{u} = 1'b0;
+    always @(posedge clk) pad{u} <= ({{{pad_zeros}'d0, addr{u}_r1}} >= prim_count);"#,
             a1 = ab - 1,
             pad_zeros = 16 - ab,
         )

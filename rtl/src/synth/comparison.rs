@@ -1,6 +1,8 @@
 //! A design through Yosys and held against the model: [`SynthPlan`] generates the
 //! design's RTL into a work directory and picks the top and the blocks to report
-//! (the whole design, or one block alone), [`synthesize_design`] runs it, and
+//! (the whole design, one block alone, or the top alone with its blocks as black
+//! boxes: the iterator, memory ports and control in seconds), [`synthesize_design`]
+//! runs it, and
 //! [`SynthComparison`] turns each block's Yosys figures and depth into the results'
 //! [`Synthesis`] (with the estimated clock, [`super::fmax`]) beside the model's table 8
 //! rows (`rtprof hw synth`). A whole design's synthesis is kept in a cache keyed by
@@ -15,7 +17,7 @@ use results::{HwRow, SynthBlock, Synthesis};
 use serde::Serialize;
 
 use super::fmax::{CYCLONE_IV_E, THESIS_CLOCK_MHZ};
-use super::{SynthFigures, SynthReport, synthesize};
+use super::{BlackBox, SynthFigures, SynthReport, synthesize_around};
 use crate::RtlError;
 use crate::generate::{self, TOP};
 use crate::operators::write_atomically;
@@ -37,12 +39,15 @@ pub struct SynthPlan {
     /// Which RTL ([`GeneratedRtl::hash`](crate::generate::GeneratedRtl::hash)).
     pub rtl_hash: String,
     files: Vec<PathBuf>,
+    /// The blocks read by their ports only (the top alone).
+    black_boxes: Vec<BlackBox>,
 }
 
 impl SynthPlan {
     /// Generates the RTL of `pipeline` (with the smallest scene memory) into `work`;
-    /// `block` names one block to synthesize alone. An unknown block is refused before
-    /// anything is written.
+    /// `block` names one block to synthesize alone, or the top ([`TOP`]) to synthesize
+    /// its own logic alone, every block a black box. An unknown block is refused
+    /// before anything is written.
     pub fn prepare(
         lib: &Library,
         pipeline: &Pipeline,
@@ -51,13 +56,15 @@ impl SynthPlan {
     ) -> Result<SynthPlan, RtlError> {
         let rtl = generate::generate(lib, pipeline, depth_bits_for(0))?;
         let names: Vec<&str> = rtl.blocks.iter().map(|b| b.name).collect();
+        let top_alone = block == Some(TOP);
         let (top, blocks) = match block {
+            Some(TOP) => (TOP.to_string(), vec![TOP.to_string()]),
             Some(b) => {
                 let Some(name) = names.iter().find(|n| **n == b) else {
                     return Err(RtlError::UnknownBlock {
                         block: b.to_string(),
                         design: pipeline.design.label(),
-                        names: names.join(", "),
+                        names: format!("{}, {TOP}", names.join(", ")),
                     });
                 };
                 (name.to_string(), vec![name.to_string()])
@@ -68,11 +75,23 @@ impl SynthPlan {
             ),
         };
         generate::write(&rtl, work)?;
+        let black_boxes: Vec<BlackBox> = if top_alone {
+            rtl.blocks
+                .iter()
+                .map(|b| BlackBox {
+                    module: b.module.clone(),
+                    file: work.join(format!("{}.v", b.module)),
+                })
+                .collect()
+        } else {
+            Vec::new()
+        };
         let files = rtl
             .files
             .iter()
-            .filter(|(n, _)| n.ends_with(".v"))
             .map(|(n, _)| work.join(n))
+            .filter(|f| f.extension().is_some_and(|e| e == "v"))
+            .filter(|f| !black_boxes.iter().any(|b| &b.file == f))
             .collect();
         Ok(SynthPlan {
             design: pipeline.design,
@@ -82,6 +101,7 @@ impl SynthPlan {
             one_block: block.is_some(),
             rtl_hash: rtl.hash(),
             files,
+            black_boxes,
         })
     }
 
@@ -89,7 +109,14 @@ impl SynthPlan {
     /// each block and of the whole design.
     pub fn run(&self) -> Result<SynthReport, RtlError> {
         let blocks: Vec<&str> = self.blocks.iter().map(String::as_str).collect();
-        synthesize(&self.work, &self.files, &self.top, &blocks, &blocks)
+        synthesize_around(
+            &self.work,
+            &self.files,
+            &self.black_boxes,
+            &self.top,
+            &blocks,
+            &blocks,
+        )
     }
 }
 
@@ -251,7 +278,7 @@ mod tests {
             error.as_deref(),
             Some(
                 "no block 'nope' in the thesis design: one of primary_ray, intersection, \
-                 min_distance, shading"
+                 min_distance, shading, raycaster_top"
             )
         );
         assert!(!work.exists());
@@ -275,6 +302,25 @@ mod tests {
             ["primary_ray", "intersection", "min_distance", "shading"]
         );
         assert!(all.files.iter().all(|f| f.exists()));
+        assert!(all.black_boxes.is_empty());
+        // The top alone: every block read by its ports, none of them as a design file.
+        let top = SynthPlan::prepare(&lib, &pipeline, Some(TOP), &work).unwrap();
+        assert_eq!(
+            (top.top.as_str(), top.blocks.clone()),
+            (TOP, vec![TOP.into()])
+        );
+        let boxed: Vec<&str> = top.black_boxes.iter().map(|b| b.module.as_str()).collect();
+        assert_eq!(
+            boxed,
+            ["primary_ray", "intersection", "min_distance", "shading"]
+        );
+        assert!(top.black_boxes.iter().all(|b| b.file.exists()));
+        assert!(
+            top.files
+                .iter()
+                .all(|f| !top.black_boxes.iter().any(|b| &b.file == f))
+        );
+        assert!(top.files.iter().any(|f| f.ends_with("raycaster_top.v")));
         let _ = std::fs::remove_dir_all(&work);
     }
 }

@@ -2,18 +2,24 @@
 //! estimate assumes.
 //!
 //! Rule: a path of `n` LUT levels between two registers takes
-//! `register_ns + n × level_ns`, and Fmax is its inverse.
+//! `register_ns + n × level_ns`, and Fmax is its inverse: 1 ns + 1.5 ns per level, so
+//! 12 levels give 19 ns, 52.6 MHz, and 13 give 20.5 ns, below the thesis's 50 MHz.
 //!
-//! Where the figures come from, and how far to trust them: the Cyclone IV device
-//! datasheet (Cyclone IV Device Handbook vol. 3, CYIV-53001) publishes the clock-tree,
-//! PLL, multiplier and M9K limits, but no per-LUT or per-hop routing delay (those
-//! live only in Quartus's timing models). The per-level figure is therefore the
-//! estimate issue 38 works with — about 1.5 ns for one logic element's LUT and the
-//! routing to the next, for the C8 speed grade of the thesis's EP4CE115F29C7/C8 class
-//! board — and the register term (clock-to-output plus set-up) an assumed 1 ns. With
-//! these, 12 levels give 19 ns, 52.6 MHz: the 12-level goal and the thesis's 50 MHz
-//! agree. The measured bound is the depth itself ([`super::depth`]); real timing on
-//! silicon needs a place and route (see `docs/hardware-model.md`).
+//! Where the figures come from: not from the device datasheet, which has none to
+//! give. The Cyclone IV Device Datasheet (Cyclone IV Device Handbook vol. 3, chapter 1,
+//! CYIV-53001, v2.0 of March 2016), section "Switching Characteristics" (p. 1–16 on),
+//! publishes the core's limits per speed grade (clock tree, PLLs, embedded
+//! multipliers, M9K memory blocks) and the periphery's, and leaves I/O timing to
+//! Quartus; it has no logic-element table: no tLUT, no LE register tCO or tSU, no
+//! interconnect delay per hop (they live only in Quartus's timing models). Handbooks
+//! up to Cyclone II and Stratix II printed them ("LE_FF Internal Timing
+//! Microparameters": Stratix II, vol. 1, table 5–37, tLUT 162 to 507 ps), which shows
+//! that the LUT is the small part of a level and the routing to the next LE the rest.
+//! So both constants are assumptions: 1.5 ns for one LE's LUT and its routing (issue
+//! 38's estimate for the thesis's EP4CE115 class, C7/C8 grades) and 1 ns for clock to
+//! output plus set-up. The measured check is a real place and route ([`super::ice40`]:
+//! nextpnr-ice40's timing model of an iCE40 HX8K, a slower device), set beside this
+//! estimate per operator in `docs/hardware-model.md`.
 
 use serde::Serialize;
 
@@ -35,8 +41,9 @@ pub const CYCLONE_IV_E: DelayRule = DelayRule {
     family: "Cyclone IV E",
     level_ns: 1.5,
     register_ns: 1.0,
-    source: "assumed (issue 38's estimate: ~1.5 ns per LUT and its routing; the Cyclone IV \
-             device datasheet CYIV-53001 gives no per-LUT delays); register tCO + tSU 1 ns assumed",
+    source: "assumed: 1.5 ns per LUT level and its routing, 1 ns register tCO + tSU (the \
+             Cyclone IV Device Datasheet, CYIV-53001, Switching Characteristics, has no LE or \
+             interconnect delays; checked against nextpnr-ice40 on an iCE40 HX8K)",
 };
 
 /// The thesis's clock (50 MHz on the DE2-115).

@@ -206,6 +206,16 @@ impl SynthReport {
     }
 }
 
+/// A module read as a black box: its ports only (`read_verilog -lib`), so that the
+/// logic around its instances is synthesized and measured alone.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct BlackBox {
+    /// The module's name.
+    pub module: String,
+    /// The Verilog file that declares it.
+    pub file: PathBuf,
+}
+
 /// Synthesizes `files` (Verilog) with `top` as the top module for Cyclone IV E in
 /// `dir` (created if missing; the script, log and `stat` outputs are written there)
 /// and reports the figures of the whole design and of every module named in `blocks`
@@ -220,8 +230,27 @@ pub fn synthesize(
     blocks: &[&str],
     depth_of: &[&str],
 ) -> Result<SynthReport, RtlError> {
+    synthesize_around(dir, files, &[], top, blocks, depth_of)
+}
+
+/// [`synthesize`] with `black_boxes` read by their ports only: their instances count
+/// in no figure, and a path ends at a black box's inputs and starts at its outputs as
+/// at a register's.
+pub fn synthesize_around(
+    dir: &Path,
+    files: &[PathBuf],
+    black_boxes: &[BlackBox],
+    top: &str,
+    blocks: &[&str],
+    depth_of: &[&str],
+) -> Result<SynthReport, RtlError> {
     let yosys = yosys_version("yosys")?;
-    for name in std::iter::once(&top).chain(blocks).chain(depth_of) {
+    let boxed: Vec<&str> = black_boxes.iter().map(|b| b.module.as_str()).collect();
+    for name in std::iter::once(&top)
+        .chain(blocks)
+        .chain(depth_of)
+        .chain(&boxed)
+    {
         if !is_identifier(name) {
             return Err(RtlError::Synth(format!(
                 "`{name}` is not a plain Verilog module name"
@@ -233,7 +262,14 @@ pub fn synthesize(
     for file in files {
         absolute.push(std::path::absolute(file).map_err(io(file))?);
     }
-    let text = script(&absolute, top, depth_of)?;
+    let mut boxes = Vec::with_capacity(black_boxes.len());
+    for b in black_boxes {
+        boxes.push(BlackBox {
+            module: b.module.clone(),
+            file: std::path::absolute(&b.file).map_err(io(&b.file))?,
+        });
+    }
+    let text = script(&absolute, &boxes, top, depth_of)?;
     write_atomically(&dir.join(SCRIPT), &text)?;
     let depth_modules: Vec<&str> = std::iter::once(top)
         .chain(depth_of.iter().copied().filter(|m| *m != top))
@@ -280,7 +316,7 @@ pub fn synthesize(
 
     let stat = read_stat(&dir.join(STAT))?;
     let stat_rtl = read_stat(&dir.join(STAT_RTL))?;
-    let mut report = report_from_stats(top, &stat, &stat_rtl, blocks)?;
+    let mut report = report_from_stats(top, &stat, &stat_rtl, blocks, &boxed)?;
     for module in depth_modules {
         let path = dir.join(ltp_file(module));
         let text = fs::read_to_string(&path).map_err(io(&path))?;
@@ -298,14 +334,24 @@ pub fn synthesize(
     Ok(report)
 }
 
-/// The Yosys script: read the files, synthesize keeping the hierarchy with
-/// `synth_intel`'s default LUT mapping, `stat` before and after mapping, then the
-/// longest path between registers of the whole design and of each module in `depth_of`
-/// (each flattened from the saved mapped netlist, [`LTP_SELECTION`]).
-fn script(files: &[PathBuf], top: &str, depth_of: &[&str]) -> Result<String, RtlError> {
+/// The Yosys script: read the files (the black boxes' by their ports), synthesize
+/// keeping the hierarchy with `synth_intel`'s default LUT mapping, `stat` before and
+/// after mapping, then the longest path between registers of the whole design and of
+/// each module in `depth_of` (each flattened from the saved mapped netlist,
+/// [`LTP_SELECTION`], the black boxes left out like registers).
+fn script(
+    files: &[PathBuf],
+    black_boxes: &[BlackBox],
+    top: &str,
+    depth_of: &[&str],
+) -> Result<String, RtlError> {
     let mut text =
         String::from("# Written by rtl::synth (rtprof): Cyclone IV E, hierarchy kept.\n");
-    for file in files {
+    let reads = files
+        .iter()
+        .map(|f| ("read_verilog", f))
+        .chain(black_boxes.iter().map(|b| ("read_verilog -lib", &b.file)));
+    for (read, file) in reads {
         let name = file
             .to_str()
             .ok_or_else(|| RtlError::Synth(format!("{}: not a UTF-8 path", file.display())))?;
@@ -315,8 +361,13 @@ fn script(files: &[PathBuf], top: &str, depth_of: &[&str]) -> Result<String, Rtl
                 file.display()
             )));
         }
-        text.push_str(&format!("read_verilog \"{name}\"\n"));
+        text.push_str(&format!("{read} \"{name}\"\n"));
     }
+    // `ltp`'s selection: a black box is an end of a path, like a register.
+    let selection = black_boxes.iter().fold(
+        LTP_SELECTION.trim_end_matches(" %n").to_string(),
+        |sel, b| format!("{sel} t:{} %u", b.module),
+    ) + " %n";
     let synth = format!("synth_intel -family {FAMILY} -top {top} -noflatten");
     text.push_str(&format!(
         "{synth} -run :coarse\n\
@@ -332,7 +383,7 @@ fn script(files: &[PathBuf], top: &str, depth_of: &[&str]) -> Result<String, Rtl
          tee -o {STAT} stat\n\
          design -save mapped\n\
          flatten\n\
-         tee -o {} ltp -noff {LTP_SELECTION}\n",
+         tee -o {} ltp -noff {selection}\n",
         ltp_file(top)
     ));
     for module in depth_of.iter().filter(|m| **m != top) {
@@ -340,7 +391,7 @@ fn script(files: &[PathBuf], top: &str, depth_of: &[&str]) -> Result<String, Rtl
             "design -load mapped\n\
              hierarchy -top {module}\n\
              flatten\n\
-             tee -o {} ltp -noff {LTP_SELECTION}\n",
+             tee -o {} ltp -noff {selection}\n",
             ltp_file(module)
         ));
     }
@@ -490,12 +541,14 @@ fn base_name(module: &str) -> &str {
 }
 
 /// Rolls the final `stat` (and the memory bits of the `stat` before mapping) up from
-/// `top`; the blocks are matched by plain module name.
+/// `top`; the blocks are matched by plain module name; instances of `black_boxes`
+/// count in no figure.
 fn report_from_stats(
     top: &str,
     stat: &BTreeMap<String, ModuleStat>,
     stat_rtl: &BTreeMap<String, ModuleStat>,
     blocks: &[&str],
+    black_boxes: &[&str],
 ) -> Result<SynthReport, RtlError> {
     if !stat.contains_key(top) {
         return Err(RtlError::Synth(format!(
@@ -522,6 +575,7 @@ fn report_from_stats(
                 FF_CELL => f.ff += count,
                 M9K_CELL => f.m9k += count,
                 sub if stat.contains_key(sub) => f.add_times(count, &figures[sub]),
+                boxed if black_boxes.contains(&base_name(boxed)) => {}
                 _ => unmapped.push(UnmappedCells {
                     module: module.to_string(),
                     cell: cell.clone(),

@@ -179,7 +179,7 @@ const STAT_RTL_SAMPLE: &str = r#"=== ram_blk ===
 fn sample_report(blocks: &[&str]) -> SynthReport {
     let stat = parse_stat(STAT_SAMPLE).unwrap();
     let stat_rtl = parse_stat(STAT_RTL_SAMPLE).unwrap();
-    report_from_stats("sample_top", &stat, &stat_rtl, blocks).unwrap()
+    report_from_stats("sample_top", &stat, &stat_rtl, blocks, &[]).unwrap()
 }
 
 const MUL_L1: &str = "$paramod\\fp_mul\\LATENCY=s32'00000000000000000000000000000001";
@@ -280,9 +280,10 @@ fn the_hierarchy_is_rolled_up() {
 #[test]
 fn missing_blocks_and_unmapped_cells_are_reported() {
     let stat = parse_stat(STAT_SAMPLE).unwrap();
-    let err = report_from_stats("sample_top", &stat, &BTreeMap::new(), &["fp_div"]).unwrap_err();
+    let err =
+        report_from_stats("sample_top", &stat, &BTreeMap::new(), &["fp_div"], &[]).unwrap_err();
     assert!(err.to_string().contains("`fp_div`"), "{err}");
-    assert!(report_from_stats("nope", &stat, &BTreeMap::new(), &[]).is_err());
+    assert!(report_from_stats("nope", &stat, &BTreeMap::new(), &[], &[]).is_err());
 
     // The coarse `$mux` synth_intel can leave behind (see the module doc).
     let text = STAT_SAMPLE.replace(
@@ -290,7 +291,7 @@ fn missing_blocks_and_unmapped_cells_are_reported() {
         "     $mux                            1\n     cycloneive_lcell_comb         186\n",
     );
     let stat = parse_stat(&text).unwrap();
-    let report = report_from_stats("sample_top", &stat, &BTreeMap::new(), &[]).unwrap();
+    let report = report_from_stats("sample_top", &stat, &BTreeMap::new(), &[], &[]).unwrap();
     assert_eq!(
         report.unmapped,
         [UnmappedCells {
@@ -301,6 +302,27 @@ fn missing_blocks_and_unmapped_cells_are_reported() {
     );
     assert_eq!(report.total.lut4, 5434);
     assert_eq!(report.total.mem_bits, 0);
+
+    // A black box's instances are neither figures nor unmapped cells: `fp_mul_array`
+    // read by its ports only leaves its module out of the statistics.
+    let stat: BTreeMap<String, ModuleStat> = parse_stat(STAT_SAMPLE)
+        .unwrap()
+        .into_iter()
+        .filter(|(m, _)| m != "fp_mul_array")
+        .collect();
+    let unboxed = report_from_stats("sample_top", &stat, &BTreeMap::new(), &[], &[]).unwrap();
+    assert!(unboxed.unmapped.iter().any(|u| u.cell == "fp_mul_array"));
+    let boxed = report_from_stats(
+        "sample_top",
+        &stat,
+        &BTreeMap::new(),
+        &[],
+        &["fp_mul_array"],
+    )
+    .unwrap();
+    assert!(boxed.unmapped.is_empty(), "{:?}", boxed.unmapped);
+    assert_eq!(boxed.total.mult_lut4, 0);
+    assert_eq!(unboxed.total, boxed.total);
 }
 
 #[test]
@@ -323,7 +345,13 @@ fn parameter_decorations_are_stripped() {
 
 #[test]
 fn the_script_keeps_the_hierarchy() {
-    let text = script(&[PathBuf::from("/a b/fp_mul.v")], "synth_top", &["blk"]).unwrap();
+    let text = script(
+        &[PathBuf::from("/a b/fp_mul.v")],
+        &[],
+        "synth_top",
+        &["blk"],
+    )
+    .unwrap();
     assert!(text.contains("read_verilog \"/a b/fp_mul.v\"\n"), "{text}");
     assert!(
         text.contains("synth_intel -family cycloneive -top synth_top -noflatten -run map_cells:\n"),
@@ -344,8 +372,32 @@ fn the_script_keeps_the_hierarchy() {
         text.contains("design -load mapped\nhierarchy -top blk\nflatten\ntee -o ltp-blk.txt"),
         "{text}"
     );
-    assert!(script(&[PathBuf::from("/a\"b.v")], "t", &[]).is_err());
+    assert!(script(&[PathBuf::from("/a\"b.v")], &[], "t", &[]).is_err());
     assert!(!is_identifier("a b") && !is_identifier("1a") && is_identifier("fp_mul"));
+}
+
+#[test]
+fn black_boxes_are_read_by_their_ports_and_end_paths() {
+    let boxed = BlackBox {
+        module: "blk".into(),
+        file: PathBuf::from("/src/blk.v"),
+    };
+    let text = script(&[PathBuf::from("/src/top.v")], &[boxed], "top", &[]).unwrap();
+    assert!(text.contains("read_verilog \"/src/top.v\"\n"), "{text}");
+    assert!(
+        text.contains("read_verilog -lib \"/src/blk.v\"\n"),
+        "{text}"
+    );
+    // Registers, memory blocks and the black box are left out of the path's cells.
+    assert!(
+        text.contains("ltp -noff t:dffeas t:altsyncram %u t:blk %u %n\n"),
+        "{text}"
+    );
+    let plain = script(&[PathBuf::from("/src/top.v")], &[], "top", &[]).unwrap();
+    assert!(
+        plain.contains(&format!("ltp -noff {LTP_SELECTION}\n")),
+        "{plain}"
+    );
 }
 
 #[test]
