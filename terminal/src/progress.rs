@@ -82,8 +82,8 @@ impl runner::Progress for Bars {
         let template = if total == 0 {
             "{prefix:>8} {spinner} {msg} ({elapsed} elapsed)"
         } else {
-            // At most about 100 columns with a message of 35 characters.
-            "{prefix:>8} [{bar:20}] {pos}/{len} {msg} ({elapsed} elapsed, {eta} remaining)"
+            // At most about 100 columns with a message of 40 characters.
+            "{prefix:>8} [{bar:12}] {pos}/{len} {msg} ({elapsed} elapsed, {eta} remaining)"
         };
         let bar = ProgressBar::with_draw_target((total > 0).then_some(total), target);
         if let Ok(style) = ProgressStyle::with_template(template) {
@@ -138,16 +138,17 @@ impl runner::Progress for Bars {
     }
 }
 
-/// The bar's message with the count of the work under way: "1/3 balls3: timing 3
-/// variants (4 of 12 timed renders)".
+/// The bar's message with the count of the work under way, short enough for the
+/// bar's line: "1/3 balls3: timing 3 variants (4/12)"; alone, "1,500/3,000 samples".
+/// (The page, with room, says "4 of 12 timed renders".)
 fn within_text(message: &str, what: &str, done: u64, total: u64) -> String {
     let count = format!(
-        "{} of {} {what}",
+        "{}/{}",
         reports::format::count(done.min(total)),
         reports::format::count(total)
     );
     match message.is_empty() {
-        true => count,
+        true => format!("{count} {what}"),
         false => format!("{message} ({count})"),
     }
 }
@@ -211,13 +212,13 @@ mod tests {
     fn the_bar_says_how_far_the_work_under_way_is() {
         assert_eq!(
             within_text("1/3 balls3: timing 3 variants", "timed renders", 4, 12),
-            "1/3 balls3: timing 3 variants (4 of 12 timed renders)"
+            "1/3 balls3: timing 3 variants (4/12)"
         );
         assert_eq!(
             within_text("", "samples", 1_500, 3_000),
-            "1,500 of 3,000 samples"
+            "1,500/3,000 samples"
         );
         // Never more done than there is.
-        assert_eq!(within_text("", "samples", 5, 3), "3 of 3 samples");
+        assert_eq!(within_text("", "samples", 5, 3), "3/3 samples");
     }
 }
