@@ -24,6 +24,12 @@ fn yes() -> bool {
     true
 }
 
+/// Threads of the timed renders when the definition does not say: one (see
+/// [`SuiteDef::timing_threads`]).
+fn one() -> u16 {
+    1
+}
+
 /// A suite definition.
 #[derive(Clone, Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -35,6 +41,14 @@ pub struct SuiteDef {
     /// until this much tracing time is measured.
     #[serde(default)]
     pub min_seconds: f64,
+    /// Threads of the timed renders (default: one; `--threads` sets another). The
+    /// untimed work (counted renders, pictures, the f64 reference, the profile) uses
+    /// every core. On a machine with other work a pool as wide as the machine shares
+    /// its cores with that work, and its times measure the scheduler: five runs of a
+    /// small suite with one core kept busy moved a variant's relative time by up to 29 %
+    /// on two threads and 14 % on one (docs/gate.md).
+    #[serde(default = "one")]
+    pub timing_threads: u16,
     pub variants: Vec<String>,
     pub scenes: Vec<String>,
     pub extra_size: [u32; 2],
@@ -114,6 +128,14 @@ pub struct QuickDef {
     pub spd: Option<SpdDef>,
 }
 
+/// The 1-based line and column (in characters) of byte `offset` of `text`.
+fn line_and_column(text: &str, offset: usize) -> (usize, usize) {
+    let before = text.get(..offset).unwrap_or(text);
+    let line = before.matches('\n').count() + 1;
+    let column = before.rsplit('\n').next().map_or(0, |l| l.chars().count()) + 1;
+    (line, column)
+}
+
 impl SuiteDef {
     /// Reads and parses the definition at `path`, or the embedded default suite.
     pub fn load(path: Option<&std::path::Path>) -> Result<Self, RunError> {
@@ -131,8 +153,16 @@ impl SuiteDef {
     /// (`file` names it in errors).
     pub fn parse(text: &str, file: &str) -> Result<Self, RunError> {
         let def: SuiteDef = toml::from_str(text).map_err(|e| RunError::Definition {
-            file: file.to_string(),
-            message: e.to_string().trim().to_string(),
+            // FILE:LINE:COLUMN, as compilers say where, rather than toml's drawing of
+            // the line (several lines, which a one-line message would mangle).
+            file: match e.span() {
+                Some(span) => {
+                    let (line, column) = line_and_column(text, span.start);
+                    format!("{file}:{line}:{column}")
+                }
+                None => file.to_string(),
+            },
+            message: e.message().trim().to_string(),
         })?;
         def.check(file)?;
         def.clone().quick().check(file).map_err(|e| match e {
@@ -163,6 +193,9 @@ impl SuiteDef {
         }
         if !(0.0..=60.0).contains(&self.min_seconds) {
             return bad("min_seconds must be 0 to 60".into());
+        }
+        if let Err(e) = crate::pool::check_threads(u64::from(self.timing_threads)) {
+            return bad(format!("timing_threads: {e}"));
         }
         if !(1..=1_000_000).contains(&self.profile_samples) {
             return bad("profile_samples must be 1 to 1000000".into());
@@ -293,6 +326,40 @@ mod tests {
         for s in &def.scenes {
             resolve_scene(s, (8, 8), Path::new(".")).unwrap();
         }
+    }
+
+    #[test]
+    fn a_toml_error_names_file_line_and_column_on_one_line() {
+        // The third line's value is a string where a number belongs.
+        let text = DEFAULT_SUITE.replacen("repeats = 3", "repeats = \"three\"", 1);
+        let line = text
+            .lines()
+            .position(|l| l.starts_with("repeats ="))
+            .unwrap()
+            + 1;
+        let e = SuiteDef::parse(&text, "my.toml").unwrap_err().to_string();
+        assert!(e.starts_with(&format!("my.toml:{line}:11: ")), "{e}");
+        assert!(!e.contains('\n'), "{e}");
+        let e = SuiteDef::parse("name = \"x\"\n", "my.toml")
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("missing field"), "{e}");
+        assert!(!e.contains('\n') && !e.contains(" | "), "{e}");
+    }
+
+    #[test]
+    fn timing_threads_default_to_one_and_are_checked() {
+        let def = SuiteDef::parse(DEFAULT_SUITE, "suite.toml").unwrap();
+        assert_eq!(def.timing_threads, 1);
+        let without = DEFAULT_SUITE.replacen("timing_threads = 1\n", "", 1);
+        assert_ne!(without, DEFAULT_SUITE);
+        assert_eq!(
+            SuiteDef::parse(&without, "s.toml").unwrap().timing_threads,
+            1
+        );
+        let zero = DEFAULT_SUITE.replacen("timing_threads = 1", "timing_threads = 0", 1);
+        let e = SuiteDef::parse(&zero, "s.toml").unwrap_err().to_string();
+        assert!(e.contains("timing_threads"), "{e}");
     }
 
     #[test]

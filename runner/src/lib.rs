@@ -29,7 +29,8 @@
 //! - [`collect`]: measurements into results entries; [`bvh_study`]: the BVH's quality
 //!   per build strategy;
 //! - [`scaling`]: the growth study (`rtprof scaling`), cost per ray against scene size;
-//! - [`suite`]: the whole suite into one results value; [`suite_dir`]: a suite run into
+//! - [`suite`]: the whole suite into one results value (what it records about a scene
+//!   beside its times in `scene_facts`); [`suite_dir`]: a suite run into
 //!   a directory, staged and published (`rtprof suite` and the web app's jobs); [`shard`]: its deterministic
 //!   shares (`--shard I/N`); [`merge`]: shards' results joined into one;
 //! - [`report_files`]: results files read back, report.html and report.pdf written;
@@ -75,6 +76,7 @@ pub mod render_job;
 pub mod render_setup;
 pub mod report_files;
 pub mod scaling;
+mod scene_facts;
 pub mod scene_input;
 pub mod scenes;
 pub mod shard;

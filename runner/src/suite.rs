@@ -12,9 +12,8 @@ use std::time::Instant;
 use analysis::{Band, compare, difference_heat_map, gray_histogram};
 use hwmodel::hw_scene::HwScene;
 use results::{
-    Calibration, CodeKind, Efficiency, F64Reference, FailedPart, Failure, MachinePeak,
-    ProfileResult, Results, SCHEMA, SceneHardware, SceneResult, Shard, SuiteInfo, VariantName,
-    VariantResult, slug,
+    Calibration, CodeKind, F64Reference, FailedPart, Failure, MachinePeak, ProfileResult, Results,
+    SCHEMA, SceneHardware, SceneResult, Shard, SuiteInfo, VariantName, VariantResult, slug,
 };
 use tracer::{BvhBuilder, RenderOptions, Sampling, Scene, ShadingMode, VariantSet, parse_nff};
 
@@ -32,6 +31,7 @@ use crate::progress::Progress;
 use crate::ray_rates::ray_rates;
 use crate::reference_job;
 use crate::render_setup::RenderSetup;
+use crate::scene_facts::{efficiency, memory_use, published_rays};
 use crate::scenes::{SceneSpec, extra_scenes, resolve_scene};
 use crate::staging::save_png;
 use crate::variant_job::VariantMeasurement;
@@ -51,7 +51,8 @@ pub struct Suite {
 pub struct RunContext<'a> {
     /// Directory the images, profiles and flamegraphs are written to.
     pub out: &'a Path,
-    /// Worker threads for the renders (default: one per core).
+    /// Threads of the timed renders (default: the definition's `timing_threads`, one).
+    /// The untimed work uses one worker per core.
     pub threads: Option<u16>,
     pub progress: &'a dyn Progress,
     /// Set when the user asks the run to stop; checked before every render.
@@ -166,7 +167,10 @@ impl Suite {
     pub fn run(&self, ctx: &RunContext<'_>) -> Result<Results, RunError> {
         let started = Instant::now();
         let created = now_rfc3339();
-        let pool = thread_pool(ctx.threads)?;
+        // Untimed work on every core; the timed renders and the machine's peak (the roof
+        // they are placed under) on the timed threads.
+        let pool = thread_pool(None)?;
+        let timed = thread_pool(Some(ctx.threads.unwrap_or(self.def.timing_threads)))?;
         let one_thread = thread_pool(Some(1))?;
         ctx.progress.begin("machine", 0);
         ctx.progress
@@ -176,7 +180,7 @@ impl Suite {
         } else {
             PeakPlan::FULL
         };
-        let peak = match measure_peak(&pool, plan, ctx.stop) {
+        let peak = match measure_peak(&timed, plan, ctx.stop) {
             Ok(peak) => peak,
             Err(e) => {
                 ctx.progress.end();
@@ -194,6 +198,7 @@ impl Suite {
             def: &self.def,
             ctx,
             pool: &pool,
+            timed: &timed,
             one_thread: &one_thread,
             peak: &peak,
         };
@@ -264,7 +269,7 @@ impl Suite {
             suite: SuiteInfo {
                 name: self.def.name.clone(),
                 quick: self.quick,
-                threads: pool.current_num_threads() as u32,
+                threads: timed.current_num_threads() as u32,
                 variants: self
                     .def
                     .variants
@@ -287,67 +292,12 @@ impl Suite {
     }
 }
 
-/// The SPD's published ray counts for `spec`, when it was rendered as they were: a
-/// classic SPD scene at its size factor, 512 × 512 corner rays, depth 5.
-fn published_rays(spec: &SceneSpec, options: &RenderOptions) -> Option<results::PublishedRays> {
-    use spd::published::{FRAME, MAX_DEPTH, TOLERANCE, published};
-    let Some(crate::scene_input::SceneInput::Spd {
-        program,
-        size_factor,
-    }) = spec.input
-    else {
-        return None;
-    };
-    let as_published = spec.spd_sampling
-        && size_factor == program.default_size_factor
-        && (options.width, options.height) == FRAME
-        && options.max_depth == MAX_DEPTH;
-    let p = published(program.name).filter(|_| as_published)?;
-    Some(results::PublishedRays {
-        source: "SPD 3.14 Readme.txt (Haines): 513 x 513 corner rays, depth 5".into(),
-        primary: p.eye_rays,
-        primary_hit: p.eye_hits,
-        reflection: p.reflection_rays,
-        refraction: p.refraction_rays,
-        shadow: p.shadow_rays,
-        tolerance: TOLERANCE,
-    })
-}
-
 /// Frames up to this many pixels get the BVH study (the SPD scenes' small runs and the
 /// quick suite's scenes): two builders, each counted and timed again.
 const BVH_STUDY_PIXELS: u64 = 128 * 128;
 
 /// The variants whose per-pixel maps the suite writes.
 const MAPPED_VARIANTS: [&str; 3] = ["baseline", "simd", "bvh"];
-
-/// A render of `counts` that took `seconds` as a point under `peak`'s roofs, held to
-/// the compute roof of its `code`.
-fn efficiency(
-    counts: &tracer::Counts,
-    scene: &Scene,
-    (simd, code): (bool, CodeKind),
-    seconds: f64,
-    peak: &MachinePeak,
-) -> Efficiency {
-    let flops = tracer::work_model::flops(counts);
-    let bytes = tracer::work_model::bytes_touched(counts, scene, simd);
-    let intensity = flops as f64 / bytes.max(1) as f64;
-    let achieved = if seconds > 0.0 {
-        flops as f64 / seconds / 1e9
-    } else {
-        0.0
-    };
-    let roof = peak.roof(code, intensity).gflops;
-    Efficiency {
-        flops,
-        bytes_moved: bytes,
-        arithmetic_intensity: intensity,
-        achieved_gflops: achieved,
-        roof_gflops: Some(roof),
-        fraction_of_roof: (roof > 0.0).then(|| achieved / roof),
-    }
-}
 
 /// The fastest variant of `scene` whose picture stays visually identical to the
 /// reference variant's.
@@ -368,29 +318,6 @@ fn best_kept_picture(scene: &SceneResult) -> Option<VariantName> {
         .map(|v| v.variant.clone())
 }
 
-/// What the scene's renders held: the scene, the largest structure a variant built and
-/// the framebuffer.
-fn memory_use(
-    scene: &Scene,
-    measured: &[Result<crate::variant_job::VariantMeasurement, RunError>],
-) -> Option<results::MemoryUse> {
-    let ok: Vec<_> = measured.iter().filter_map(|m| m.as_ref().ok()).collect();
-    let framebuffer = ok.iter().map(|m| m.framebuffer_bytes).max()? as u64;
-    let accelerator = ok.iter().map(|m| m.accelerator_bytes).max().unwrap_or(0) as u64;
-    let bvh = ok
-        .iter()
-        .find(|m| m.variants.config().accel == tracer::Accelerator::Bvh)
-        .map(|m| m.accelerator_bytes as f64 / scene.primitive_count().max(1) as f64);
-    let scene_bytes = scene.memory_bytes() as u64;
-    Some(results::MemoryUse {
-        scene_bytes,
-        accelerator_bytes: accelerator,
-        framebuffer_bytes: framebuffer,
-        peak_bytes: scene_bytes + accelerator + framebuffer,
-        bvh_bytes_per_primitive: bvh,
-    })
-}
-
 fn failure(scene: Option<&str>, part: FailedPart, e: &RunError) -> Failure {
     Failure {
         scene: scene.map(str::to_string),
@@ -405,7 +332,10 @@ type VariantOutcome = Result<(VariantResult, analysis::RgbImage), RunError>;
 struct SceneRunner<'a> {
     def: &'a SuiteDef,
     ctx: &'a RunContext<'a>,
+    /// Every core: counted renders, pictures, the f64 reference, the profile.
     pool: &'a rayon::ThreadPool,
+    /// The timed renders' threads ([`SuiteDef::timing_threads`]).
+    timed: &'a rayon::ThreadPool,
     one_thread: &'a rayon::ThreadPool,
     peak: &'a MachinePeak,
 }
@@ -429,11 +359,12 @@ impl SceneRunner<'_> {
             Sampling::PixelCenters
         };
         let options = RenderOptions::new(width, height, sampling, ShadingMode::Color);
-        // The scene's renders run on its pool (the SPD's small frames on one thread).
+        // The scene's timed renders run on the timed pool (the SPD's small frames on one
+        // thread whatever it is).
         let pool = if spec.one_thread {
             self.one_thread
         } else {
-            self.pool
+            self.timed
         };
         let setup = RenderSetup {
             scene: &scene,
@@ -579,7 +510,7 @@ impl SceneRunner<'_> {
             bvh_quality,
             pixel_maps,
             f64_reference: truth.map(|(t, _)| t),
-            threads: spec.one_thread.then_some(1),
+            threads: (spec.one_thread && self.timed.current_num_threads() != 1).then_some(1),
         };
         results::change::fill_scene_speedups(&mut result, results::NOISE_THRESHOLD);
         Ok(result)

@@ -303,7 +303,7 @@ impl Catalogue {
                 max_upload_bytes: self.max_upload_bytes,
                 max_threads: runner::pool::max_threads().0,
                 size_text: format!(
-                    "Image size: each side at most {} pixels, at most {} pixels in all. Threads: 1 to {}; leave empty to use every core.",
+                    "Image size: each side at most {} pixels, at most {} pixels in all. Threads of the timed renders: 1 to {}; leave empty for one (the untimed work uses every core).",
                     reports::format::count(u64::from(limits.max_side)),
                     reports::format::count(limits.max_pixels),
                     reports::format::count(u64::from(runner::pool::max_threads().0))

@@ -67,6 +67,8 @@ pub fn of_query(
         u32::try_from(height).unwrap_or(u32::MAX),
     );
     let options = RenderOptions::new(w, h, Sampling::PixelCenters, ShadingMode::Color);
+    // A job's timed renders run on one thread unless it asks for more.
+    let threads = threads.or(Some(1));
     let estimate = runner::estimate::brute_force(&scene, &options, &VariantSet::default(), threads)
         .map_err(|e| ApiError::internal(e.to_string()))?;
     let primitives = scene.primitive_count() as u64;

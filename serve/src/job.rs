@@ -23,7 +23,8 @@ pub struct JobRequest {
     /// Image width and height.
     #[serde(default = "default_size")]
     pub size: [u32; 2],
-    /// Worker threads (default: one per core); at most `runner::pool::max_threads`.
+    /// Threads of the timed renders (default: one, as in the suite; the untimed work uses
+    /// every core); at most `runner::pool::max_threads`.
     /// Read as any whole number, so that a count too large for a thread pool is
     /// refused by the one rule with its message rather than by the JSON reader.
     #[serde(default)]
@@ -243,7 +244,7 @@ pub struct JobText {
     pub elapsed: Option<String>,
     /// "160×120".
     pub size: String,
-    /// "all cores", "4 threads".
+    /// The timed renders' threads: "1 thread", "4 threads".
     pub threads: String,
     /// "balls3", or "the quick suite".
     pub scene: String,
@@ -309,10 +310,7 @@ impl Job {
             finished: self.finished.as_deref().map(format::timestamp),
             elapsed,
             size: format::size(request.size[0], request.size[1]),
-            threads: request.threads.map_or_else(
-                || "all cores".to_string(),
-                |n| format::kind_count(n, "threads"),
-            ),
+            threads: format::kind_count(request.threads.unwrap_or(1), "threads"),
             scene: match suite {
                 true => "the quick suite".to_string(),
                 false => request.scene.clone(),

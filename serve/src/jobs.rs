@@ -368,6 +368,8 @@ fn definition(request: &JobRequest, catalogue: &Catalogue) -> Result<(SuiteDef, 
         size: request.size,
         repeats: 3,
         min_seconds: 0.1,
+        // Timed on one thread, as the suite is (`SuiteDef::timing_threads`).
+        timing_threads: 1,
         variants: request.variants.clone(),
         scenes: vec![entry],
         extra_size: request.size,

@@ -37,7 +37,8 @@ pub struct SuiteArgs {
     /// `--features embree`.
     #[arg(long)]
     embree: bool,
-    /// Worker threads for the renders (default: one per core).
+    /// Threads of the timed renders (default: the suite's `timing_threads`, one; the
+    /// untimed work uses every core). docs/gate.md says why.
     #[arg(long, value_name = "N", value_parser = runner::pool::parse_threads)]
     threads: Option<u16>,
     /// Run shard I of N: every Nth scene (all its variants), for `rtprof merge`.

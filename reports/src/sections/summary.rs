@@ -106,13 +106,13 @@ pub fn run_pairs(label: &str, r: &Results) -> Vec<Pair> {
         Pair::new(
             "Suite",
             format!(
-                "{}{}: {} · {} · {} · {} threads · {} wall time",
+                "{}{}: {} · {} · {} · timed on {} · {} wall time",
                 s.name,
                 if s.quick { " (quick)" } else { "" },
                 format::plural(r.scenes.len(), "scene"),
                 format::plural(s.variants.len(), "variant"),
                 repeats_text(s),
-                s.threads,
+                format::plural(s.threads as usize, "thread"),
                 format::seconds(s.wall_seconds)
             ),
         ),
