@@ -422,21 +422,22 @@ pub fn compare_images(
 impl ImageReport {
     /// The metrics as the command prints them.
     pub fn to_text(&self) -> String {
+        use reports::format::{count, fixed, size};
         let m = &self.metrics;
-        let mut out = format!("{} vs {} ({}x{})\n", self.a, self.b, m.width, m.height);
-        out += &format!("RMS            {:.3} ({})\n", m.rms, m.band.name());
+        let mut out = format!("{} vs {} ({})\n", self.a, self.b, size(m.width, m.height));
+        out += &format!("RMS            {} ({})\n", fixed(m.rms, 3), m.band.name());
         if m.psnr.is_finite() {
-            out += &format!("PSNR           {:.2} dB\n", m.psnr);
+            out += &format!("PSNR           {} dB\n", fixed(m.psnr, 2));
         } else {
             out += "PSNR           infinite (identical)\n";
         }
-        out += &format!("SSIM           {:.5}\n", m.ssim);
+        out += &format!("SSIM           {}\n", fixed(m.ssim, 5));
         out += &format!("max |diff|     {}\n", m.max_abs_diff);
-        out += &format!("mean |diff|    {:.3}\n", m.mean_abs_diff);
+        out += &format!("mean |diff|    {}\n", fixed(m.mean_abs_diff, 3));
         out += &format!(
             "differing px   {} of {}\n",
-            m.differing_pixels,
-            u64::from(m.width) * u64::from(m.height)
+            count(m.differing_pixels),
+            count(u64::from(m.width) * u64::from(m.height))
         );
         if let Some(path) = &self.heat_map {
             out += &format!("difference heat map: {path}\n");

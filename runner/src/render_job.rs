@@ -199,20 +199,20 @@ pub fn render_scene<C: tracer::RenderWith>(
 impl<C> SceneRender<C> {
     /// The SPD-style timing report: preprocessing vs tracing, rays per second.
     pub fn timing_report(&self, input: &SceneInput) -> String {
+        use reports::format::{count, plural, quantity, seconds};
         let rays = self.rendered.rays;
         let secs = self.tracing.as_secs_f64().max(1e-9);
         format!(
-            "{}: {}, variant {}\npreprocessing {:.3} s (parse + build), tracing {:.3} s on {} thread{}\n{} rays ({} eye), {:.0} rays/s",
+            "{}: {}, variant {}\npreprocessing {} (parse + build), tracing {} on {}\n{} rays ({} eye), {} rays/s",
             input,
             self.scene.summary(),
             self.variants,
-            self.preprocessing.as_secs_f64(),
-            self.tracing.as_secs_f64(),
-            self.threads,
-            if self.threads == 1 { "" } else { "s" },
-            rays.total(),
-            rays.primary,
-            rays.total() as f64 / secs,
+            seconds(self.preprocessing.as_secs_f64()),
+            seconds(self.tracing.as_secs_f64()),
+            plural(self.threads, "thread"),
+            count(rays.total()),
+            count(rays.primary),
+            quantity(rays.total() as f64 / secs),
         ) + &format!("\n{}", self.memory_line())
     }
 
