@@ -247,3 +247,121 @@ fn every_clocked_operator_places_and_routes_on_an_ice40() {
     }
     assert!(failures.is_empty(), "{failures:#?}");
 }
+
+/// Places and routes `op` stage by stage (one stage a piece) and prints its pieces.
+fn staged(op: Operator, name: &str) -> synth::StagedPnrReport {
+    let lib = Library::cyclone_iv_e();
+    let report =
+        synth::place_and_route_stages(op, &lib, &dir(name), 1, fmax::THESIS_CLOCK_MHZ, TIMEOUT)
+            .unwrap_or_else(|e| panic!("{e}"));
+    for p in &report.pieces {
+        match &p.routed {
+            Some(r) => eprintln!(
+                "{} stage {}: {} coarse cells, {} in, {} out: {} logic cells, {:.2} MHz, {:.0} + {:.0} s",
+                report.module,
+                p.first_stage,
+                p.coarse_cells,
+                p.inputs,
+                p.outputs,
+                r.logic_cells,
+                r.fmax_mhz,
+                r.synth_seconds,
+                r.pnr_seconds
+            ),
+            None => eprintln!("{} stage {}: no logic", report.module, p.first_stage),
+        }
+    }
+    eprintln!(
+        "{}: {} pieces, worst {:?} MHz, {:.0} s in all; {} coarse cells, {} driving nothing",
+        report.module,
+        report.pieces.len(),
+        report.fmax_mhz(),
+        report.seconds,
+        report.coarse_cells,
+        report.dead_cells
+    );
+    // The cut is complete: the input registers, then one register level per stage of
+    // the library's latency, every logic cell in a piece, every stage in one piece.
+    let latency = op.latency(&lib);
+    assert_eq!(report.register_levels, latency + 1, "{report:#?}");
+    assert_eq!(report.logic_before_the_inputs, 0);
+    assert_eq!(report.uncovered_cells, 0, "{report:#?}");
+    assert_eq!(report.stages_covered(), (1..=latency).collect::<Vec<_>>());
+    report
+}
+
+/// The operators larger than the HX8K get their Fmax from their stages placed and
+/// routed apart (`rtl::synth::stages`): every stage at 50 MHz or more on the HX8K,
+/// each inside the device. Optimistic for a stage inside the whole operator (less
+/// congestion), conservative against the thesis's faster Cyclone IV E.
+#[test]
+#[ignore = "needs yosys and nextpnr-ice40; about 5 minutes"]
+fn the_operators_larger_than_the_hx8k_close_50_mhz_stage_by_stage() {
+    let mut failures = Vec::new();
+    for op in LARGER_THAN_THE_HX8K {
+        let name = op.module_name();
+        let report = staged(op, &format!("stages-{name}"));
+        for p in &report.pieces {
+            let Some(r) = &p.routed else {
+                failures.push(format!("{name} stage {}: no logic", p.first_stage));
+                continue;
+            };
+            assert!(r.logic_cells <= r.device_logic_cells, "{p:?}");
+            if r.fmax_mhz < fmax::THESIS_CLOCK_MHZ {
+                failures.push(format!(
+                    "{name} stage {}: {:.2} MHz (log: {})",
+                    p.first_stage,
+                    r.fmax_mhz,
+                    r.log.display()
+                ));
+            }
+        }
+    }
+    assert!(failures.is_empty(), "{failures:#?}");
+}
+
+/// The cut against an operator that fits whole: the square root's stages placed and
+/// routed apart. Its slowest stage is the whole operator's critical path, so the two
+/// Fmax agree within nextpnr's placement noise (the piece meets less congestion, so
+/// it may be somewhat faster, never much slower); and the pieces hold the operator's
+/// logic: their logic cells, less the harness's registers, add up to the whole's.
+#[test]
+#[ignore = "needs yosys and nextpnr-ice40; about 3 minutes"]
+fn stage_by_stage_agrees_with_the_whole_square_root() {
+    let lib = Library::cyclone_iv_e();
+    let whole = synth::place_and_route_ice40(
+        Operator::Sqrt,
+        &lib,
+        &dir("stages-whole-fp_sqrt"),
+        fmax::THESIS_CLOCK_MHZ,
+        TIMEOUT,
+    )
+    .unwrap_or_else(|e| panic!("{e}"));
+    let report = staged(Operator::Sqrt, "stages-fp_sqrt");
+    let worst = report.fmax_mhz().expect("a stage with logic");
+    eprintln!(
+        "fp_sqrt: whole {:.2} MHz, {} logic cells; worst stage {worst:.2} MHz",
+        whole.fmax_mhz, whole.logic_cells
+    );
+    assert!(
+        worst >= 0.9 * whole.fmax_mhz && worst <= 1.3 * whole.fmax_mhz,
+        "worst stage {worst:.2} MHz, whole {:.2} MHz",
+        whole.fmax_mhz
+    );
+    // Each piece's harness: a register per input, two per output, the load register.
+    let logic: u64 = report
+        .pieces
+        .iter()
+        .filter_map(|p| {
+            let r = p.routed.as_ref()?;
+            Some(r.logic_cells - (p.inputs + 2 * p.outputs + 1) as u64)
+        })
+        .sum();
+    let ratio = logic as f64 / whole.logic_cells as f64;
+    eprintln!("fp_sqrt: pieces' logic {logic} cells, {ratio:.3} of the whole's");
+    assert!(
+        (0.8..=1.2).contains(&ratio),
+        "{logic} vs {}",
+        whole.logic_cells
+    );
+}
