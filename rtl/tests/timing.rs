@@ -4,7 +4,10 @@
 //! estimated-Fmax rule (`rtl::synth::fmax`) puts at 50 MHz or more; and the depth tool
 //! itself measures a design whose depth is known.
 //!
-//! The last test places and routes one operator with nextpnr-ice40.
+//! The tests after them place and route with nextpnr-ice40 on an iCE40 HX8K: one
+//! operator, every operator, and the two larger than the device stage by stage
+//! (`rtl::synth::stages`), with the stage-by-stage cut checked against an operator
+//! that fits whole.
 //!
 //! Needs `yosys` and `nextpnr-ice40` (`scripts/install-rtl-tools.sh`):
 //! `cargo test -p rtl --test timing -- --ignored`.
@@ -186,7 +189,8 @@ const LARGER_THAN_THE_HX8K: [Operator; 2] = [Operator::Divide, Operator::InvSqrt
 /// combinational `fp_select` and the clockless `fp_const` have no path between
 /// registers of their own): nextpnr's Fmax after routing at 50 MHz or more, printed
 /// beside the depth and the estimated Fmax on Cyclone IV E (docs/hardware-model.md's
-/// table); the operators too large for the device fail to place, as nextpnr says.
+/// table); the operators too large for the device fail to place, as nextpnr says
+/// (their figure comes stage by stage, below).
 #[test]
 #[ignore = "needs yosys and nextpnr-ice40; tens of minutes"]
 fn every_clocked_operator_places_and_routes_on_an_ice40() {
@@ -242,6 +246,161 @@ fn every_clocked_operator_places_and_routes_on_an_ice40() {
                 if !(too_large && out_of_cells) {
                     failures.push(format!("{name}: {text}"));
                 }
+            }
+        }
+    }
+    assert!(failures.is_empty(), "{failures:#?}");
+}
+
+/// Places and routes `op` in pieces of `stages_per_piece` stages and prints them.
+fn staged(op: Operator, name: &str, stages_per_piece: u32) -> synth::StagedPnrReport {
+    let lib = Library::cyclone_iv_e();
+    let report = synth::place_and_route_stages(
+        op,
+        &lib,
+        &dir(name),
+        stages_per_piece,
+        fmax::THESIS_CLOCK_MHZ,
+        TIMEOUT,
+    )
+    .unwrap_or_else(|e| panic!("{e}"));
+    for p in &report.pieces {
+        match &p.routed {
+            Some(r) => eprintln!(
+                "{} stages {}..{}: {} coarse cells, {} in, {} out: {} logic cells, {:.2} MHz, {:.0} + {:.0} s",
+                report.module,
+                p.first_stage,
+                p.last_stage,
+                p.coarse_cells,
+                p.inputs,
+                p.outputs,
+                r.logic_cells,
+                r.fmax_mhz,
+                r.synth_seconds,
+                r.pnr_seconds
+            ),
+            None => eprintln!("{} stage {}: no logic", report.module, p.first_stage),
+        }
+    }
+    eprintln!(
+        "{}: {} pieces, worst {:?} MHz, {:.0} s in all; {} coarse cells, {} driving nothing",
+        report.module,
+        report.pieces.len(),
+        report.fmax_mhz(),
+        report.seconds,
+        report.coarse_cells,
+        report.dead_cells
+    );
+    // The cut is complete: the input registers, then one register level per stage of
+    // the library's latency, every logic cell in a piece, every stage in one piece.
+    let latency = op.latency(&lib);
+    assert_eq!(report.register_levels, latency + 1, "{report:#?}");
+    assert_eq!(report.logic_before_the_inputs, 0);
+    assert_eq!(report.uncovered_cells, 0, "{report:#?}");
+    assert_eq!(report.stages_covered(), (1..=latency).collect::<Vec<_>>());
+    report
+}
+
+/// The operators larger than the HX8K get their Fmax from their stages placed and
+/// routed apart (`rtl::synth::stages`): every stage at 50 MHz or more on the HX8K,
+/// each inside the device. Optimistic for a stage inside the whole operator (less
+/// congestion), conservative against the thesis's faster Cyclone IV E.
+#[test]
+#[ignore = "needs yosys and nextpnr-ice40; about 5 minutes"]
+fn the_operators_larger_than_the_hx8k_close_50_mhz_stage_by_stage() {
+    let mut failures = Vec::new();
+    for op in LARGER_THAN_THE_HX8K {
+        let name = op.module_name();
+        let report = staged(op, &format!("stages-{name}"), 1);
+        for p in &report.pieces {
+            let Some(r) = &p.routed else {
+                failures.push(format!("{name} stage {}: no logic", p.first_stage));
+                continue;
+            };
+            assert!(r.logic_cells <= r.device_logic_cells, "{p:?}");
+            if r.fmax_mhz < fmax::THESIS_CLOCK_MHZ {
+                failures.push(format!(
+                    "{name} stage {}: {:.2} MHz (log: {})",
+                    p.first_stage,
+                    r.fmax_mhz,
+                    r.log.display()
+                ));
+            }
+        }
+    }
+    assert!(failures.is_empty(), "{failures:#?}");
+}
+
+/// The cut against an operator that fits whole: the square root's stages placed and
+/// routed apart. Its slowest stage is the whole operator's critical path, so the two
+/// Fmax agree within nextpnr's placement noise (the piece meets less congestion, so
+/// it may be somewhat faster, never much slower); and the pieces hold the operator's
+/// logic: their logic cells, less the harness's registers, add up to the whole's.
+#[test]
+#[ignore = "needs yosys and nextpnr-ice40; about 3 minutes"]
+fn stage_by_stage_agrees_with_the_whole_square_root() {
+    let lib = Library::cyclone_iv_e();
+    let whole = synth::place_and_route_ice40(
+        Operator::Sqrt,
+        &lib,
+        &dir("stages-whole-fp_sqrt"),
+        fmax::THESIS_CLOCK_MHZ,
+        TIMEOUT,
+    )
+    .unwrap_or_else(|e| panic!("{e}"));
+    let report = staged(Operator::Sqrt, "stages-fp_sqrt", 1);
+    let worst = report.fmax_mhz().expect("a stage with logic");
+    eprintln!(
+        "fp_sqrt: whole {:.2} MHz, {} logic cells; worst stage {worst:.2} MHz",
+        whole.fmax_mhz, whole.logic_cells
+    );
+    assert!(
+        worst >= 0.9 * whole.fmax_mhz && worst <= 1.3 * whole.fmax_mhz,
+        "worst stage {worst:.2} MHz, whole {:.2} MHz",
+        whole.fmax_mhz
+    );
+    // The pieces hold the operator's logic once: their logic cells are at least the
+    // whole's, and at most the whole's plus their harnesses' registers (one per input,
+    // two per output, the load; iCE40 packs some of them beside a LUT), within 10 %.
+    let (mut cells, mut harness) = (0u64, 0u64);
+    for p in &report.pieces {
+        if let Some(r) = &p.routed {
+            cells += r.logic_cells;
+            harness += (p.inputs + 2 * p.outputs + 1) as u64;
+        }
+    }
+    let whole_cells = whole.logic_cells as f64;
+    eprintln!("fp_sqrt: pieces {cells} logic cells, harnesses at most {harness}");
+    assert!(
+        cells as f64 >= 0.9 * whole_cells && cells as f64 <= 1.1 * whole_cells + harness as f64,
+        "pieces {cells} logic cells (harnesses {harness}), whole {}",
+        whole.logic_cells
+    );
+}
+
+/// Congestion: the operators larger than the HX8K in a few large pieces, each about
+/// half of the device or more (the divider in 8 + 7 stages, the inverse square root in
+/// 10 + 10 + 8), close 50 MHz as well; their stages placed one by one reach about
+/// 65 MHz, so the figures show what routing congestion costs.
+#[test]
+#[ignore = "needs yosys and nextpnr-ice40; about 6 minutes"]
+fn the_operators_larger_than_the_hx8k_close_50_mhz_in_large_pieces() {
+    let mut failures = Vec::new();
+    for (op, stages, pieces) in [(Operator::Divide, 8, 2), (Operator::InvSqrt, 10, 3)] {
+        let name = op.module_name();
+        let report = staged(op, &format!("stages-{stages}-{name}"), stages);
+        assert_eq!(report.pieces.len(), pieces);
+        for p in &report.pieces {
+            let r = p.routed.as_ref().expect("logic in each piece");
+            assert!(r.logic_cells <= r.device_logic_cells, "{p:?}");
+            if r.fmax_mhz < fmax::THESIS_CLOCK_MHZ {
+                failures.push(format!(
+                    "{name} stages {}..{}: {:.2} MHz (log: {})",
+                    p.first_stage,
+                    p.last_stage,
+                    r.fmax_mhz,
+                    r.log.display()
+                ));
             }
         }
     }

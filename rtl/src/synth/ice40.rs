@@ -13,11 +13,14 @@
 //!
 //! ```text
 //! yosys -p "read_verilog ...; synth_ice40 -top pnr_top -json pnr.json"
-//! nextpnr-ice40 --hx8k --package ct256 --json pnr.json --freq <MHz> --seed 1 -l pnr.log
+//! nextpnr-ice40 --hx8k --package ct256 --json pnr.json --freq <MHz> --timing-allow-fail \
+//!     --seed 1 -l pnr.log
 //! ```
 //!
 //! nextpnr places the I/O itself (no constraints file); the clock's Fmax is the last
-//! `Max frequency for clock` line of its log (the one after routing).
+//! `Max frequency for clock` line of its log (the one after routing). An operator
+//! larger than the device is placed and routed stage by stage instead
+//! ([`super::stages`]), through the same [`synth_and_route`].
 
 use std::fs;
 use std::path::{Path, PathBuf};
@@ -35,7 +38,8 @@ use crate::operators::{Operator, write_atomically};
 pub const DEVICE: &str = "hx8k";
 pub const PACKAGE: &str = "ct256";
 
-const TOP: &str = "pnr_top";
+/// The top module of every design placed and routed here.
+pub(super) const TOP: &str = "pnr_top";
 const JSON: &str = "pnr.json";
 const YOSYS_LOG: &str = "yosys.log";
 const PNR_LOG: &str = "pnr.log";
@@ -82,6 +86,46 @@ pub fn place_and_route_ice40(
     }
     let top = write_atomically(&src.join("pnr_top.v"), &wrapper(op, library)?)?;
     reads.push_str(&format!("read_verilog {}; ", quote(&top)?));
+    let routed = synth_and_route(dir, &reads, target_mhz, timeout, op.module_name())?;
+    Ok(PnrReport {
+        module: op.module_name().to_string(),
+        latency: op.latency(library),
+        target_mhz,
+        fmax_mhz: routed.fmax_mhz,
+        logic_cells: routed.logic_cells,
+        device_logic_cells: routed.device_logic_cells,
+        synth_seconds: routed.synth_seconds,
+        pnr_seconds: routed.pnr_seconds,
+        log: routed.log,
+    })
+}
+
+/// What one run of [`synth_and_route`] measured.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct Routed {
+    /// The Fmax after routing, MHz.
+    pub fmax_mhz: f64,
+    /// Logic cells used and the device's.
+    pub logic_cells: u64,
+    pub device_logic_cells: u64,
+    /// Wall time of synthesis and of place and route, seconds.
+    pub synth_seconds: f64,
+    pub pnr_seconds: f64,
+    /// nextpnr's log.
+    pub log: PathBuf,
+}
+
+/// Runs, in `dir`, `<reads>synth_ice40 -top pnr_top` and nextpnr-ice40 on the HX8K at
+/// `target_mhz` (`--timing-allow-fail`: a design that misses the target still gets its
+/// Fmax), each tool within `timeout`; `what` names the design in errors. The reads
+/// must define a module `pnr_top`.
+pub(super) fn synth_and_route(
+    dir: &Path,
+    reads: &str,
+    target_mhz: f64,
+    timeout: Duration,
+    what: &str,
+) -> Result<Routed, RtlError> {
     let script = format!("{reads}synth_ice40 -top {TOP} -json {JSON}");
     let (status, synth_seconds) = run_limited(
         "yosys",
@@ -89,14 +133,13 @@ pub fn place_and_route_ice40(
         &["-q", "-l", YOSYS_LOG, "-p", &script],
         dir,
         timeout,
-        &format!("synth_ice40 of `{}`", op.module_name()),
+        &format!("synth_ice40 of `{what}`"),
     )?;
     if !status.success() {
         return Err(RtlError::Tool {
             tool: "yosys",
             message: format!(
-                "synth_ice40 of `{}` failed ({status}; log: {})",
-                op.module_name(),
+                "synth_ice40 of `{what}` failed ({status}; log: {})",
                 dir.join(YOSYS_LOG).display()
             ),
         });
@@ -113,6 +156,7 @@ pub fn place_and_route_ice40(
             JSON,
             "--freq",
             &freq,
+            "--timing-allow-fail",
             "--seed",
             "1",
             "-l",
@@ -120,7 +164,7 @@ pub fn place_and_route_ice40(
         ],
         dir,
         timeout,
-        &format!("nextpnr-ice40 of `{}`", op.module_name()),
+        &format!("nextpnr-ice40 of `{what}`"),
     )?;
     let log = dir.join(PNR_LOG);
     let text = fs::read_to_string(&log).map_err(io(&log))?;
@@ -129,8 +173,7 @@ pub fn place_and_route_ice40(
         return Err(RtlError::Tool {
             tool: "nextpnr-ice40",
             message: format!(
-                "place and route of `{}` failed ({status}; log: {}):\n{}",
-                op.module_name(),
+                "place and route of `{what}` failed ({status}; log: {}):\n{}",
                 log.display(),
                 errors.join("\n")
             ),
@@ -141,10 +184,7 @@ pub fn place_and_route_ice40(
             tool: "nextpnr-ice40",
             message: format!("{}: {problem}", log.display()),
         })?;
-    Ok(PnrReport {
-        module: op.module_name().to_string(),
-        latency: op.latency(library),
-        target_mhz,
+    Ok(Routed {
         fmax_mhz,
         logic_cells,
         device_logic_cells,
@@ -154,7 +194,7 @@ pub fn place_and_route_ice40(
     })
 }
 
-fn quote(path: &Path) -> Result<String, RtlError> {
+pub(super) fn quote(path: &Path) -> Result<String, RtlError> {
     let absolute = std::path::absolute(path).map_err(io(path))?;
     absolute
         .to_str()
@@ -173,7 +213,7 @@ fn port_width(op: Operator, port: &str) -> u32 {
 }
 
 /// `pnr_top`: the operator at its library latency with every input registered.
-fn wrapper(op: Operator, library: &Library) -> Result<String, RtlError> {
+pub(super) fn wrapper(op: Operator, library: &Library) -> Result<String, RtlError> {
     let ports = op.ports();
     let (output, inputs) = ports.split_last().unwrap_or((&"y", &[]));
     let data: Vec<&str> = inputs.iter().copied().filter(|p| *p != "clk").collect();

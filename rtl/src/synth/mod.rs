@@ -3,7 +3,8 @@
 //!
 //! Timing lives beside it: [`depth`] measures the longest path between registers in
 //! LUT levels (Yosys's default script, flattened), [`fmax`] turns it into an estimated
-//! clock, [`ice40`] places and routes an operator with nextpnr-ice40 for a measured one.
+//! clock, [`ice40`] places and routes an operator with nextpnr-ice40 for a measured one,
+//! and [`stages`] one larger than the device, stage by stage.
 //!
 //! [`synthesize`] writes a Yosys script into a directory and runs
 //! `yosys -q -l synth.log -s synth.ys` there: `read_verilog` of the files, then
@@ -76,11 +77,14 @@ pub mod depth;
 pub mod fmax;
 pub mod ice40;
 mod run;
+mod stage_cut;
+pub mod stages;
 pub use comparison::{
     FLOW, SynthComparison, SynthPlan, WHOLE_DESIGN, cache_dir, recall, remember, synthesize_design,
 };
 pub use depth::{DepthReport, LongestPath, MAX_LUT_LEVELS, logic_depth, operator_depth};
 pub use ice40::{PnrReport, place_and_route_ice40};
+pub use stages::{StagePiece, StagedPnrReport, place_and_route_stages};
 
 /// The device family passed to `synth_intel`.
 pub const FAMILY: &str = "cycloneive";
