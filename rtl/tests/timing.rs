@@ -134,7 +134,8 @@ fn fp_mul_places_and_routes_at_50_mhz_on_an_ice40() {
         fmax::THESIS_CLOCK_MHZ,
         TIMEOUT,
     )
-    .unwrap_or_else(|e| panic!("{e}"));
+    .unwrap_or_else(|e| panic!("{e}"))
+    .routed;
     eprintln!(
         "fp_mul on iCE40 {}: {:.2} MHz after routing, {} of {} logic cells, synthesis {:.0} s, place and route {:.0} s",
         synth::ice40::DEVICE,
@@ -212,7 +213,7 @@ fn every_clocked_operator_places_and_routes_on_an_ice40() {
             TIMEOUT,
         );
         let too_large = LARGER_THAN_THE_HX8K.contains(&op);
-        match pnr {
+        match pnr.map(|p| p.routed) {
             Ok(r) => {
                 eprintln!(
                     "| {name} | {} | {} | {} | {} | {:.1} MHz | {} | {:.1} MHz |",
@@ -347,7 +348,8 @@ fn stage_by_stage_agrees_with_the_whole_square_root() {
         fmax::THESIS_CLOCK_MHZ,
         TIMEOUT,
     )
-    .unwrap_or_else(|e| panic!("{e}"));
+    .unwrap_or_else(|e| panic!("{e}"))
+    .routed;
     let report = staged(Operator::Sqrt, "stages-fp_sqrt", 1);
     let worst = report.fmax_mhz().expect("a stage with logic");
     eprintln!(

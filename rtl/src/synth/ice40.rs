@@ -53,16 +53,9 @@ pub struct PnrReport {
     pub latency: u32,
     /// The clock nextpnr was asked to meet, MHz.
     pub target_mhz: f64,
-    /// The Fmax after routing, MHz.
-    pub fmax_mhz: f64,
-    /// Logic cells used and the device's.
-    pub logic_cells: u64,
-    pub device_logic_cells: u64,
-    /// Wall time of synthesis and of place and route, seconds.
-    pub synth_seconds: f64,
-    pub pnr_seconds: f64,
-    /// nextpnr's log.
-    pub log: PathBuf,
+    /// What the run measured: Fmax, logic cells, times, the log.
+    #[serde(flatten)]
+    pub routed: Routed,
 }
 
 /// Places and routes `op` at its latency in `library`, inputs registered, aiming at
@@ -91,12 +84,7 @@ pub fn place_and_route_ice40(
         module: op.module_name().to_string(),
         latency: op.latency(library),
         target_mhz,
-        fmax_mhz: routed.fmax_mhz,
-        logic_cells: routed.logic_cells,
-        device_logic_cells: routed.device_logic_cells,
-        synth_seconds: routed.synth_seconds,
-        pnr_seconds: routed.pnr_seconds,
-        log: routed.log,
+        routed,
     })
 }
 
