@@ -198,3 +198,46 @@ fn count_states_lane_utilization_and_bvh_quality() {
         "{brute}"
     );
 }
+
+/// `--diffuse-only` (the thesis hardware's shading: the first light's Lambert term and
+/// nothing else; the mode issue 37's peer race loses in) reaches `count` and its maps:
+/// the same eye rays as full shading and no other ray, where full shading on balls
+/// (three lights, reflective spheres) traces shadow and reflection rays; and the maps,
+/// rendered the same way, still sum to the counters.
+#[test]
+fn diffuse_only_counts_and_maps_agree_and_trace_no_secondary_rays() {
+    let dir = scratch("diffuse");
+    let dir_arg = dir.to_string_lossy().into_owned();
+    let base = ["count", "spd:balls:2", "--variant", "bvh", "--size", "12x8"];
+    let counts = |extra: &[&str]| -> serde_json::Value {
+        serde_json::from_str(&rtprof(&[&base[..], extra, &["--json"]].concat()))
+            .unwrap_or_else(|e| panic!("{e}"))
+    };
+    let at = |json: &serde_json::Value, key: &str| -> u64 {
+        key.split('.')
+            .fold(json, |v, k| &v[k])
+            .as_u64()
+            .unwrap_or_else(|| panic!("{key} in count --json"))
+    };
+    let full = counts(&[]);
+    let diffuse = counts(&["--diffuse-only"]);
+    assert!(at(&full, "rays.reflection") > 0);
+    assert!(at(&full, "rays.shadow") > at(&full, "rays.primary"));
+    assert_eq!(
+        at(&diffuse, "rays.reflection") + at(&diffuse, "rays.refraction"),
+        0
+    );
+    assert_eq!(at(&diffuse, "rays.shadow"), 0);
+    assert_eq!(at(&diffuse, "rays.primary"), at(&full, "rays.primary"));
+    assert!(at(&diffuse, "accel.nodes_visited") < at(&full, "accel.nodes_visited"));
+    rtprof(&[&base[..], &["--diffuse-only", "--pixel-stats", &dir_arg]].concat());
+    for key in [
+        "accel.nodes_visited",
+        "accel.leaves_visited",
+        "tests.sphere.tests",
+    ] {
+        let (_, _, values) = read_npy(&dir.join(format!("{key}.npy")));
+        assert_eq!(values.iter().sum::<u64>(), at(&diffuse, key), "{key}");
+    }
+    let _ = std::fs::remove_dir_all(&dir);
+}

@@ -12,8 +12,8 @@ use std::path::Path;
 use results::pixel_stats::{PIXEL_STATS_SCHEMA, PixelMap, PixelStats};
 use tracer::counter::{COUNTERS, CounterDef, STAT_COUNT};
 use tracer::{
-    Count, Counter, NoCount, RenderOptions, Rendered, SampleStats, Sampling, ShadingMode,
-    VariantSet, render_variant_until,
+    Count, Counter, NoCount, RenderOptions, Rendered, SampleStats, Sampling, VariantSet,
+    render_variant_until,
 };
 
 use std::sync::atomic::AtomicBool;
@@ -338,7 +338,7 @@ pub fn write_maps_of_render(
     settings: &RenderSettings,
     dir: &Path,
 ) -> Result<String, RunError> {
-    let options = settings.options(&counted.scene, ShadingMode::Color);
+    let options = settings.options(&counted.scene, counted.mode);
     let pool = thread_pool(settings.threads)?;
     let never = AtomicBool::new(false);
     let setup = RenderSetup {

@@ -136,6 +136,9 @@ pub struct SceneRender<C> {
     pub tracing: Duration,
     pub threads: usize,
     pub variants: VariantSet,
+    /// The shading it used (`rtprof count --pixel-stats` renders its maps the same way,
+    /// so that they sum to its counters).
+    pub mode: ShadingMode,
     /// Bytes of the intersection structure the variant built (0: none).
     pub accelerator_bytes: usize,
     /// The BVH's figures when the variant built one.
@@ -191,6 +194,7 @@ pub fn render_scene<C: tracer::RenderWith>(
         tracing: out.tracing,
         threads: workers.threads(),
         variants: req.variants.clone(),
+        mode: req.mode,
         accelerator_bytes: out.accelerator_bytes,
         bvh: out.bvh,
     })

@@ -2,15 +2,17 @@
 //! `--pixel-stats DIR` writes the per-pixel maps of the counts and of the time
 //! (`runner::pixel_maps`).
 
-use super::scene_args::SceneArgs;
+use super::scene_args::{SceneArgs, ShadingFlags};
 use anyhow::{Context, Result};
 use std::path::PathBuf;
-use tracer::{Count, ShadingMode};
+use tracer::Count;
 
 #[derive(clap::Args, Debug)]
 pub struct CountArgs {
     #[command(flatten)]
     scene: SceneArgs,
+    #[command(flatten)]
+    shading: ShadingFlags,
     /// Print the counts as JSON (keys are the counter names: {"rays": {"primary": N, …}, …}).
     #[arg(long)]
     json: bool,
@@ -26,7 +28,7 @@ pub fn run(args: &CountArgs) -> Result<()> {
     let per_sample = args.pixel_stats.is_some();
     let run = args
         .scene
-        .run_with::<Count>(ShadingMode::Color, per_sample)?;
+        .run_with::<Count>(args.shading.mode(), per_sample)?;
     let counts = run
         .rendered
         .counts()

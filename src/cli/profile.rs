@@ -6,7 +6,7 @@
 use anyhow::{Context, Result};
 use runner::pool::thread_pool;
 use runner::profile_job::{DEFAULT_MIN_SAMPLES, ProfileJob};
-use runner::render_job::RenderSettings;
+use runner::render_job::{RenderSettings, ShadingFlags};
 use runner::scene_input::SceneInput;
 use std::path::PathBuf;
 use terminal::progress::Bars;
@@ -24,6 +24,8 @@ pub struct ProfileArgs {
     diff_with: Option<String>,
     #[command(flatten)]
     render: RenderSettings,
+    #[command(flatten)]
+    shading: ShadingFlags,
     /// Sampling rate asked of the timer, Hz of CPU time [default: 4000 with the perf
     /// cpu-clock timer, 1000 with setitimer, which delivers at most the kernel's tick
     /// rate; times use the measured CPU time per sample]. RTPROF_SAMPLER=auto|perf|setitimer
@@ -58,7 +60,7 @@ pub fn run(args: &ProfileArgs) -> Result<()> {
         .map(VariantSet::parse)
         .transpose()?;
     let scene = args.scene.load(&args.render.limits)?;
-    let options = args.render.options(&scene, tracer::ShadingMode::Color);
+    let options = args.render.options(&scene, args.shading.mode());
     let dir = args
         .output
         .clone()
