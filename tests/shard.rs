@@ -228,3 +228,32 @@ fn bad_shards_are_one_line_errors_with_exit_2() {
     }
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+/// The timed renders' threads: one when neither the definition (the tiny suite has no
+/// `timing_threads`) nor the command line says, as many as `--threads` asks otherwise;
+/// recorded as `suite.threads`, the machine's peak measured on the same threads (the
+/// roof the timed renders are set under), and said so in summary.md.
+#[test]
+fn the_timed_renders_run_on_one_thread_unless_asked() {
+    let dir = scratch("timed-threads");
+    let suite = dir.join("suite.toml");
+    std::fs::write(&suite, SUITE).unwrap();
+    for (asked, expected, says) in [
+        (None, 1, "timed on 1 thread"),
+        (Some("2"), 2, "timed on 2 threads"),
+    ] {
+        let out = dir.join(format!("out-{expected}"));
+        let (suite_arg, out_arg) = (p(&suite), p(&out));
+        let mut args = vec!["suite", &suite_arg, "-o", &out_arg, "--no-pdf"];
+        if let Some(n) = asked {
+            args.extend(["--threads", n]);
+        }
+        ok(&args);
+        let r = read(&out.join("results.json"));
+        assert_eq!(r["suite"]["threads"], expected, "{asked:?}");
+        assert_eq!(r["peak"]["threads"], expected, "{asked:?}");
+        let summary = std::fs::read_to_string(out.join("summary.md")).unwrap();
+        assert!(summary.contains(says), "{asked:?}: {summary}");
+    }
+    let _ = std::fs::remove_dir_all(&dir);
+}

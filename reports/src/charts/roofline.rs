@@ -184,7 +184,7 @@ fn caption(peak: Option<&MachinePeak>, points: &[RooflinePoint<'_>]) -> String {
     let (simd, scalar) = (kinds(CodeKind::Simd), kinds(CodeKind::Scalar));
     let l1 = peak.cache_bandwidth_gbs > 0.0;
     text += if l1 {
-        " Solid roofs: the L1 bandwidth (STREAM triad within the cache) times the intensity, up to the compute peaks, each measured on the suite's threads; dashed: the DRAM bandwidth's slope, which a point above it beat by reading from the caches."
+        " Solid roofs: the L1 bandwidth (STREAM triad within the cache) times the intensity, up to the compute peaks, each measured on the timed renders' threads; dashed: the DRAM bandwidth's slope, which a point above it beat by reading from the caches."
     } else {
         " Solid roofs: the DRAM bandwidth (STREAM triad) times the intensity, up to the compute peaks (this file has no L1 bandwidth, so DRAM's is the bandwidth roof)."
     };

@@ -85,7 +85,7 @@ fn peaks_line(peak: &MachinePeak) -> String {
         ),
     };
     format!(
-        "The machine's peaks, measured on the suite's {}: {compute}; {bandwidths}. A render's bytes count every record it reads, wherever it is found (the cache-aware roofline), so the fastest bandwidth bounds them. Each render is set against the one roof that applies to it: the lower of its code's compute peak (SIMD for the variants that test in SIMD lanes, scalar for the others) and the {} bandwidth times its intensity; {ridges}. The shares below, in the text and the table, are of that roof.{}",
+        "The machine's peaks, measured on {} as the timed renders run: {compute}; {bandwidths}. A render's bytes count every record it reads, wherever it is found (the cache-aware roofline), so the fastest bandwidth bounds them. Each render is set against the one roof that applies to it: the lower of its code's compute peak (SIMD for the variants that test in SIMD lanes, scalar for the others) and the {} bandwidth times its intensity; {ridges}. The shares below, in the text and the table, are of that roof.{}",
         format::plural(peak.threads as usize, "thread"),
         if peak.cache_bandwidth_gbs > 0.0 {
             "L1"
