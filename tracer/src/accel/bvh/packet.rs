@@ -152,10 +152,7 @@ fn packet_search<C: Counter, const FROM_EYE: bool, const ANY: bool, const AVX2: 
     if bvh.nodes.is_empty() || n == 0 {
         return;
     }
-    let mut slabs = [Slab::new(&rays[0]); PACKET];
-    for (slab, ray) in slabs.iter_mut().zip(rays).skip(1) {
-        *slab = Slab::new(ray);
-    }
+    let slabs = Slab::packet(&rays[..n]);
     let reach = *t_max;
     let mut t_max = *t_max;
     let mut searching = (1u32 << n) - 1;
@@ -261,13 +258,12 @@ fn packet_search<C: Counter, const FROM_EYE: bool, const ANY: bool, const AVX2: 
             top -= 1;
             // SAFETY: entries below `top` were written (see above).
             let waiting = unsafe { stack[top].assume_init() };
+            // Every ray's test at once (no branch per ray), then the entry's rays.
             let mut reach = 0;
-            let mut bits = waiting.rays;
-            while bits != 0 {
-                let r = bits.trailing_zeros();
-                bits &= bits - 1;
-                reach |= u32::from(waiting.t <= t_max[r as usize]) << r;
+            for (r, &t_max) in t_max.iter().enumerate() {
+                reach |= u32::from(waiting.t <= t_max) << r;
             }
+            reach &= waiting.rays;
             if reach != 0 {
                 current = Pending {
                     rays: reach,

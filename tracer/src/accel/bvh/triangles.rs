@@ -233,7 +233,7 @@ impl TrianglePack {
 
 /// Each lane's hit distance in a pack of triangles (infinite where it misses), testing
 /// the pack's live lanes against the query's reach `(t_min, reach)`; `None` when no
-/// lane's plane is hit in reach. `avx2`: the CPU has AVX2 (the wide BVH's flag).
+/// lane hits. `avx2`: the CPU has AVX2 (the wide BVH's flag).
 #[inline(always)]
 pub(super) fn triangle_pack<C: Counter, const FROM_EYE: bool>(
     pack: &TrianglePack,
@@ -245,14 +245,14 @@ pub(super) fn triangle_pack<C: Counter, const FROM_EYE: bool>(
 ) -> Option<[f32; WIDTH]> {
     let _phase = C::enter_phase(Phase::TriangleTest);
     #[cfg(target_arch = "x86_64")]
-    let (hit, ranged) = if avx2 {
+    let (hit, ranged, inside) = if avx2 {
         // SAFETY: `avx2` is the wide BVH's flag, set only when the CPU has AVX2.
         unsafe { lanes_avx2(pack, ray, t_min, reach) }
     } else {
         lanes(pack, ray, t_min, reach)
     };
     #[cfg(not(target_arch = "x86_64"))]
-    let (hit, ranged) = {
+    let (hit, ranged, inside) = {
         let _ = avx2;
         lanes(pack, ray, t_min, reach)
     };
@@ -269,29 +269,29 @@ pub(super) fn triangle_pack<C: Counter, const FROM_EYE: bool>(
         c.tally_n(Stat::Scale, ranged);
         c.tally_n(Stat::Add, ranged);
         c.tally_n(Stat::Dot, 3 * ranged);
-        let hits = hit.iter().filter(|t| t.is_finite()).count();
-        c.tally_n(Stat::TriangleHit, hits as u64);
+        c.tally_n(Stat::TriangleHit, u64::from(inside.count_ones()));
     }
-    (ranged != 0).then_some(hit)
+    (inside != 0).then_some(hit)
 }
 
-/// Each lane's hit distance (infinite where it misses) and the lanes whose plane hit
-/// lies in `(t_min, reach)` (bit per lane; unused lanes never do). The polygon's plane
-/// test in its order of operations, then the hit point and the edge functions.
+/// Each lane's hit distance (infinite where it misses), the lanes whose plane hit
+/// lies in `(t_min, reach)` and the lanes that hit (bits per lane; unused lanes never
+/// do). The polygon's plane test in its order of operations, then the hit point and the
+/// edge functions.
 #[inline(always)]
 fn lanes<const FROM_EYE: bool>(
     pack: &TrianglePack,
     ray: &Ray<FROM_EYE>,
     t_min: f32,
     reach: f32,
-) -> ([f32; WIDTH], u32) {
+) -> ([f32; WIDTH], u32, u32) {
     let [ox, oy, oz] = ray.origin.to_array();
     let [dx, dy, dz] = ray.dir.to_array();
     let [nx, ny, nz] = &pack.normal;
     let [vx, vy, vz] = &pack.v0;
     let [e0, e1, e2] = &pack.edges;
     let mut hit = [f32::INFINITY; WIDTH];
-    let mut ranged = 0u32;
+    let (mut ranged, mut hits) = (0u32, 0u32);
     for i in 0..WIDTH {
         let (wx, wy, wz) = (ox - vx[i], oy - vy[i], oz - vz[i]);
         let along = dx * nx[i] + dy * ny[i] + dz * nz[i];
@@ -304,9 +304,10 @@ fn lanes<const FROM_EYE: bool>(
         ranged |= u32::from(in_range) << i;
         if in_range && inside {
             hit[i] = t;
+            hits |= 1 << i;
         }
     }
-    (hit, ranged)
+    (hit, ranged, hits)
 }
 
 /// [`lanes`] in AVX instructions, the same operations in the same order (no fused
@@ -321,7 +322,7 @@ unsafe fn lanes_avx2<const FROM_EYE: bool>(
     ray: &Ray<FROM_EYE>,
     t_min: f32,
     reach: f32,
-) -> ([f32; WIDTH], u32) {
+) -> ([f32; WIDTH], u32, u32) {
     use std::arch::x86_64::{
         __m256, _CMP_GE_OQ, _CMP_GT_OQ, _CMP_LT_OQ, _mm256_add_ps, _mm256_and_ps, _mm256_blendv_ps,
         _mm256_cmp_ps, _mm256_div_ps, _mm256_load_ps, _mm256_movemask_ps, _mm256_mul_ps,
@@ -352,7 +353,7 @@ unsafe fn lanes_avx2<const FROM_EYE: bool>(
         let ranged = _mm256_movemask_ps(in_range) as u32;
         let mut hit = [f32::INFINITY; WIDTH];
         if ranged == 0 {
-            return (hit, 0);
+            return (hit, 0, 0);
         }
         let p = [0, 1, 2].map(|a| _mm256_add_ps(o[a], _mm256_mul_ps(d[a], t)));
         let zero = _mm256_setzero_ps();
@@ -364,7 +365,7 @@ unsafe fn lanes_avx2<const FROM_EYE: bool>(
         }
         let t = _mm256_blendv_ps(_mm256_set1_ps(f32::INFINITY), t, inside);
         _mm256_storeu_ps(hit.as_mut_ptr(), t);
-        (hit, ranged)
+        (hit, ranged, _mm256_movemask_ps(inside) as u32)
     }
 }
 

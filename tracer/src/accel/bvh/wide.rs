@@ -606,10 +606,20 @@ fn closest_lane(
     mut bound: HitBound,
     any: bool,
 ) -> Option<(f32, usize)> {
-    let mut best = None;
+    // The lanes at or within the bound first, without a branch per lane (most packs
+    // have none or one): only those are looked at in turn.
+    // A bound at an infinite reach has no primitive, so a missing lane never ties.
+    let ties = bound.prim.is_some();
+    let mut near = 0u32;
     for (lane, &tl) in t.iter().enumerate() {
-        // A bound at an infinite reach has no primitive, so a missing lane never ties.
-        if tl <= bound.t && bound.admits(tl, prim(lane)) {
+        near |= u32::from((tl < bound.t) | (ties & (tl == bound.t))) << lane;
+    }
+    let mut best = None;
+    while near != 0 {
+        let lane = near.trailing_zeros() as usize;
+        near &= near - 1;
+        let tl = t[lane];
+        if bound.admits(tl, prim(lane)) {
             if any {
                 return Some((tl, lane));
             }
@@ -639,6 +649,27 @@ impl Slab {
             origin: ray.origin.0.to_array(),
             inv_dir: inv_dir.to_array(),
         }
+    }
+
+    /// The constants of up to [`PACKET`](super::PACKET) rays (the rest unused), each
+    /// the same as [`Slab::new`]'s: the reciprocals are taken axis by axis across the
+    /// rays, so that they are computed in lanes, one division per axis.
+    #[inline(always)]
+    pub(super) fn packet<const FROM_EYE: bool>(rays: &[Ray<FROM_EYE>]) -> [Self; super::PACKET] {
+        let mut dir = [[1.0f32; super::PACKET]; 3];
+        let mut origin = [[0.0f32; 3]; super::PACKET];
+        for (i, ray) in rays.iter().take(super::PACKET).enumerate() {
+            let d = ray.dir.to_array();
+            for axis in 0..3 {
+                dir[axis][i] = d[axis];
+            }
+            origin[i] = ray.origin.to_array();
+        }
+        let inv = dir.map(|row| row.map(|x| 1.0 / x));
+        std::array::from_fn(|i| Slab {
+            origin: origin[i],
+            inv_dir: [inv[0][i], inv[1][i], inv[2][i]],
+        })
     }
 
     /// Which children's boxes the ray enters inside `(t_min, t_max)` (bit per lane)

@@ -204,3 +204,29 @@ fn sphere_packs_count_their_live_lanes() {
     // Every sphere meets the ray (disc > 0): three square roots.
     assert_eq!(c.get(Stat::Sqrt), 3);
 }
+
+#[test]
+fn a_packets_slabs_are_each_rays_own_bit_for_bit() {
+    // Directions with zero, negative and tiny components (infinite and huge
+    // reciprocals), in packets of every length.
+    let mut all = rays();
+    for dir in [
+        Vec3::new(0.0, 0.0, -1.0),
+        Vec3::new(-0.0, 1.0, 0.0),
+        Vec3::new(1e-30, -3.0, 7.0),
+    ] {
+        all.push(Ray {
+            origin: Vec3::new(1.0, -2.0, 3.0),
+            dir,
+        });
+    }
+    let bits = |s: &Slab| (s.origin.map(f32::to_bits), s.inv_dir.map(f32::to_bits));
+    for n in 1..=super::super::PACKET {
+        for group in all.chunks(n) {
+            let packet = Slab::packet(group);
+            for (ray, slab) in group.iter().zip(&packet) {
+                assert_eq!(bits(slab), bits(&Slab::new(ray)), "{ray:?}");
+            }
+        }
+    }
+}
