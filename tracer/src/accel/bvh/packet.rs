@@ -152,7 +152,7 @@ fn packet_search<C: Counter, const FROM_EYE: bool, const ANY: bool, const AVX2: 
     if bvh.nodes.is_empty() || n == 0 {
         return;
     }
-    let slabs = Slab::packet(&rays[..n]);
+    let slabs: [Slab; PACKET] = Slab::packet(&rays[..n]);
     let reach = *t_max;
     let mut t_max = *t_max;
     let mut searching = (1u32 << n) - 1;

@@ -651,14 +651,16 @@ impl Slab {
         }
     }
 
-    /// The constants of up to [`PACKET`](super::PACKET) rays (the rest unused), each
-    /// the same as [`Slab::new`]'s: the reciprocals are taken axis by axis across the
-    /// rays, so that they are computed in lanes, one division per axis.
+    /// The constants of up to `N` rays (a packet; the rest unused), each the same as
+    /// [`Slab::new`]'s: the reciprocals are taken axis by axis across the rays, so that
+    /// they are computed in lanes, one division per axis.
     #[inline(always)]
-    pub(super) fn packet<const FROM_EYE: bool>(rays: &[Ray<FROM_EYE>]) -> [Self; super::PACKET] {
-        let mut dir = [[1.0f32; super::PACKET]; 3];
-        let mut origin = [[0.0f32; 3]; super::PACKET];
-        for (i, ray) in rays.iter().take(super::PACKET).enumerate() {
+    pub(super) fn packet<const FROM_EYE: bool, const N: usize>(
+        rays: &[Ray<FROM_EYE>],
+    ) -> [Self; N] {
+        let mut dir = [[1.0f32; N]; 3];
+        let mut origin = [[0.0f32; 3]; N];
+        for (i, ray) in rays.iter().take(N).enumerate() {
             let d = ray.dir.to_array();
             for axis in 0..3 {
                 dir[axis][i] = d[axis];
