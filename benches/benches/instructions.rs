@@ -1,14 +1,20 @@
-//! Instruction counts of the `sqrt` and `intersect` kernels under valgrind (gungraun
-//! runs each benchmark once under callgrind and counts only the benchmark function).
+//! Instruction counts of the `sqrt` and `intersect` kernels and of a small whole frame
+//! per variant, under valgrind (gungraun runs each benchmark once under callgrind and
+//! counts only the benchmark function).
 //!
 //! Unlike wall time these counts are the same on every run, whatever else the machine
 //! is doing, so they can gate a change on a noisy machine. They are not time: a bit
 //! trick can execute more instructions than `sqrtss` and still finish sooner, because
 //! it has no long-latency divider step and vectorizes; the report shows both columns.
 //!
-//! Each benchmark does exactly the work of the criterion benchmark of the same id in
-//! the `groups` target (same 4096 inputs, same primitives and rays), so the counts sit
-//! beside criterion's estimates. The id mapping: a function `intersect_sphere` with
+//! Each `sqrt` and `intersect` benchmark does exactly the work of the criterion
+//! benchmark of the same id in the `groups` target (same 4096 inputs, same primitives
+//! and rays), so the counts sit beside criterion's estimates. The `frame_*` benchmarks
+//! render [`benches::frame::INSTRUCTION_SCENES`] at 32x24 with each variant, structure
+//! build included, on the calling thread (a render outside any rayon pool runs its rows
+//! there, where callgrind counts them): `frame/rings/simd` is the SIMD lanes of spheres
+//! and cylinders, `frame/teapot/bvh-simd-packets` the packets over triangle lanes. The
+//! repository's performance baseline (`benches/baseline.json`) gates them all. The id mapping: a function `intersect_sphere` with
 //! bench id `hit` is criterion's `intersect/sphere/hit` (the function name's first
 //! `_` separates the group; further `_` become `-`); `sqrt` with `fast_sqrt_tuned` is
 //! `sqrt/fast-sqrt-tuned`.
@@ -17,6 +23,7 @@
 //! `gungraun-runner`), or `cargo bench -p benches --features instructions --bench
 //! instructions` when both are present.
 
+use benches::frame::{instruction_options, render, spd_scene};
 use benches::intersect::{Primitives, Rays, primitives, rays};
 use benches::sqrt::{classic_inverse_sqrt, classic_inverse_sqrt_newton, inputs, std_inverse_sqrt};
 use gungraun::{LibraryBenchmarkConfig, library_benchmark, library_benchmark_group, main};
@@ -24,7 +31,7 @@ use std::hint::black_box;
 use tracer::variants::fast_sqrt::{
     BitTrickSqrt, NewtonBitTrickSqrt, SquareRoot, StdSqrt, TunedBitTrickSqrt,
 };
-use tracer::{NoCount, Ray};
+use tracer::{NoCount, Ray, RenderOptions, Scene, VariantSet};
 
 /// The root every `sqrt` benchmark maps over the inputs; one enum so that each arm
 /// is its own inlined loop, as each criterion closure is.
@@ -149,9 +156,51 @@ fn intersect_plane((p, ray): (&'static Primitives, Ray)) -> Option<f32> {
     black_box(&p.plane).intersect_plane(black_box(&ray), 0.0, f32::INFINITY, &mut NoCount)
 }
 
+/// A scene of [`benches::frame::INSTRUCTION_SCENES`], the frame's options and the
+/// variants, built outside the measured function (the scene leaked, as the primitives
+/// above).
+fn frame_setup(
+    (scene, size_factor): (&str, u32),
+    variant: &str,
+) -> (&'static Scene, RenderOptions, VariantSet) {
+    let variants = VariantSet::parse(variant).unwrap_or_else(|e| panic!("{e}"));
+    let scene: &'static Scene = Box::leak(Box::new(spd_scene(scene, size_factor)));
+    (scene, instruction_options(), variants)
+}
+
+#[library_benchmark]
+#[bench::baseline(setup = frame_setup, args = (("rings", 2), "baseline"))]
+#[bench::simd(setup = frame_setup, args = (("rings", 2), "simd"))]
+#[bench::bvh(setup = frame_setup, args = (("rings", 2), "bvh"))]
+#[bench::bvh_simd(setup = frame_setup, args = (("rings", 2), "bvh+simd"))]
+#[bench::bvh_simd_packets(setup = frame_setup, args = (("rings", 2), "bvh+simd+packets"))]
+#[bench::bounded(setup = frame_setup, args = (("rings", 2), "bounded"))]
+#[bench::fast_sqrt(setup = frame_setup, args = (("rings", 2), "fast-sqrt"))]
+#[bench::ortho(setup = frame_setup, args = (("rings", 2), "ortho"))]
+#[bench::no_rsqrt_shading(setup = frame_setup, args = (("rings", 2), "no-rsqrt-shading"))]
+#[bench::pixel_avg(setup = frame_setup, args = (("rings", 2), "pixel-avg"))]
+fn frame_rings((scene, options, variants): (&'static Scene, RenderOptions, VariantSet)) -> u64 {
+    render::<NoCount>(black_box(scene), &options, &variants)
+}
+
+#[library_benchmark]
+#[bench::baseline(setup = frame_setup, args = (("teapot", 2), "baseline"))]
+#[bench::simd(setup = frame_setup, args = (("teapot", 2), "simd"))]
+#[bench::bvh(setup = frame_setup, args = (("teapot", 2), "bvh"))]
+#[bench::bvh_simd(setup = frame_setup, args = (("teapot", 2), "bvh+simd"))]
+#[bench::bvh_simd_packets(setup = frame_setup, args = (("teapot", 2), "bvh+simd+packets"))]
+fn frame_teapot((scene, options, variants): (&'static Scene, RenderOptions, VariantSet)) -> u64 {
+    render::<NoCount>(black_box(scene), &options, &variants)
+}
+
 library_benchmark_group!(
     name = square_roots;
     benchmarks = sqrt
+);
+
+library_benchmark_group!(
+    name = frames;
+    benchmarks = frame_rings, frame_teapot
 );
 
 library_benchmark_group!(
@@ -167,5 +216,5 @@ library_benchmark_group!(
 
 main!(
     config = LibraryBenchmarkConfig::default();
-    library_benchmark_groups = square_roots, ray_primitive_tests
+    library_benchmark_groups = square_roots, ray_primitive_tests, frames
 );

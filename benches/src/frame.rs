@@ -37,6 +37,33 @@ pub fn scene() -> Scene {
     crate::accel::sphereflake(2)
 }
 
+/// The scenes of the whole-frame instruction counts (`benches/benches/instructions.rs`),
+/// by SPD name and size factor: `rings` has spheres, cylinders and a polygon (the brute
+/// force and SIMD lanes of both quadric kinds), `teapot` patches (the wide BVH's
+/// triangle lanes and the packets). Small, so that a frame under valgrind takes well
+/// under a second.
+pub const INSTRUCTION_SCENES: [(&str, u32); 2] = [("rings", 2), ("teapot", 2)];
+
+/// Frame size of the instruction-count renders.
+pub const INSTRUCTION_WIDTH: u32 = 32;
+pub const INSTRUCTION_HEIGHT: u32 = 24;
+
+/// An SPD scene at a size factor, parsed.
+pub fn spd_scene(name: &str, size_factor: u32) -> Scene {
+    let text = spd::generate(name, Some(size_factor)).unwrap_or_else(|e| panic!("{e}"));
+    tracer::parse_nff(&text, &format!("spd:{name}:{size_factor}")).unwrap_or_else(|e| panic!("{e}"))
+}
+
+/// The render options of the instruction-count frames: full Whitted colour.
+pub fn instruction_options() -> RenderOptions {
+    RenderOptions::new(
+        INSTRUCTION_WIDTH,
+        INSTRUCTION_HEIGHT,
+        Sampling::PixelCenters,
+        ShadingMode::Color,
+    )
+}
+
 /// The group's render options.
 pub fn options() -> RenderOptions {
     RenderOptions::new(WIDTH, HEIGHT, Sampling::PixelCenters, ShadingMode::Color)
@@ -107,5 +134,30 @@ mod tests {
         let uncounted = render::<NoCount>(&scene, &small, &baseline);
         assert!(uncounted > 0);
         assert_eq!(render::<Count>(&scene, &small, &baseline), uncounted);
+    }
+
+    #[test]
+    fn the_instruction_scenes_hold_the_kinds_they_are_chosen_for() {
+        // rings at size factor n: n(n + 1)(2n + 1)/6 objects of 30 spheres and 30
+        // cylinders, and the wall: 5 objects at n = 2. teapot: 64n² - 8n patches = 240
+        // and n² = 4 checker squares.
+        let rings = spd_scene("rings", 2);
+        assert_eq!((rings.spheres.len(), rings.cylinders.len()), (150, 150));
+        assert_eq!(rings.polygons.len(), 1);
+        let teapot = spd_scene("teapot", 2);
+        assert_eq!((teapot.patches.len(), teapot.polygons.len()), (240, 4));
+        // Every variant renders both, uncounted and counted alike.
+        for (name, factor) in INSTRUCTION_SCENES {
+            let scene = spd_scene(name, factor);
+            for variant in VARIANTS {
+                let variants = VariantSet::parse(variant).unwrap_or_else(|e| panic!("{e}"));
+                let options = instruction_options();
+                assert_eq!(
+                    render::<NoCount>(&scene, &options, &variants),
+                    render::<Count>(&scene, &options, &variants),
+                    "{name} {variant}"
+                );
+            }
+        }
     }
 }

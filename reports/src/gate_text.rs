@@ -112,8 +112,10 @@ pub fn instruction_table(gate: &GateReport) -> Option<Table> {
     ]);
     for i in &gate.instructions {
         let pct = i.change * 100.0;
-        let tone = if i.regressed {
+        let tone = if gate.instruction_failed(i) {
             Tone::Bad
+        } else if i.improved {
+            Tone::Good
         } else if i.change == 0.0 {
             Tone::Muted
         } else {
@@ -152,11 +154,29 @@ pub fn headline(gate: &GateReport) -> String {
         t.count_changes
     );
     if !gate.instructions.is_empty() {
+        let threshold = format::percent(gate.instruction_threshold * 100.0, 0);
+        line += &if gate.strict {
+            format!(
+                "; {} of {} instruction counts grew and {} shrank more than {}",
+                t.instructions_regressed,
+                gate.instructions.len(),
+                t.instructions_improved,
+                threshold
+            )
+        } else {
+            format!(
+                "; {} of {} instruction counts grew more than {}",
+                t.instructions_regressed,
+                gate.instructions.len(),
+                threshold
+            )
+        };
+    }
+    if gate.strict {
+        let unmatched = gate.unmatched.len() + gate.instructions_unmatched.len();
         line += &format!(
-            "; {} of {} instruction counts grew more than {}",
-            t.instructions_regressed,
-            gate.instructions.len(),
-            format::percent(gate.instruction_threshold * 100.0, 0)
+            "; strict gate: {} of the scene × variants and benchmarks in one run only",
+            format::count(unmatched as u64)
         );
     }
     line
@@ -237,7 +257,7 @@ fn notes(gate: &GateReport) -> Vec<String> {
             e.verdict
         ));
     }
-    for u in &gate.unmatched {
+    for u in gate.unmatched.iter().chain(&gate.instructions_unmatched) {
         notes.push(format!("only in one run: {u}"));
     }
     notes

@@ -25,6 +25,14 @@
 //! are refused with every reason, and so are runs with no scene × variant in common,
 //! `--force` or not ([`GateError`]); runs that are too short to gate well (`--quick`)
 //! and entries gated on seconds (files without a yardstick) come with a warning.
+//!
+//! **Strict** gates ([`GateOptions::strict`]) hold a run against a baseline kept in a
+//! repository (`benches/baseline.json`, docs/benchmarks.md), measured on another day and
+//! maybe on another machine of the same kind: a change of an instruction count beyond
+//! [`INSTRUCTION_THRESHOLD`] either way fails (an improvement not written into the
+//! baseline would hide the next regression up to it), and so does any scene × variant or
+//! benchmark that only one side has (a baseline that no longer covers the run gates
+//! less than it says); another machine is allowed, with a warning.
 
 use serde::Serialize;
 
@@ -35,9 +43,17 @@ use crate::schema::{Estimate, InstructionCount, Results, SceneResult, VariantRes
 use crate::timing_policy::TimeCovers;
 use crate::variant_name::VariantName;
 
-/// An instruction count that grows by more than this fraction fails the gate: valgrind's
-/// counts repeat exactly for one build; 1 % leaves room for a rebuilt toolchain's noise.
+/// An instruction count that grows by more than this fraction fails the gate (in a
+/// strict gate, one that changes by more either way): valgrind's counts repeat exactly
+/// for one build; 1 % leaves room for a rebuilt toolchain's noise.
 pub const INSTRUCTION_THRESHOLD: f64 = 0.01;
+
+/// The noise threshold of a strict gate's times (a fraction), when none is given: a
+/// baseline in the repository was timed on another day, maybe on another machine of the
+/// same kind, with `--quick` renders of a few milliseconds, so its relative times are
+/// known far less well than two runs' of one afternoon. Measured: docs/benchmarks.md
+/// ("The performance baseline"). The instruction counts are the fine-grained check.
+pub const STRICT_THRESHOLD: f64 = 0.5;
 
 /// Renders shorter than this (an entry's own median time in either run, on the gated
 /// clock) are timed too coarsely for the default threshold: at a millisecond or so,
@@ -156,6 +172,8 @@ pub struct InstructionEntry {
     pub change: f64,
     /// Grew beyond [`INSTRUCTION_THRESHOLD`].
     pub regressed: bool,
+    /// Shrank beyond [`INSTRUCTION_THRESHOLD`] (fails a strict gate only).
+    pub improved: bool,
 }
 
 /// The whole comparison.
@@ -168,6 +186,11 @@ pub struct GateReport {
     pub instructions: Vec<InstructionEntry>,
     /// `scene/variant` present in only one of the runs.
     pub unmatched: Vec<String>,
+    /// Benchmark ids with an instruction count in only one of the runs (`id (old)` or
+    /// `id (new)`), when both runs have instruction counts.
+    pub instructions_unmatched: Vec<String>,
+    /// A strict gate ([`GateOptions::strict`]).
+    pub strict: bool,
     /// What the reader should know about the verdicts (short runs, old files).
     pub warnings: Vec<String>,
     /// Set when the runs' times cover different things (a `/1` file timed
@@ -178,9 +201,19 @@ pub struct GateReport {
 }
 
 impl GateReport {
-    /// True when some entry is slower, changed a count, or an instruction count grew.
+    /// True when some entry is slower, changed a count, or an instruction count grew; in
+    /// a strict gate also when an instruction count shrank beyond the threshold or an
+    /// entry or benchmark is in only one run.
     pub fn failed(&self) -> bool {
-        self.entries.iter().any(Entry::failed) || self.instructions.iter().any(|i| i.regressed)
+        self.entries.iter().any(Entry::failed)
+            || self.instructions.iter().any(|i| self.instruction_failed(i))
+            || (self.strict
+                && !(self.unmatched.is_empty() && self.instructions_unmatched.is_empty()))
+    }
+
+    /// Whether one instruction count fails this gate.
+    pub fn instruction_failed(&self, i: &InstructionEntry) -> bool {
+        i.regressed || (self.strict && i.improved)
     }
 
     /// How many entries got each verdict, and how many changed counts.
@@ -195,6 +228,7 @@ impl GateReport {
             t.count_changes += usize::from(!e.count_changes.is_empty());
         }
         t.instructions_regressed = self.instructions.iter().filter(|i| i.regressed).count();
+        t.instructions_improved = self.instructions.iter().filter(|i| i.improved).count();
         t
     }
 
@@ -217,6 +251,7 @@ pub struct Tally {
     pub within_noise: usize,
     pub count_changes: usize,
     pub instructions_regressed: usize,
+    pub instructions_improved: usize,
 }
 
 /// How to gate.
@@ -226,6 +261,10 @@ pub struct GateOptions {
     pub threshold: f64,
     /// Gate runs that are not comparable anyway (the reasons are kept in the report).
     pub force: bool,
+    /// Against a baseline kept in a repository: instruction counts gated both ways,
+    /// every entry and benchmark required on both sides, another machine allowed (see
+    /// the module documentation).
+    pub strict: bool,
 }
 
 impl Default for GateOptions {
@@ -233,6 +272,7 @@ impl Default for GateOptions {
         GateOptions {
             threshold: analysis::verdict::NOISE_THRESHOLD,
             force: false,
+            strict: false,
         }
     }
 }
@@ -254,6 +294,26 @@ pub enum GateError {
 /// Why two runs cannot be compared: every difference that makes their relative times
 /// or counts mean different things.
 pub fn incomparable(old: &Results, new: &Results) -> Vec<String> {
+    let mut reasons = suite_differences(old, new);
+    if let Some(machine) = machine_difference(old, new) {
+        reasons.push(machine);
+    }
+    reasons
+}
+
+/// Another machine (CPU model or logical CPUs), as a reason.
+fn machine_difference(old: &Results, new: &Results) -> Option<String> {
+    let (m, n) = (&old.machine, &new.machine);
+    (m.cpu_model != n.cpu_model || m.cores != n.cores).then(|| {
+        format!(
+            "machine '{}' ({} CPUs) against '{}' ({} CPUs)",
+            m.cpu_model, m.cores, n.cpu_model, n.cores
+        )
+    })
+}
+
+/// The differences of suite, thread count and frame sizes, as reasons.
+fn suite_differences(old: &Results, new: &Results) -> Vec<String> {
     let mut reasons = Vec::new();
     let (a, b) = (&old.suite, &new.suite);
     if a.name != b.name {
@@ -264,13 +324,6 @@ pub fn incomparable(old: &Results, new: &Results) -> Vec<String> {
     }
     if a.threads != b.threads {
         reasons.push(format!("{} threads against {}", a.threads, b.threads));
-    }
-    let (m, n) = (&old.machine, &new.machine);
-    if m.cpu_model != n.cpu_model || m.cores != n.cores {
-        reasons.push(format!(
-            "machine '{}' ({} CPUs) against '{}' ({} CPUs)",
-            m.cpu_model, m.cores, n.cpu_model, n.cores
-        ));
     }
     let mut sizes = Vec::new();
     for s in &new.scenes {
@@ -294,7 +347,13 @@ pub fn incomparable(old: &Results, new: &Results) -> Vec<String> {
 
 /// Compares `new` against `old`.
 pub fn gate(old: &Results, new: &Results, options: GateOptions) -> Result<GateReport, GateError> {
-    let reasons = incomparable(old, new);
+    // A strict gate's baseline was measured on another day, maybe on another machine of
+    // the same kind: that is its purpose, so it is a warning, not a refusal.
+    let across_machines = machine_difference(old, new).filter(|_| options.strict);
+    let reasons = match across_machines {
+        Some(_) => suite_differences(old, new),
+        None => incomparable(old, new),
+    };
     if !reasons.is_empty() && !options.force {
         return Err(GateError::NotComparable(reasons));
     }
@@ -345,7 +404,14 @@ pub fn gate(old: &Results, new: &Results, options: GateOptions) -> Result<GateRe
             if uncalibrated == 1 { "y" } else { "ies" }
         ));
     }
+    if let Some(machine) = across_machines {
+        warnings.push(format!(
+            "a strict gate across machines ({machine}): relative times move more between machines than between runs on one; the instruction counts do not"
+        ));
+    }
     let instructions = instruction_entries(&old.instructions, &new.instructions);
+    let instructions_unmatched =
+        unmatched_ids(&old.instructions, &new.instructions, options.strict);
     if entries.is_empty() {
         return Err(GateError::NothingInCommon {
             old: scene_list(old),
@@ -359,6 +425,8 @@ pub fn gate(old: &Results, new: &Results, options: GateOptions) -> Result<GateRe
         entries,
         instructions,
         unmatched,
+        instructions_unmatched,
+        strict: options.strict,
         warnings,
         covers_differ: (old_covers != new_covers).then_some((old_covers, new_covers)),
         forced_over: reasons,
@@ -570,7 +638,26 @@ fn instruction_entries(
                 new: n.instructions,
                 change,
                 regressed: change > INSTRUCTION_THRESHOLD,
+                improved: change < -INSTRUCTION_THRESHOLD,
             })
         })
         .collect()
+}
+
+/// The benchmark ids that only one run has an instruction count for, when both have
+/// some (a run without any was simply not measured with the benchmarks), or in a strict
+/// gate whenever the baseline has some (its benchmarks must run).
+fn unmatched_ids(old: &[InstructionCount], new: &[InstructionCount], strict: bool) -> Vec<String> {
+    if old.is_empty() || (new.is_empty() && !strict) {
+        return Vec::new();
+    }
+    let only = |a: &[InstructionCount], b: &[InstructionCount], side: &str| {
+        a.iter()
+            .filter(|x| !b.iter().any(|y| y.id == x.id))
+            .map(|x| format!("{} ({side})", x.id))
+            .collect::<Vec<_>>()
+    };
+    let mut ids = only(old, new, "old");
+    ids.extend(only(new, old, "new"));
+    ids
 }

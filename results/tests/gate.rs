@@ -507,3 +507,122 @@ fn renders_shorter_than_five_milliseconds_need_a_change_of_half_again() {
     assert!(!g.entries[0].short());
     assert_eq!(g.entries[0].verdict, Verdict::Slower);
 }
+
+fn strict() -> GateOptions {
+    GateOptions {
+        threshold: results::gate::STRICT_THRESHOLD,
+        strict: true,
+        ..GateOptions::default()
+    }
+}
+
+fn instructions(counts: &[(&str, u64)]) -> Vec<results::InstructionCount> {
+    counts
+        .iter()
+        .map(|&(id, n)| results::InstructionCount {
+            id: id.into(),
+            instructions: n,
+            estimated_cycles: None,
+            measured: None,
+        })
+        .collect()
+}
+
+#[test]
+fn a_strict_gate_fails_an_instruction_count_that_moved_beyond_one_percent_either_way() {
+    let mut old = run(1.0, 0.2, 0.01, 1000);
+    old.instructions = instructions(&[("frame/rings/simd", 10_000), ("sqrt/std", 500)]);
+    let mut new = old.clone();
+    // 0.9 % fewer: within the threshold, both gates pass.
+    new.instructions = instructions(&[("frame/rings/simd", 9_910), ("sqrt/std", 500)]);
+    assert!(!default_gate(&old, &new).failed());
+    assert!(!gate(&old, &new, strict()).unwrap().failed());
+    // 2 % fewer: an improvement the default gate lets through and the strict one asks
+    // to be written into the baseline.
+    new.instructions = instructions(&[("frame/rings/simd", 9_800), ("sqrt/std", 500)]);
+    assert!(!default_gate(&old, &new).failed());
+    let g = gate(&old, &new, strict()).unwrap();
+    assert!(g.failed());
+    assert_eq!(
+        g.instructions
+            .iter()
+            .map(|i| (i.improved, i.regressed))
+            .collect::<Vec<_>>(),
+        [(true, false), (false, false)]
+    );
+    assert_eq!(g.tally().instructions_improved, 1);
+    // 3.3 times as many (the regression this gate was made for): both fail.
+    new.instructions = instructions(&[("frame/rings/simd", 33_000), ("sqrt/std", 500)]);
+    assert!(default_gate(&old, &new).failed());
+    assert!(gate(&old, &new, strict()).unwrap().failed());
+}
+
+#[test]
+fn a_strict_gate_fails_what_only_one_side_has() {
+    let mut old = run(1.0, 0.2, 0.01, 1000);
+    old.instructions = instructions(&[("frame/rings/simd", 10_000), ("sqrt/std", 500)]);
+    // A variant dropped from the run: listed by both gates, failed by the strict one.
+    let mut new = old.clone();
+    new.scenes[0].variants.pop();
+    assert!(!default_gate(&old, &new).failed());
+    let g = gate(&old, &new, strict()).unwrap();
+    assert!(g.failed());
+    assert_eq!(g.unmatched, vec!["balls3/bvh (old)".to_string()]);
+    // A benchmark dropped, and one added.
+    let mut new = old.clone();
+    new.instructions = instructions(&[("frame/rings/simd", 10_000), ("sqrt/fast-sqrt", 470)]);
+    let g = gate(&old, &new, strict()).unwrap();
+    assert!(g.failed());
+    assert_eq!(
+        g.instructions_unmatched,
+        ["sqrt/std (old)", "sqrt/fast-sqrt (new)"]
+    );
+    assert!(!default_gate(&old, &new).failed());
+    // A run without any benchmark against a baseline that has them: every id is missing.
+    let mut new = old.clone();
+    new.instructions.clear();
+    let g = gate(&old, &new, strict()).unwrap();
+    assert!(g.failed());
+    assert_eq!(g.instructions_unmatched.len(), 2);
+    // The same run: nothing missing, nothing moved.
+    assert!(!gate(&old, &old, strict()).unwrap().failed());
+}
+
+#[test]
+fn a_strict_gate_allows_another_machine_with_a_warning_and_nothing_else() {
+    let old = run(1.0, 0.2, 0.01, 1000);
+    let mut new = old.clone();
+    new.machine.cpu_model = "Intel Xeon".into();
+    assert!(gate(&old, &new, GateOptions::default()).is_err());
+    let g = gate(&old, &new, strict()).unwrap();
+    assert!(!g.failed());
+    assert!(g.forced_over.is_empty());
+    assert!(
+        g.warnings.iter().any(|w| w.contains("across machines")
+            && w.contains("'test cpu' (2 CPUs) against 'Intel Xeon' (2 CPUs)")),
+        "{:?}",
+        g.warnings
+    );
+    // Another thread count is still refused.
+    new.suite.threads = 1;
+    let err = gate(&old, &new, strict()).unwrap_err().to_string();
+    assert!(
+        err.contains("2 threads against 1") && !err.contains("Intel Xeon"),
+        "{err}"
+    );
+}
+
+#[test]
+fn a_strict_gate_calls_slower_only_beyond_half_again() {
+    // bvh ÷ baseline 40 % slower: slower at the default 20 %, within the strict 50 %;
+    // 3.3 times slower fails both.
+    let old = run(1.0, 0.2, 0.01, 1000);
+    let new = run(1.0, 0.28, 0.01, 1000);
+    assert!(default_gate(&old, &new).failed());
+    assert!(!gate(&old, &new, strict()).unwrap().failed());
+    let new = run(1.0, 0.66, 0.01, 1000);
+    let g = gate(&old, &new, strict()).unwrap();
+    assert!(g.failed());
+    assert_eq!(g.entries[1].verdict, Verdict::Slower);
+    assert!((g.entries[1].change.median - 3.3).abs() < 1e-9);
+}

@@ -335,10 +335,7 @@ async fn gate(
         };
         let (old, new) = (id("old")?, id("new")?);
         let (old_results, new_results) = (read_results(&jobs, old)?, read_results(&jobs, new)?);
-        let options = results::gate::GateOptions {
-            threshold: results::NOISE_THRESHOLD,
-            force: false,
-        };
+        let options = results::gate::GateOptions::default();
         let report = results::gate::gate(&old_results, &new_results, options)
             .map_err(|e| ApiError::invalid(e.to_string()))?;
         Ok(Json(serde_json::json!({

@@ -27,23 +27,32 @@ pub struct GateArgs {
 #[derive(clap::Args, Debug)]
 pub struct GateFlags {
     /// Noise threshold in percent: a relative time must change by more than this (and
-    /// its 95 % interval exclude no change) to be slower or faster. The default is the
-    /// measured run-to-run noise (docs/gate.md).
-    #[arg(long, value_name = "PCT", default_value_t = results::NOISE_THRESHOLD * 100.0,
-          value_parser = analysis::verdict::parse_threshold_percent)]
-    threshold: f64,
+    /// its 95 % interval exclude no change) to be slower or faster [default: the
+    /// measured run-to-run noise, 20 % (docs/gate.md); 50 % with --strict].
+    #[arg(long, value_name = "PCT", value_parser = analysis::verdict::parse_threshold_percent)]
+    threshold: Option<f64>,
     /// Gate runs that are not comparable (another suite, frame size, thread count or
     /// machine) anyway; the output says what differs.
     #[arg(long)]
     force: bool,
+    /// Gate against a baseline kept in a repository (benches/baseline.json): instruction
+    /// counts must stay within 1 % either way, every scene × variant and benchmark must
+    /// be in both runs, another machine of the same kind is allowed (docs/benchmarks.md).
+    #[arg(long)]
+    strict: bool,
 }
 
 impl GateFlags {
     /// Gates `new` against `old`; runs that cannot be compared are an error (exit 2).
     pub fn gate(&self, old: &results::Results, new: &results::Results) -> Result<GateReport> {
+        let default = match self.strict {
+            true => results::gate::STRICT_THRESHOLD,
+            false => results::NOISE_THRESHOLD,
+        };
         let options = GateOptions {
-            threshold: self.threshold / 100.0,
+            threshold: self.threshold.map_or(default, |pct| pct / 100.0),
             force: self.force,
+            strict: self.strict,
         };
         Ok(results::gate::gate(old, new, options)?)
     }

@@ -31,6 +31,8 @@ pub fn gate_against(first: &Run, run: &Run) -> GateReport {
             entries: Vec::new(),
             instructions: Vec::new(),
             unmatched: Vec::new(),
+            instructions_unmatched: Vec::new(),
+            strict: false,
             warnings: Vec::new(),
             covers_differ: None,
             forced_over: Vec::new(),

@@ -12,14 +12,16 @@
 //! BVH the bottleneck moves from the primitive tests to this traversal: compare
 //! `tests.*` and `accel.*` between `baseline` and `bvh`.
 
+mod node;
 mod packet;
 mod quality;
 mod triangles;
 mod wide;
 
+pub use node::WIDTH;
 pub use packet::PACKET;
 pub use quality::BvhShape;
-pub use wide::{WIDTH, WideBvh, WideBvhStats};
+pub use wide::{WideBvh, WideBvhStats};
 
 use super::{Intersector, intersect_primitive};
 use crate::counter::{Counter, Phase, Stat};

@@ -27,6 +27,9 @@ use crate::primitives::{
 use crate::ray::{Hit, PrimKind, PrimRef, Ray};
 use crate::scene::Scene;
 
+#[cfg(target_arch = "x86_64")]
+mod avx2;
+
 /// Primitives tested per step: one AVX register of f32.
 pub const LANES: usize = 8;
 
@@ -153,7 +156,7 @@ impl<'s> Simd<'s> {
             // SAFETY: `avx2` is true only when the CPU reported AVX2 and FMA.
             return unsafe { quadric_pass_avx2(self, ray, t_min, t_max, any, c) };
         }
-        quadric_pass_body(self, ray, t_min, t_max, any, c)
+        quadric_pass_body::<C, false>(self, ray, t_min, t_max, any, c)
     }
 }
 
@@ -168,7 +171,7 @@ fn quadric_pass_avx2<C: Counter>(
     any: bool,
     c: &mut C,
 ) -> Option<Hit> {
-    quadric_pass_body(simd, ray, t_min, t_max, any, c)
+    quadric_pass_body::<C, true>(simd, ray, t_min, t_max, any, c)
 }
 
 /// Lanes of a chunk that hold a primitive.
@@ -234,7 +237,7 @@ impl LaneBest {
 
 /// The closest sphere or cylinder hit in `(t_min, t_max)` (with `any`: the first found).
 #[inline(always)]
-fn quadric_pass_body<C: Counter>(
+fn quadric_pass_body<C: Counter, const AVX2: bool>(
     simd: &Simd,
     ray: &Ray,
     t_min: f32,
@@ -247,7 +250,7 @@ fn quadric_pass_body<C: Counter>(
     // kind's test phase.
     let sphere = {
         let _phase = C::enter_phase(Phase::SphereTest);
-        sphere_pass(&simd.spheres, sphere_count, ray, t_min, t_max, any, c)
+        sphere_pass::<C, AVX2>(&simd.spheres, sphere_count, ray, t_min, t_max, any, c)
     };
     let hit = |kind, (t, index, aux): (f32, usize, f32)| Hit {
         t,
@@ -266,7 +269,7 @@ fn quadric_pass_body<C: Counter>(
     let cylinder = {
         let _phase = C::enter_phase(Phase::CylinderTest);
         let chunks = &simd.cylinders;
-        cylinder_pass(
+        cylinder_pass::<C, AVX2>(
             chunks,
             cylinder_count,
             ray,
@@ -284,7 +287,7 @@ fn quadric_pass_body<C: Counter>(
 }
 
 #[inline(always)]
-fn sphere_pass<C: Counter>(
+fn sphere_pass<C: Counter, const AVX2: bool>(
     chunks: &[SphereLanes],
     count: usize,
     ray: &Ray,
@@ -293,39 +296,39 @@ fn sphere_pass<C: Counter>(
     any: bool,
     c: &mut C,
 ) -> Option<(f32, usize, f32)> {
-    let [ox, oy, oz] = ray.origin.to_array();
-    let [dx, dy, dz] = ray.dir.to_array();
+    let (origin, dir) = (ray.origin.to_array(), ray.dir.to_array());
+    let [ox, oy, oz] = origin;
+    let [dx, dy, dz] = dir;
     let mut best = LaneBest::new(t_max);
     for (k, l) in chunks.iter().enumerate() {
-        // Step 1, every lane: the scalar test's first stage (the thesis's discriminant,
-        // trusted for certain misses). Most chunks miss entirely and stop here.
-        let mut half_b = [0.0f32; LANES];
-        let mut passed = [false; LANES];
-        // The first stage's discriminant, and whether it is kept (see the scalar test).
-        let mut disc = [0.0f32; LANES];
-        let mut second = [false; LANES];
-        let (mut any_passed, mut any_second) = (false, false);
-        for i in 0..LANES {
-            let (vx, vy, vz) = (ox - l.cx[i], oy - l.cy[i], oz - l.cz[i]);
-            half_b[i] = dx * vx + dy * vy + dz * vz;
-            let oo = vx * vx + vy * vy + vz * vz;
-            disc[i] = sphere_first_disc(half_b[i], oo, l.radius_sq[i]);
-            passed[i] = sphere_may_hit(disc[i], oo);
-            second[i] = passed[i] && !first_stage_suffices(disc[i], 1.0, oo);
-            any_passed |= passed[i];
-            any_second |= second[i];
-        }
         let live = live_lanes(k, count);
         if C::ENABLED {
             count_lanes(c, live, 1, 2, Stat::SphereTest);
         }
-        if !any_passed {
+        // Step 1, every lane: the scalar test's first stage (the thesis's discriminant,
+        // trusted for certain misses). Most chunks miss entirely and stop here.
+        #[cfg(target_arch = "x86_64")]
+        // SAFETY: AVX2 is set only in the pass compiled for AVX2 (`quadric_pass_avx2`).
+        if AVX2 && unsafe { avx2::sphere_first_stage_mask(l, origin, dir) } == 0 {
             continue;
         }
+        let SphereFirst {
+            half_b,
+            oo,
+            mut disc,
+            passed,
+        } = sphere_first_stage(l, origin, dir);
+        if !any_lane(&passed) {
+            continue;
+        }
+        // Whether each passing lane's first stage is kept (see the scalar test): decided
+        // only for chunks that some lane passed, off the path of the many that none does.
+        let (second, any_second) = second_stage_lanes(&passed, &disc, &[1.0; LANES], &oo);
         // Step 2: the second stage where the first was not kept (the discriminant from
         // the centre's offset across the ray, as the scalar test computes it), skipped
         // when no lane needs it.
         if any_second {
+            let mut any_positive = false;
             for i in 0..LANES {
                 let (vx, vy, vz) = (ox - l.cx[i], oy - l.cy[i], oz - l.cz[i]);
                 let (ax, ay, az) = (
@@ -335,6 +338,15 @@ fn sphere_pass<C: Counter>(
                 );
                 let exact = l.radius_sq[i] - (ax * ax + ay * ay + az * az);
                 disc[i] = if second[i] { exact } else { disc[i] };
+                any_positive |= passed[i] & (disc[i] > 0.0);
+            }
+            if C::ENABLED {
+                count_second_stage(c, live, &second, &[Stat::Scale, Stat::Sub, Stat::Dot]);
+            }
+            if !any_positive {
+                // Only near misses passed the first stage, and the second ruled them
+                // all out: no roots to take (the chunks the margin lets through).
+                continue;
             }
         }
         // Step 3: the roots and the query's reach, branch-free per lane.
@@ -356,10 +368,6 @@ fn sphere_pass<C: Counter>(
             };
         }
         if C::ENABLED {
-            let second = second[..live].iter().filter(|&&p| p).count() as u64;
-            c.tally_n(Stat::Scale, second);
-            c.tally_n(Stat::Sub, second);
-            c.tally_n(Stat::Dot, second);
             count_roots_and_hits(c, live, &disc_positive, &t, Stat::SphereHit);
         }
         if best.update(k, &t, &[0.0; LANES]) && any {
@@ -371,7 +379,7 @@ fn sphere_pass<C: Counter>(
 
 #[inline(always)]
 #[allow(clippy::too_many_arguments)]
-fn cylinder_pass<C: Counter>(
+fn cylinder_pass<C: Counter, const AVX2: bool>(
     chunks: &[CylinderLanes],
     count: usize,
     ray: &Ray,
@@ -381,46 +389,40 @@ fn cylinder_pass<C: Counter>(
     any: bool,
     c: &mut C,
 ) -> Option<(f32, usize, f32)> {
-    let [ox, oy, oz] = ray.origin.to_array();
-    let [dx, dy, dz] = ray.dir.to_array();
+    let (origin, dir) = (ray.origin.to_array(), ray.dir.to_array());
+    let [ox, oy, oz] = origin;
+    let [dx, dy, dz] = dir;
     let mut best = LaneBest::new(closer_than);
     for (k, l) in chunks.iter().enumerate() {
-        // Step 1, every lane: the quadratic's coefficients and the scalar test's first
-        // stage (the thesis's discriminant, trusted for certain misses).
-        let mut rv = [0.0f32; LANES];
-        let mut ov = [0.0f32; LANES];
-        let mut a = [0.0f32; LANES];
-        let mut half_b = [0.0f32; LANES];
-        let mut passed = [false; LANES];
-        // The first stage's discriminant, and whether it is kept (see the scalar test).
-        let mut disc = [0.0f32; LANES];
-        let mut second = [false; LANES];
-        let (mut any_passed, mut any_second) = (false, false);
-        for i in 0..LANES {
-            let (vx, vy, vz) = (ox - l.bx[i], oy - l.by[i], oz - l.bz[i]);
-            rv[i] = dx * l.ax[i] + dy * l.ay[i] + dz * l.az[i];
-            ov[i] = vx * l.ax[i] + vy * l.ay[i] + vz * l.az[i];
-            let ro = dx * vx + dy * vy + dz * vz;
-            let oo = vx * vx + vy * vy + vz * vz;
-            a[i] = 1.0 - rv[i] * rv[i];
-            half_b[i] = ro - rv[i] * ov[i];
-            let cc = oo - ov[i] * ov[i] - l.radius_sq[i];
-            disc[i] = half_b[i] * half_b[i] - a[i] * cc;
-            passed[i] = disc[i] >= -quick_miss_margin(oo) && a[i] > 0.0;
-            second[i] = passed[i] && !first_stage_suffices(disc[i], a[i], oo);
-            any_passed |= passed[i];
-            any_second |= second[i];
-        }
         let live = live_lanes(k, count);
         if C::ENABLED {
             count_lanes(c, live, 1, 4, Stat::CylinderTest);
         }
-        if !any_passed {
+        // Step 1, every lane: the quadratic's coefficients and the scalar test's first
+        // stage (the thesis's discriminant, trusted for certain misses).
+        #[cfg(target_arch = "x86_64")]
+        // SAFETY: as for the spheres.
+        if AVX2 && unsafe { avx2::cylinder_first_stage_mask(l, origin, dir) } == 0 {
             continue;
         }
+        let CylinderFirst {
+            rv,
+            ov,
+            a,
+            half_b,
+            oo,
+            mut disc,
+            passed,
+        } = cylinder_first_stage(l, origin, dir);
+        if !any_lane(&passed) {
+            continue;
+        }
+        // Whether each passing lane's first stage is kept, as for the spheres.
+        let (second, any_second) = second_stage_lanes(&passed, &disc, &a, &oo);
         // Step 2: the second stage where the first was not kept (a r² - (V·(Voc × R))²,
         // as the scalar test computes it), skipped when no lane needs it.
         if any_second {
+            let mut any_positive = false;
             for i in 0..LANES {
                 let (vx, vy, vz) = (ox - l.bx[i], oy - l.by[i], oz - l.bz[i]);
                 // Voc × R in the order of the scalar test's cross product.
@@ -428,6 +430,14 @@ fn cylinder_pass<C: Counter>(
                 let triple = l.ax[i] * nx + l.ay[i] * ny + l.az[i] * nz;
                 let exact = a[i] * l.radius_sq[i] - triple * triple;
                 disc[i] = if second[i] { exact } else { disc[i] };
+                any_positive |= passed[i] & (disc[i] > 0.0);
+            }
+            if C::ENABLED {
+                count_second_stage(c, live, &second, &[Stat::Cross, Stat::Dot]);
+            }
+            if !any_positive {
+                // As for the spheres: only near misses, all ruled out.
+                continue;
             }
         }
         // Step 3: the roots, the query's reach and the axial bounds, branch-free per
@@ -461,9 +471,6 @@ fn cylinder_pass<C: Counter>(
             };
         }
         if C::ENABLED {
-            let second = second[..live].iter().filter(|&&p| p).count() as u64;
-            c.tally_n(Stat::Cross, second);
-            c.tally_n(Stat::Dot, second);
             count_roots_and_hits(c, live, &disc_positive, &t, Stat::CylinderHit);
         }
         if best.update(k, &t, &m_at) && any {
@@ -471,6 +478,112 @@ fn cylinder_pass<C: Counter>(
         }
     }
     best.closest()
+}
+
+/// Whether any lane is set.
+#[inline(always)]
+fn any_lane(lanes: &[bool; LANES]) -> bool {
+    let mut any = false;
+    for &on in lanes {
+        any |= on;
+    }
+    any
+}
+
+/// The sphere test's first stage in every lane of a chunk: the thesis's discriminant,
+/// trusted for certain misses ([`avx2::sphere_first_stage_mask`] computes `passed` with
+/// the same operations in AVX registers, where a chunk that no lane passes ends).
+struct SphereFirst {
+    half_b: [f32; LANES],
+    oo: [f32; LANES],
+    disc: [f32; LANES],
+    passed: [bool; LANES],
+}
+
+#[inline(always)]
+fn sphere_first_stage(
+    l: &SphereLanes,
+    [ox, oy, oz]: [f32; 3],
+    [dx, dy, dz]: [f32; 3],
+) -> SphereFirst {
+    let mut f = SphereFirst {
+        half_b: [0.0; LANES],
+        oo: [0.0; LANES],
+        disc: [0.0; LANES],
+        passed: [false; LANES],
+    };
+    for i in 0..LANES {
+        let (vx, vy, vz) = (ox - l.cx[i], oy - l.cy[i], oz - l.cz[i]);
+        f.half_b[i] = dx * vx + dy * vy + dz * vz;
+        f.oo[i] = vx * vx + vy * vy + vz * vz;
+        f.disc[i] = sphere_first_disc(f.half_b[i], f.oo[i], l.radius_sq[i]);
+        f.passed[i] = sphere_may_hit(f.disc[i], f.oo[i]);
+    }
+    f
+}
+
+/// The cylinder test's first stage in every lane of a chunk: the quadratic's
+/// coefficients and the thesis's discriminant, trusted for certain misses
+/// ([`avx2::cylinder_first_stage_mask`] computes `passed` in AVX registers).
+struct CylinderFirst {
+    rv: [f32; LANES],
+    ov: [f32; LANES],
+    a: [f32; LANES],
+    half_b: [f32; LANES],
+    oo: [f32; LANES],
+    disc: [f32; LANES],
+    passed: [bool; LANES],
+}
+
+#[inline(always)]
+fn cylinder_first_stage(
+    l: &CylinderLanes,
+    [ox, oy, oz]: [f32; 3],
+    [dx, dy, dz]: [f32; 3],
+) -> CylinderFirst {
+    let mut f = CylinderFirst {
+        rv: [0.0; LANES],
+        ov: [0.0; LANES],
+        a: [0.0; LANES],
+        half_b: [0.0; LANES],
+        oo: [0.0; LANES],
+        disc: [0.0; LANES],
+        passed: [false; LANES],
+    };
+    for i in 0..LANES {
+        let (vx, vy, vz) = (ox - l.bx[i], oy - l.by[i], oz - l.bz[i]);
+        f.rv[i] = dx * l.ax[i] + dy * l.ay[i] + dz * l.az[i];
+        f.ov[i] = vx * l.ax[i] + vy * l.ay[i] + vz * l.az[i];
+        let ro = dx * vx + dy * vy + dz * vz;
+        f.oo[i] = vx * vx + vy * vy + vz * vz;
+        f.a[i] = 1.0 - f.rv[i] * f.rv[i];
+        f.half_b[i] = ro - f.rv[i] * f.ov[i];
+        let cc = f.oo[i] - f.ov[i] * f.ov[i] - l.radius_sq[i];
+        f.disc[i] = f.half_b[i] * f.half_b[i] - f.a[i] * cc;
+        // `&`, not `&&`: a short-circuit here is a branch per lane, and the loop stays
+        // scalar (its cylinder tests took 3.3x as long on SPD rings).
+        f.passed[i] = (f.disc[i] >= -quick_miss_margin(f.oo[i])) & (f.a[i] > 0.0);
+    }
+    f
+}
+
+/// The lanes that passed the first stage but whose first-stage discriminant is not
+/// accurate enough to keep ([`first_stage_suffices`]): the second stage runs there.
+/// Also whether there is any.
+#[inline(always)]
+fn second_stage_lanes(
+    passed: &[bool; LANES],
+    disc: &[f32; LANES],
+    a: &[f32; LANES],
+    scale: &[f32; LANES],
+) -> ([bool; LANES], bool) {
+    let mut second = [false; LANES];
+    let mut any = false;
+    for i in 0..LANES {
+        second[i] = passed[i] & !first_stage_suffices(disc[i], a[i], scale[i]);
+        any |= second[i];
+    }
+    (second, any)
 }
 
 /// Counts the tests of one chunk and the first stage's operations of the scalar test.
@@ -482,6 +595,16 @@ fn count_lanes<C: Counter>(c: &mut C, live: usize, subs: u64, dots: u64, test: S
     c.tally_n(test, n);
     c.tally_n(Stat::Sub, subs * n);
     c.tally_n(Stat::Dot, dots * n);
+}
+
+/// Counts the operations of the second stage, `ops` once for each live lane where it
+/// ran.
+#[inline(always)]
+fn count_second_stage<C: Counter>(c: &mut C, live: usize, second: &[bool; LANES], ops: &[Stat]) {
+    let lanes = second[..live].iter().filter(|&&s| s).count() as u64;
+    for &op in ops {
+        c.tally_n(op, lanes);
+    }
 }
 
 /// Counts a chunk's square roots (lanes whose second-stage discriminant is positive)

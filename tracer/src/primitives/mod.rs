@@ -47,7 +47,7 @@ pub(crate) fn test_radius_sq(radius: f32) -> f32 {
 }
 
 /// `2⁻¹⁶`: see [`quick_miss_margin`].
-const QUICK_MISS_FRACTION: f32 = 1.0 / 65536.0;
+pub(crate) const QUICK_MISS_FRACTION: f32 = 1.0 / 65536.0;
 
 /// The margin below which a quadric test's first-stage (the thesis's) discriminant
 /// certainly means a miss, for `scale` bounding the terms that cancel in it (`|Voc|²` for

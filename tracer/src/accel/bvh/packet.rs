@@ -16,7 +16,8 @@
 //! steps (`accel.nodes_visited` per live child, [`WIDTH`] `accel.lanes_issued`), leaves
 //! and primitive tests are added to that ray's own counter.
 
-use super::wide::{LEAF, STACK, Slab, WideBvh, WideNode, descend, search_leaf, visit_order};
+use super::node::{LEAF, Slab, WideNode};
+use super::wide::{STACK, WideBvh, descend, search_leaf, visit_order};
 use crate::accel::BVH_WIDTH as WIDTH;
 use crate::counter::{Counter, Phase, Stat};
 use crate::ray::{Hit, HitBound, Ray};
