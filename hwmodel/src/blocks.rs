@@ -15,7 +15,7 @@ use crate::composites::{
     Vec3Node, dot, normalize, vector_add_sub, vector_constant, vector_input, vector_input_held,
     vector_output, vector_scale, vector_select,
 };
-use crate::design::Design;
+use crate::design::{Design, MinDistance};
 use crate::graph::{AddSubMode, FRAME_CONSTANT, Graph, NodeId, Schedule};
 use crate::hw_scene::HwPrimitive;
 use crate::library::{Library, OpKind, Resources};
@@ -23,9 +23,6 @@ use crate::library::{Library, OpKind, Resources};
 /// Address bits of the scene memory (the minimum-distance block keeps the nearest
 /// primitive's address: its 173 registers are 5 words + 13 bits).
 pub const ADDRESS_BITS: u32 = 13;
-
-/// Cycles the minimum-distance block's inputs stay stable (the iterator's 3n pacing).
-pub const MIN_DISTANCE_HOLD: u32 = 3;
 
 /// Names of the scene-memory words the rsqrt-free shading adds after the primitive's
 /// nine (`HwPrimitive::WORD_NAMES`): brightest point M, 1/(2r²), 1/r.
@@ -142,7 +139,7 @@ impl Pipeline {
             design: *design,
             primary_ray: Block::new("primary_ray", primary_ray(design), lib),
             intersection: Block::new("intersection", intersection(design), lib),
-            min_distance: Block::new("min_distance", min_distance(), lib),
+            min_distance: Block::new("min_distance", min_distance(design), lib),
             shading: Block::new("shading", shading(design), lib),
             min_tree: (design.units > 1)
                 .then(|| Block::new("min_tree", min_tree(design.units), lib)),
@@ -335,16 +332,22 @@ pub fn intersection(design: &Design) -> Graph {
 /// Minimum distance (6.1.5, fig. 25): compare the incoming distance with the kept one
 /// (3 cycles) and load distance, P, m and the primitive's address into the registers
 /// (1 cycle): 4 cycles. Its inputs are held 3 cycles by the pacing, so they need no
-/// delay lines (this is why the iterator issues one pixel every 3n cycles).
-pub fn min_distance() -> Graph {
+/// delay lines (this is why the iterator issues one pixel every 3n cycles). With the
+/// integer compare ([`MinDistance::IntegerCompare`]) the compare lies within the
+/// register's cycle: 1 cycle, inputs held 1, one primitive a cycle.
+pub fn min_distance(design: &Design) -> Graph {
+    let hold = design.cycles_per_primitive();
     let mut g = Graph::new();
-    let distance = g.input_held("distance", 32, MIN_DISTANCE_HOLD);
-    let point = vector_input_held(&mut g, "P", MIN_DISTANCE_HOLD);
-    let m = g.input_held("m", 32, MIN_DISTANCE_HOLD);
-    let address = g.input_held("address", ADDRESS_BITS, MIN_DISTANCE_HOLD);
+    let distance = g.input_held("distance", 32, hold);
+    let point = vector_input_held(&mut g, "P", hold);
+    let m = g.input_held("m", 32, hold);
+    let address = g.input_held("address", ADDRESS_BITS, hold);
     // The kept distance is the register's own output: stable until it is replaced.
     let kept = g.constant("kept distance");
-    let closer = g.less(distance, kept, "closer");
+    let closer = match design.min_distance {
+        MinDistance::FloatCompare => g.less(distance, kept, "closer"),
+        MinDistance::IntegerCompare => g.less_int(distance, kept, "closer"),
+    };
     let keep = |g: &mut Graph, v: NodeId, bits: u32, label: &str| {
         g.op_bits(OpKind::Register, &[v, closer], bits, label)
     };

@@ -2,6 +2,33 @@
 
 use serde::{Deserialize, Serialize};
 
+/// How the minimum-distance block compares a primitive's distance with the kept one,
+/// which sets how often the pipeline can take a primitive.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum MinDistance {
+    /// The thesis's floating-point compare (ALTFP_COMPARE, 3 cycles): the next
+    /// distance may be compared only when the previous one is kept, so each primitive
+    /// is held 3 cycles and the intersection unit idles two cycles in three.
+    #[default]
+    FloatCompare,
+    /// Distances compared as integers: non-negative IEEE floats order as their bit
+    /// patterns, so a 31-bit magnitude compare decides within the register's cycle and
+    /// the block takes one primitive a cycle. (Three pixels interleaved in the thesis's
+    /// block reach the same rate with three kept registers; not modelled.)
+    IntegerCompare,
+}
+
+impl MinDistance {
+    /// Cycles each primitive is held: the pipeline's cycles per primitive per unit.
+    pub fn cycles_per_primitive(self) -> u32 {
+        match self {
+            MinDistance::FloatCompare => 3,
+            MinDistance::IntegerCompare => 1,
+        }
+    }
+}
+
 /// The choices that change the pipeline.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
 pub struct Design {
@@ -20,6 +47,9 @@ pub struct Design {
     pub no_rsqrt_shading: bool,
     /// Bits per pixel in the frame buffer (the thesis: 8, gray; 24 did not fit).
     pub frame_bits_per_pixel: u32,
+    /// The minimum-distance compare, and with it the primitive rate.
+    #[serde(default)]
+    pub min_distance: MinDistance,
 }
 
 impl Default for Design {
@@ -37,7 +67,14 @@ impl Design {
             ortho: false,
             no_rsqrt_shading: false,
             frame_bits_per_pixel: 8,
+            min_distance: MinDistance::FloatCompare,
         }
+    }
+
+    /// Cycles a primitive is held in each intersection unit (3 as the thesis, 1 with
+    /// the integer compare).
+    pub fn cycles_per_primitive(&self) -> u32 {
+        self.min_distance.cycles_per_primitive()
     }
 
     /// True for the thesis's own design.
@@ -62,6 +99,9 @@ impl Design {
         }
         if self.no_rsqrt_shading {
             parts.push("no-rsqrt-shading".to_string());
+        }
+        if self.min_distance == MinDistance::IntegerCompare {
+            parts.push("int-compare".to_string());
         }
         if self.units != 1 {
             parts.push(format!("K={}", self.units));

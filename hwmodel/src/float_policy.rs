@@ -149,6 +149,14 @@ pub fn lt(a: f32, b: f32) -> bool {
     flush(a) < flush(b)
 }
 
+/// `a < b` on the low 31 bits of the patterns, as unsigned integers (`int_compare`):
+/// the order of the numbers for non-negative floats, which every distance the
+/// pipeline compares is (a root at or beyond the ray's start, or +∞); the sign bit is
+/// not looked at.
+pub fn lt_bits(a: f32, b: f32) -> bool {
+    (a.to_bits() & 0x7FFF_FFFF) < (b.to_bits() & 0x7FFF_FFFF)
+}
+
 /// The signed integer `a` as a float, rounded to nearest, ties to even (`fp_from_int`).
 /// Always normal or +0, so the policy has nothing to flush.
 pub fn from_int(a: i32) -> f32 {
@@ -397,5 +405,24 @@ mod tests {
         assert_eq!(bits(select(false, 1.0, 2.0)), bits(1.0));
         assert!(agrees(CANONICAL_NAN, 0xFFC0_0001));
         assert!(!agrees(0, 0x8000_0000));
+    }
+
+    #[test]
+    fn the_integer_compare_orders_every_distance_as_the_float_compare_does() {
+        // Distances are +0, positive normals (the policy flushes the rest) or +∞. Every
+        // exponent, mantissas at both ends and in between, against each other.
+        let mut values = vec![0.0f32, f32::MIN_POSITIVE, f32::MAX, f32::INFINITY, 1.0];
+        for exponent in 1..255u32 {
+            for mantissa in [0u32, 1, 0x40_0000, 0x7F_FFFF, 0x12_3457] {
+                values.push(f32::from_bits(exponent << 23 | mantissa));
+            }
+        }
+        for &a in &values {
+            for &b in &values {
+                assert_eq!(lt_bits(a, b), lt(a, b), "{a:e} < {b:e}");
+            }
+        }
+        // A negative zero counts as +0 (the sign bit is not compared).
+        assert!(!lt_bits(-0.0, 0.0) && !lt_bits(0.0, -0.0) && lt_bits(-0.0, 1.0));
     }
 }

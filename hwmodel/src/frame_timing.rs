@@ -1,27 +1,30 @@
 //! Frame timing of the pipeline (thesis eq. 49).
 //!
-//! The screen iterator issues one pixel every 3·⌈n/K⌉ cycles: each intersection unit
+//! The screen iterator issues one pixel every r·⌈n/K⌉ cycles: each intersection unit
 //! holds a ray while its ⌈n/K⌉ primitives stream past, and the minimum-distance block
-//! needs every result held for 3 cycles. With K = 1 at 640×480 and 50 MHz the issues
-//! alone are 640·480·3·n / 50e6 = 0.018432·n s, the thesis's eq. 49.
+//! needs every result held for r cycles (r = 3 with the thesis's floating-point compare,
+//! 1 with the integer compare: [`crate::design::MinDistance`]). With r = 3, K = 1 at
+//! 640×480 and 50 MHz the issues alone are 640·480·3·n / 50e6 = 0.018432·n s, the
+//! thesis's eq. 49.
 //!
 //! A frame's cycles are counted from the first pixel's issue (cycle 0) to the cycle the
 //! last pixel's gray level is written to the frame buffer, which is what the generated
-//! RTL's simulation measures: the last pixel is issued at (W·H − 1)·p (p = 3c cycles
+//! RTL's simulation measures: the last pixel is issued at (W·H − 1)·p (p = r·c cycles
 //! per pixel, c = ⌈n/K⌉ primitives per unit), its ray is ready L_ray later, its last
-//! primitive enters the intersection unit 3(c − 1) after that, and its result then
+//! primitive enters the intersection unit r(c − 1) after that, and its result then
 //! crosses intersection, minimum distance, the comparator tree and shading. So
-//! `cycles = W·H·p + fill` with `fill = L_ray + L_int + L_min + L_tree + L_shade − 3`
-//! (a few hundred cycles, µs). An empty scene still paces at 3 cycles per pixel (one
+//! `cycles = W·H·p + fill` with `fill = L_ray + L_int + L_min + L_tree + L_shade − r`
+//! (a few hundred cycles, µs). An empty scene still paces at r cycles per pixel (one
 //! slot that hits nothing: the minimum-distance hold).
 
 use serde::Serialize;
 
 use crate::blocks::Pipeline;
 
-/// Cycles between two pixels entering the pipeline.
-pub fn cycles_per_pixel(primitives: u64, units: u32) -> u64 {
-    3 * primitives.max(1).div_ceil(u64::from(units.max(1)))
+/// Cycles between two pixels entering the pipeline, with `rate` cycles per primitive
+/// per unit ([`crate::design::Design::cycles_per_primitive`]).
+pub fn cycles_per_pixel(primitives: u64, units: u32, rate: u32) -> u64 {
+    u64::from(rate.max(1)) * primitives.max(1).div_ceil(u64::from(units.max(1)))
 }
 
 /// Timing of one frame.
@@ -47,9 +50,10 @@ pub fn frame_timing(
     clock_hz: f64,
 ) -> FrameTiming {
     let units = pipeline.design.units;
-    let per_pixel = cycles_per_pixel(primitives, units);
-    // The last primitive slot of a pixel starts 3 cycles before the next issue.
-    let fill = pipeline.fill_cycles() - 3;
+    let rate = pipeline.design.cycles_per_primitive();
+    let per_pixel = cycles_per_pixel(primitives, units, rate);
+    // The last primitive slot of a pixel starts `rate` cycles before the next issue.
+    let fill = pipeline.fill_cycles() - u64::from(rate);
     let cycles = u64::from(width) * u64::from(height) * per_pixel + fill;
     FrameTiming {
         primitives,
@@ -86,11 +90,11 @@ pub enum BreakEven {
 /// Where `pipeline` at `clock_hz` stops beating a software that takes `fixed_s +
 /// per_primitive_s × n` seconds a `width`×`height` frame.
 ///
-/// The pipeline's frame is `(W·H·3·⌈n/K⌉ + fill) / f` ([`frame_timing`]): constant over
-/// each block of K counts, so within a block it is furthest ahead at the block's last
-/// count, n = jK. Block j is won when `j·(3WH/f − b·K) < a − fill/f`; with a positive
-/// bracket the won blocks are j < (a − fill/f) / (3WH/f − bK), and the last count won
-/// is K times the last such j.
+/// The pipeline's frame is `(W·H·r·⌈n/K⌉ + fill) / f` ([`frame_timing`], r cycles per
+/// primitive): constant over each block of K counts, so within a block it is furthest
+/// ahead at the block's last count, n = jK. Block j is won when
+/// `j·(rWH/f − b·K) < a − fill/f`; with a positive bracket the won blocks are
+/// j < (a − fill/f) / (rWH/f − bK), and the last count won is K times the last such j.
 pub fn break_even(
     pipeline: &Pipeline,
     width: u32,
@@ -100,8 +104,9 @@ pub fn break_even(
     per_primitive_s: f64,
 ) -> BreakEven {
     let k = f64::from(pipeline.design.units.max(1));
-    let block_s = 3.0 * f64::from(width) * f64::from(height) / clock_hz;
-    let fill_s = (pipeline.fill_cycles() - 3) as f64 / clock_hz;
+    let rate = pipeline.design.cycles_per_primitive();
+    let block_s = f64::from(rate) * f64::from(width) * f64::from(height) / clock_hz;
+    let fill_s = (pipeline.fill_cycles() - u64::from(rate)) as f64 / clock_hz;
     let slope = block_s - per_primitive_s * k;
     let headroom = fixed_s - fill_s;
     if slope <= 0.0 {
@@ -168,12 +173,15 @@ mod tests {
     }
 
     #[test]
-    fn pacing_is_three_cycles_per_primitive_per_unit() {
-        assert_eq!(cycles_per_pixel(7, 1), 21);
-        assert_eq!(cycles_per_pixel(7, 2), 12); // ⌈7/2⌉ = 4
-        assert_eq!(cycles_per_pixel(7, 7), 3);
-        assert_eq!(cycles_per_pixel(7, 100), 3);
-        assert_eq!(cycles_per_pixel(0, 1), 3);
+    fn pacing_is_the_rate_per_primitive_per_unit() {
+        assert_eq!(cycles_per_pixel(7, 1, 3), 21);
+        assert_eq!(cycles_per_pixel(7, 2, 3), 12); // ⌈7/2⌉ = 4
+        assert_eq!(cycles_per_pixel(7, 7, 3), 3);
+        assert_eq!(cycles_per_pixel(7, 100, 3), 3);
+        assert_eq!(cycles_per_pixel(0, 1, 3), 3);
+        assert_eq!(cycles_per_pixel(7, 1, 1), 7);
+        assert_eq!(cycles_per_pixel(7, 2, 1), 4);
+        assert_eq!(cycles_per_pixel(0, 1, 1), 1);
     }
 
     #[test]

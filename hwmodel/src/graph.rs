@@ -204,6 +204,11 @@ impl Graph {
         self.op_bits(OpKind::Compare, &[a, b], 1, label)
     }
 
+    /// `a < b` for non-negative floats, compared as integers (one bit).
+    pub fn less_int(&mut self, a: NodeId, b: NodeId, label: &str) -> NodeId {
+        self.op_bits(OpKind::IntCompare, &[a, b], 1, label)
+    }
+
     /// `sel ? b : a`, as wide as `a`.
     pub fn select(&mut self, sel: NodeId, a: NodeId, b: NodeId, label: &str) -> NodeId {
         let bits = self.nodes[a].bits;

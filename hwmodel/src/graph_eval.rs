@@ -162,6 +162,7 @@ pub fn evaluate_nodes(
                 OpKind::FastSqrt => bits(fp::fast_sqrt(f(0)?)),
                 OpKind::InvSqrt => bits(fp::inv_sqrt(f(0)?)),
                 OpKind::Compare => u32::from(fp::lt(f(0)?, f(1)?)),
+                OpKind::IntCompare => u32::from(fp::lt_bits(f(0)?, f(1)?)),
                 OpKind::Convert => u32::from(fp::to_u8(f(0)?)),
                 OpKind::Mux => {
                     if arg(0)? & 1 == 1 {

@@ -78,6 +78,9 @@ pub enum OpKind {
     Divide,
     InvSqrt,
     Compare,
+    /// A magnitude compare of non-negative IEEE distances as integers (their bit
+    /// patterns order as the numbers do): the one-primitive-a-cycle minimum distance.
+    IntCompare,
     Convert,
     Mux,
     Register,
@@ -87,7 +90,7 @@ pub enum OpKind {
 
 impl OpKind {
     /// Every operator, in table order.
-    pub const ALL: [OpKind; 12] = [
+    pub const ALL: [OpKind; 13] = [
         OpKind::AddSub,
         OpKind::Multiply,
         OpKind::MultiplyRegistered,
@@ -95,6 +98,7 @@ impl OpKind {
         OpKind::Divide,
         OpKind::InvSqrt,
         OpKind::Compare,
+        OpKind::IntCompare,
         OpKind::Convert,
         OpKind::Mux,
         OpKind::Register,
@@ -112,6 +116,7 @@ impl OpKind {
             OpKind::Divide => "divide",
             OpKind::InvSqrt => "inv_sqrt",
             OpKind::Compare => "compare",
+            OpKind::IntCompare => "int_compare",
             OpKind::Convert => "convert",
             OpKind::Mux => "mux",
             OpKind::Register => "register",

@@ -242,7 +242,7 @@ pub fn frame_setup(
     let k = FrameConstants::new(scene, width, height);
     let n = scene.primitives.len() as u64;
     let units = pipeline.design.units.max(1);
-    let per_unit = cycles_per_pixel(n, units) / 3;
+    let per_unit = cycles_per_pixel(n, units, 1);
     // The memory's words as the MIF holds them (`rtprof hw mif`), read back from it.
     let mif = hwmodel::mif::parse_mif(&hwmodel::mif::to_mif(scene))
         .map_err(|e| RtlError::Generate(format!("the scene's MIF does not read back: {e}")))?;

@@ -24,7 +24,9 @@ fn operator_for(kind: OpKind) -> Option<Operator> {
         OpKind::Compare => Operator::Compare,
         OpKind::Convert => Operator::ToU8,
         OpKind::FastSqrt => Operator::FastSqrt,
-        OpKind::Mux | OpKind::Register | OpKind::RamRead => return None,
+        // The integer compare lives only in the minimum-distance block, which is
+        // written by hand (`verilog/min_distance.v`).
+        OpKind::Mux | OpKind::Register | OpKind::RamRead | OpKind::IntCompare => return None,
     })
 }
 
