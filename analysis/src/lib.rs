@@ -25,6 +25,7 @@
 
 pub mod error;
 pub mod image_metrics;
+pub mod linear_fit;
 pub mod power_law;
 pub mod ppm_text;
 mod prng;

@@ -13,9 +13,12 @@
 //! 532-element device: Quartus must have done something of this kind.
 //!
 //! Routing-headroom rule: a design whose logic elements or memory bits fit but use more
-//! than [`ROUTING_HEADROOM_PERCENT`] of the device fits only on paper ([`FitState`]):
-//! Quartus rarely routes it, or routes it without meeting timing. `fits` keeps its
-//! meaning (every resource within the device); [`Fit::state`] adds the third case.
+//! than [`ROUTING_HEADROOM_PERCENT`] of the device, or more than
+//! [`MEMORY_BLOCK_HEADROOM_PERCENT`] of its RAM blocks ([`crate::memory`]), fits only on
+//! paper ([`FitState`]): Quartus rarely routes it, or routes it without meeting timing.
+//! `fits` keeps its meaning (every resource within the device); [`Fit::state`] adds the
+//! third case. [`fit_design`] is the one fit of a design that every caller uses, so the
+//! verdict is the same wherever it is shown.
 
 use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
@@ -46,12 +49,10 @@ pub const PLLS_USED: u32 = 2;
 /// - The model's block LEs run under Quartus's (table 8: by 6 to 20 % per block), so a
 ///   model figure of 85 % may be 90 % or more in Quartus, where the peak-routing
 ///   warning above applies.
-/// - Memory: Intel's design-assistant rule FLP-10000 (Quartus Prime Pro, newer
-///   families) flags designs that use more than 80 % of the memory blocks (its default
-///   `device_ram_occupation`) as a placement and routing challenge; and an M9K's 9,216
-///   bits include 1,024 parity bits a byte-wide memory (the 8-bit frame buffer) cannot
-///   use, so above 8/9 ≈ 88.9 % of the bits such a design may run out of blocks before
-///   bits. The same 85 % applies.
+/// - Memory bits: an M9K's 9,216 bits include 1,024 parity bits a byte-wide memory (the
+///   8-bit frame buffer) cannot use, so above 8/9 ≈ 88.9 % of the bits such a design may
+///   run out of blocks before bits. The same 85 % applies to the bits; the blocks
+///   themselves have their own rule, [`MEMORY_BLOCK_HEADROOM_PERCENT`].
 /// - Not to multipliers or PLLs: the thesis's design used all 532 multiplier elements
 ///   and routed (the elements beyond the device go to logic, where the LE headroom
 ///   counts them), and PLLs are a handful of fixed blocks with their own clock routing.
@@ -60,30 +61,66 @@ pub const PLLS_USED: u32 = 2;
 /// §"Routing Usage"; AN 906 §"Logic Utilization"; Quartus help, FLP-10000.
 pub const ROUTING_HEADROOM_PERCENT: u64 = 85;
 
-/// The resources the routing headroom applies to, with their names in words.
-pub const HEADROOM_RESOURCES: [(&str, &str); 2] =
-    [("le", "logic elements"), ("mem_bits", "memory bits")];
+/// The share of a device's RAM blocks (M9K) a design may use and still be expected to
+/// place and route, in percent: Intel's design-assistant rule FLP-10000 (Quartus Prime
+/// Pro) flags designs above 80 % of the memory blocks (its default
+/// `device_ram_occupation`) as a placement and routing challenge. Blocks, not bits: each
+/// memory takes whole blocks however few bits it holds ([`crate::memory`]). The thesis's
+/// own design is above it on the model's count (its frame buffer alone is 300 of the
+/// EP4CE115's 432 M9K) and was built and ran at 50 MHz: the rule is a warning, not a
+/// wall.
+pub const MEMORY_BLOCK_HEADROOM_PERCENT: u64 = 80;
 
-/// The most of `capacity` a design may use within the routing headroom (rounded down).
-pub fn headroom_limit(capacity: u64) -> u64 {
+/// The resources the routing headroom applies to: name, name in words, headroom in
+/// percent of the device.
+pub const HEADROOM_RESOURCES: [(&str, &str, u64); 3] = [
+    ("le", "logic elements", ROUTING_HEADROOM_PERCENT),
+    ("mem_bits", "memory bits", ROUTING_HEADROOM_PERCENT),
+    ("mem_blocks", "memory blocks", MEMORY_BLOCK_HEADROOM_PERCENT),
+];
+
+/// The headroom of a resource by name, percent (the routing headroom for names without
+/// their own).
+pub fn headroom_percent(resource: &str) -> u64 {
+    HEADROOM_RESOURCES
+        .iter()
+        .find(|(name, _, _)| *name == resource)
+        .map_or(ROUTING_HEADROOM_PERCENT, |(_, _, percent)| *percent)
+}
+
+/// The most of `capacity` a design may use within a headroom of `percent` (rounded
+/// down).
+pub fn headroom_limit(capacity: u64, percent: u64) -> u64 {
     // u128: no overflow whatever the capacity.
-    (u128::from(capacity) * u128::from(ROUTING_HEADROOM_PERCENT) / 100) as u64
+    (u128::from(capacity) * u128::from(percent) / 100) as u64
 }
 
-/// Whether `used` of `capacity` is above the routing headroom (strictly: exactly at the
-/// limit is within it).
-pub fn above_headroom(used: u64, capacity: u64) -> bool {
-    used > headroom_limit(capacity)
+/// Whether `used` of `capacity` of `resource` is above its headroom (strictly: exactly
+/// at the limit is within it).
+pub fn above_headroom(resource: &str, used: u64, capacity: u64) -> bool {
+    used > headroom_limit(capacity, headroom_percent(resource))
 }
 
-/// The resources among logic elements and memory bits, each `(used, capacity)`, that
-/// are above the routing headroom, by name (`le`, `mem_bits`).
-pub fn resources_above_headroom(le: (u64, u64), mem_bits: (u64, u64)) -> Vec<&'static str> {
-    [("le", le), ("mem_bits", mem_bits)]
-        .into_iter()
-        .filter(|(_, (used, capacity))| above_headroom(*used, *capacity))
-        .map(|(name, _)| name)
-        .collect()
+/// The resources among logic elements, memory bits and memory blocks, each `(used,
+/// capacity)`, that are above their headroom, by name (`le`, `mem_bits`,
+/// `mem_blocks`). A capacity of zero blocks (a file from before blocks were counted) is
+/// not checked.
+pub fn resources_above_headroom(
+    le: (u64, u64),
+    mem_bits: (u64, u64),
+    mem_blocks: (u64, u64),
+) -> Vec<&'static str> {
+    [
+        ("le", le),
+        ("mem_bits", mem_bits),
+        ("mem_blocks", mem_blocks),
+    ]
+    .into_iter()
+    .filter(|(name, (used, capacity))| {
+        !(*name == "mem_blocks" && *capacity == 0) && above_headroom(name, *used, *capacity)
+    })
+    .map(|(name, _)| name)
+    .collect()
 }
 
 /// The three verdicts of a fit.
@@ -123,8 +160,8 @@ impl FitState {
 
 /// The routing-headroom warning, one sentence, from the resources above the headroom
 /// and their utilization (fractions of the device), e.g. `logic elements at 99.3 % of
-/// the device, above the 85 % routing headroom: …`. The one wording of the rule for
-/// `rtprof hw time` and the report. `None` when nothing is above the headroom.
+/// the device (headroom 85 %): …`. The one wording of the rule for `rtprof hw time` and
+/// the report. `None` when nothing is above the headroom.
 pub fn headroom_warning(above: &[(&str, f64)]) -> Option<String> {
     if above.is_empty() {
         return None;
@@ -134,13 +171,17 @@ pub fn headroom_warning(above: &[(&str, f64)]) -> Option<String> {
         .map(|(name, utilization)| {
             let words = HEADROOM_RESOURCES
                 .iter()
-                .find(|(n, _)| n == name)
-                .map_or(*name, |(_, words)| words);
-            format!("{words} at {:.1} %", utilization * 100.0)
+                .find(|(n, _, _)| n == name)
+                .map_or(*name, |(_, words, _)| words);
+            format!(
+                "{words} at {:.1} % (headroom {} %)",
+                utilization * 100.0,
+                headroom_percent(name)
+            )
         })
         .collect();
     Some(format!(
-        "{} of the device, above the {ROUTING_HEADROOM_PERCENT} % routing headroom: fits on paper, but a design this full rarely routes or meets timing",
+        "{} of the device, above the routing headroom: fits on paper, but a design this full rarely routes or meets timing",
         parts.join(" and ")
     ))
 }
@@ -151,6 +192,7 @@ pub struct Utilization {
     pub le: f64,
     pub mult: f64,
     pub mem_bits: f64,
+    pub mem_blocks: f64,
     pub plls: f64,
 }
 
@@ -169,14 +211,18 @@ pub struct Fit {
     pub soft_mult_elements: u64,
     /// LEs those soft multipliers take.
     pub soft_mult_le: u64,
+    /// RAM blocks the design's memories take ([`crate::memory`]), and the device's.
+    pub mem_blocks: u64,
+    pub mem_block_capacity: u64,
     pub utilization: Utilization,
     /// Every resource within the device (on paper: see `state` for the headroom).
     pub fits: bool,
-    /// Resources that do not fit (`le`, `mem_bits`, `plls`).
+    /// Resources that do not fit (`le`, `mem_bits`, `mem_blocks`, `plls`).
     pub over: Vec<&'static str>,
     /// The routing headroom as a fraction of the device, comparable to `utilization`.
     pub routing_headroom: f64,
-    /// Resources above the routing headroom (`le`, `mem_bits`), whether or not they fit.
+    /// Resources above their headroom (`le`, `mem_bits`, `mem_blocks`), whether or not
+    /// they fit.
     pub above_headroom: Vec<&'static str>,
     /// Fits / fits on paper only (above the routing headroom) / does not fit.
     pub state: FitState,
@@ -189,6 +235,7 @@ impl Fit {
             "le" => self.utilization.le,
             "mult" => self.utilization.mult,
             "mem_bits" => self.utilization.mem_bits,
+            "mem_blocks" => self.utilization.mem_blocks,
             "plls" => self.utilization.plls,
             _ => f64::NAN,
         }
@@ -240,8 +287,30 @@ pub fn demand(
     total
 }
 
-/// Applies the multiplier rule and checks every resource against `device`.
-pub fn fit(lib: &Library, device: &DeviceSpec, demand: Resources) -> Fit {
+/// The fit of `pipeline` on `device` for a scene of `primitives` and a `width`×`height`
+/// frame: its demand ([`demand`]) and its RAM blocks ([`crate::memory::design_blocks`]).
+/// The one fit of a design: every table and sentence that says whether a design fits
+/// takes it from here.
+pub fn fit_design(
+    lib: &Library,
+    device: &DeviceSpec,
+    pipeline: &Pipeline,
+    primitives: u64,
+    width: u32,
+    height: u32,
+) -> Fit {
+    let blocks = crate::memory::design_blocks(lib, pipeline, primitives, width, height);
+    fit(
+        lib,
+        device,
+        demand(lib, pipeline, primitives, width, height),
+        blocks,
+    )
+}
+
+/// Applies the multiplier rule and checks every resource against `device`, with the
+/// design's RAM blocks ([`fit_design`] computes them).
+pub fn fit(lib: &Library, device: &DeviceSpec, demand: Resources, mem_blocks: u64) -> Fit {
     let soft = demand.mult.saturating_sub(device.mult);
     let mut used = demand;
     used.mult = demand.mult.min(device.mult);
@@ -258,6 +327,7 @@ pub fn fit(lib: &Library, device: &DeviceSpec, demand: Resources) -> Fit {
         le: frac(used.le, device.le),
         mult: frac(used.mult, device.mult),
         mem_bits: frac(used.mem_bits, device.mem_bits),
+        mem_blocks: frac(mem_blocks, lib.memory_blocks(device)),
         plls: frac(u64::from(PLLS_USED), u64::from(device.plls)),
     };
     let mut over = Vec::new();
@@ -267,11 +337,18 @@ pub fn fit(lib: &Library, device: &DeviceSpec, demand: Resources) -> Fit {
     if used.mem_bits > device.mem_bits {
         over.push("mem_bits");
     }
+    let block_capacity = lib.memory_blocks(device);
+    if mem_blocks > block_capacity {
+        over.push("mem_blocks");
+    }
     if PLLS_USED > device.plls {
         over.push("plls");
     }
-    let above_headroom =
-        resources_above_headroom((used.le, device.le), (used.mem_bits, device.mem_bits));
+    let above_headroom = resources_above_headroom(
+        (used.le, device.le),
+        (used.mem_bits, device.mem_bits),
+        (mem_blocks, block_capacity),
+    );
     let fits = over.is_empty();
     Fit {
         device: device.name.clone(),
@@ -281,6 +358,8 @@ pub fn fit(lib: &Library, device: &DeviceSpec, demand: Resources) -> Fit {
         plls: PLLS_USED,
         soft_mult_elements: soft,
         soft_mult_le: soft * lib.soft_mult9_le,
+        mem_blocks,
+        mem_block_capacity: block_capacity,
         utilization,
         fits,
         over,
@@ -334,11 +413,7 @@ fn largest_units_where(
             ..*design
         };
         let p = Pipeline::build(lib, &d);
-        accept(&fit(
-            lib,
-            device,
-            demand(lib, &p, primitives, width, height),
-        ))
+        accept(&fit_design(lib, device, &p, primitives, width, height))
     };
     // Demand grows with K, so the accepted K form a prefix: binary search.
     if !passes(1) {
@@ -377,7 +452,7 @@ mod tests {
             mult: 540,
             ..Resources::default()
         };
-        let f = fit(&lib, &device(114_480, 532, 3_981_312), demand);
+        let f = fit(&lib, &device(114_480, 532, 3_981_312), demand, 0);
         assert_eq!(f.soft_mult_elements, 8);
         assert_eq!(f.used.mult, 532);
         assert_eq!(f.used.le, 100_000 + 8 * lib.soft_mult9_le);
@@ -394,7 +469,7 @@ mod tests {
             mem_bits: 7_372_800, // a 24-bit 640x480 frame, which did not fit the thesis
             ..Resources::default()
         };
-        let f = fit(&lib, &device(114_480, 532, 3_981_312), demand);
+        let f = fit(&lib, &device(114_480, 532, 3_981_312), demand, 0);
         assert!(!f.fits);
         assert_eq!(f.over, vec!["mem_bits"]);
         assert!((f.utilization.mem_bits - 7_372_800.0 / 3_981_312.0).abs() < 1e-12);
@@ -421,7 +496,7 @@ mod tests {
             le,
             ..Resources::default()
         };
-        fit(&Library::cyclone_iv_e(), &ep4ce115(), demand)
+        fit(&Library::cyclone_iv_e(), &ep4ce115(), demand, 0)
     }
 
     #[test]
@@ -436,8 +511,9 @@ mod tests {
         assert_eq!(
             f.headroom_warning().as_deref(),
             Some(
-                "logic elements at 99.0 % of the device, above the 85 % routing headroom: \
-                 fits on paper, but a design this full rarely routes or meets timing"
+                "logic elements at 99.0 % (headroom 85 %) of the device, above the routing \
+                 headroom: fits on paper, but a design this full rarely routes or meets \
+                 timing"
             )
         );
     }
@@ -468,18 +544,18 @@ mod tests {
     #[test]
     fn exactly_at_the_headroom_is_within_it() {
         // 114,480 × 85 / 100 = 97,308 exactly.
-        assert_eq!(headroom_limit(114_480), 97_308);
+        assert_eq!(headroom_limit(114_480, 85), 97_308);
         assert_eq!(fit_le(97_308).state, FitState::Fits);
         assert_eq!(fit_le(97_309).state, FitState::FitsOnPaper);
         // Memory bits: 3,981,312 × 0.85 = 3,384,115.2, rounded down.
-        assert_eq!(headroom_limit(3_981_312), 3_384_115);
+        assert_eq!(headroom_limit(3_981_312, 85), 3_384_115);
         let mem = |mem_bits: u64| {
             let demand = Resources {
                 le: 1,
                 mem_bits,
                 ..Resources::default()
             };
-            fit(&Library::cyclone_iv_e(), &ep4ce115(), demand)
+            fit(&Library::cyclone_iv_e(), &ep4ce115(), demand, 0)
         };
         assert_eq!(mem(3_384_115).state, FitState::Fits);
         let over = mem(3_384_116);
@@ -488,10 +564,33 @@ mod tests {
         assert!(
             over.headroom_warning()
                 .unwrap()
-                .starts_with("memory bits at 85.0 % of the device, above the 85 %")
+                .starts_with("memory bits at 85.0 % (headroom 85 %) of the device")
         );
-        assert!(!above_headroom(0, 0));
-        assert!(above_headroom(1, 0));
+        assert!(!above_headroom("le", 0, 0));
+        assert!(above_headroom("le", 1, 0));
+        // Blocks: 432 M9K × 80 % = 345.6, so 345 are within and 346 above.
+        let blocks = |n: u64| {
+            let demand = Resources {
+                le: 1,
+                ..Resources::default()
+            };
+            fit(&Library::cyclone_iv_e(), &ep4ce115(), demand, n)
+        };
+        assert_eq!(blocks(345).state, FitState::Fits);
+        let above = blocks(346);
+        assert_eq!(
+            (above.state, above.above_headroom.as_slice()),
+            (FitState::FitsOnPaper, ["mem_blocks"].as_slice())
+        );
+        assert_eq!((above.mem_blocks, above.mem_block_capacity), (346, 432));
+        assert!(
+            above
+                .headroom_warning()
+                .unwrap()
+                .starts_with("memory blocks at 80.1 % (headroom 80 %) of the device")
+        );
+        assert_eq!(blocks(433).state, FitState::DoesNotFit);
+        assert_eq!(blocks(433).over, vec!["mem_blocks"]);
     }
 
     #[test]
@@ -503,14 +602,14 @@ mod tests {
             mult: 532,
             ..Resources::default()
         };
-        assert_eq!(fit(&lib, &ep4ce115(), full_mult).state, FitState::Fits);
+        assert_eq!(fit(&lib, &ep4ce115(), full_mult, 0).state, FitState::Fits);
         // At the LE limit, one multiplier element too many goes to logic (81 LEs).
         let spill = Resources {
             le: 97_308,
             mult: 533,
             ..Resources::default()
         };
-        let f = fit(&lib, &ep4ce115(), spill);
+        let f = fit(&lib, &ep4ce115(), spill, 0);
         assert_eq!(f.used.le, 97_308 + 81);
         assert_eq!(f.state, FitState::FitsOnPaper);
     }
@@ -520,13 +619,20 @@ mod tests {
         assert_eq!(
             headroom_warning(&[("le", 0.9), ("mem_bits", 0.95)]).as_deref(),
             Some(
-                "logic elements at 90.0 % and memory bits at 95.0 % of the device, above \
-                 the 85 % routing headroom: fits on paper, but a design this full rarely \
-                 routes or meets timing"
+                "logic elements at 90.0 % (headroom 85 %) and memory bits at 95.0 % \
+                 (headroom 85 %) of the device, above the routing headroom: fits on \
+                 paper, but a design this full rarely routes or meets timing"
             )
         );
         assert_eq!(headroom_warning(&[]), None);
-        assert_eq!(resources_above_headroom((100, 100), (10, 100)), vec!["le"]);
+        assert_eq!(
+            resources_above_headroom((100, 100), (10, 100), (0, 0)),
+            vec!["le"]
+        );
+        assert_eq!(
+            resources_above_headroom((1, 100), (1, 100), (81, 100)),
+            vec!["mem_blocks"]
+        );
     }
 
     #[test]
@@ -540,7 +646,7 @@ mod tests {
         if let Some(k) = within {
             let at = |k: u32| {
                 let p = Pipeline::build(&lib, &Design { units: k, ..d });
-                fit(&lib, &ep4, demand(&lib, &p, 64, 640, 480)).state
+                fit_design(&lib, &ep4, &p, 64, 640, 480).state
             };
             assert_eq!(at(k), FitState::Fits);
             assert!(k == 64 || at(k + 1) != FitState::Fits);
@@ -555,7 +661,7 @@ mod tests {
         if let Some(k) = largest_units(&lib, &ep4, &d, 64, 640, 480) {
             let at = |k: u32| {
                 let p = Pipeline::build(&lib, &Design { units: k, ..d });
-                fit(&lib, &ep4, demand(&lib, &p, 64, 640, 480)).fits
+                fit_design(&lib, &ep4, &p, 64, 640, 480).fits
             };
             assert!(at(k));
             assert!(k == 64 || !at(k + 1));

@@ -71,9 +71,39 @@ pub fn frame_timing(
 /// The thesis's clock, Hz (50 MHz).
 pub const THESIS_CLOCK_HZ: f64 = 50e6;
 
-/// The hardware-over-software gains the thesis measured at its ends (ch. 7, fig. 50):
-/// (scene, primitives, gain). Its software's frame time is the gain times eq. 49's.
-pub const THESIS_GAIN_ENDS: [(&str, u64, f64); 2] = [("cylinder4", 1, 18.0), ("balls6", 7, 4.6)];
+/// One end of the hardware-over-software gains the thesis measured (ch. 7, fig. 50).
+/// Its software's frame time is the gain times eq. 49's.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+pub struct ThesisGain {
+    /// The thesis's scene name (its test bench's, not rtprof's: the names differ).
+    pub scene: &'static str,
+    pub primitives: u64,
+    /// What the scene holds.
+    pub content: &'static str,
+    pub gain: f64,
+    /// rtprof's built-in scene with the same content (kind and count).
+    pub same_content: &'static str,
+}
+
+/// The gains at the thesis's ends: 18 on its cylinder4 (one cylinder) and 4.6 on its
+/// balls6 (seven spheres). rtprof's scenes of the same names hold 4 and 6 primitives;
+/// the same content is its cylinder1 and balls7.
+pub const THESIS_GAIN_ENDS: [ThesisGain; 2] = [
+    ThesisGain {
+        scene: "cylinder4",
+        primitives: 1,
+        content: "1 cylinder",
+        gain: 18.0,
+        same_content: "cylinder1",
+    },
+    ThesisGain {
+        scene: "balls6",
+        primitives: 7,
+        content: "7 spheres",
+        gain: 4.6,
+        same_content: "balls7",
+    },
+];
 
 /// Up to which primitive count the pipeline renders a frame faster than a software
 /// whose frame time grows linearly with the primitives.

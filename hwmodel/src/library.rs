@@ -146,6 +146,31 @@ pub struct GlueSpec {
     pub resources: Resources,
 }
 
+/// A RAM block of a family: its name, its bits and the shapes it can take.
+#[derive(Clone, Debug, PartialEq, Eq, Serialize, Deserialize)]
+pub struct MemoryBlock {
+    /// `M9K`, `M10K`, `M20K`.
+    pub name: String,
+    /// Bits a block holds (parity bits included).
+    pub bits: u64,
+    /// The shapes as `[depth, width]`, e.g. `[1024, 9]`.
+    pub shapes: Vec<[u64; 2]>,
+}
+
+/// Blocks a memory of `depth` words × `width` bits takes in the best of `block`'s
+/// shapes (0 for an empty memory).
+pub fn blocks_for(block: &MemoryBlock, depth: u64, width: u64) -> u64 {
+    if depth == 0 || width == 0 {
+        return 0;
+    }
+    block
+        .shapes
+        .iter()
+        .map(|&[d, w]| depth.div_ceil(d.max(1)) * width.div_ceil(w.max(1)))
+        .min()
+        .unwrap_or(u64::MAX)
+}
+
 /// A device of the family.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct DeviceSpec {
@@ -177,6 +202,9 @@ pub struct Library {
     pub soft_mult9_le: u64,
     /// Registers per 9-bit multiplier element built in logic.
     pub soft_mult9_regs: u64,
+    /// The family's RAM block ([`crate::memory`]): a device's `mem_bits` is a whole
+    /// number of them.
+    pub memory_block: MemoryBlock,
     ops: BTreeMap<String, OpSpec>,
     #[serde(default)]
     glue: BTreeMap<String, GlueSpec>,
@@ -206,6 +234,11 @@ pub const CYCLONE_IV_E: &str = include_str!("../data/cyclone_iv_e.toml");
 pub const CYCLONE_V: &str = include_str!("../data/cyclone_v.toml");
 
 impl Library {
+    /// The RAM blocks of `device` (its memory bits over the block's).
+    pub fn memory_blocks(&self, device: &DeviceSpec) -> u64 {
+        device.mem_bits / self.memory_block.bits.max(1)
+    }
+
     /// The device the thesis measured on, as the library's TOML marks it (`validated`).
     pub fn validated_device(&self) -> Option<&DeviceSpec> {
         self.devices.iter().find(|d| d.validated)

@@ -8,7 +8,7 @@ use serde::Serialize;
 
 use crate::blocks::Pipeline;
 use crate::design::Design;
-use crate::device::{FitState, demand, fit, largest_units};
+use crate::device::{FitState, demand, fit_design, largest_units};
 use crate::frame_timing::frame_timing;
 use crate::library::{DeviceSpec, Library, Resources};
 
@@ -81,7 +81,7 @@ pub fn thesis_optimizations(
         ),
         ("the three together".to_string(), together),
         (
-            "two intersection units (8.3.5)".to_string(),
+            "two intersection units (8.3.3)".to_string(),
             Design { units: 2, ..thesis },
         ),
         (
@@ -101,7 +101,7 @@ pub fn thesis_optimizations(
             let pipeline = Pipeline::build(lib, &design);
             let timing = frame_timing(&pipeline, primitives, width, height, clock_hz);
             let asked = demand(lib, &pipeline, primitives, width, height);
-            let fitted = fit(lib, device, asked);
+            let fitted = fit_design(lib, device, &pipeline, primitives, width, height);
             OptimizationCost {
                 label,
                 design,
@@ -209,7 +209,7 @@ mod tests {
             ..most.design
         };
         let pipeline = Pipeline::build(&lib, &more);
-        let fitted = fit(&lib, &device, demand(&lib, &pipeline, 7, 640, 480));
+        let fitted = fit_design(&lib, &device, &pipeline, 7, 640, 480);
         assert!(!fitted.fits, "{} units fit too", more.units);
     }
 }

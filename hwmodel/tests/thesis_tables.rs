@@ -112,12 +112,12 @@ fn the_thesis_design_needs_more_multipliers_than_the_ep4ce115_has() {
     // Table 8 itself asks 540 > 532; the model's blocks ask more again, and the fit
     // builds the excess in logic and still fits (the thesis's board ran).
     use hwmodel::blocks::Pipeline;
-    use hwmodel::device::{demand, fit};
+    use hwmodel::device::{demand, fit_design};
     let lib = Library::cyclone_iv_e();
     let p = Pipeline::build(&lib, &Design::thesis());
     let d = demand(&lib, &p, 7, 640, 480);
     assert!(d.mult > 532);
-    let f = fit(&lib, &lib.devices[0], d);
+    let f = fit_design(&lib, &lib.devices[0], &p, 7, 640, 480);
     assert!(f.soft_mult_elements > 0 && f.fits);
     assert_eq!(f.used.mult, 532);
 }

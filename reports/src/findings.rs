@@ -216,8 +216,8 @@ fn hardware_speedup_finding(results: &Results) -> Option<String> {
     ))
 }
 
-/// The fit of a device use: fits, fits on paper only (logic or memory above the routing
-/// headroom, [`hwmodel::device::ROUTING_HEADROOM_PERCENT`]), does not fit.
+/// The fit of a device use: fits, fits on paper only (logic, memory bits or memory
+/// blocks above their headroom, [`hwmodel::device::HEADROOM_RESOURCES`]), does not fit.
 pub fn fit_state(d: &DeviceUse) -> FitState {
     d.fit_state
         .unwrap_or_else(|| FitState::of(d.fits, &resources_above_headroom_of(d)))
@@ -234,6 +234,7 @@ pub fn headroom_warning_of(d: &DeviceUse) -> Option<String> {
         .into_iter()
         .map(|r| match r {
             "le" => (r, share(d.le, d.le_capacity)),
+            "mem_blocks" => (r, share(d.mem_blocks, d.mem_block_capacity)),
             _ => (r, share(d.mem_bits, d.mem_capacity)),
         })
         .collect();
@@ -241,7 +242,11 @@ pub fn headroom_warning_of(d: &DeviceUse) -> Option<String> {
 }
 
 fn resources_above_headroom_of(d: &DeviceUse) -> Vec<&'static str> {
-    resources_above_headroom((d.le, d.le_capacity), (d.mem_bits, d.mem_capacity))
+    resources_above_headroom(
+        (d.le, d.le_capacity),
+        (d.mem_bits, d.mem_capacity),
+        (d.mem_blocks, d.mem_block_capacity),
+    )
 }
 
 /// Resources a device runs out of: demand at or above its capacity.
@@ -333,8 +338,32 @@ fn model_error_finding(results: &Results) -> Option<String> {
         .fold(None, |acc: Option<f64>, e| {
             Some(acc.map_or(e, |a| a.max(e)))
         });
+    // The IP cores whose latency the library takes from rtprof's RTL rather than from
+    // the thesis: the block latencies above rest on them.
+    let own_latencies: Vec<String> = hardware
+        .ops
+        .iter()
+        .filter_map(|r| {
+            let thesis = r.thesis?.latency;
+            (r.model.latency != thesis).then(|| {
+                format!(
+                    "{} {} cycles for the thesis's {thesis}",
+                    r.name, r.model.latency
+                )
+            })
+        })
+        .collect();
     let latency = latency_worst
-        .map(|l| format!("; its latencies are within {l:.1} % of the thesis"))
+        .map(|l| {
+            if own_latencies.is_empty() {
+                format!("; its latencies are within {l:.1} % of the thesis")
+            } else {
+                format!(
+                    "; its latencies are within {l:.1} % of the thesis with rtprof's RTL's own {}",
+                    join_list(&own_latencies)
+                )
+            }
+        })
         .unwrap_or_default();
     // Figures the model has where the thesis has none have no percentage: named apart.
     let in_kind: Vec<String> = hardware
@@ -860,8 +889,9 @@ mod tests {
         assert_eq!(
             headroom_warning_of(&d).as_deref(),
             Some(
-                "logic elements at 99.0 % of the device, above the 85 % routing headroom: \
-                 fits on paper, but a design this full rarely routes or meets timing"
+                "logic elements at 99.0 % (headroom 85 %) of the device, above the routing \
+                 headroom: fits on paper, but a design this full rarely routes or meets \
+                 timing"
             )
         );
         let mut r = sample_results();

@@ -283,6 +283,16 @@ pub fn change_estimate(ratio: f64, low: f64, high: f64) -> EstimateText {
     }
 }
 
+/// A clock frequency: "50 MHz", "52.6 MHz".
+pub fn megahertz(hz: f64) -> String {
+    format!("{} MHz", trimmed(hz / 1e6))
+}
+
+/// Frames per second: "137 fps", "5.42 fps".
+pub fn fps(frames_per_second: f64) -> String {
+    format!("{} fps", significant(frames_per_second))
+}
+
 /// "1 sphere", "2,400 spheres" from a plural kind name.
 pub fn kind_count(n: u64, kind: &str) -> String {
     if n == 1 {

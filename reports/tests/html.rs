@@ -172,3 +172,27 @@ fn an_empty_run_explains_its_empty_sections() {
         assert!(html.contains(note), "missing note: {note}");
     }
 }
+
+#[test]
+fn no_development_issue_number_reaches_a_reader() {
+    // The report's text (HTML and the summary.md of the same document model; CI checks
+    // report.pdf's text too) speaks of the thesis and the program, never of the issues
+    // the program was built in.
+    let dir = TempDir::new("html-test-issues").expect("temp dir");
+    let runs = [sample_run("bench-1", dir.path())];
+    let html = render_html(&runs).expect("render");
+    let summary = reports::exports::summary_markdown(&runs);
+    // The words around the first "issue <digit>", if any.
+    let issue = |text: &str| -> Option<String> {
+        let lower = text.to_lowercase();
+        let words: Vec<&str> = lower.split_whitespace().collect();
+        words
+            .windows(2)
+            .position(|w| w[0].ends_with("issue") && w[1].starts_with(|c: char| c.is_ascii_digit()))
+            .map(|i| words[i.saturating_sub(8)..(i + 4).min(words.len())].join(" "))
+    };
+    assert_eq!(issue(&html), None, "report.html names an issue");
+    assert_eq!(issue(&summary), None, "summary.md names an issue");
+    // The check itself finds one.
+    assert!(issue("as in Issue 38 before").is_some());
+}

@@ -48,6 +48,12 @@ pub struct DeviceUse {
     pub soft_mult_elements: u64,
     pub mem_bits: u64,
     pub mem_capacity: u64,
+    /// RAM blocks (M9K) the design's memories take, and the device's; 0 in files
+    /// written before blocks were counted.
+    #[serde(default)]
+    pub mem_blocks: u64,
+    #[serde(default)]
+    pub mem_block_capacity: u64,
     pub plls: u32,
     pub pll_capacity: u32,
     pub fits: bool,
@@ -71,6 +77,37 @@ pub struct HardwareResult {
     /// in older files).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub synthesis: Option<Synthesis>,
+    /// The clock rtprof's RTL of the thesis design reaches by its depth: the synthesized
+    /// longest path when a synthesis is kept, else the generator's level goal (`None`
+    /// in older files).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub rtl_clock: Option<RtlClock>,
+    /// The scene upload over the serial line before a frame (`None` in older files).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub upload: Option<Upload>,
+}
+
+/// The clock estimated for rtprof's RTL, with where it comes from.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize, JsonSchema)]
+pub struct RtlClock {
+    pub mhz: f64,
+    /// LUT levels on the longest register-to-register path.
+    pub levels: u64,
+    /// True when `levels` was measured on a synthesis of this RTL (Yosys), false when it
+    /// is the generator's goal.
+    pub synthesized: bool,
+    /// How the estimate was made, as a sentence.
+    pub source: String,
+}
+
+/// The scene upload: the stream's bytes for the test bench's largest scene and the
+/// seconds it takes on the line.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize, JsonSchema)]
+pub struct Upload {
+    pub primitives: u64,
+    pub bytes: u64,
+    pub baud: u32,
+    pub seconds: f64,
 }
 
 /// The generated RTL of a design through Yosys's default Cyclone IV E script
@@ -155,7 +192,12 @@ pub struct SceneHardware {
     pub primitives: u64,
     pub cycles: u64,
     pub seconds: f64,
+    /// Every resource within the device (on paper: `fit_state` adds the headroom).
     pub fits: bool,
+    /// The thesis design's fit on the thesis's device at this scene's size: fits, on
+    /// paper only, or not (`None` in older files).
+    #[serde(default)]
+    pub fit_state: Option<FitState>,
     /// Software time of the same job (baseline, diffuse-only gray), seconds.
     pub software_seconds: Estimate,
     /// Software seconds / hardware seconds.

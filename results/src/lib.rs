@@ -40,8 +40,8 @@ pub use analysis::verdict::NOISE_THRESHOLD;
 pub use bvh_quality::BvhQuality;
 pub use created::rfc3339_utc;
 pub use hardware::{
-    DeviceUse, HardwareResult, HwColumn, HwErrors, HwFigures, HwRow, HwRowKind, SceneHardware,
-    SoftwarePeer, SynthBlock, Synthesis,
+    DeviceUse, HardwareResult, HwColumn, HwErrors, HwFigures, HwRow, HwRowKind, RtlClock,
+    SceneHardware, SoftwarePeer, SynthBlock, Synthesis, Upload,
 };
 pub use pixel_stats::{PixelMap, PixelStats, VariantPixelMaps};
 pub use read::{FileError, ResultsError};

@@ -336,6 +336,7 @@ fn scene(s: SceneResult, path: &str) -> Result<v2::SceneResult, ResultsError> {
             cycles: h.cycles,
             seconds: h.seconds,
             fits: h.fits,
+            fit_state: None,
             software_seconds: h.software_seconds,
             speedup: h.speedup,
             peer: None,
@@ -419,6 +420,8 @@ impl Results {
                 family: h.family,
                 devices: h.devices,
                 synthesis: None,
+                rtl_clock: None,
+                upload: None,
             }),
             None => None,
         };

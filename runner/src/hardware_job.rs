@@ -8,11 +8,11 @@ use std::sync::atomic::AtomicBool;
 use analysis::{Comparison, RgbImage, compare};
 use hwmodel::blocks::Pipeline;
 use hwmodel::design::Design;
-use hwmodel::device::{demand, fit, largest_units};
+use hwmodel::device::{FitState, fit_design, largest_units};
 use hwmodel::frame_timing::{FrameTiming, frame_timing};
 use hwmodel::hw_scene::HwScene;
 use hwmodel::library::Library;
-use results::{DeviceUse, HardwareResult, HwRow};
+use results::{DeviceUse, HardwareResult, HwRow, RtlClock, Upload};
 use tracer::{
     NoCount, RenderOptions, Sampling, Scene, ShadingMode, VariantSet, render_variant_until,
 };
@@ -73,7 +73,8 @@ pub const PEER_VARIANT: &str = "bvh+simd+packets";
 pub struct HardwareMeasurement {
     pub primitives: u64,
     pub timing: FrameTiming,
-    pub fits: bool,
+    /// The thesis design's fit on the thesis's device for this scene.
+    pub fit_state: Option<FitState>,
     pub software: Measured<tracer::VariantRender<NoCount>>,
     /// [`PEER_VARIANT`] on the same job: on one thread, and on every thread of the
     /// suite's pool (with their number).
@@ -104,9 +105,9 @@ pub fn run_hardware(
     let pipeline = Pipeline::build(&lib, &Design::thesis());
     let n = hw.primitive_count() as u64;
     let timing = frame_timing(&pipeline, n, width, height, THESIS_CLOCK_HZ);
-    let fits = lib
+    let fit_state = lib
         .validated_device()
-        .is_some_and(|device| fit(&lib, device, demand(&lib, &pipeline, n, width, height)).fits);
+        .map(|device| fit_design(&lib, device, &pipeline, n, width, height).state);
     // The emulator reads the stop flag before each row, as the renders do.
     let emulated = all_threads
         .install(|| hwmodel::emulator::render_until(hw, width, height, stop))
@@ -122,7 +123,7 @@ pub fn run_hardware(
     Ok(HardwareMeasurement {
         primitives: n,
         timing,
-        fits,
+        fit_state,
         software,
         peer_one_thread,
         peer_all_threads,
@@ -142,9 +143,8 @@ pub fn hardware_tables() -> HardwareResult {
     let mut devices = Vec::new();
     for family in Library::embedded() {
         let pipeline = Pipeline::build(&family, &Design::thesis());
-        let d = demand(&family, &pipeline, 7, 640, 480);
         for device in &family.devices {
-            let f = fit(&family, device, d);
+            let f = fit_design(&family, device, &pipeline, 7, 640, 480);
             devices.push(DeviceUse {
                 device: device.name.clone(),
                 validated: f.validated,
@@ -155,6 +155,8 @@ pub fn hardware_tables() -> HardwareResult {
                 soft_mult_elements: f.soft_mult_elements,
                 mem_bits: f.used.mem_bits,
                 mem_capacity: device.mem_bits,
+                mem_blocks: f.mem_blocks,
+                mem_block_capacity: f.mem_block_capacity,
                 plls: f.plls,
                 pll_capacity: device.plls,
                 fits: f.fits,
@@ -163,15 +165,60 @@ pub fn hardware_tables() -> HardwareResult {
             });
         }
     }
+    let thesis = Pipeline::build(&lib, &Design::thesis());
+    let synthesis = rtl::synth::recall(&rtl::synth::cache_dir(), &lib, &thesis);
+    let rtl_clock = Some(rtl_clock(synthesis.as_ref()));
+    let primitives = hwmodel::optimizations::BENCH_PRIMITIVES;
+    let bytes = rtl::system::uart::stream_bytes(
+        primitives,
+        u32::try_from(thesis.design.words_per_primitive()).unwrap_or(u32::MAX),
+    );
+    let baud = rtl::system::uart::DEFAULT_BAUD;
     HardwareResult {
         family: lib.family.clone(),
         ops: t.ops.iter().map(HwRow::from_model_row).collect(),
         blocks: t.blocks.iter().map(HwRow::from_model_row).collect(),
         devices,
-        synthesis: rtl::synth::recall(
-            &rtl::synth::cache_dir(),
-            &lib,
-            &Pipeline::build(&lib, &Design::thesis()),
-        ),
+        synthesis,
+        rtl_clock,
+        upload: Some(Upload {
+            primitives,
+            bytes,
+            baud,
+            seconds: rtl::system::uart::upload_seconds(
+                usize::try_from(bytes).unwrap_or(usize::MAX),
+                baud,
+            ),
+        }),
+    }
+}
+
+/// The clock of rtprof's RTL of the thesis design: from the longest path of a kept
+/// synthesis of exactly this RTL, else from the level goal the generator pipelines to
+/// (the most LUT levels the delay rule allows at the thesis's clock).
+fn rtl_clock(synthesis: Option<&results::Synthesis>) -> RtlClock {
+    let rule = rtl::synth::fmax::CYCLONE_IV_E;
+    match synthesis {
+        Some(s) => RtlClock {
+            mhz: s.total.fmax_mhz,
+            levels: s.total.levels,
+            synthesized: true,
+            source: format!(
+                "rtprof's RTL of the thesis design through {} ({}): its longest path, {} LUT levels, at {} ns a level and {} ns a register",
+                s.tool, s.flow, s.total.levels, rule.level_ns, rule.register_ns
+            ),
+        },
+        None => {
+            let levels = rule.max_levels_at(rtl::synth::fmax::THESIS_CLOCK_MHZ);
+            RtlClock {
+                mhz: rule.fmax_mhz(levels),
+                levels,
+                synthesized: false,
+                source: format!(
+                    "the level goal rtprof's RTL generator pipelines every stage to ({levels} LUT levels), at {} ns a level and {} ns a register; not synthesized on this machine (`rtprof hw synth` measures it)",
+                    rule.level_ns, rule.register_ns
+                ),
+            }
+        }
     }
 }

@@ -8,8 +8,7 @@ use std::sync::atomic::AtomicBool;
 use hwmodel::blocks::Pipeline;
 use hwmodel::design::Design;
 use hwmodel::device::{
-    Fit, FitState, ROUTING_HEADROOM_PERCENT, demand, fit, largest_units,
-    largest_units_within_headroom,
+    Fit, FitState, fit_design, headroom_percent, largest_units, largest_units_within_headroom,
 };
 use hwmodel::frame_timing::{FrameTiming, frame_timing};
 use hwmodel::hw_scene::HwScene;
@@ -80,11 +79,7 @@ pub fn predict(
 ) -> Prediction {
     let pipeline = Pipeline::build(lib, design);
     let timing = frame_timing(&pipeline, primitives, width, height, clock_hz);
-    let f = fit(
-        lib,
-        device,
-        demand(lib, &pipeline, primitives, width, height),
-    );
+    let f = fit_design(lib, device, &pipeline, primitives, width, height);
     Prediction {
         design: design.label(),
         timing,
@@ -215,13 +210,23 @@ fn format_prediction_column(p: &Prediction) -> Vec<String> {
             }
         ),
         format!("{} ({})", f.used.mem_bits, pct(f.utilization.mem_bits)),
+        format!(
+            "{} of {} ({})",
+            f.mem_blocks,
+            f.mem_block_capacity,
+            pct(f.utilization.mem_blocks)
+        ),
         format!("{} ({})", f.plls, pct(f.utilization.plls)),
         match f.state {
             FitState::Fits => f.state.label().to_string(),
             FitState::FitsOnPaper => format!(
-                "{} ({} > {ROUTING_HEADROOM_PERCENT} %)",
+                "{} ({})",
                 f.state.label(),
-                f.above_headroom.join(", ")
+                f.above_headroom
+                    .iter()
+                    .map(|r| format!("{r} > {} %", headroom_percent(r)))
+                    .collect::<Vec<_>>()
+                    .join(", ")
             ),
             FitState::DoesNotFit => format!("{} ({} over)", f.state.label(), f.over.join(", ")),
         },
@@ -264,6 +269,7 @@ impl TimeReport {
             "LEs",
             "9-bit multipliers",
             "memory bits",
+            "RAM blocks",
             "PLLs",
             "fits",
             "largest K that fits",

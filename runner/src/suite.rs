@@ -10,6 +10,7 @@ use std::sync::atomic::{AtomicBool, Ordering};
 use std::time::Instant;
 
 use analysis::{Band, compare, difference_heat_map, gray_histogram};
+use hwmodel::device::FitState;
 use hwmodel::hw_scene::HwScene;
 use results::{
     Calibration, CodeKind, F64Reference, FailedPart, Failure, MachinePeak, ProfileResult, Results,
@@ -736,7 +737,8 @@ impl SceneRunner<'_> {
             primitives: m.primitives,
             cycles: m.timing.cycles,
             seconds: m.timing.seconds,
-            fits: m.fits,
+            fits: m.fit_state.is_some_and(|s| s != FitState::DoesNotFit),
+            fit_state: m.fit_state,
             speedup: software_seconds.median / m.timing.seconds,
             peer: Some(results::SoftwarePeer {
                 variant: VariantName::parse(crate::hardware_job::PEER_VARIANT)?,

@@ -485,6 +485,7 @@ fn sample_scene_hardware(s: &SceneSpec, base_median: f64) -> SceneHardware {
         cycles,
         seconds,
         fits: true,
+        fit_state: Some(hwmodel::device::FitState::Fits),
         software_seconds,
         speedup: software_seconds.median / seconds,
         // The peer grows linearly with the primitives, exactly, so that the break-even
@@ -716,6 +717,20 @@ fn sample_hardware() -> HardwareResult {
         ops: tables.ops.iter().map(HwRow::from_model_row).collect(),
         blocks: tables.blocks.iter().map(HwRow::from_model_row).collect(),
         synthesis: Some(sample_synthesis()),
+        // The generator's goal: 12 levels at 1 ns + 1.5 ns a level, 1000 / 19 MHz.
+        rtl_clock: Some(results::RtlClock {
+            mhz: 1000.0 / 19.0,
+            levels: 12,
+            synthesized: false,
+            source: "the sample's level goal".to_string(),
+        }),
+        // both7's upload: 356 bytes at 115,200 baud.
+        upload: Some(results::Upload {
+            primitives: 7,
+            bytes: 356,
+            baud: 115_200,
+            seconds: 356.0 * 10.0 / 115_200.0,
+        }),
         devices: vec![
             DeviceUse {
                 device: "EP4CE115".to_string(),
@@ -727,6 +742,8 @@ fn sample_hardware() -> HardwareResult {
                 soft_mult_elements: 36,
                 mem_bits: 2_534_933,
                 mem_capacity: 3_981_312,
+                mem_blocks: 340,
+                mem_block_capacity: 432,
                 plls: 2,
                 pll_capacity: 4,
                 fits: true,
@@ -743,6 +760,8 @@ fn sample_hardware() -> HardwareResult {
                 soft_mult_elements: 0,
                 mem_bits: 2_534_933,
                 mem_capacity: 12_492_800,
+                mem_blocks: 330,
+                mem_block_capacity: 1220,
                 plls: 2,
                 pll_capacity: 8,
                 fits: true,

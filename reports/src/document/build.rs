@@ -26,7 +26,7 @@ pub enum Part {
 /// appendix. The comparison comes only with several runs, and first: a report of
 /// several runs opens with what changed. The ray-rates, roofline, pixel-maps and
 /// bvh-quality sections come only with results that hold their data.
-pub const SECTIONS: [(&str, &str, Part); 27] = [
+pub const SECTIONS: [(&str, &str, Part); 28] = [
     ("comparison", "What changed between the runs", Part::Main),
     ("answers", "Answers", Part::Main),
     ("profile", "Profile: where the time goes", Part::Main),
@@ -66,6 +66,11 @@ pub const SECTIONS: [(&str, &str, Part); 27] = [
     (
         "device-utilization",
         "Device utilization",
+        Part::Within("hardware"),
+    ),
+    (
+        "design-space",
+        "Would it pay off: every design on every device",
         Part::Within("hardware"),
     ),
     (

@@ -10,7 +10,10 @@ use crate::document::{
 use crate::findings::{fit_state, headroom_warning_of};
 use crate::format;
 use crate::results::{DeviceUse, HwColumn, HwRow, HwRowKind, SceneResult};
-use hwmodel::device::{FitState, ROUTING_HEADROOM_PERCENT, above_headroom};
+use hwmodel::device::{
+    FitState, MEMORY_BLOCK_HEADROOM_PERCENT, ROUTING_HEADROOM_PERCENT, above_headroom,
+    headroom_percent,
+};
 
 /// Tables 7 or 8: each cell the model's figure, its detail the thesis's figure and the
 /// model's signed error, its tone the size of that error ([`Tone::of_error`]).
@@ -33,8 +36,7 @@ pub fn hw_table(rows: &[HwRow]) -> Table {
                 }
                 (Some(0), None) if differs_in_kind => "/ 0 (the thesis has none)".to_string(),
                 (Some(t), None) => format!("/ {} ({})", format::count(t), format::DASH),
-                // The IP-core rows are table 7's own figures: the model's input.
-                (None, _) if row.kind == HwRowKind::IpCore => "(thesis input)".to_string(),
+                (None, _) if row.kind == HwRowKind::IpCore => "(the library's)".to_string(),
                 (None, _) => "(no thesis figure)".to_string(),
             };
             let tone = if differs_in_kind {
@@ -61,9 +63,17 @@ pub fn hardware(b: &mut Builder) -> Section {
         s.text(text);
     }
     s.absorb(hardware_tables(b));
-    s.absorb(super::synthesis::synthesis_section(b));
+    if r.hardware.as_ref().is_some_and(|h| h.synthesis.is_some()) {
+        s.absorb(super::synthesis::synthesis_section(b));
+    } else {
+        s.blocks.push(Block::note(
+            Tone::Muted,
+            "The generated RTL has not been synthesized on this machine: `rtprof hw synth` (Yosys, a few minutes) records its cells, logic depth and clock, and the next run shows them here.",
+        ));
+    }
     s.absorb(optimizations(b));
     s.absorb(device_utilization(b));
+    s.absorb(super::fpga_answer::design_space(b));
     s.absorb(sw_hw(b));
     s
 }
@@ -246,13 +256,14 @@ pub fn device_utilization(b: &mut Builder) -> Section {
     if devices.is_empty() {
         return s.empty("No device fit in this run (no hardware model).");
     }
-    s.text(format!("The thesis's design fitted to each device: used and available resources, and the largest number of intersection units that still fits. A design that fits but uses more than {ROUTING_HEADROOM_PERCENT} % of the logic elements or memory bits fits on paper only: Quartus rarely routes a device that full, or meets timing on it (the routing-headroom rule, docs/hardware-model.md)."));
+    s.text(format!("The thesis's design fitted to each device: used and available resources, and the largest number of intersection units that still fits. A design that fits but uses more than {ROUTING_HEADROOM_PERCENT} % of the logic elements or memory bits, or more than {MEMORY_BLOCK_HEADROOM_PERCENT} % of the RAM blocks, fits on paper only: Quartus rarely routes a device that full, or meets timing on it (the routing-headroom rules, docs/hardware-model.md). Memory takes whole blocks: each delay line, scene word and the frame buffer its own."));
     let mut t = Table::new(vec![
         Column::text("device"),
         Column::text("fits"),
         Column::number("logic elements"),
         Column::number("9-bit multipliers"),
         Column::number("memory bits"),
+        Column::number("memory blocks"),
         Column::number("PLLs"),
         Column::number("largest K that fits").detail("on paper"),
     ]);
@@ -283,11 +294,12 @@ fn device_row(d: &DeviceUse) -> Vec<Cell> {
         .tone(if over { Tone::Bad } else { Tone::Neutral })
     };
     // Logic and memory: a warning above the routing headroom, bad when they run out.
-    let headroom_usage = |used: u64, capacity: u64| {
+    let headroom_usage = |resource: &str, used: u64, capacity: u64| {
         let cell = usage(used, capacity, used >= capacity);
-        if used < capacity && above_headroom(used, capacity) {
+        if used < capacity && above_headroom(resource, used, capacity) {
             cell.tone(Tone::Warning).detail(format!(
-                "above the {ROUTING_HEADROOM_PERCENT} % routing headroom"
+                "above the {} % headroom",
+                headroom_percent(resource)
             ))
         } else {
             cell
@@ -317,9 +329,14 @@ fn device_row(d: &DeviceUse) -> Vec<Cell> {
     vec![
         device,
         Cell::text(state.label()).tone(state_tone),
-        headroom_usage(d.le, d.le_capacity),
+        headroom_usage("le", d.le, d.le_capacity),
         mult,
-        headroom_usage(d.mem_bits, d.mem_capacity),
+        headroom_usage("mem_bits", d.mem_bits, d.mem_capacity),
+        if d.mem_block_capacity > 0 {
+            headroom_usage("mem_blocks", d.mem_blocks, d.mem_block_capacity)
+        } else {
+            Cell::dash()
+        },
         usage(
             u64::from(d.plls),
             u64::from(d.pll_capacity),
@@ -539,7 +556,7 @@ mod tests {
         );
         assert_eq!(
             (row[2].tone, row[2].detail.as_deref()),
-            (Tone::Warning, Some("above the 85 % routing headroom"))
+            (Tone::Warning, Some("above the 85 % headroom"))
         );
         // Over the device: does not fit, the LE cell bad.
         d.le = 114_481;

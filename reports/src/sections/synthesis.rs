@@ -138,10 +138,7 @@ pub fn synthesis_text(synth: &Synthesis, model: &[HwRow]) -> String {
 /// The report's synthesis section (inside the hardware chapter), when the run carries
 /// a synthesis of its design.
 pub fn synthesis_section(b: &mut Builder) -> Section {
-    let mut s = b.section(
-        "hardware-synthesis",
-        Some("issue 38: the generated RTL through Yosys's standard Cyclone IV E flow"),
-    );
+    let mut s = b.section("hardware-synthesis", None);
     let Some(hw) = &b.results().hardware else {
         return s.empty("No hardware model in this run.");
     };

@@ -123,6 +123,12 @@ pub fn scene_stream(setup: &FrameSetup) -> Result<Vec<u8>, RtlError> {
     Ok(stream)
 }
 
+/// Bytes of the stream that uploads `primitives` of `words_per_primitive` words: the
+/// magic, the header, the words and the CRC, four bytes each ([`scene_stream`]).
+pub fn stream_bytes(primitives: u64, words_per_primitive: u32) -> u64 {
+    4 + 4 * (HEADER_WORDS as u64 + u64::from(words_per_primitive) * primitives + 1)
+}
+
 /// Seconds the stream takes on the line at `baud` (10 bits a byte, back to back).
 pub fn upload_seconds(bytes: usize, baud: u32) -> f64 {
     bytes as f64 * 10.0 / f64::from(baud)
@@ -204,5 +210,19 @@ mod tests {
         assert!(clocks_per_bit(100, 40).is_err(), "2.5 cycles per bit");
         // 14.7456 MHz / 4,000,000 baud = 3.69: 4 cycles is 7.8 % slow.
         assert!(clocks_per_bit(14_745_600, 4_000_000).is_err());
+    }
+
+    #[test]
+    fn the_stream_size_is_the_framing_s_formula() {
+        // both7's upload (docs/rtl-system.md): 4 + 4 · (24 + 9 · 7 + 1) = 356 bytes,
+        // 356 · 10 / 115,200 = 30.9 ms.
+        assert_eq!(stream_bytes(7, 9), 356);
+        assert!((upload_seconds(356, DEFAULT_BAUD) - 0.030903).abs() < 1e-6);
+        let s = setup();
+        let words = words_per_primitive(&s).unwrap();
+        assert_eq!(
+            scene_stream(&s).unwrap().len() as u64,
+            stream_bytes(u64::from(s.prim_count), words)
+        );
     }
 }
