@@ -212,4 +212,16 @@ mod tests {
         let fitted = fit_design(&lib, &device, &pipeline, 7, 640, 480);
         assert!(!fitted.fits, "{} units fit too", more.units);
     }
+
+    #[test]
+    fn the_labels_cite_the_thesis_s_sections() {
+        // Several intersection units are the thesis's 8.3.3 (8.3.5 is pixel averaging).
+        let (lib, device) = ep4ce115();
+        let rows = thesis_optimizations(&lib, &device, 7, 640, 480, 50e6);
+        assert!(
+            rows.iter()
+                .any(|r| r.label == "two intersection units (8.3.3)")
+        );
+        assert!(rows.iter().all(|r| !r.label.contains("8.3.5")));
+    }
 }

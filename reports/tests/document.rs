@@ -293,3 +293,31 @@ fn the_hardware_table_is_one_model_for_the_report_and_the_terminal() {
         .expect("intersection line");
     assert!(line.contains("56,764 / 21,152 (+168.4 %)"), "{line}");
 }
+
+#[test]
+fn the_synthesis_part_is_shown_with_a_synthesis_and_else_left_out_for_one_line() {
+    let dir = temp_dir("synthesis");
+    let anchored = |doc: &Document| {
+        doc.section("hardware").is_some_and(|h| {
+            h.blocks.iter().any(|b| {
+                matches!(b,
+                Block::Heading { anchor: Some(a), .. } if a == "hardware-synthesis")
+            })
+        })
+    };
+    let with = sample_run(&dir, "with");
+    assert!(with.results.hardware.as_ref().unwrap().synthesis.is_some());
+    assert!(anchored(
+        &document::build(std::slice::from_ref(&with)).unwrap()
+    ));
+    let mut without = sample_run(&dir, "without");
+    without.results.hardware.as_mut().unwrap().synthesis = None;
+    let doc = document::build(std::slice::from_ref(&without)).unwrap();
+    assert!(!anchored(&doc), "an empty synthesis part");
+    let text = format!("{:?}", doc.section("hardware").unwrap().blocks);
+    assert!(
+        text.contains("`rtprof hw synth`"),
+        "no line saying how to get it"
+    );
+    let _ = std::fs::remove_dir_all(&dir);
+}

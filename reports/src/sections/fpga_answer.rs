@@ -93,7 +93,7 @@ fn clocks(rtl: Option<&RtlClock>) -> Vec<Clock> {
 }
 
 /// The worst RMS against baseline of `variant` over the run's scenes.
-fn worst_rms(r: &Results, variant: &str) -> Option<f64> {
+pub(crate) fn worst_rms(r: &Results, variant: &str) -> Option<f64> {
     r.scenes
         .iter()
         .flat_map(|s| s.variants.iter())
@@ -323,12 +323,12 @@ impl FpgaAnswer {
         let thesis = self.thesis();
         if let Some(t) = thesis {
             text += &format!(
-                "The thesis's design ({}, 50 MHz, {}) {} than rtprof's {} on this machine's {}; it {}{}.",
+                "Against rtprof's {} on this machine's {}, the thesis's design ({}, 50 MHz, {}) {}; it {}{}.",
+                self.peer,
+                self.cpu,
                 design_text(t),
                 t.device,
                 against(t),
-                self.peer,
-                self.cpu,
                 fit_text(t),
                 if t.fit == FitState::FitsOnPaper && t.validated {
                     ", though the thesis built it and ran it"
@@ -348,7 +348,7 @@ impl FpgaAnswer {
                     }
                 };
                 text += &format!(
-                    " The best design that fits, {} on the {} at {} ({} a frame of 7 primitives, {}), {}{cost}{}",
+                    " The best design that fits, {} on the {} at {}, takes {} a frame of 7 primitives ({}) and {}{cost}{}",
                     design_text(b),
                     b.device,
                     clock_text(b),

@@ -105,8 +105,35 @@ pub fn optimizations(b: &mut Builder) -> Section {
     if let Some(text) = optimizations_sentence(&rows, &device.name) {
         s.text(text);
     }
-    s.blocks
-        .push(Block::Table(optimizations_table(&rows, &device.name)));
+    let r = b.results();
+    let picture = |d: &hwmodel::design::Design| {
+        let relied: Vec<String> = [
+            (d.fast_sqrt, "fast-sqrt"),
+            (d.ortho, "ortho"),
+            (d.no_rsqrt_shading, "no-rsqrt-shading"),
+        ]
+        .into_iter()
+        .filter(|(on, _)| *on)
+        .map(|(_, v)| match super::fpga_answer::worst_rms(r, v) {
+            Some(rms) => format!("{v} RMS {}", format::fixed(rms, 1)),
+            None => format!("{v} not run"),
+        })
+        .collect();
+        if relied.is_empty() {
+            "none".to_string()
+        } else {
+            relied.join(", ")
+        }
+    };
+    s.blocks.push(Block::Table(optimizations_table(
+        &rows,
+        &device.name,
+        &picture,
+    )));
+    s.blocks.push(Block::note(
+        Tone::Muted,
+        "Pixel averaging (8.3.5) is not costed in hardware: the pipeline would trace every other pixel (half the frame's cycles) and fill the rest from the neighbours through a line buffer (one RAM block a row and a few adders); its picture cost is the software variant's (pixel-avg in the variants chapter).",
+    ));
     s
 }
 
@@ -138,9 +165,7 @@ pub fn optimizations_sentence(
                 "with them, {} {} the frame to {}.",
                 format::plural(most.design.units as usize, "unit"),
                 if on_paper {
-                    format!(
-                        "fit, but only on paper (above the {ROUTING_HEADROOM_PERCENT} % routing headroom), and would take"
-                    )
+                    format!("fit, but only on paper (above the routing headroom), and would take")
                 } else {
                     "fit and take".to_string()
                 },
@@ -156,6 +181,7 @@ pub fn optimizations_sentence(
 pub fn optimizations_table(
     rows: &[hwmodel::optimizations::OptimizationCost],
     device: &str,
+    picture: &dyn Fn(&hwmodel::design::Design) -> String,
 ) -> Table {
     let mut t = Table::new(vec![
         Column::text("design"),
@@ -166,6 +192,7 @@ pub fn optimizations_table(
         Column::number("9-bit multipliers").detail("asked"),
         Column::number("memory bits"),
         Column::text(format!("fits the {device}")),
+        Column::text("picture cost").detail("worst RMS of the software variant"),
     ]);
     let Some(thesis) = rows.first() else {
         return t;
@@ -186,6 +213,7 @@ pub fn optimizations_table(
             Cell::count(r.used.mult).detail(format::count(r.multipliers_asked)),
             Cell::count(r.used.mem_bits),
             Cell::text(fits).tone(tone),
+            Cell::text(picture(&r.design)),
         ]);
     }
     t.caption(format!(
@@ -502,7 +530,7 @@ mod tests {
         on_paper[2].state = FitState::FitsOnPaper;
         let said = optimizations_sentence(&on_paper, "EP4CE115").unwrap_or_default();
         assert!(
-            said.contains("with them, 2 units fit, but only on paper (above the 85 % routing headroom), and would take the frame to 73.7 ms"),
+            said.contains("with them, 2 units fit, but only on paper (above the routing headroom), and would take the frame to 73.7 ms"),
             "{said}"
         );
     }
