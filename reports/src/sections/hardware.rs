@@ -165,7 +165,8 @@ pub fn optimizations_sentence(
                 "with them, {} {} the frame to {}.",
                 format::plural(most.design.units as usize, "unit"),
                 if on_paper {
-                    format!("fit, but only on paper (above the routing headroom), and would take")
+                    "fit, but only on paper (above the routing headroom), and would take"
+                        .to_string()
                 } else {
                     "fit and take".to_string()
                 },
