@@ -232,6 +232,8 @@ pub enum LibraryError {
 pub const CYCLONE_IV_E: &str = include_str!("../data/cyclone_iv_e.toml");
 /// The Cyclone V library (not validated), embedded.
 pub const CYCLONE_V: &str = include_str!("../data/cyclone_v.toml");
+/// The Arria 10 library (hard floating-point DSP blocks, not validated), embedded.
+pub const ARRIA_10: &str = include_str!("../data/arria_10.toml");
 
 impl Library {
     /// The RAM blocks of `device` (its memory bits over the block's).
@@ -279,6 +281,9 @@ impl Library {
     pub fn embedded() -> Vec<Self> {
         let mut out = vec![Self::cyclone_iv_e()];
         if let Ok(v) = Self::from_toml(CYCLONE_V, "cyclone_v.toml") {
+            out.push(v);
+        }
+        if let Ok(v) = Self::from_toml(ARRIA_10, "arria_10.toml") {
             out.push(v);
         }
         out
