@@ -2,7 +2,7 @@
 //! thesis's by default, changed by what-ifs. With the `clap` feature these are also the
 //! `rtprof hw` flags, declared here once beside the [`Design`] they fill.
 
-use crate::design::Design;
+use crate::design::{Design, MinDistance};
 use crate::library::{DeviceSpec, Library, LibraryError, find_device};
 
 // The design's changes from the thesis's, shared by every `hw` command that takes a
@@ -24,6 +24,10 @@ pub struct DesignFlags {
     #[cfg_attr(feature = "clap", arg(long, value_name = "K", default_value_t = 1,
         value_parser = clap::value_parser!(u32).range(1..=4096)))]
     pub units: u32,
+    /// What-if: the minimum distance compares distances as integers (1 cycle, one
+    /// primitive a cycle) instead of the 3-cycle float compare.
+    #[cfg_attr(feature = "clap", arg(long))]
+    pub int_compare: bool,
 }
 
 impl Default for DesignFlags {
@@ -34,6 +38,7 @@ impl Default for DesignFlags {
             ortho: false,
             no_rsqrt_shading: false,
             units: Design::thesis().units,
+            int_compare: false,
         }
     }
 }
@@ -46,6 +51,11 @@ impl DesignFlags {
             fast_sqrt: self.fast_sqrt,
             ortho: self.ortho,
             no_rsqrt_shading: self.no_rsqrt_shading,
+            min_distance: if self.int_compare {
+                MinDistance::IntegerCompare
+            } else {
+                MinDistance::FloatCompare
+            },
             ..Design::thesis()
         }
     }
@@ -104,6 +114,13 @@ mod tests {
             d.frame_bits_per_pixel,
             Design::thesis().frame_bits_per_pixel
         );
+        assert_eq!(d.min_distance, MinDistance::FloatCompare);
+        let int = DesignFlags {
+            int_compare: true,
+            ..flags
+        };
+        assert_eq!(int.design().cycles_per_primitive(), 1);
+        assert_eq!(int.design().label(), "int-compare");
     }
 
     #[test]

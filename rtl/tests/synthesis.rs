@@ -7,7 +7,7 @@
 //! -- --ignored`.
 
 use hwmodel::blocks::{ADDRESS_BITS, Pipeline};
-use hwmodel::design::Design;
+use hwmodel::design::{Design, MinDistance};
 use hwmodel::library::{Library, OpKind};
 use rtl::{generate, synth};
 
@@ -91,6 +91,27 @@ fn the_minimum_distance_block_synthesizes_with_its_registers_and_depth() {
     );
 }
 
+/// The integer compare's block (seconds): the 31-bit compare, the +∞ select and the
+/// registers' load enable between the kept registers and themselves, within the 12
+/// levels; only the kept registers (173 bits) and the done flag, no payload line.
+#[test]
+#[ignore = "needs yosys"]
+fn the_integer_compare_block_is_its_kept_registers_within_the_depth() {
+    let design = Design {
+        min_distance: MinDistance::IntegerCompare,
+        ..Design::thesis()
+    };
+    let s = synthesize(design, Some("min_distance")).synthesis;
+    let word = 5 * 32 + u64::from(ADDRESS_BITS);
+    assert_eq!(s.total.ff, word + 1, "{:?}", s.total);
+    assert_eq!(s.total.mult_lut4, 0);
+    assert!(
+        s.total.levels > 0 && s.total.levels <= synth::MAX_LUT_LEVELS,
+        "{:?}",
+        s.total
+    );
+}
+
 fn synth_block_named(b: &results::SynthBlock, name: &str) -> results::SynthBlock {
     results::SynthBlock {
         name: name.to_string(),
@@ -99,7 +120,8 @@ fn synth_block_named(b: &results::SynthBlock, name: &str) -> results::SynthBlock
 }
 
 /// The top's own logic (iterator, scene memory ports, padding, control delay lines)
-/// with every block a black box, K = 1 and 2 (seconds: CI runs it): its paths between
+/// with every block a black box, K = 1 and 2, a slot every 3 cycles and every cycle
+/// (seconds: CI runs it): its paths between
 /// its registers, inputs and the blocks' ports within the 12 levels. A path that runs
 /// on into a block (as the padding compare's did, 18 levels, before its flag was
 /// registered) ends here at the block's input: the whole-design test below measures
@@ -107,11 +129,14 @@ fn synth_block_named(b: &results::SynthBlock, name: &str) -> results::SynthBlock
 #[test]
 #[ignore = "needs yosys"]
 fn the_tops_own_logic_is_within_twelve_levels() {
-    for units in [1, 2] {
-        let design = Design {
+    let designs = [1, 2].into_iter().flat_map(|units| {
+        [MinDistance::FloatCompare, MinDistance::IntegerCompare].map(|min_distance| Design {
             units,
+            min_distance,
             ..Design::thesis()
-        };
+        })
+    });
+    for design in designs {
         let comparison = synthesize(design, Some(generate::TOP));
         let s = &comparison.synthesis;
         assert_eq!(s.blocks.len(), 1);
@@ -124,7 +149,8 @@ fn the_tops_own_logic_is_within_twelve_levels() {
         assert!(s.total.ff > 0, "{:?}", s.total);
         assert!(
             s.total.levels > 0 && s.total.levels <= synth::MAX_LUT_LEVELS,
-            "K = {units}: {:?}",
+            "{}: {:?}",
+            design.label(),
             s.total
         );
     }

@@ -5,7 +5,7 @@
 use std::path::{Path, PathBuf};
 
 use hwmodel::blocks::Pipeline;
-use hwmodel::design::Design;
+use hwmodel::design::{Design, MinDistance};
 use hwmodel::library::Library;
 use rtl::sim::{self, SimCheck};
 use rtl::synth::{self, SynthComparison};
@@ -207,13 +207,26 @@ impl RtlWritten {
                 }
             );
         }
-        let units = if self.design.units > 1 {
-            format!(" --units {}", self.design.units)
-        } else {
-            String::new()
-        };
+        // The flags that build this design again (hw sim refuses --ortho).
+        let d = &self.design;
+        let mut flags = String::new();
+        for (on, flag) in [
+            (d.fast_sqrt, " --fast-sqrt"),
+            (d.no_rsqrt_shading, " --no-rsqrt-shading"),
+            (
+                d.min_distance == MinDistance::IntegerCompare,
+                " --int-compare",
+            ),
+        ] {
+            if on {
+                flags += flag;
+            }
+        }
+        if d.units > 1 {
+            flags += &format!(" --units {}", d.units);
+        }
         text + &format!(
-            "simulate: rtprof hw sim {}{units}\n",
+            "simulate: rtprof hw sim {}{flags}\n",
             scene.unwrap_or("SCENE")
         )
     }

@@ -7,12 +7,14 @@
 //! scheduler's), in registers or, when the library puts the line in memory, in
 //! circular buffers (`fp_delay_ram.v`); frame constants and literals are never
 //! delayed; a row register loads once per image row. The minimum-distance block is
-//! written by hand (it feeds its own result back: the kept distance is forwarded to the
-//! next compare), with the model's latency (compare + register), in
-//! `rtl/verilog/min_distance.v`. The top module adds the screen iterator (one pixel
-//! every 3c cycles, c = ⌈n/K⌉), the scene memory (one RAM per word, written by a loader
-//! port, read with the library's 2 cycles), K intersection units fed primitive k of
-//! their chunk 3k cycles after the ray, and the frame-buffer write port.
+//! written by hand (it feeds its own result back), with the model's latency (compare +
+//! register): the thesis's float compare in `rtl/verilog/min_distance.v` (the kept
+//! distance forwarded to the next compare), the integer compare in
+//! `min_distance_int.v`. The top module adds the screen iterator (one pixel every r·c
+//! cycles, r the design's cycles per primitive, c = ⌈n/K⌉), the scene memory (one RAM
+//! per word, written by a loader port, read with the library's 2 cycles), K
+//! intersection units fed primitive k of their chunk r·k cycles after the ray, and the
+//! frame-buffer write port.
 //!
 //! Control (which slot is valid, first or last of a pixel) travels beside the data in
 //! short delay lines of the blocks' latencies. For the simulation, every block also
@@ -32,7 +34,7 @@ use std::hash::{DefaultHasher, Hash, Hasher};
 use std::path::Path;
 
 use hwmodel::blocks::{ADDRESS_BITS, Block, Pipeline};
-use hwmodel::graph::NodeKind;
+use hwmodel::graph::{FRAME_CONSTANT, NodeKind};
 use hwmodel::library::Library;
 
 use crate::RtlError;
@@ -200,7 +202,7 @@ pub fn generate(
         files.push((format!("{name}.v"), module.text.clone()));
         modules.insert(block.name, module);
     }
-    files.push(("min_distance.v".into(), min_distance_module(lib)));
+    files.push(("min_distance.v".into(), min_distance_module(lib, &design)?));
     for b in pipeline.blocks_in_order() {
         blocks.push(BlockRtl {
             name: b.name,
@@ -209,32 +211,7 @@ pub fn generate(
         });
     }
 
-    // The row path: the primary ray's row registers load at their consumers' start.
-    let pr = &pipeline.primary_ray;
-    let nodes = pr.graph.nodes();
-    let mut row_starts = BTreeSet::new();
-    let mut row_path = 0;
-    for (id, node) in nodes.iter().enumerate() {
-        if node.kind == NodeKind::RowRegister {
-            if let Some(&src) = node.inputs.first() {
-                row_path = row_path.max(pr.schedule.finish[src]);
-            }
-            for (c, consumer) in nodes.iter().enumerate() {
-                if consumer.inputs.contains(&id) {
-                    row_starts.insert(pr.schedule.start[c]);
-                }
-            }
-        }
-    }
-    let row_start = match (row_starts.first(), row_starts.last()) {
-        (Some(&a), Some(&b)) if a == b && a >= 1 => a,
-        (None, None) => 1,
-        _ => {
-            return Err(RtlError::Generate(format!(
-                "primary_ray: the row registers' readers start at {row_starts:?}: one start ≥ 1 is needed"
-            )));
-        }
-    };
+    let (row_start, row_path, row_lead) = row_timing(&pipeline.primary_ray)?;
     // i as a float (registered int-to-float), then the row path, then a margin.
     let prologue = row_path + 4;
 
@@ -247,7 +224,7 @@ pub fn generate(
             depth_bits,
             row_load_delay: row_start - 1,
             prologue,
-            row_path,
+            row_lead,
         },
     )?;
     files.push((format!("{TOP}.v"), top));
@@ -261,6 +238,73 @@ pub fn generate(
         depth_bits,
         prologue,
     })
+}
+
+/// The primary ray's row path: `(row_start, row_path, row_lead)`. Its row registers
+/// load at their readers' start (`row_start`, ≥ 1), from sources that finish
+/// `row_path` cycles into the block; `row_lead` is how far ahead of the iterator the
+/// top's row count runs so that each source sees its row's `i` (the top's
+/// [`TopTiming::row_lead`]).
+fn row_timing(pr: &Block) -> Result<(u32, u32, u32), RtlError> {
+    let nodes = pr.graph.nodes();
+    let readers = |id: usize| {
+        nodes
+            .iter()
+            .enumerate()
+            .filter(move |(_, n)| n.inputs.contains(&id))
+            .map(|(c, _)| pr.schedule.start[c])
+    };
+    let mut row_starts = BTreeSet::new();
+    let mut row_finishes = BTreeSet::new();
+    let mut index_reads = BTreeSet::new();
+    for (id, node) in nodes.iter().enumerate() {
+        if node.kind == NodeKind::RowRegister {
+            if let Some(&src) = node.inputs.first() {
+                row_finishes.insert(pr.schedule.finish[src]);
+            }
+            row_starts.extend(readers(id));
+        }
+        let frame_constant = node.kind
+            == (NodeKind::Input {
+                hold: FRAME_CONSTANT,
+            });
+        if frame_constant && identifier(&node.label) == "i" {
+            index_reads.extend(readers(id));
+        }
+    }
+    let row_path = row_finishes.last().copied().unwrap_or(0);
+    let row_start = match (row_starts.first(), row_starts.last()) {
+        (Some(&a), Some(&b)) if a == b && a >= 1 => a,
+        (None, None) => 1,
+        _ => {
+            return Err(RtlError::Generate(format!(
+                "primary_ray: the row registers' readers start at {row_starts:?}: one start ≥ 1 is needed"
+            )));
+        }
+    };
+    // Rows may be one pixel a cycle long (one pixel wide, one primitive a cycle): each
+    // register's value then comes from one cycle's `i`, so every source must read `i`
+    // at one offset and finish at one.
+    let row_lead = match (index_reads.first(), index_reads.last(), row_finishes.len()) {
+        (None, None, 0) => 0,
+        (Some(&read), Some(&last), 1) if read == last && read < row_path => {
+            // `i` is read row_path − read cycles before the registers load, which is
+            // row_start − 1 cycles after the row's first issue; the top registers it
+            // a cycle after the count, so the count runs this far ahead.
+            (row_path - read + 1).checked_sub(row_start - 1).ok_or_else(|| {
+                RtlError::Generate(format!(
+                    "primary_ray: the row path ({} cycles) ends more than a cycle before the row registers load ({row_start} after the issue): the row index would lag the iterator",
+                    row_path - read
+                ))
+            })?
+        }
+        _ => {
+            return Err(RtlError::Generate(format!(
+                "primary_ray: the row index is read at {index_reads:?} and the row sources finish at {row_finishes:?}: one of each is needed"
+            )));
+        }
+    };
+    Ok((row_start, row_path, row_lead))
 }
 
 /// Writes `rtl`'s files into `dir` (created if needed), each atomically.
@@ -278,7 +322,7 @@ pub fn write(rtl: &GeneratedRtl, dir: &Path) -> Result<(), RtlError> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use hwmodel::design::Design;
+    use hwmodel::design::{Design, MinDistance};
     use hwmodel::library::OpKind;
 
     fn designs() -> Vec<Design> {
@@ -296,7 +340,79 @@ mod tests {
                 no_rsqrt_shading: true,
                 ..t
             },
+            Design {
+                min_distance: MinDistance::IntegerCompare,
+                ..t
+            },
+            Design {
+                units: 2,
+                min_distance: MinDistance::IntegerCompare,
+                ..t
+            },
         ]
+    }
+
+    fn file<'a>(rtl: &'a GeneratedRtl, name: &str) -> &'a str {
+        rtl.files
+            .iter()
+            .find(|(n, _)| n == name)
+            .map(|(_, t)| t.as_str())
+            .unwrap_or_else(|| panic!("no {name}"))
+    }
+
+    #[test]
+    fn the_minimum_distance_block_and_the_slots_follow_the_designs_compare() {
+        let lib = Library::cyclone_iv_e();
+        for (min_distance, rate) in [
+            (MinDistance::FloatCompare, 3),
+            (MinDistance::IntegerCompare, 1),
+        ] {
+            let design = Design {
+                min_distance,
+                ..Design::thesis()
+            };
+            let rtl = generate(&lib, &Pipeline::build(&lib, &design), 6).unwrap();
+            let block = file(&rtl, "min_distance.v");
+            let float = min_distance == MinDistance::FloatCompare;
+            assert_eq!(block.contains("fp_compare #(.LATENCY(3))"), float);
+            assert_eq!(block.contains("in_distance[30:0] < against"), !float);
+            for placeholder in ["{compare}", "{register}", "{total}", "{a}", "{ab}"] {
+                assert!(!block.contains(placeholder), "{placeholder}");
+            }
+            // The iterator's slot phase counts to the rate: a slot every `rate` cycles.
+            let top = file(&rtl, "raycaster_top.v");
+            let last = format!("(phase == {}'d{})", if float { 2 } else { 1 }, rate - 1);
+            assert!(top.contains(&last), "{last}");
+        }
+        // A library whose integer compare takes a cycle would not be the block built.
+        let text = include_str!("../../../hwmodel/data/cyclone_iv_e.toml");
+        let at = text.find("[ops.int_compare]").unwrap();
+        let slow = format!(
+            "{}{}",
+            &text[..at],
+            text[at..].replacen("latency = 0", "latency = 1", 1)
+        );
+        let slow = Library::from_toml(&slow, "slow.toml").unwrap();
+        let design = Design {
+            min_distance: MinDistance::IntegerCompare,
+            ..Design::thesis()
+        };
+        let err = generate(&slow, &Pipeline::build(&slow, &design), 6).unwrap_err();
+        assert!(err.to_string().contains("integer compare takes 1"), "{err}");
+    }
+
+    #[test]
+    fn the_row_index_runs_ahead_by_the_row_path_less_the_load_delay() {
+        // The thesis's primary ray: i read at 0, the row sources finish at 14, the row
+        // registers load 6 cycles after the issue: i runs 14 + 1 − 6 = 9 cycles ahead,
+        // started 9 cycles before the end of the 18-cycle prologue.
+        let lib = Library::cyclone_iv_e();
+        let rtl = generate(&lib, &Pipeline::build(&lib, &Design::thesis()), 6).unwrap();
+        let top = file(&rtl, "raycaster_top.v");
+        assert_eq!(rtl.prologue, 18);
+        assert!(top.contains("(prologue == 16'd18)) running <= 1'b1"));
+        assert!(top.contains("(prologue == 16'd9)) lead_running <= 1'b1"));
+        assert!(top.contains(".LATENCY(6)) row_load_line"));
     }
 
     #[test]

@@ -6,28 +6,58 @@ use std::collections::BTreeMap;
 use std::fmt::Write as _;
 
 use hwmodel::blocks::{ADDRESS_BITS, Block, Pipeline};
+use hwmodel::design::{Design, MinDistance};
 use hwmodel::hw_scene::HwPrimitive;
 use hwmodel::library::{Library, OpKind};
 
 use super::{BlockModule, FIELDS, Port, TOP};
 use crate::RtlError;
 
-/// The hand-written minimum-distance block (thesis fig. 25) at the library's compare
-/// and register latencies.
+/// The hand-written minimum-distance block of `design` at the library's compare and
+/// register latencies: the thesis's float compare (fig. 25) or the integer compare.
 ///
-/// `rtl/verilog/min_distance.v` is its text with the latencies as placeholders:
-/// `{compare}`, `{register}`, `{total}` (their sum), `{a}` (the address bits) and
-/// `{ab}` (`{a}` − 1).
-pub(super) fn min_distance_module(lib: &Library) -> String {
-    let compare = lib.op(OpKind::Compare).latency;
+/// `rtl/verilog/min_distance.v` (float) and `min_distance_int.v` (integer) are its
+/// text with the latencies as placeholders: `{compare}`, `{register}`, `{total}` (their
+/// sum), `{a}` (the address bits) and `{ab}` (`{a}` − 1). Both keep their minimum in
+/// one register stage, the integer one compares combinationally and the float one
+/// forwards its result to the next primitive's compare, so a library with other
+/// latencies would make the block disagree with the model: an error.
+pub(super) fn min_distance_module(lib: &Library, design: &Design) -> Result<String, RtlError> {
+    let unbuilt = |what: &str, latency: u32, built: u32| {
+        RtlError::Generate(format!(
+            "min_distance: the library's {what} takes {latency} cycles; the hand-written block is built for {built}"
+        ))
+    };
     let register = lib.op(OpKind::Register).latency;
+    if register != 1 {
+        return Err(unbuilt("register", register, 1));
+    }
+    let (compare, text) = match design.min_distance {
+        MinDistance::FloatCompare => {
+            // The kept value is forwarded to the next compare when its result appears:
+            // primitives must come no faster than the compare decides.
+            let compare = lib.op(OpKind::Compare).latency;
+            let rate = design.cycles_per_primitive();
+            if compare > rate {
+                return Err(unbuilt("float compare", compare, rate));
+            }
+            (compare, include_str!("../../verilog/min_distance.v"))
+        }
+        MinDistance::IntegerCompare => {
+            let compare = lib.op(OpKind::IntCompare).latency;
+            if compare != 0 {
+                return Err(unbuilt("integer compare", compare, 0));
+            }
+            (compare, include_str!("../../verilog/min_distance_int.v"))
+        }
+    };
     let a = ADDRESS_BITS;
-    include_str!("../../verilog/min_distance.v")
+    Ok(text
         .replace("{compare}", &compare.to_string())
         .replace("{register}", &register.to_string())
         .replace("{total}", &(compare + register).to_string())
         .replace("{ab}", &(a - 1).to_string())
-        .replace("{a}", &a.to_string())
+        .replace("{a}", &a.to_string()))
 }
 
 /// Scene-memory words the design reads: (field, bits).
@@ -123,9 +153,50 @@ fn instance(
 pub(super) struct TopTiming {
     pub(super) units: u32,
     pub(super) depth_bits: u32,
+    /// Cycles from a row's first issue to its base's load into the row registers.
     pub(super) row_load_delay: u32,
+    /// Cycles from `start` to the first issue (row 0's base).
     pub(super) prologue: u32,
-    pub(super) row_path: u32,
+    /// Cycles the row index runs ahead of the iterator: a row's base is started this
+    /// many cycles (less the index's register) before its first issue.
+    pub(super) row_lead: u32,
+}
+
+/// The screen iterator's counters, their names prefixed with `prefix`: a slot every
+/// `rate` cycles (`phase`), primitive `k` of `per_unit` per pixel, pixels in rows, top
+/// row first. They run from the cycle after the prologue counter reads `starts_at` to
+/// the frame's last slot: two copies started apart stay that many cycles apart.
+fn iterator_counters(prefix: &str, rate: u32, starts_at: u32) -> String {
+    let bits = (u32::BITS - (rate - 1).leading_zeros()).max(1);
+    format!(
+        r#"    reg {p}running = 1'b0, {p}finished = 1'b0;
+    reg [{b1}:0] {p}phase = {bits}'d0;
+    reg [15:0] {p}k = 16'd0, {p}col = 16'd0, {p}row = 16'd0;
+    wire {p}slot_end = {p}running & ({p}phase == {bits}'d{last});
+    wire {p}last_k = ({p}k == per_unit - 16'd1);
+    wire {p}pixel_end = {p}slot_end & {p}last_k;
+    always @(posedge clk) begin
+        if (start & ~{p}running & ~{p}finished & (prologue == 16'd{starts_at})) {p}running <= 1'b1;
+        if ({p}running) {p}phase <= {p}slot_end ? {bits}'d0 : {p}phase + {bits}'d1;
+        if ({p}slot_end) begin
+            if ({p}last_k) begin
+                {p}k <= 16'd0;
+                if ({p}col == width - 16'd1) begin
+                    {p}col <= 16'd0;
+                    if ({p}row == height - 16'd1) begin
+                        {p}running <= 1'b0;
+                        {p}finished <= 1'b1;
+                    end
+                    {p}row <= {p}row + 16'd1;
+                end else {p}col <= {p}col + 16'd1;
+            end else {p}k <= {p}k + 16'd1;
+        end
+    end
+"#,
+        p = prefix,
+        b1 = bits - 1,
+        last = rate - 1,
+    )
 }
 
 pub(super) fn top_module(
@@ -190,50 +261,31 @@ pub(super) fn top_module(
         "output [7:0] mon_out".into(),
     ];
 
-    // Screen iterator: one slot every 3 cycles; primitive k of c per pixel.
+    // Screen iterator: one slot every `rate` cycles (the minimum distance's hold);
+    // primitive k of c per pixel.
+    let rate = design.cycles_per_primitive();
+    if rate == 0 || t.row_lead > t.prologue {
+        return Err(RtlError::Generate(format!(
+            "the iterator: {rate} cycles a primitive, the row index {} cycles ahead in a {}-cycle prologue",
+            t.row_lead, t.prologue
+        )));
+    }
+    let lead_start = t.prologue - t.row_lead;
     writeln!(
         body,
         r#"    // Screen iterator (thesis 6.1.2): after the prologue (row 0's base), one slot
-    // every 3 cycles, primitive k of per_unit, pixels in rows, top row first.
-    reg running = 1'b0, finished = 1'b0;
+    // every {rate} cycle(s), as long as the minimum distance holds a primitive;
+    // primitive k of per_unit, pixels in rows, top row first.
     reg [15:0] prologue = 16'd0;
-    reg [1:0] phase = 2'd0;
-    reg [15:0] k = 16'd0, col = 16'd0, row = 16'd0;
-    wire slot = running & (phase == 2'd0);
+    always @(posedge clk)
+        if (start & ~running & ~finished & (prologue != 16'd{prologue})) prologue <= prologue + 16'd1;
+{counters}    wire slot = running & (phase == 0);
     wire issue = slot & (k == 16'd0);
-    wire last_k = (k == per_unit - 16'd1);
-    always @(posedge clk) begin
-        if (start & ~running & ~finished) begin
-            if (prologue == 16'd{prologue}) running <= 1'b1;
-            else prologue <= prologue + 16'd1;
-        end
-        if (running) begin
-            phase <= (phase == 2'd2) ? 2'd0 : phase + 2'd1;
-            if (phase == 2'd2) begin
-                if (last_k) begin
-                    k <= 16'd0;
-                    if (col == width - 16'd1) begin
-                        col <= 16'd0;
-                        if (row == height - 16'd1) begin
-                            running <= 1'b0;
-                            finished <= 1'b1;
-                        end
-                        row <= row + 16'd1;
-                    end else col <= col + 16'd1;
-                end else k <= k + 16'd1;
-            end
-        end
-    end
     assign issuing = running;
     // Pixels issued: the frame is done when as many were written (a count, not
     // width * height: a 16 x 16 product in LUTs is twice the 12 levels a cycle allows).
     reg [31:0] issued = 32'd0;
     always @(posedge clk) if (issue) issued <= issued + 32'd1;
-    // j as a float for the pixel issued now, held in a register that changes with col:
-    // converted from the next column, registered while col holds (3 cycles or more), so
-    // that no conversion lies between the iterator and the primary ray. i (the row whose
-    // base is computed next) registered, loaded with row r's base {row_load_delay} cycles
-    // after r's first issue.
     // A 16-bit count as a float: exact (below 2^24), the leading one and a shift.
     function [31:0] u16_to_float(input [15:0] n);
         integer b;
@@ -246,23 +298,36 @@ pub(super) fn top_module(
             u16_to_float = (n == 16'd0) ? 32'd0 : {{1'b0, 8'd127 + {{3'd0, msb}}, shifted[22:0]}};
         end
     endfunction
-    reg [15:0] col_next = 16'd0;
-    always @(posedge clk) col_next <= (col == width - 16'd1) ? 16'd0 : col + 16'd1;
+    // j as a float for the pixel issued now, in a register loaded as the pixel starts,
+    // so that no conversion lies between the iterator and the primary ray: converted
+    // from col_ahead, the next pixel's column kept beside col (set in the prologue,
+    // advanced with it), which is in time even when col changes every cycle.
+    reg [15:0] col_ahead = 16'd0;
+    always @(posedge clk)
+        if (~running & ~finished) col_ahead <= (width == 16'd1) ? 16'd0 : 16'd1;
+        else if (pixel_end) col_ahead <= (col_ahead == width - 16'd1) ? 16'd0 : col_ahead + 16'd1;
     reg [31:0] col_f = 32'd0;
-    always @(posedge clk) if (running & (phase == 2'd2) & last_k) col_f <= u16_to_float(col_next);
-    reg [15:0] next_row = 16'd0;
+    always @(posedge clk) if (pixel_end) col_f <= u16_to_float(col_ahead);
+    // i, registered, for the row path: row r's base loads into the row registers
+    // {row_load_delay} cycles after r's first issue, from the i the path read
+    // {row_read} cycles before. A copy of the counters running {row_lead} cycles ahead
+    // has that row one cycle early, however short a row is (one pixel a cycle, one
+    // pixel wide): counting rows once per row base instead needs rows of at least the
+    // row path.
+{lead_counters}    reg [31:0] row_i = 32'd0;
+    always @(posedge clk) row_i <= u16_to_float(lead_row);
     wire row_first_issue = issue & (col == 16'd0);
     wire row_load;
     fp_delay #(.WIDTH(1), .LATENCY({row_load_delay})) row_load_line (.clk(clk), .d(row_first_issue), .q(row_load));
-    always @(posedge clk) if (row_load) next_row <= next_row + 16'd1;
-    reg [31:0] row_i = 32'd0;
-    always @(posedge clk) row_i <= u16_to_float(next_row);
 "#,
         prologue = t.prologue,
+        counters = iterator_counters("", rate, t.prologue),
+        lead_counters = iterator_counters("lead_", rate, lead_start),
         row_load_delay = t.row_load_delay,
+        row_read = (t.row_lead + t.row_load_delay).saturating_sub(1),
+        row_lead = t.row_lead,
     )
     .ok();
-    let _ = t.row_path;
 
     // Primary ray.
     let pr_ports = block_ports("primary_ray")?;
