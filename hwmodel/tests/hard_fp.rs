@@ -8,8 +8,12 @@
 
 use hwmodel::blocks::{Block, Pipeline};
 use hwmodel::design::Design;
-use hwmodel::device::{FitState, PLLS_USED, demand, fit, headroom_limit, memory_bits};
+use hwmodel::device::{
+    FitState, MEMORY_BLOCK_HEADROOM_PERCENT, PLLS_USED, ROUTING_HEADROOM_PERCENT, demand, fit,
+    fit_design, headroom_limit, memory_bits,
+};
 use hwmodel::library::{ARRIA_10, Library, OpKind, find_device};
+use hwmodel::memory::design_blocks;
 
 fn arria_10() -> Library {
     Library::from_toml(ARRIA_10, "arria_10.toml").unwrap()
@@ -238,8 +242,15 @@ fn the_thesis_design_fits_both_devices_with_the_dsp_blocks_summed_by_hand() {
         le_min + select_and_register_max
     );
 
+    // RAM blocks: the 8-bit frame in M20Ks of 2,048 x 10 (640 x 480 / 2,048 = 150),
+    // the primitives' 63 words in one 512 x 40; the dividers' tables and the delay
+    // lines add to that.
+    let blocks = design_blocks(&lib, &p, n, w, h);
+    assert!(blocks > 150 + 1, "{blocks}");
+
     for device in &lib.devices {
-        let f = fit(&lib, device, d);
+        let f = fit_design(&lib, device, &p, n, w, h);
+        assert_eq!(f, fit(&lib, device, d, blocks));
         // Every hard operation has its block: nothing built in logic.
         assert!(dsp <= device.mult, "{}", device.name);
         assert_eq!(f.soft_mult_elements, 0);
@@ -247,8 +258,11 @@ fn the_thesis_design_fits_both_devices_with_the_dsp_blocks_summed_by_hand() {
         assert!((f.utilization.mult - dsp as f64 / device.mult as f64).abs() < 1e-12);
         assert!((f.utilization.mem_bits - mem as f64 / device.mem_bits as f64).abs() < 1e-12);
         // Within the routing headroom on logic and memory, whatever the selects cost.
-        assert!(le_min + select_and_register_max <= headroom_limit(device.le));
-        assert!(mem <= headroom_limit(device.mem_bits));
+        assert!(
+            le_min + select_and_register_max <= headroom_limit(device.le, ROUTING_HEADROOM_PERCENT)
+        );
+        assert!(mem <= headroom_limit(device.mem_bits, ROUTING_HEADROOM_PERCENT));
+        assert!(blocks <= headroom_limit(lib.memory_blocks(device), MEMORY_BLOCK_HEADROOM_PERCENT));
         assert!(PLLS_USED <= device.plls);
         assert!(f.fits && f.over.is_empty(), "{}: {:?}", device.name, f.over);
         assert_eq!(f.state, FitState::Fits, "{}", device.name);
@@ -271,7 +285,8 @@ fn dsp_blocks_beyond_the_device_are_built_as_soft_adders() {
     let dsp = dsp_blocks_by_hand(&p);
     assert_eq!(d.mult, dsp);
     assert!(dsp > device.mult, "{dsp}");
-    let f = fit(&lib, device, d);
+    let blocks = design_blocks(&lib, &p, 7, 640, 480);
+    let f = fit(&lib, device, d, blocks);
     let spill = dsp - device.mult;
     assert_eq!(f.soft_mult_elements, spill);
     assert_eq!(f.used.mult, device.mult);
@@ -280,5 +295,5 @@ fn dsp_blocks_beyond_the_device_are_built_as_soft_adders() {
     assert_eq!(f.used.regs, d.regs + spill * 536);
     // The GX 1150 holds them all.
     let big = lib.devices.iter().find(|d| d.name == "10AX115").unwrap();
-    assert_eq!(fit(&lib, big, d).soft_mult_elements, 0);
+    assert_eq!(fit(&lib, big, d, blocks).soft_mult_elements, 0);
 }
