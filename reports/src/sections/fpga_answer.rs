@@ -348,9 +348,14 @@ impl FpgaAnswer {
                     }
                 };
                 text += &format!(
-                    " The best design that fits, {} on the {} at {}, takes {} a frame of 7 primitives ({}) and {}{cost}{}",
+                    " The best design that fits, {} on the {}{} at {}, takes {} a frame of 7 primitives ({}) and {}{cost}{}",
                     design_text(b),
                     b.device,
+                    if b.validated {
+                        ""
+                    } else {
+                        " (a library the thesis did not validate)"
+                    },
                     clock_text(b),
                     format::seconds(b.bench_frame_s),
                     format::fps(b.bench_fps),
@@ -427,7 +432,7 @@ fn range_words(b: &BreakEvenRange) -> String {
     let end = |b: BreakEven| match b {
         BreakEven::Never => "none".to_string(),
         BreakEven::UpTo(n) => format::count(n),
-        BreakEven::Always => "any count".to_string(),
+        BreakEven::Always => "any number of".to_string(),
     };
     if b.low == b.high {
         String::new()
@@ -607,6 +612,27 @@ pub fn design_space(b: &mut Builder) -> Section {
 mod tests {
     use super::*;
     use testkit::sample::sample_results;
+
+    #[test]
+    fn a_break_even_range_reads_as_words_at_both_ends() {
+        let range = |low, high| BreakEvenRange {
+            central: BreakEven::UpTo(14),
+            low,
+            high,
+        };
+        assert_eq!(
+            range_words(&range(BreakEven::UpTo(7), BreakEven::Always)),
+            " (7 to any number of primitives with the software line's interval)"
+        );
+        assert_eq!(
+            range_words(&range(BreakEven::Never, BreakEven::UpTo(56))),
+            " (none to 56 primitives with the software line's interval)"
+        );
+        assert_eq!(
+            range_words(&range(BreakEven::UpTo(3), BreakEven::UpTo(3))),
+            ""
+        );
+    }
 
     /// The sample run with the peer at `fixed + slope n` on one thread and
     /// `fixed2 + slope2 n` on all.
