@@ -109,8 +109,13 @@ impl CrateFiles {
     }
 }
 
-/// Every path a `use` tree names, with its prefix, as segments.
-fn use_paths(tree: &syn::UseTree, prefix: &mut Vec<String>, out: &mut Vec<Vec<String>>) {
+/// Every path a `use` tree names, with its prefix, as segments, and the name it
+/// binds in the file (`None` for a glob).
+fn use_paths(
+    tree: &syn::UseTree,
+    prefix: &mut Vec<String>,
+    out: &mut Vec<(Option<String>, Vec<String>)>,
+) {
     match tree {
         syn::UseTree::Path(p) => {
             prefix.push(p.ident.to_string());
@@ -122,14 +127,16 @@ fn use_paths(tree: &syn::UseTree, prefix: &mut Vec<String>, out: &mut Vec<Vec<St
             if n.ident != "self" {
                 path.push(n.ident.to_string());
             }
-            out.push(path);
+            out.push((path.last().cloned(), path));
         }
         syn::UseTree::Rename(r) => {
             let mut path = prefix.clone();
-            path.push(r.ident.to_string());
-            out.push(path);
+            if r.ident != "self" {
+                path.push(r.ident.to_string());
+            }
+            out.push((Some(r.rename.to_string()), path));
         }
-        syn::UseTree::Glob(_) => out.push(prefix.clone()),
+        syn::UseTree::Glob(_) => out.push((None, prefix.clone())),
         syn::UseTree::Group(g) => g.items.iter().for_each(|t| use_paths(t, prefix, out)),
     }
 }
@@ -140,6 +147,29 @@ fn use_paths(tree: &syn::UseTree, prefix: &mut Vec<String>, out: &mut Vec<Vec<St
 struct Names {
     imports: Vec<Vec<String>>,
     reexports: Vec<(String, Vec<String>)>,
+    /// Names the file's private `use` items bind, and the paths they stand for: code
+    /// that writes `document::build(…)` after `use crate::document::{self, …}` names
+    /// `crate::document::build`.
+    aliases: BTreeMap<String, Vec<String>>,
+    /// Paths in code, resolved through `aliases` once the file is read.
+    code: Vec<Vec<String>>,
+}
+
+impl Names {
+    /// The paths the file names: its imports, and its code's paths with a first
+    /// segment that a `use` bound replaced by what it stands for.
+    fn all_imports(&self) -> Vec<Vec<String>> {
+        let mut out = self.imports.clone();
+        for path in &self.code {
+            match path.first().and_then(|first| self.aliases.get(first)) {
+                Some(target) if path.len() > 1 => {
+                    out.push(target.iter().chain(&path[1..]).cloned().collect());
+                }
+                _ => out.push(path.clone()),
+            }
+        }
+        out
+    }
 }
 
 impl<'a> Visit<'a> for Names {
@@ -147,9 +177,14 @@ impl<'a> Visit<'a> for Names {
         let mut paths = Vec::new();
         use_paths(&item.tree, &mut Vec::new(), &mut paths);
         if matches!(item.vis, syn::Visibility::Inherited) {
-            self.imports.extend(paths);
+            for (name, path) in paths {
+                if let Some(name) = name {
+                    self.aliases.insert(name, path.clone());
+                }
+                self.imports.push(path);
+            }
         } else {
-            for path in paths {
+            for (_, path) in paths {
                 if let Some(name) = path.last() {
                     self.reexports.push((name.clone(), path.clone()));
                 }
@@ -158,7 +193,7 @@ impl<'a> Visit<'a> for Names {
     }
 
     fn visit_path(&mut self, path: &'a syn::Path) {
-        self.imports
+        self.code
             .push(path.segments.iter().map(|s| s.ident.to_string()).collect());
         syn::visit::visit_path(self, path);
     }
@@ -244,7 +279,7 @@ fn graph(crate_files: &CrateFiles) -> BTreeMap<ModulePath, BTreeSet<ModulePath>>
         // A module's own items are its children's namespace: a child naming its parent's
         // (or an ancestor's) item is not an import that can close a circle.
         let targets: BTreeSet<ModulePath> = n
-            .imports
+            .all_imports()
             .iter()
             .filter_map(|p| absolute(module, p, crate_files))
             .map(&resolve)
@@ -429,4 +464,25 @@ fn the_checker_finds_a_circle_through_a_re_export_and_ignores_test_code() {
         describe(&siblings),
         vec!["m/a.rs -> m/b.rs, m/b.rs -> m/a.rs"]
     );
+    // A module imported by name and called through it (`use crate::b::{self};
+    // b::g()`, `use crate::b as other; other::g()`): the call is the edge.
+    for a in [
+        "use crate::b::{self}; pub fn f() { b::g() }",
+        "use crate::b as other; pub fn f() { other::g() }",
+        "use crate::b::{self as other}; pub fn f() { other::g() }",
+    ] {
+        let called = temp_crate(&[
+            ("lib.rs", "mod a; mod b;"),
+            ("a.rs", a),
+            ("b.rs", "pub fn g() { crate::a::f(); }"),
+        ]);
+        assert_eq!(describe(&called), vec!["a.rs -> b.rs, b.rs -> a.rs"], "{a}");
+    }
+    // The call alone, with no edge back: no circle.
+    let one_way = temp_crate(&[
+        ("lib.rs", "mod a; mod b;"),
+        ("a.rs", "use crate::b::{self}; pub fn f() { b::g() }"),
+        ("b.rs", "pub fn g() {}"),
+    ]);
+    assert_eq!(describe(&one_way), Vec::<String>::new());
 }

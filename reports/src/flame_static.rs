@@ -24,7 +24,7 @@ use std::collections::BTreeSet;
 use std::ops::Range;
 
 use crate::document::{AssetKind, Block, Document, Visual};
-use crate::html::escape;
+use crate::markup::escape;
 
 /// The elements of inferno's interface, by id: what the script drives.
 const INTERFACE_IDS: [&str; 4] = ["search", "unzoom", "matched", "details"];

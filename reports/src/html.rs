@@ -15,6 +15,7 @@ use crate::document::{
     self, Align, Block, Cell, Column, Document, Figure, Flamegraph, ImageGrid, Inline,
     Preformatted, Section, Table, Tone, Visual,
 };
+use crate::markup::{base64, escape};
 
 /// A report that cannot be made.
 #[derive(Debug, thiserror::Error)]
@@ -56,28 +57,6 @@ pub fn render(doc: &Document) -> String {
 /// The CSS class of a tone (`None` for neutral): the one place a tone meets HTML.
 pub fn tone_class(tone: Tone) -> Option<String> {
     (tone != Tone::Neutral).then(|| format!("tone-{}", tone.name()))
-}
-
-/// Escapes text for HTML content and attribute values.
-pub fn escape(text: &str) -> String {
-    let mut out = String::with_capacity(text.len());
-    for c in text.chars() {
-        match c {
-            '&' => out.push_str("&amp;"),
-            '<' => out.push_str("&lt;"),
-            '>' => out.push_str("&gt;"),
-            '"' => out.push_str("&quot;"),
-            '\'' => out.push_str("&#39;"),
-            _ => out.push(c),
-        }
-    }
-    out
-}
-
-/// Standard base64 (RFC 4648, with padding).
-pub fn base64(bytes: &[u8]) -> String {
-    use base64::Engine;
-    base64::engine::general_purpose::STANDARD.encode(bytes)
 }
 
 /// The SVG without its XML prologue, doctype and the comments before its first script
@@ -500,30 +479,6 @@ fn inlines(content: &[Inline]) -> String {
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    #[test]
-    fn base64_matches_rfc_4648_vectors() {
-        let cases = [
-            ("", ""),
-            ("f", "Zg=="),
-            ("fo", "Zm8="),
-            ("foo", "Zm9v"),
-            ("foob", "Zm9vYg=="),
-            ("fooba", "Zm9vYmE="),
-            ("foobar", "Zm9vYmFy"),
-        ];
-        for (plain, encoded) in cases {
-            assert_eq!(base64(plain.as_bytes()), encoded);
-        }
-    }
-
-    #[test]
-    fn escaping_covers_markup_and_quotes() {
-        assert_eq!(
-            escape("<a href=\"x\">&'"),
-            "&lt;a href=&quot;x&quot;&gt;&amp;&#39;"
-        );
-    }
 
     #[test]
     fn namespace_declarations_leave_the_root_tag_only() {

@@ -28,6 +28,7 @@ pub mod fuzz_check;
 pub mod gallery;
 pub mod gate_text;
 pub mod html;
+pub mod markup;
 pub mod npy;
 pub mod page_values;
 pub mod pdf;

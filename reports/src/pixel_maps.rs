@@ -14,7 +14,7 @@
 //! font of `font8x8` (text in a PNG without a font rasteriser or font file).
 
 use crate::format;
-use crate::html::escape;
+use crate::markup::escape;
 use image::{Rgb, RgbImage};
 
 /// What a map shows and the range of its colour scale.
@@ -353,7 +353,7 @@ pub fn shared_scale_row(
         let picture = map_picture(map.values, columns, rows, range);
         svg += &format!(
             "<image x=\"{x:.1}\" y=\"{top:.1}\" width=\"{map_width:.1}\" height=\"{map_height:.1}\" preserveAspectRatio=\"none\" image-rendering=\"optimizeSpeed\" style=\"image-rendering:pixelated\" href=\"data:image/png;base64,{}\"/>",
-            crate::html::base64(&png_bytes(&picture))
+            crate::markup::base64(&png_bytes(&picture))
         );
         svg += &format!(
             "<text x=\"{centre:.1}\" y=\"{:.1}\" font-size=\"{ROW_NOTE_PX}\" text-anchor=\"middle\" fill=\"#444444\">{}</text>",

@@ -191,7 +191,7 @@ fn every_section_is_in_the_html_and_the_typeset_pdf() {
             html.contains(&format!(
                 "<section id=\"{}\">\n<h2>{}</h2>",
                 s.id,
-                reports::html::escape(&s.heading)
+                reports::markup::escape(&s.heading)
             )),
             "section {} not in the HTML",
             s.id

@@ -10,12 +10,15 @@
 
 mod assets;
 mod build;
+mod builder;
+mod outline;
 mod prune;
 pub mod tone;
 
 pub use assets::{Asset, AssetKind, Assets};
-pub(crate) use build::Builder;
-pub use build::{Part, SECTIONS, build, heading_of, part_of};
+pub use build::build;
+pub(crate) use builder::Builder;
+pub use outline::{Part, SECTIONS, heading_of, part_of};
 pub use tone::Tone;
 
 use serde::Serialize;
