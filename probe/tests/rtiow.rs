@@ -37,8 +37,15 @@ fn run(program: &Path, args: &[&str], env: &[(&str, &Path)]) -> (Vec<u8>, String
         command.env(k, v);
     }
     let out = command.output().unwrap_or_else(|e| panic!("{e}"));
-    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
-    (out.stdout, String::from_utf8_lossy(&out.stderr).into_owned())
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    (
+        out.stdout,
+        String::from_utf8_lossy(&out.stderr).into_owned(),
+    )
 }
 
 /// `name value` pairs of the count patch's last line.
