@@ -1,9 +1,10 @@
 #!/usr/bin/env bash
-# Coverage-guided fuzzing (docs/fuzzing.md) of one of two targets:
+# Coverage-guided fuzzing (docs/fuzzing.md) of one of three targets:
 #   nff_scene     the NFF parser, scene build, accelerators and a tiny render
 #                 (fuzz/fuzz_targets/nff_scene.rs; the default);
 #   results_file  reading and validating a results file, the regression gate and the
-#                 HTML report (fuzz/fuzz_targets/results_file.rs).
+#                 HTML report (fuzz/fuzz_targets/results_file.rs);
+#   probe_file    the probe file's reader (fuzz/fuzz_targets/probe_file.rs).
 # Stable toolchain: cargo fuzz with RUSTC_BOOTSTRAP=1 and no sanitizer.
 #
 #   scripts/fuzz.sh [--target NAME] [--runs N | --seconds S] [--workers W] [--max-len BYTES] [-- LIBFUZZER_ARGS]
@@ -38,7 +39,7 @@ while [[ $# -gt 0 ]]; do
         --workers) workers=$2; shift 2 ;;
         --max-len) max_len=$2; shift 2 ;;
         --) shift; extra=("$@"); break ;;
-        -h | --help) sed -n '2,27p' "$0"; exit 0 ;;
+        -h | --help) sed -n '2,24p' "$0"; exit 0 ;;
         *) echo "fuzz.sh: unknown argument '$1' (see --help)" >&2; exit 2 ;;
     esac
 done
@@ -50,7 +51,8 @@ fi
 case "$target" in
     nff_scene) max_len=${max_len:-4096}; dict=$root/fuzz/nff.dict ;;
     results_file) max_len=${max_len:-16384}; dict=$root/fuzz/results.dict ;;
-    *) echo "fuzz.sh: unknown target '$target' (nff_scene, results_file)" >&2; exit 2 ;;
+    probe_file) max_len=${max_len:-8192}; dict=$root/fuzz/probe.dict ;;
+    *) echo "fuzz.sh: unknown target '$target' (nff_scene, results_file, probe_file)" >&2; exit 2 ;;
 esac
 if ! [[ $workers =~ ^[1-9][0-9]*$ && $max_len =~ ^[1-9][0-9]*$ && ${runs:-1} =~ ^[0-9]+$ && ${seconds:-1} =~ ^[0-9]+$ ]]; then
     echo "fuzz.sh: --runs, --seconds, --workers and --max-len take whole numbers" >&2
@@ -144,7 +146,22 @@ nff_seeds() {
     done
     [[ -d $spd_dir ]] || echo "note: $spd_dir not found; seeding from scenes/ only"
 }
-if [[ $target == results_file ]]; then results_seeds; else nff_seeds; fi
+# Probe files: the ones the probe's own tests wrote (the C fixture, RTIOW, the Rust
+# recorder), if they ran.
+probe_seeds() {
+    local n=0
+    for file in "${CARGO_TARGET_DIR_TESTS:-$HOME/.cache/rtprof-target}"/tmp/probe-*/*.txt; do
+        [[ -f $file ]] || continue
+        n=$((n + 1))
+        cp "$file" "$seeds/$n.txt"
+    done
+    printf 'rtprof.probe 1\nwriter c\npid 1\nreason exit\nthreads 1\nperiod_ns 0\nsamples 0\ncpu_ns 0\nunbalanced 0\ncounter 1 rays.primary\noutside 0\nend\n' > "$seeds/minimal.txt"
+}
+case "$target" in
+    results_file) results_seeds ;;
+    probe_file) probe_seeds ;;
+    *) nff_seeds ;;
+esac
 echo "== $(ls "$seeds" | wc -l) seeds in $seeds, $(ls "$corpus" | wc -l) inputs in $corpus"
 
 stamp=$(date +%Y%m%d-%H%M%S)

@@ -119,6 +119,35 @@ impl Phase {
         }
     }
 
+    /// What the phase covers, in a few words (the probe's documentation of its standard
+    /// phase ids, docs/instrumenting.md, is made from it).
+    pub fn description(self) -> &'static str {
+        match self {
+            Phase::CameraRay => "eye-ray generation (and the camera's set-up)",
+            Phase::ClosestHit => "a closest-hit query: eye, reflection and refraction rays",
+            Phase::ShadowQuery => "an occlusion query: a shadow ray",
+            Phase::Traversal => {
+                "an acceleration structure's node work: box tests and the stack walk"
+            }
+            Phase::SphereTest => "sphere tests (one, or a loop or SIMD chunk of them)",
+            Phase::CylinderTest => "cylinder tests",
+            Phase::ConeTest => "cone tests",
+            Phase::PolygonTest => "polygon tests (plane and outline)",
+            Phase::PatchTest => "polygon-patch tests (plane and outline)",
+            Phase::TriangleTest => "triangle tests",
+            Phase::Shading => {
+                "shading a hit: its surface, lights and shadow-ray set-up (shadow queries and secondary rays nest inside)"
+            }
+            Phase::SecondaryRays => {
+                "reflection and refraction set-up: directions, origins, weights (the traced rays nest inside)"
+            }
+            Phase::PixelFill => {
+                "framebuffer work after tracing: gathering rows, filling, averaging"
+            }
+            Phase::SampleRow => "one row of samples of the parallel loop (a worker's root phase)",
+        }
+    }
+
     /// Whether this is one primitive kind's intersection test (a leaf of the stack:
     /// tests contain no other phase, so the tests' self times add up).
     pub const fn is_primitive_test(self) -> bool {
