@@ -25,7 +25,8 @@
 //! sphere test as 0.00 beside a 5 µs ray). Without any per-call time the unit is `s`.
 //!
 //! # Text
-//! gprof's flat table with its header, preceded by the number of renders sampled.
+//! gprof's flat table with its header, preceded by the number of renders sampled
+//! (for a profile read from gprof, [`super::gprof_import`], a line saying so).
 //! Noise rows are left out of the table rather than printed as `0.00`: a gprof reader
 //! would take `0.00` for "costs nothing". After the table (after a blank line, where
 //! gprof prints its explanations) come the noise rows with their calls per render,

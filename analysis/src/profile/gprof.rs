@@ -106,6 +106,11 @@ const SEPARATOR: &str = "-----------------------------------------------";
 /// Width of one cell in the index by function name (`%6.6s %-19.19s`).
 const INDEX_CELL_WIDTH: usize = 26;
 
+/// The line above a sampled graph's headings saying what its arc counts are; the
+/// importer refuses a text with it ([`super::gprof_import`]).
+pub(super) const SAMPLED_COUNTS_LINE: &str =
+    "On callers' and callees' lines `called` is samples, not calls (see below).";
+
 /// The explanation after the entries of a sampled graph.
 const SAMPLED_NOTES: &str = "
 Callers are listed above each function's own line, callees below, with the time
@@ -550,9 +555,8 @@ impl CallGraph {
                         "{renders} renders sampled; calls are per render, seconds for all {renders} renders."
                     );
                 }
-                out.push_str(
-                    "On callers' and callees' lines `called` is samples, not calls (see below).\n\n",
-                );
+                out.push_str(SAMPLED_COUNTS_LINE);
+                out.push_str("\n\n");
             }
             Origin::Gprof => out.push_str("Read from gprof's output; calls counted by -pg.\n\n"),
         }

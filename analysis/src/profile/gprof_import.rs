@@ -18,7 +18,9 @@
 //!   line up to ` [index]` (or ` (index)`, gprof's mark of a function it does not
 //!   list). The table ends at a blank or form feed line.
 //! - Not read: the explanations, the index by function name (the entries carry the
-//!   same names and indexes), the BSD layout of `gprof -T` (an error says so).
+//!   same names and indexes), the BSD layout of `gprof -T` (an error says so), and
+//!   rtprof's own sampled call graph, whose arc counts are samples (an error says so;
+//!   its flat profile reads, calls per render and all).
 //!
 //! Widths are printf minimums, so a wide value pushes the rest of its line right:
 //! columns are found as whitespace-separated tokens, and a blank `calls` column is
@@ -42,7 +44,7 @@
 //! Bad input gives a [`GprofImportError`] with the line number, never a panic.
 
 use super::flat::{FlatProfile, FlatRow};
-use super::gprof::{CallArc, CallGraph, CallGraphEntry};
+use super::gprof::{CallArc, CallGraph, CallGraphEntry, SAMPLED_COUNTS_LINE};
 use super::share_interval::{Z_95, below_noise_floor, wilson_interval};
 use super::{CallCounts, Origin};
 use std::collections::{BTreeMap, HashMap, HashSet};
@@ -548,6 +550,16 @@ fn parse_graph(lines: &[&str]) -> Result<Option<ParsedGraph>, GprofImportError> 
         }
         return Ok(None);
     };
+    // rtprof's own sampled graph has samples where gprof has calls: not gprof's.
+    if let Some(marker) = lines[..header]
+        .iter()
+        .position(|l| l.trim() == SAMPLED_COUNTS_LINE)
+    {
+        return Err(line_error(
+            marker + 1,
+            "this is rtprof's sampled call graph (its callers' and callees' counts are samples), not gprof's output",
+        ));
+    }
     let granularity = lines[..header]
         .iter()
         .rev()

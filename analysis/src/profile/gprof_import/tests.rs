@@ -307,6 +307,15 @@ fn broken_input_names_the_line() {
         line_of("\n\nindex  %time    self descendents  called+self    name    index\n");
     assert_eq!(line, 3);
     assert!(problem.contains("-T"), "{problem}");
+    // rtprof's own sampled call graph: its arc counts are samples.
+    let sampled = crate::profile::gprof::tests::graph_of(
+        &crate::profile::gprof::tests::three_functions(),
+        &CallCounts::new(),
+    )
+    .to_text();
+    let (line, problem) = line_of(&sampled);
+    assert_eq!(line, 6, "{problem}");
+    assert!(problem.contains("rtprof's sampled call graph"), "{problem}");
     assert_eq!(parse("hello\n"), Err(GprofImportError::NothingFound));
     assert_eq!(parse(""), Err(GprofImportError::NothingFound));
 }
