@@ -25,13 +25,15 @@
 //! sphere test as 0.00 beside a 5 µs ray). Without any per-call time the unit is `s`.
 //!
 //! # Text
-//! gprof's flat table with its header, preceded by the number of renders sampled.
+//! gprof's flat table with its header, preceded by the number of renders sampled
+//! (for a profile read from gprof, [`super::gprof_import`], a line saying so).
 //! Noise rows are left out of the table rather than printed as `0.00`: a gprof reader
 //! would take `0.00` for "costs nothing". After the table (after a blank line, where
 //! gprof prints its explanations) come the noise rows with their calls per render,
 //! then every row's self and inclusive shares with their 95 % intervals, by inclusive
 //! share, noise rows saying `noise` in the self column.
 
+use super::Origin;
 use super::c_format::{c_field, format_g};
 use super::share_interval::{ShareInterval, Z_95, below_noise_floor, wilson_interval};
 use super::tally::{ProfileInput, Tally, percent_of};
@@ -53,6 +55,9 @@ const PER_CALL_COLUMN_LIMIT: f64 = 99_999.995;
 /// gprof's flat profile.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct FlatProfile {
+    /// Sampled by rtprof or read from gprof (what the text says above the table).
+    #[serde(default)]
+    pub origin: Origin,
     pub seconds_per_sample: f64,
     /// Seconds of all samples (all renders).
     pub total_seconds: f64,
@@ -188,6 +193,7 @@ pub fn flat_profile(input: &ProfileInput<'_>) -> FlatProfile {
         })
         .collect();
     FlatProfile {
+        origin: Origin::Sampled,
         seconds_per_sample: input.samples.seconds_per_sample,
         total_seconds: seconds(total),
         samples: total,
@@ -249,7 +255,9 @@ impl FlatProfile {
             format_g(self.seconds_per_sample)
         );
         let renders = self.renders.max(1);
-        if renders == 1 {
+        if self.origin == Origin::Gprof {
+            out.push_str("Read from gprof's output; calls counted by -pg.\n");
+        } else if renders == 1 {
             out.push_str("1 render sampled; calls are per render, seconds for that render.\n");
         } else {
             let _ = writeln!(

@@ -35,10 +35,11 @@
 //!   order of their entries. Members are printed as `name <cycle N>`. The
 //!   `<cycle N as a whole>` entry has self = the members' self time and children =
 //!   the time spent in functions outside the cycle called from it (samples holding
-//!   any member, counted once, minus those where a member runs). Its parent lines
-//!   are the arcs entering the cycle from outside, credited at the first member on
-//!   the stack. Its lines below are the members (gprof lists members there), each
-//!   with its own self and children and its call count. A member keeps its own
+//!   any member, counted once, minus those where a member runs). Its parents (in
+//!   the data only: the text lists none, as gprof) are the arcs entering the cycle
+//!   from outside, credited at the first member on the stack. Its lines below are
+//!   the members (gprof lists members there), each with its own self and children
+//!   and its call count. A member keeps its own
 //!   once-per-sample figures, which include time spent in the other members it
 //!   calls; gprof would show only time propagated from outside the cycle there.
 //!   Arcs between members of one cycle are printed in gprof's "call among siblings"
@@ -50,16 +51,45 @@
 //! - Parent lines run from the smallest to the largest arc time, with siblings
 //!   first. Child lines run from the largest to the smallest, with siblings last.
 //!   A function without callers gets the `<spontaneous>` line.
-//! - Arc call counts are unknown with sampling, so the `called` column of arcs is
-//!   blank. So is gprof's `+N` self-call column.
+//! - Arc call counts are unknown with sampling: what flows along an arc is samples.
+//!   See [Columns](#columns) for what the `called` column holds instead.
 //! - The granularity line keeps gprof's shape but says `one call stack` instead of
-//!   a number of bytes. The line after it says how many renders were sampled
-//!   (free text above the column headings, where gprof prints its own).
+//!   a number of bytes. The lines after it say how many renders were sampled and
+//!   what the arcs' `called` column holds (free text above the column headings,
+//!   where gprof prints its own).
+//! - The entries end with a form feed line after the explanation, as in gprof's
+//!   output: gprof2dot reads the call graph up to it.
 //! - Index by function name: functions by name, then cycles (`<cycle N>`), three per
 //!   row and running down the columns as gprof does, each cell `%6.6s %-19.19s`.
 //!   Longer names are printed in full and push the rest of their row to the right.
 //!   The `[index]` column is never cut to 6 characters either.
+//!
+//! # Columns
+//! What each column of the call graph text holds, in rtprof's file (sampled,
+//! [`Origin::Sampled`]) and for a graph read from gprof ([`Origin::Gprof`],
+//! [`super::gprof_import`]), whose text is gprof's own:
+//!
+//! | line | column | sampled (rtprof) | read from gprof |
+//! |---|---|---|---|
+//! | primary | `% time` | share of samples holding the function (or cycle) | gprof's, the same |
+//! | primary | `self`, `children` | seconds of samples with it running / below it, once per sample | gprof's: histogram time, children's time propagated by call counts |
+//! | primary | `called` | exact calls per render (blank: not counted) | calls, `+N` calls from itself |
+//! | parent, child | `self`, `children` | seconds that flowed along the call | the same, as gprof propagated them |
+//! | parent, child | `called` | `S/T`: samples along this call / samples that entered the function (for a cycle member: its cycle) from outside its cycle | `C/T`: calls along this call / calls of the function (its cycle) from outside its cycle |
+//! | sibling (same cycle, or itself) | `called` | samples along the call; no times | calls; no times |
+//! | cycle member | `called` | the member's calls per render, `0` when not counted (gprof prints a count on every member line) | the member's calls, `+N` from itself |
+//!
+//! The parent and child lines must carry a count: gprof2dot (`-f prof`) reads every
+//! such line as `count[/total]` and splits a callee's time among its callers in
+//! proportion to those counts. With samples there, its split is the sampled one
+//! (exact, where gprof's own split assumes every call costs the same). Writing
+//! gprof's "no count" instead (`0/0`, what `gprof -c` writes for arcs it only saw
+//! statically) makes gprof2dot give every caller the callee's whole time: callers
+//! above 100 % and `ratio greater than one` warnings. A cycle's whole entry lists
+//! no callers (gprof lists none; gprof2dot takes an entry with callers for a
+//! function): they are in its members' entries, and in [`CallGraphEntry::parents`].
 
+use super::Origin;
 pub use super::flat::{
     FlatProfile, FlatRow, WHOLE_RUN_PERCENT, bottleneck, flat_profile, largest_inclusive,
 };
@@ -76,22 +106,46 @@ const SEPARATOR: &str = "-----------------------------------------------";
 /// Width of one cell in the index by function name (`%6.6s %-19.19s`).
 const INDEX_CELL_WIDTH: usize = 26;
 
-const CALL_GRAPH_NOTES: &str = "
+/// The line above a sampled graph's headings saying what its arc counts are; the
+/// importer refuses a text with it ([`super::gprof_import`]).
+pub(super) const SAMPLED_COUNTS_LINE: &str =
+    "On callers' and callees' lines `called` is samples, not calls (see below).";
+
+/// The explanation after the entries of a sampled graph.
+const SAMPLED_NOTES: &str = "
 Callers are listed above each function's own line, callees below, with the time
 that flowed along each call (self: function running; children: its callees). A
-sample counts once per function, recursion included. Arc call counts are unknown
-with sampling. A <cycle N> entry sums its members and lists them below it.
+sample counts once per function, recursion included. A function's own `called` is
+its exact calls per render (blank: not counted). On its callers' and callees'
+lines `called` holds samples, not calls, which are not counted per call: S/T is
+the S samples that flowed along the call out of the T that entered the function
+(or its cycle) from outside its cycle. A <cycle N> entry sums its members and
+lists them below it, each with its calls per render (0: not counted); the
+cycle's callers are in its members' entries.
+";
+
+/// The explanation after the entries of a graph read from gprof.
+const GPROF_NOTES: &str = "
+Read from gprof's output: calls are the exact counts of the -pg build, times as
+gprof propagated them. Callers are listed above each function's own line, callees
+below; `called` on their lines is calls along the call / all calls of the function
+(or its cycle) from outside its cycle. A <cycle N> entry sums its members and
+lists them below it; the cycle's callers are in its members' entries.
 ";
 
 /// gprof's call graph.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct CallGraph {
+    /// Sampled by rtprof or read from gprof: what the arcs' counts are.
+    #[serde(default)]
+    pub origin: Origin,
     pub total_seconds: f64,
     /// Samples behind `total_seconds`, for the granularity line.
     pub total_samples: u64,
     /// Renders the samples cover (at least 1); `calls` are per render.
     pub renders: u64,
-    /// In index order: `entries[i].index == i + 1`.
+    /// In index order. rtprof numbers them without gaps (`entries[i].index == i + 1`);
+    /// gprof skips the indexes of functions it does not print.
     pub entries: Vec<CallGraphEntry>,
 }
 
@@ -106,7 +160,11 @@ pub struct CallGraphEntry {
     pub self_seconds: f64,
     pub children_seconds: f64,
     pub calls: Option<u64>,
-    /// Callers, in printed order.
+    /// Calls from itself (gprof's `+N`), read from gprof; rtprof's sampled graphs
+    /// put a self-calling function in a cycle instead.
+    #[serde(default)]
+    pub self_calls: Option<u64>,
+    /// Callers, in printed order (a cycle entry's are in the data only).
     pub parents: Vec<CallArc>,
     /// Callees in printed order; for a cycle entry, its members.
     pub children: Vec<CallArc>,
@@ -124,6 +182,13 @@ pub struct CallArc {
     pub index: usize,
     pub self_seconds: f64,
     pub children_seconds: f64,
+    /// Samples that flowed along the call (self + children); for a cycle entry's
+    /// member lines, the member's own samples.
+    #[serde(default)]
+    pub samples: u64,
+    /// Exact calls along the call, read from gprof; `None` when sampled.
+    #[serde(default)]
+    pub calls: Option<u64>,
 }
 
 /// Samples of one arc or cycle entry, split by whether the function (cycle) was running.
@@ -267,6 +332,8 @@ pub fn call_graph(input: &ProfileInput<'_>) -> CallGraph {
         index: function_index[f],
         self_seconds: seconds(split.self_samples),
         children_seconds: seconds(split.children_samples),
+        samples: split.total(),
+        calls: None,
     };
     let own_split = |f: usize| Split {
         self_samples: tally.self_samples[f],
@@ -295,6 +362,7 @@ pub fn call_graph(input: &ProfileInput<'_>) -> CallGraph {
                     self_seconds: seconds(tally.self_samples[f]),
                     children_seconds: seconds(tally.children_samples(f)),
                     calls: tally.calls[f],
+                    self_calls: None,
                     parents: parents.into_iter().map(|(p, s)| arc_to(p, s)).collect(),
                     children: children.into_iter().map(|(c, s)| arc_to(c, s)).collect(),
                     cycle: cycle_of[f].and_then(|c| cycle_number[c]),
@@ -315,6 +383,7 @@ pub fn call_graph(input: &ProfileInput<'_>) -> CallGraph {
                     self_seconds: seconds(cycle_split[c].self_samples),
                     children_seconds: seconds(cycle_split[c].children_samples),
                     calls: None,
+                    self_calls: None,
                     parents: parents.into_iter().map(|(p, s)| arc_to(p, s)).collect(),
                     children: members
                         .into_iter()
@@ -327,6 +396,7 @@ pub fn call_graph(input: &ProfileInput<'_>) -> CallGraph {
         })
         .collect();
     CallGraph {
+        origin: Origin::Sampled,
         total_seconds: seconds(tally.total_samples),
         total_samples: tally.total_samples,
         renders: input.renders(),
@@ -390,10 +460,17 @@ fn strongly_connected_components(callees: &[Vec<usize>]) -> Vec<usize> {
 }
 
 impl CallGraph {
-    /// The call graph as gprof prints it: entries, a short explanation, the index.
+    /// The call graph as gprof prints it: entries, a short explanation, a form feed,
+    /// the index. See [Columns](self#columns) for what each column holds.
     pub fn to_text(&self) -> String {
         let by_index: HashMap<usize, &CallGraphEntry> =
             self.entries.iter().map(|e| (e.index, e)).collect();
+        let cycle_entries: HashMap<u32, &CallGraphEntry> = self
+            .entries
+            .iter()
+            .filter(|e| e.whole_cycle)
+            .filter_map(|e| e.cycle.map(|number| (number, e)))
+            .collect();
         // How an arc's target is named: with its cycle, as gprof's print_name does.
         let label = |arc: &CallArc| match by_index.get(&arc.index) {
             Some(target) if !target.whole_cycle => {
@@ -401,16 +478,60 @@ impl CallGraph {
             }
             _ => format!("{} [{}]", arc.name, arc.index),
         };
+        // A call among members of one cycle, or to itself: gprof prints no times.
         let sibling = |entry: &CallGraphEntry, arc: &CallArc| {
             !entry.whole_cycle
-                && entry.cycle.is_some()
-                && by_index
-                    .get(&arc.index)
-                    .is_some_and(|t| !t.whole_cycle && t.cycle == entry.cycle)
+                && (arc.index == entry.index
+                    || entry.cycle.is_some()
+                        && by_index
+                            .get(&arc.index)
+                            .is_some_and(|t| !t.whole_cycle && t.cycle == entry.cycle))
+        };
+        let count = |arc: &CallArc| match self.origin {
+            Origin::Sampled => arc.samples,
+            Origin::Gprof => arc.calls.unwrap_or(0),
+        };
+        // The denominator of `count/total`: what entered the function, or the cycle
+        // it belongs to, from outside that cycle (gprof's cycle head's calls).
+        let entered = |index: usize| -> u64 {
+            let Some(&target) = by_index.get(&index) else {
+                return 0;
+            };
+            let head = match target.cycle {
+                Some(number) if !target.whole_cycle => {
+                    cycle_entries.get(&number).copied().unwrap_or(target)
+                }
+                _ => target,
+            };
+            match self.origin {
+                Origin::Sampled => head
+                    .parents
+                    .iter()
+                    .filter(|p| !sibling(head, p))
+                    .fold(0u64, |sum, p| sum.saturating_add(p.samples)),
+                Origin::Gprof => head.calls.unwrap_or(0),
+            }
+        };
+        let arc_line = |out: &mut String, entry: &CallGraphEntry, arc: &CallArc, total: u64| {
+            if sibling(entry, arc) {
+                push_arc_line(
+                    out,
+                    None,
+                    &format!("{:7} {:7}", count(arc), ""),
+                    &label(arc),
+                );
+            } else {
+                let called = format!("{:7}/{:<7}", count(arc), total);
+                let times = Some((arc.self_seconds, arc.children_seconds));
+                push_arc_line(out, times, &called, &label(arc));
+            }
         };
 
         let mut out = String::from("\t\t     Call graph (explanation follows)\n\n\n");
-        out.push_str("granularity: each sample hit covers one call stack");
+        out.push_str(match self.origin {
+            Origin::Sampled => "granularity: each sample hit covers one call stack",
+            Origin::Gprof => "granularity: each sample hit covers one histogram bucket",
+        });
         if self.total_samples > 0 {
             let one_sample = 100.0 / self.total_samples as f64;
             let _ = writeln!(
@@ -421,24 +542,34 @@ impl CallGraph {
         } else {
             out.push_str(" no time propagated\n");
         }
-        let renders = self.renders.max(1);
-        if renders == 1 {
-            out.push_str("1 render sampled; calls are per render, seconds for that render.\n\n");
-        } else {
-            let _ = writeln!(
-                out,
-                "{renders} renders sampled; calls are per render, seconds for all {renders} renders.\n"
-            );
+        match self.origin {
+            Origin::Sampled => {
+                let renders = self.renders.max(1);
+                if renders == 1 {
+                    out.push_str(
+                        "1 render sampled; calls are per render, seconds for that render.\n",
+                    );
+                } else {
+                    let _ = writeln!(
+                        out,
+                        "{renders} renders sampled; calls are per render, seconds for all {renders} renders."
+                    );
+                }
+                out.push_str(SAMPLED_COUNTS_LINE);
+                out.push_str("\n\n");
+            }
+            Origin::Gprof => out.push_str("Read from gprof's output; calls counted by -pg.\n\n"),
         }
         out.push_str("index % time    self  children    called     name\n");
         for entry in &self.entries {
-            if entry.parents.is_empty() {
-                let _ = writeln!(out, "{:49}<spontaneous>", "");
-            }
-            for parent in &entry.parents {
-                let times = (!sibling(entry, parent))
-                    .then_some((parent.self_seconds, parent.children_seconds));
-                push_arc_line(&mut out, times, None, &label(parent));
+            // A cycle's entry starts with its own line: its callers are its members'.
+            if !entry.whole_cycle {
+                if entry.parents.is_empty() {
+                    let _ = writeln!(out, "{:49}<spontaneous>", "");
+                }
+                for parent in &entry.parents {
+                    arc_line(&mut out, entry, parent, entered(entry.index));
+                }
             }
             let _ = write!(
                 out,
@@ -448,27 +579,38 @@ impl CallGraph {
                 entry.self_seconds,
                 entry.children_seconds
             );
-            let _ = match entry.calls {
-                Some(calls) if calls != 0 => write!(out, " {calls:7} {:7} ", ""),
-                _ => write!(out, " {:7} {:7} ", "", ""),
+            let calls = entry.calls.filter(|&c| c != 0);
+            let self_calls = entry.self_calls.filter(|&c| c != 0);
+            let _ = match (calls, self_calls) {
+                (None, None) => write!(out, " {:7} {:7} ", "", ""),
+                (calls, None) => write!(out, " {:7} {:7} ", calls.unwrap_or(0), ""),
+                (calls, Some(own)) => write!(out, " {:7}+{own:<7} ", calls.unwrap_or(0)),
             };
             let _ = writeln!(out, "{} [{}]", display_name(entry), entry.index);
             for child in &entry.children {
-                let times = (!sibling(entry, child))
-                    .then_some((child.self_seconds, child.children_seconds));
-                // Under a cycle entry the lines are members, which show their call count.
-                let calls = if entry.whole_cycle {
-                    by_index.get(&child.index).and_then(|m| m.calls)
+                if entry.whole_cycle {
+                    // A member: its own times and calls (gprof prints a count on each).
+                    let member = by_index.get(&child.index);
+                    let calls = member.and_then(|m| m.calls).or(child.calls).unwrap_or(0);
+                    let called = match member.and_then(|m| m.self_calls).filter(|&c| c != 0) {
+                        Some(own) => format!("{calls:7}+{own:<7}"),
+                        None => format!("{calls:7} {:7}", ""),
+                    };
+                    let times = Some((child.self_seconds, child.children_seconds));
+                    push_arc_line(&mut out, times, &called, &label(child));
                 } else {
-                    None
-                };
-                push_arc_line(&mut out, times, calls, &label(child));
+                    arc_line(&mut out, entry, child, entered(child.index));
+                }
             }
             out.push_str(SEPARATOR);
             out.push('\n');
         }
-        out.push_str(CALL_GRAPH_NOTES);
-        out.push_str("\nIndex by function name\n\n");
+        out.push_str(match self.origin {
+            Origin::Sampled => SAMPLED_NOTES,
+            Origin::Gprof => GPROF_NOTES,
+        });
+        // gprof ends the call graph with a form feed; gprof2dot reads up to it.
+        out.push_str("\x0c\nIndex by function name\n\n");
         self.push_index(&mut out);
         out
     }
@@ -513,18 +655,15 @@ fn display_name(entry: &CallGraphEntry) -> String {
     }
 }
 
-/// A parent, child or member line: `%6.6s %5.5s %7.2f %7.2f %7.7s %7.7s     name`, with
-/// blank times for calls among siblings and the count in the first `called` column.
-fn push_arc_line(out: &mut String, times: Option<(f64, f64)>, calls: Option<u64>, label: &str) {
+/// A parent, child or member line: `%6.6s %5.5s %7.2f %7.2f`, then the 15 columns of
+/// `called` (`%7lu/%-7lu`, `%7lu %7.7s` or `%7lu+%-7lu`) and five spaces before the
+/// name; blank times for calls among siblings.
+fn push_arc_line(out: &mut String, times: Option<(f64, f64)>, called: &str, label: &str) {
     let _ = match times {
         Some((own, children)) => write!(out, "{:6} {:5} {own:7.2} {children:7.2}", "", ""),
         None => write!(out, "{:6} {:5} {:7} {:7}", "", "", "", ""),
     };
-    let _ = match calls {
-        Some(calls) => write!(out, " {calls:7} {:7}", ""),
-        None => write!(out, " {:7} {:7}", "", ""),
-    };
-    let _ = writeln!(out, "     {label}");
+    let _ = writeln!(out, " {called}     {label}");
 }
 
 #[cfg(test)]

@@ -3,7 +3,8 @@
 //! ([`share_interval`]), folded stacks and flamegraphs, Amdahl projections, exports
 //! to pprof and speedscope ([`export`]). The sampler ([`sampler`], one run at a time
 //! as a [`session`], its signals from the [`timer`] of [`perf_clock`] or setitimer)
-//! produces [`StackSamples`]; everything else reads it.
+//! produces [`StackSamples`]; everything else reads it. GNU gprof's own output is
+//! read into the same flat profile and call graph by [`gprof_import`].
 
 pub mod amdahl;
 mod c_format;
@@ -12,6 +13,7 @@ pub mod export;
 pub mod flat;
 pub mod folded;
 pub mod gprof;
+pub mod gprof_import;
 #[cfg(any(test, feature = "gprof-text"))]
 pub mod gprof_text;
 pub mod names;
@@ -56,3 +58,15 @@ impl StackSamples {
 /// table, `tracer::Counts::function_calls`), for the `calls` columns; functions
 /// without an entry have no count (blank, as in gprof).
 pub type CallCounts = BTreeMap<String, u64>;
+
+/// Where a flat profile's or call graph's figures come from: what their texts say
+/// above the tables and what the call graph's arc counts are.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Origin {
+    /// rtprof's sampler: stacks sampled, calls per render from the caller's counts.
+    #[default]
+    Sampled,
+    /// GNU gprof's output ([`gprof_import`]): calls counted by a `-pg` build.
+    Gprof,
+}

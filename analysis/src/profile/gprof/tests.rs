@@ -118,9 +118,25 @@ fn recursion_counts_each_sample_once_and_forms_a_cycle() {
         text.contains("[1]    100.0    0.05    0.10                 <cycle 1 as a whole> [1]\n")
     );
     assert!(text.contains("[3]    100.0    0.00    0.15                 trace <cycle 1> [3]\n"));
-    // shade's caller inside the cycle: sibling form, no times.
-    assert!(text.contains(&format!("{:49}trace <cycle 1> [3]\n[4]", "")));
-    assert!(text.contains("                0.10    0.00                     sphere [5]\n"));
+    // shade's caller inside the cycle: sibling form, no times, the 15 samples that
+    // entered shade from trace (cg_print.c: "%6.6s %5.5s %7.7s %7.7s %7lu %7.7s     ").
+    assert!(text.contains(&format!(
+        "{:6} {:5} {:7} {:7} {:7} {:7}     trace <cycle 1> [3]\n[4]",
+        "", "", "", "", 15, ""
+    )));
+    // A child line: "%6.6s %5.5s %7.2f %7.2f %7lu/%-7lu     ", samples along the call
+    // out of all that entered sphere.
+    assert!(text.contains(&format!(
+        "{:6} {:5} {:7.2} {:7.2} {:7}/{:<7}     sphere [5]\n",
+        "", "", 0.10, 0.0, 10, 10
+    )));
+    // The cycle's entry starts with its own line (gprof lists no callers there) and
+    // lists its members with their calls (0: not counted).
+    assert!(text.contains(&format!(
+        "called     name\n[1]    100.0    0.05    0.10                 <cycle 1 as a whole> [1]\n\
+         {:6} {:5} {:7.2} {:7.2} {:7} {:7}     trace <cycle 1> [3]\n",
+        "", "", 0.0, 0.15, 0, ""
+    )));
 }
 
 #[test]
@@ -146,19 +162,25 @@ fn call_graph_text_matches_gprof_layout() {
     let text = graph.to_text();
     let expected = "\t\t     Call graph (explanation follows)\n\n\n\
 granularity: each sample hit covers one call stack for 0.42% of 2.40 seconds\n\
-1 render sampled; calls are per render, seconds for that render.\n\n\
+1 render sampled; calls are per render, seconds for that render.\n\
+On callers' and callees' lines `called` is samples, not calls (see below).\n\n\
 index % time    self  children    called     name\n\
 \x20                                                <spontaneous>\n\
 [1]    100.0    0.00    2.40                 main [1]\n\
-\x20               2.40    0.00                     foo [2]\n\
+\x20               2.40    0.00     240/240         foo [2]\n\
 -----------------------------------------------\n\
-\x20               2.40    0.00                     main [1]\n\
+\x20               2.40    0.00     240/240         main [1]\n\
 [2]    100.0    2.40    0.00       1         foo [2]\n\
 -----------------------------------------------\n";
     assert!(text.starts_with(expected), "{text}");
-    // Two names: one row, cells of 26 characters.
+    // The explanation, gprof's form feed, then the index: two names, one row, cells
+    // of 26 characters.
     assert!(
-        text.ends_with("Index by function name\n\n   [2] foo                   [1] main\n"),
+        text.contains("not calls, which are not counted per call"),
+        "{text}"
+    );
+    assert!(
+        text.ends_with("\n\x0c\nIndex by function name\n\n   [2] foo                   [1] main\n"),
         "{text}"
     );
 }
@@ -174,8 +196,8 @@ fn call_graph_says_renders_and_shows_calls_per_render() {
     assert_eq!(graph.renders, 5);
     let text = graph.to_text();
     // Free text above the column headings, as gprof's granularity line.
-    let renders_line = "5 renders sampled; calls are per render, seconds for all 5 renders.\n\n\
-                            index % time";
+    let renders_line = "5 renders sampled; calls are per render, seconds for all 5 renders.\n\
+                            On callers' and callees' lines";
     assert!(text.contains(renders_line), "{text}");
     // The calls column holds the per-render count as given, not 7 x 5.
     assert!(text.contains("[2]    100.0    2.40    0.00       7         foo [2]\n"));
@@ -231,10 +253,14 @@ fn call_graph_text_round_trips_through_parser() {
             back.children_seconds,
             to_printed(entry.children_seconds, 100.0)
         ));
-        let lines = [
-            (&entry.parents, &back.parents),
-            (&entry.children, &back.children),
-        ];
+        // A cycle's entry prints no callers (as gprof); its data keeps them.
+        let no_parents = Vec::new();
+        let parents = if entry.whole_cycle {
+            &no_parents
+        } else {
+            &entry.parents
+        };
+        let lines = [(parents, &back.parents), (&entry.children, &back.children)];
         for (arcs, parsed_arcs) in lines {
             let arcs_back: Vec<&ParsedArc> = parsed_arcs
                 .iter()
@@ -249,6 +275,16 @@ fn call_graph_text_round_trips_through_parser() {
                 assert_eq!(arc_back.cycle, by_index[&arc.index].cycle);
                 if let Some(own) = arc_back.self_seconds {
                     assert!(close(own, to_printed(arc.self_seconds, 100.0)));
+                }
+                // Every line has a count: samples (S/T) on callers and callees,
+                // calls on a cycle's members.
+                let called = arc_back.called.as_deref().unwrap_or("");
+                let first = called.split('/').next().unwrap_or("");
+                if entry.whole_cycle {
+                    let calls = by_index[&arc.index].calls.unwrap_or(0);
+                    assert_eq!(called, calls.to_string());
+                } else {
+                    assert_eq!(first, arc.samples.to_string(), "{called:?}");
                 }
             }
         }
@@ -302,7 +338,7 @@ fn parsers_report_the_failing_line() {
     let broken = graph.replacen("[1]    100.0", "[1]    1o0.0", 1);
     assert!(matches!(
         parse_call_graph_text(&broken),
-        Err(GprofParseError::Line { line: 9, .. })
+        Err(GprofParseError::Line { line: 10, .. })
     ));
     assert!(parse_call_graph_text("index % time\n                0.1").is_err());
 }
