@@ -97,7 +97,13 @@ impl Running {
         let pid = libc::pid_t::try_from(self.pid).map_err(|_| self.wait_error("bad pid"))?;
         let mut asked: Option<(End, Instant)> = None;
         loop {
-            if let Some(done) = self.reap(pid, asked.as_ref().map(|(why, _)| why))? {
+            // A program the terminal's Ctrl-C killed before the flag was seen was
+            // stopped all the same.
+            let why = match &asked {
+                Some((why, _)) => Some(why.clone()),
+                None => stop.load(Ordering::Relaxed).then_some(End::Stopped),
+            };
+            if let Some(done) = self.reap(pid, why.as_ref())? {
                 return Ok(done);
             }
             match &asked {

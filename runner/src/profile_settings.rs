@@ -7,7 +7,8 @@ use crate::profile_job::DEFAULT_MIN_SAMPLES;
 use crate::render_job::{RenderSettings, ShadingFlags};
 use crate::scene_input::SceneInput;
 
-/// What `rtprof profile` samples, how, and where its files go.
+// What `rtprof profile` samples, how, and where its files go. (A plain comment: a doc
+// comment here would replace the command's help line.)
 #[derive(clap::Args, Debug)]
 pub struct ProfileSettings {
     #[arg(value_name = "SCENE", value_parser = SceneInput::parse_arg, help = SceneInput::HELP)]

@@ -54,8 +54,9 @@ impl CallGraph {
     }
 }
 
-/// `rtprof record`'s flags: the settings of a recording, declared here (behind the
-/// `clap` feature) with their defaults and help.
+// `rtprof record`'s flags: the settings of a recording, declared here (behind the
+// `clap` feature) with their defaults and help. (A plain comment: a doc comment here
+// would replace the command's help line.)
 #[derive(Clone, Debug)]
 #[cfg_attr(feature = "clap", derive(clap::Args))]
 pub struct RecordSettings {

@@ -19,7 +19,7 @@ pub struct Mapping {
 impl Mapping {
     /// The file offset of `address` (inside this mapping).
     pub fn file_offset_of(&self, address: u64) -> u64 {
-        address - self.start + self.file_offset
+        (address - self.start).wrapping_add(self.file_offset)
     }
 }
 

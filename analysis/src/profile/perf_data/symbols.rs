@@ -53,7 +53,7 @@ impl FileSymbols {
         self.segments
             .iter()
             .find(|&&(start, size, _)| offset >= start && offset - start < size.max(1))
-            .map(|&(start, _, address)| offset - start + address)
+            .map(|&(start, _, address)| (offset - start).wrapping_add(address))
     }
 }
 

@@ -35,7 +35,7 @@ impl FileTables {
         let section = |name: &str| {
             let s = file.section_by_name(name)?;
             let bytes: Arc<[u8]> = Arc::from(s.uncompressed_data().ok()?.as_ref());
-            Some((s.address()..s.address() + s.size(), bytes))
+            Some((s.address()..s.address().saturating_add(s.size()), bytes))
         };
         Some(FileTables {
             text: section(".text"),
@@ -43,7 +43,7 @@ impl FileTables {
             eh_frame_hdr: section(".eh_frame_hdr"),
             got: file
                 .section_by_name(".got")
-                .map(|s| s.address()..s.address() + s.size()),
+                .map(|s| s.address()..s.address().saturating_add(s.size())),
             segments: file
                 .segments()
                 .map(|s| {
@@ -68,9 +68,9 @@ impl FileTables {
                     .iter()
                     .rfind(|&&(o, size, _)| file_offset >= o && file_offset - o < size.max(1))
             })?;
-        let page_address = address - (seg_offset - (seg_offset & !(PAGE - 1)));
+        let page_address = address.wrapping_sub(seg_offset - (seg_offset & !(PAGE - 1)));
         let mapped_offset = seg_offset & !(PAGE - 1);
-        Some(start.wrapping_sub(file_offset - mapped_offset + page_address))
+        Some(start.wrapping_sub((file_offset - mapped_offset).wrapping_add(page_address)))
     }
 
     fn section_info(&self) -> ExplicitModuleSectionInfo<Arc<[u8]>> {
