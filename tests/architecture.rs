@@ -159,6 +159,15 @@ fn violations(graph: &Graph) -> Vec<String> {
             "analysis reaches tracer: analysis depends on no renderer, directly or not".into(),
         );
     }
+    // Running other programs is launch's job; the renderer and the measurements stay free
+    // of processes, not even through another crate.
+    for pure in ["tracer", "analysis"] {
+        if reaches(graph, pure).contains("launch") {
+            out.push(format!(
+                "{pure} reaches launch: running other programs is launch's job, {pure} stays free of it"
+            ));
+        }
+    }
     if graph.get("tracer").is_some_and(|c| !c.dev.is_empty()) {
         out.push(
             "tracer has workspace dev-dependencies: tracer depends on no workspace crate".into(),
@@ -192,6 +201,7 @@ fn graph_of(edges: &[(&str, &[&str])]) -> Graph {
 /// The layering as docs/architecture.md draws it.
 const LAYERS: &[(&str, &[&str])] = &[
     ("tracer", &[]),
+    ("launch", &[]),
     ("analysis", &[]),
     ("spd", &["tracer"]),
     ("reference", &["tracer"]),
@@ -210,6 +220,7 @@ const LAYERS: &[(&str, &[&str])] = &[
             "rtl",
             "results",
             "reports",
+            "launch",
         ],
     ),
     (
@@ -230,7 +241,7 @@ fn the_workspace_keeps_the_architecture_invariants() {
     let graph = workspace_graph(&manifests());
     // The test reads what it means to: every member, with the edges it knows exist.
     for name in [
-        "tracer", "analysis", "results", "runner", "reports", "serve", "rtprof",
+        "tracer", "analysis", "results", "runner", "reports", "serve", "rtprof", "launch",
     ] {
         assert!(
             graph.contains_key(name),
@@ -238,6 +249,7 @@ fn the_workspace_keeps_the_architecture_invariants() {
         );
     }
     assert!(graph["runner"].normal.contains("reports"), "{graph:?}");
+    assert!(graph["runner"].normal.contains("launch"), "{graph:?}");
     let broken = violations(&graph);
     assert!(
         broken.is_empty(),
@@ -288,6 +300,12 @@ fn each_forbidden_edge_is_named_with_its_rule() {
     assert_eq!(
         with("serve", "rtprof"),
         ["serve depends on rtprof: nothing depends on the binary: it calls the libraries"]
+    );
+    assert_eq!(
+        with("analysis", "launch"),
+        [
+            "analysis reaches launch: running other programs is launch's job, analysis stays free of it"
+        ]
     );
     assert_eq!(
         with("results", "testkit"),

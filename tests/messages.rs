@@ -62,7 +62,7 @@ fn a_misspelt_command_suggests_the_right_one() {
     assert_eq!(
         line,
         "rtprof: error: unrecognized subcommand 'rendr'; \
-         tip: some similar subcommands exist: 'report', 'render' \
+         tip: some similar subcommands exist: 'report', 'record', 'render' \
          (usage: rtprof <COMMAND>; see --help)"
     );
 }

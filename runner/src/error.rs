@@ -51,6 +51,12 @@ pub enum RunError {
     /// A report that cannot be built.
     #[error("{0}")]
     Report(String),
+    /// A program to run that could not be found or started (`rtprof record`).
+    #[error(transparent)]
+    Launch(#[from] launch::LaunchError),
+    /// perf, which `rtprof record` drives, missing, not permitted or failing.
+    #[error(transparent)]
+    Perf(#[from] PerfError),
     /// The caller asked the run to stop (Ctrl-C).
     #[error("stopped on request")]
     Stopped,
@@ -60,6 +66,26 @@ pub enum RunError {
     /// A suite stopped on request after `done` of its `total` scenes.
     #[error("stopped on request after {done} of {total} scenes")]
     StoppedAfter { done: usize, total: usize },
+}
+
+/// The environment variable naming the perf binary (default: `perf` on PATH).
+pub const PERF_VARIABLE: &str = "RTPROF_PERF";
+/// Where the kernel says who may sample.
+pub const PARANOID: &str = "/proc/sys/kernel/perf_event_paranoid";
+
+/// perf missing, not permitted, or failing.
+#[derive(Debug, thiserror::Error)]
+pub enum PerfError {
+    #[error(
+        "perf is not installed ({program}): install the linux-perf package (Debian; linux-tools on Ubuntu), or set {PERF_VARIABLE} to perf's path"
+    )]
+    Missing { program: String },
+    #[error(
+        "perf may not sample this program: {PARANOID} is {paranoid}; lower it (sysctl kernel.perf_event_paranoid=1) or run as root or with CAP_PERFMON (in a container, the container must allow perf_event_open)"
+    )]
+    NotPermitted { paranoid: String },
+    #[error("perf failed: {message} (its log: {})", log.display())]
+    Failed { message: String, log: PathBuf },
 }
 
 impl RunError {

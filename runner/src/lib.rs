@@ -21,6 +21,9 @@
 //! - [`compare`]: variants side by side (`rtprof compare SCENE --variants`);
 //! - [`profile_job`]: counted + sampled renders into two views (phases, native symbols):
 //!   gprof tables, folded stacks, Amdahl; [`profile_files`]: their files, one naming scheme;
+//!   `profile_settings`: `rtprof profile`'s flags (with the `clap` feature);
+//! - [`record`]: `rtprof record -- CMD`, another program under perf into the same
+//!   profile model; [`record_files`]: its files and summary;
 //! - [`hardware_job`]: the FPGA model, emulator and software time on the same job;
 //! - [`hardware_prediction`]: `rtprof hw time`: frame time, fit and what-ifs;
 //! - [`hardware_tables`]: `rtprof hw table` as text; [`hardware_files`]: `hw render`, `hw mif`;
@@ -69,8 +72,12 @@ pub mod pixel_maps;
 pub mod pool;
 pub mod profile_files;
 pub mod profile_job;
+#[cfg(feature = "clap")]
+pub mod profile_settings;
 pub mod progress;
 pub mod ray_rates;
+pub mod record;
+pub mod record_files;
 pub mod reference_job;
 pub mod render_job;
 pub mod render_setup;

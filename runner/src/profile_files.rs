@@ -14,6 +14,7 @@
 use std::path::Path;
 use std::time::Duration;
 
+use analysis::profile::StackSamples;
 use analysis::profile::amdahl::amdahl_text;
 use analysis::profile::export::{PprofRun, pprof_profile_gz, speedscope_json};
 use analysis::profile::folded::{DiffSide, differential_svgs, flamegraph_svg};
@@ -38,11 +39,37 @@ fn suffix(view: ProfileView) -> &'static str {
     }
 }
 
-fn view_label(view: ProfileView) -> &'static str {
+pub fn view_label(view: ProfileView) -> &'static str {
     match view {
         ProfileView::Phases => "phases",
         ProfileView::Native => "native symbols",
     }
+}
+
+/// One view to write, and the suffix of its files' names.
+pub struct ViewToSave<'a> {
+    pub view: &'a ViewProfile,
+    pub suffix: &'a str,
+}
+
+/// What one profile's files are made from, whoever sampled it: `rtprof profile`'s
+/// renders (two views) or `rtprof record`'s outside program (native symbols only).
+pub struct ProfileToSave<'a> {
+    /// Names the files (slugged): the variant, or the recorded command.
+    pub stem: &'a str,
+    pub title: &'a str,
+    pub wall_seconds: f64,
+    /// pprof's comment on what was sampled ("3 renders sampled").
+    pub sampled: String,
+    /// The first view's Amdahl table is written.
+    pub views: Vec<ViewToSave<'a>>,
+}
+
+/// The files written: each view's, then the exports (each view's pprof, speedscope,
+/// the Amdahl table).
+pub struct SavedProfile {
+    pub views: Vec<ProfileViewFiles>,
+    pub exports: Vec<String>,
 }
 
 /// Writes one view's texts, folded stacks, flamegraph and pprof file under
@@ -50,34 +77,32 @@ fn view_label(view: ProfileView) -> &'static str {
 fn save_view(
     out: &Path,
     dir: &str,
-    variant: &str,
-    p: &VariantProfile,
-    v: &ViewProfile,
-    title: &str,
+    p: &ProfileToSave,
+    v: &ViewToSave,
 ) -> Result<(ProfileViewFiles, String), RunError> {
-    let name =
-        |kind: &str, ext: &str| format!("{dir}{kind}-{}{}.{ext}", slug(variant), suffix(v.view));
-    let flat_text = save(out, &name("flat", "txt"), v.flat_text.as_bytes())?;
-    let callgraph_text = save(out, &name("callgraph", "txt"), v.call_graph_text.as_bytes())?;
-    save(out, &name("folded", "txt"), v.folded.as_bytes())?;
-    let title = format!("{title}, {}", view_label(v.view));
-    let svg = flamegraph_svg(&v.folded, &title).map_err(profile_error)?;
+    let (stem, suffix, view) = (slug(p.stem), v.suffix, v.view);
+    let name = |kind: &str, ext: &str| format!("{dir}{kind}-{stem}{suffix}.{ext}");
+    let flat_text = save(out, &name("flat", "txt"), view.flat_text.as_bytes())?;
+    let callgraph_text = save(
+        out,
+        &name("callgraph", "txt"),
+        view.call_graph_text.as_bytes(),
+    )?;
+    save(out, &name("folded", "txt"), view.folded.as_bytes())?;
+    let title = format!("{}, {}", p.title, view_label(view.view));
+    let svg = flamegraph_svg(&view.folded, &title).map_err(profile_error)?;
     let flame_svg = save(out, &name("flame", "svg"), svg.as_bytes())?;
     let run = PprofRun {
         duration: Duration::from_secs_f64(p.wall_seconds),
         comments: vec![
             title,
-            format!("view: {}", view_label(v.view)),
-            format!("{} renders sampled", p.renders),
+            format!("view: {}", view_label(view.view)),
+            p.sampled.clone(),
         ],
     };
-    let pprof = pprof_profile_gz(&v.stacks, &run).map_err(profile_error)?;
-    let pprof_path = save(
-        out,
-        &format!("{dir}profile-{}{}.pb.gz", slug(variant), suffix(v.view)),
-        &pprof,
-    )?;
-    let flat = v
+    let pprof = pprof_profile_gz(&view.stacks, &run).map_err(profile_error)?;
+    let pprof_path = save(out, &format!("{dir}profile-{stem}{suffix}.pb.gz"), &pprof)?;
+    let flat = view
         .flat
         .rows
         .iter()
@@ -96,7 +121,7 @@ fn save_view(
         .collect();
     Ok((
         ProfileViewFiles {
-            view: v.view,
+            view: view.view,
             flat,
             flat_text,
             callgraph_text,
@@ -104,6 +129,46 @@ fn save_view(
         },
         pprof_path,
     ))
+}
+
+/// Writes every file of one profile under `out/dir` (`dir` empty or ending in `/`):
+/// per view the gprof texts, folded stacks, flamegraph and pprof file; then the
+/// speedscope file of all views and the first view's Amdahl table. The one writer of
+/// `rtprof profile`, the suite's profile and `rtprof record`.
+pub fn save_profile_files(
+    out: &Path,
+    dir: &str,
+    p: &ProfileToSave,
+) -> Result<SavedProfile, RunError> {
+    let mut views = Vec::with_capacity(p.views.len());
+    let mut exports = Vec::new();
+    for v in &p.views {
+        let (files, pprof) = save_view(out, dir, p, v)?;
+        views.push(files);
+        exports.push(pprof);
+    }
+    let stem = slug(p.stem);
+    let named: Vec<(&str, &StackSamples)> = p
+        .views
+        .iter()
+        .map(|v| (view_label(v.view.view), &v.view.stacks))
+        .collect();
+    let speedscope = speedscope_json(p.title, &named);
+    exports.push(save(
+        out,
+        &format!("{dir}speedscope-{stem}.json"),
+        speedscope.as_bytes(),
+    )?);
+    if let Some(first) = p.views.first() {
+        let amdahl_file = format!("{dir}amdahl-{stem}.txt");
+        save(
+            out,
+            &amdahl_file,
+            amdahl_text(&first.view.amdahl).as_bytes(),
+        )?;
+        exports.push(amdahl_file);
+    }
+    Ok(SavedProfile { views, exports })
 }
 
 /// Saves every file of one variant's profile under `out/dir` (`dir` empty or ending
@@ -115,22 +180,28 @@ pub fn save_profile(
     p: &VariantProfile,
 ) -> Result<Profile, RunError> {
     let title = format!("{scene} ({})", p.variant);
-    let (phases, phase_pprof) = save_view(out, dir, &p.variant, p, &p.phases, &title)?;
-    let (native, native_pprof) = save_view(out, dir, &p.variant, p, &p.native, &title)?;
-    let amdahl_file = format!("{dir}amdahl-{}.txt", slug(&p.variant));
-    save(out, &amdahl_file, amdahl_text(&p.phases.amdahl).as_bytes())?;
-    let speedscope = speedscope_json(
-        &title,
-        &[
-            ("phases", &p.phases.stacks),
-            ("native symbols", &p.native.stacks),
-        ],
-    );
-    let speedscope_path = save(
+    let views = [&p.phases, &p.native]
+        .into_iter()
+        .map(|view| ViewToSave {
+            view,
+            suffix: suffix(view.view),
+        })
+        .collect();
+    let saved = save_profile_files(
         out,
-        &format!("{dir}speedscope-{}.json", slug(&p.variant)),
-        speedscope.as_bytes(),
+        dir,
+        &ProfileToSave {
+            stem: &p.variant,
+            title: &title,
+            wall_seconds: p.wall_seconds,
+            sampled: format!("{} renders sampled", p.renders),
+            views,
+        },
     )?;
+    let mut files = saved.views.into_iter();
+    let (Some(phases), native) = (files.next(), files.next()) else {
+        return Err(RunError::Profile("the phase view was not written".into()));
+    };
     Ok(Profile {
         variant: VariantName::parse(&p.variant)?,
         samples: p.samples,
@@ -163,8 +234,8 @@ pub fn save_profile(
                 }),
             })
             .collect(),
-        second_view: Some(native),
-        exports: vec![phase_pprof, native_pprof, speedscope_path, amdahl_file],
+        second_view: native,
+        exports: saved.exports,
     })
 }
 

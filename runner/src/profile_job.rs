@@ -71,6 +71,45 @@ pub struct ViewProfile {
     pub call_graph_text: String,
 }
 
+impl ViewProfile {
+    /// One view's tables from its stacks (`root` names the folded stacks' root) and
+    /// the calls per run of its functions (`runs`: renders, or 1 for one program run).
+    pub fn new(
+        view: ProfileView,
+        stacks: StackSamples,
+        calls: &CallCounts,
+        runs: u64,
+        root: &str,
+    ) -> ViewProfile {
+        // Counts for functions this run never entered (another accelerator's queries)
+        // would list them with zero time; keep the counts of those the samples saw.
+        let seen: BTreeSet<&String> = stacks.stacks.iter().flat_map(|s| &s.frames).collect();
+        let calls: CallCounts = calls
+            .iter()
+            .filter(|(name, _)| seen.contains(name))
+            .map(|(name, n)| (name.clone(), *n))
+            .collect();
+        let input = ProfileInput {
+            samples: &stacks,
+            calls: &calls,
+            renders: runs,
+        };
+        let flat = flat_profile(&input);
+        let graph = call_graph(&input);
+        let amdahl = amdahl_table(&flat, AMDAHL_ROWS);
+        ViewProfile {
+            view,
+            amdahl,
+            folded: folded(&under_one_root(&stacks, root)),
+            flat_text: flat.to_text(),
+            call_graph_text: graph.to_text(),
+            flat,
+            call_graph: graph,
+            stacks,
+        }
+    }
+}
+
 /// One variant's profile, as data.
 #[derive(Serialize)]
 pub struct VariantProfile {
@@ -335,35 +374,11 @@ impl ProfileJob<'_> {
         calls: &CallCounts,
         renders: u64,
     ) -> ViewProfile {
-        // Counts for functions this run never entered (another accelerator's queries)
-        // would list them with zero time; keep the counts of those the samples saw.
-        let seen: BTreeSet<&String> = stacks.stacks.iter().flat_map(|s| &s.frames).collect();
-        let calls: CallCounts = calls
-            .iter()
-            .filter(|(name, _)| seen.contains(name))
-            .map(|(name, n)| (name.clone(), *n))
-            .collect();
-        let input = ProfileInput {
-            samples: &stacks,
-            calls: &calls,
-            renders,
-        };
-        let flat = flat_profile(&input);
-        let graph = call_graph(&input);
-        let mut amdahl = amdahl_table(&flat, AMDAHL_ROWS);
+        let mut v = ViewProfile::new(view, stacks, calls, renders, self.name);
         if view == ProfileView::Phases {
-            add_all_tests_row(&flat, &mut amdahl);
+            add_all_tests_row(&v.flat, &mut v.amdahl);
         }
-        ViewProfile {
-            view,
-            amdahl,
-            folded: folded(&under_one_root(&stacks, self.name)),
-            flat_text: flat.to_text(),
-            call_graph_text: graph.to_text(),
-            flat,
-            call_graph: graph,
-            stacks,
-        }
+        v
     }
 
     /// Times unprofiled renders and sets them against the profiled ones.

@@ -7,6 +7,7 @@ mod gate;
 mod hw;
 mod merge;
 mod profile;
+mod record;
 mod render;
 mod report;
 mod scaling;
@@ -38,7 +39,9 @@ enum Command {
     /// Render an NFF scene counting every operation, test and ray.
     Count(count::CountArgs),
     /// Sample a render: gprof flat profile and call graph, flamegraphs, Amdahl table.
-    Profile(profile::ProfileArgs),
+    Profile(runner::profile_settings::ProfileSettings),
+    /// Sample any program (your own tracer) under Linux perf: the same profile files.
+    Record(runner::record::RecordSettings),
     /// Compare two images, or run variants of one scene side by side.
     Compare(compare::CompareArgs),
     /// List the optimization variants and the measured accuracy of the approximate ones.
@@ -71,6 +74,7 @@ pub fn run(cli: Cli) -> anyhow::Result<()> {
         Command::Render(args) => render::run(&args),
         Command::Count(args) => count::run(&args),
         Command::Profile(args) => profile::run(&args),
+        Command::Record(args) => record::run(&args),
         Command::Compare(args) => compare::run(&args),
         Command::Variants(args) => variants::run(&args),
         Command::Hw(args) => hw::run(&args),

@@ -1,5 +1,5 @@
-//! How a command ends: success, a failed check (1), bad input (2), parts failed (3) or
-//! an interrupt (130), and the one line it prints on stderr. Commands return
+//! How a command ends: success, a failed check (1), bad input (2), parts failed (3), a
+//! recorded program that failed (4) or an interrupt (130), and the one line it prints on stderr. Commands return
 //! [`Outcome`] for the ends that are not bad input; [`report`] turns any error into its
 //! line and exit code.
 
@@ -15,6 +15,9 @@ pub struct Outcome {
 impl Outcome {
     /// A check that ran and failed (the regression gate).
     pub const CHECK_FAILED: u8 = 1;
+    /// The program `rtprof record` ran failed (non-zero exit, killed by a signal, timed
+    /// out); its profile was written.
+    pub const COMMAND_FAILED: u8 = 4;
     /// Some parts of a suite failed; the rest was measured and written.
     pub const PARTS_FAILED: u8 = 3;
     /// Stopped by Ctrl-C: 128 + SIGINT, as a shell reports it.

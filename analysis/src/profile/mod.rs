@@ -3,7 +3,8 @@
 //! ([`share_interval`]), folded stacks and flamegraphs, Amdahl projections, exports
 //! to pprof and speedscope ([`export`]). The sampler ([`sampler`], one run at a time
 //! as a [`session`], its signals from the [`timer`] of [`perf_clock`] or setitimer)
-//! produces [`StackSamples`]; everything else reads it. GNU gprof's own output is
+//! produces [`StackSamples`], and so does a Linux perf recording of another program
+//! ([`perf_data`], `rtprof record`); everything else reads it. GNU gprof's own output is
 //! read into the same flat profile and call graph by [`gprof_import`].
 
 pub mod amdahl;
@@ -18,6 +19,7 @@ pub mod gprof_import;
 pub mod gprof_text;
 pub mod names;
 pub mod perf_clock;
+pub mod perf_data;
 mod phase_handler;
 mod sample_options;
 pub mod sampler;

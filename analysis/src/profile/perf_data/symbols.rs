@@ -1,0 +1,272 @@
+//! Addresses to function names, inlined functions as themselves: the DWARF of the file
+//! that was mapped (addr2line: each inlined call is a frame of its own), else its
+//! symbol table (`.symtab`, or `.dynsym` when stripped), else no symbol. C++ names are
+//! demangled without their parameter lists, Rust names cleaned into plain paths
+//! ([`clean_symbol`]), as the reports print them.
+
+use std::collections::HashMap;
+use std::rc::Rc;
+
+use addr2line::gimli;
+use object::{Object, ObjectSegment};
+
+use crate::profile::names::clean_symbol;
+
+/// What one address resolved to.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Resolved {
+    /// Function names, the outer function first and the innermost inlined call last;
+    /// one name when nothing was inlined there, or `[unknown in MODULE]`.
+    pub frames: Vec<String>,
+    /// A symbol (debug info or symbol table) named it.
+    pub symbol: bool,
+}
+
+/// One file's symbols and the segments that place file offsets at its addresses.
+struct FileSymbols {
+    loader: Option<addr2line::Loader>,
+    /// `(file offset, size in the file, address)` of each loaded segment.
+    segments: Vec<(u64, u64, u64)>,
+}
+
+impl FileSymbols {
+    fn open(path: &str) -> Option<FileSymbols> {
+        let data = std::fs::read(path).ok()?;
+        let file = object::File::parse(&*data).ok()?;
+        let segments = file
+            .segments()
+            .map(|s| {
+                let (offset, size) = s.file_range();
+                (offset, size, s.address())
+            })
+            .collect();
+        // A debug package's file (`-dbgsym`, `libc6-dbg`) found by build id has the
+        // symbols a stripped library lacks; the addresses are the same.
+        let loader = debug_file(&file)
+            .and_then(|debug| addr2line::Loader::new(debug).ok())
+            .or_else(|| addr2line::Loader::new(path).ok());
+        Some(FileSymbols { loader, segments })
+    }
+
+    /// The address in the file (its own, before relocation) of a file offset.
+    fn file_address(&self, offset: u64) -> Option<u64> {
+        self.segments
+            .iter()
+            .find(|&&(start, size, _)| offset >= start && offset - start < size.max(1))
+            .map(|&(start, _, address)| (offset - start).wrapping_add(address))
+    }
+}
+
+/// Where Debian's debug packages put a file's symbols: by its GNU build id.
+const DEBUG_DIR: &str = "/usr/lib/debug/.build-id";
+
+/// The separate debug file of `file`, when one is installed.
+fn debug_file(file: &object::File) -> Option<std::path::PathBuf> {
+    let id = file.build_id().ok()??;
+    let (first, rest) = id.split_first()?;
+    let hex: String = rest.iter().map(|b| format!("{b:02x}")).collect();
+    let path = std::path::Path::new(DEBUG_DIR)
+        .join(format!("{first:02x}"))
+        .join(format!("{hex}.debug"));
+    path.is_file().then_some(path)
+}
+
+/// Resolves addresses of many files, each file opened once and each address once.
+#[derive(Default)]
+pub struct Symbolizer {
+    files: HashMap<String, Option<FileSymbols>>,
+    cache: HashMap<(String, u64), Rc<Resolved>>,
+}
+
+impl Symbolizer {
+    /// The functions at `file_offset` of the file at `path` (`module` is its short
+    /// name for the unknown frame).
+    pub fn resolve(&mut self, path: &str, module: &str, file_offset: u64) -> Rc<Resolved> {
+        let key = (path.to_string(), file_offset);
+        if let Some(hit) = self.cache.get(&key) {
+            return hit.clone();
+        }
+        let file = self
+            .files
+            .entry(path.to_string())
+            .or_insert_with(|| FileSymbols::open(path));
+        let named = file.as_ref().and_then(|f| {
+            let address = f.file_address(file_offset)?;
+            names_at(f.loader.as_ref()?, address)
+        });
+        let resolved = Rc::new(match named {
+            Some(frames) => Resolved {
+                frames,
+                symbol: true,
+            },
+            None => Resolved {
+                frames: vec![unknown_in(module)],
+                symbol: false,
+            },
+        });
+        self.cache.insert(key, resolved.clone());
+        resolved
+    }
+}
+
+/// The frame of code without a symbol, one per module.
+pub fn unknown_in(module: &str) -> String {
+    format!("[unknown in {module}]")
+}
+
+/// Outer function first, innermost inlined call last; `None` without a symbol.
+fn names_at(loader: &addr2line::Loader, address: u64) -> Option<Vec<String>> {
+    let mut names = Vec::new();
+    if let Ok(mut frames) = loader.find_frames(address) {
+        while let Ok(Some(frame)) = frames.next() {
+            let Some(function) = frame.function else {
+                continue;
+            };
+            if let Ok(raw) = function.raw_name() {
+                names.push(demangle(&raw, function.language));
+            }
+        }
+    }
+    if names.is_empty() {
+        names.push(demangle(loader.find_symbol(address)?, None));
+    }
+    // addr2line lists the innermost inlined call first.
+    names.reverse();
+    Some(names)
+}
+
+/// A symbol as the reports print it: Rust paths cleaned, C++ names without their
+/// parameters and return types, C names as they are.
+pub fn demangle(raw: &str, language: Option<gimli::DwLang>) -> String {
+    let rust = match language {
+        Some(gimli::DW_LANG_Rust) => true,
+        Some(_) => false,
+        // A symbol table does not say: v0 names start with `_R`; legacy ones are
+        // C++-like but end in a `h` + 16 hex digits hash.
+        None => raw.starts_with("_R") || (raw.starts_with("_ZN") && has_rust_hash(raw)),
+    };
+    if rust {
+        if let Ok(d) = rustc_demangle::try_demangle(raw) {
+            return clean_symbol(&format!("{d:#}"));
+        }
+        return clean_symbol(raw);
+    }
+    if raw.starts_with("_Z") {
+        let options = cpp_demangle::DemangleOptions::new()
+            .no_params()
+            .no_return_type();
+        // Without parameters where the demangler manages; with them where only its
+        // default form works (some template return types); else the mangled name.
+        if let Ok(symbol) = cpp_demangle::Symbol::new(raw) {
+            if let Ok(name) = symbol.demangle_with_options(&options) {
+                return name;
+            }
+            if let Ok(name) = symbol.demangle() {
+                return name;
+            }
+        }
+    }
+    raw.to_string()
+}
+
+/// Legacy Rust mangling: the last path component is `17h` and 16 hex digits.
+fn has_rust_hash(raw: &str) -> bool {
+    raw.strip_suffix('E')
+        .and_then(|body| body.get(body.len().checked_sub(19)?..))
+        .is_some_and(|t| t.starts_with("17h") && t[3..].bytes().all(|c| c.is_ascii_hexdigit()))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn cpp_names_lose_their_parameters() {
+        assert_eq!(
+            demangle("_ZNK6sphere3hitERK3ray8intervalR10hit_record", None),
+            "sphere::hit"
+        );
+        assert_eq!(
+            demangle(
+                "_ZNK8bvh_node3hitERK3ray8intervalR10hit_record",
+                Some(gimli::DW_LANG_C_plus_plus)
+            ),
+            "bvh_node::hit"
+        );
+    }
+
+    #[test]
+    fn a_name_the_demangler_cannot_parse_stays_as_it_is() {
+        // std::make_shared<bvh_node, hittable_list&> with an enable_if return type
+        // (RTIOW): c++filt reads it, cpp_demangle 0.5 does not (docs/record.md, limits).
+        let raw = "_ZSt11make_sharedI8bvh_nodeJR13hittable_listEESt10shared_ptrINSt9enable_ifIXntsrSt8is_arrayIT_E5valueES6_E4typeEEDpOT0_";
+        assert_eq!(demangle(raw, None), raw);
+        assert_eq!(demangle("_Z", None), "_Z");
+    }
+
+    #[test]
+    fn rust_names_are_cleaned_paths() {
+        // legacy mangling, with its hash
+        assert_eq!(
+            demangle("_ZN6tracer6sphere9intersect17h0123456789abcdefE", None),
+            "tracer::sphere::intersect"
+        );
+        assert_eq!(
+            demangle("_RNvCs1234_7mycrate3foo", Some(gimli::DW_LANG_Rust)),
+            "mycrate::foo"
+        );
+    }
+
+    #[test]
+    fn c_names_stay_as_they_are() {
+        assert_eq!(demangle("hot", None), "hot");
+        assert_eq!(
+            demangle("rt_renderscene", Some(gimli::DW_LANG_C99)),
+            "rt_renderscene"
+        );
+    }
+
+    #[test]
+    fn an_unreadable_file_gives_one_unknown_frame_per_module() {
+        let mut s = Symbolizer::default();
+        let r = s.resolve("/nonexistent/libx.so", "libx.so", 0x1234);
+        assert_eq!(r.frames, vec!["[unknown in libx.so]".to_string()]);
+        assert!(!r.symbol);
+    }
+
+    #[test]
+    fn this_test_binary_names_its_own_functions() {
+        // The test binary has debug info: a function of it, by the file offset of its
+        // address, resolves to its own name.
+        let exe = std::env::current_exe().unwrap();
+        let path = exe.to_str().unwrap();
+        let maps = std::fs::read_to_string("/proc/self/maps").unwrap();
+        let here = this_test_binary_names_its_own_functions as *const () as u64;
+        let line = maps
+            .lines()
+            .find(|l| {
+                let range = l.split_whitespace().next().unwrap();
+                let (a, b) = range.split_once('-').unwrap();
+                let (a, b) = (
+                    u64::from_str_radix(a, 16).unwrap(),
+                    u64::from_str_radix(b, 16).unwrap(),
+                );
+                (a..b).contains(&here)
+            })
+            .unwrap();
+        let mut fields = line.split_whitespace();
+        let start =
+            u64::from_str_radix(fields.next().unwrap().split('-').next().unwrap(), 16).unwrap();
+        let offset = u64::from_str_radix(fields.nth(1).unwrap(), 16).unwrap();
+        let mut s = Symbolizer::default();
+        let r = s.resolve(path, "test", here - start + offset);
+        assert!(r.symbol, "{r:?}");
+        assert!(
+            r.frames
+                .last()
+                .unwrap()
+                .ends_with("this_test_binary_names_its_own_functions"),
+            "{r:?}"
+        );
+    }
+}

@@ -1,0 +1,223 @@
+//! The files of `rtprof record` and the summary it prints. The profile's files are
+//! `rtprof profile`'s, written by the same function
+//! ([`crate::profile_files::save_profile_files`]) and named after the command
+//! (`flat-rtiow.txt`, `flame-rtiow.svg`, …); beside them:
+//!
+//! | file | what |
+//! |---|---|
+//! | `perf.data`, `perf.log` | perf's recording (`perf report -i` reads it) and its messages |
+//! | `modules.txt`, `modules.json` | per module: samples, shares without a symbol or a stack, what to do |
+//! | `record.json` | the command, how it ended, CPU and wall time, samples, rate, files |
+
+use std::path::Path;
+
+use analysis::profile::perf_data::coverage::ModuleCoverage;
+use reports::format;
+use serde::Serialize;
+
+use crate::error::RunError;
+use crate::profile_files::{ProfileToSave, SavedProfile, ViewToSave, save_profile_files};
+use crate::record::{CallGraph, Recording};
+use crate::staging::save;
+
+/// Rows of the flat profile the summary prints (the file has them all).
+const SUMMARY_ROWS: usize = 12;
+
+/// `record.json`: what was run, how it ended, what was sampled and where it went.
+#[derive(Serialize)]
+pub struct RecordSummary<'a> {
+    pub command: &'a [String],
+    /// "exited with code 0", "was killed by signal SIGSEGV (11)", …
+    pub end: String,
+    pub exit_code: Option<i32>,
+    pub signal: Option<i32>,
+    pub success: bool,
+    pub cpu_seconds: f64,
+    pub wall_seconds: f64,
+    pub samples: u64,
+    pub samples_per_cpu_second: f64,
+    pub frequency: u32,
+    pub call_graph: CallGraph,
+    pub seconds_per_sample: f64,
+    pub lost_samples: u64,
+    pub processes: usize,
+    pub modules: &'a [ModuleCoverage],
+    /// Every file written, relative to the directory.
+    pub files: Vec<String>,
+}
+
+impl Recording {
+    /// Samples per CPU second taken.
+    pub fn rate(&self) -> f64 {
+        self.samples() as f64 / self.cpu_seconds().max(1e-9)
+    }
+
+    /// Writes the profile's files, the module table and record.json under `dir`.
+    pub fn save(&self, dir: &Path) -> Result<RecordSummary<'_>, RunError> {
+        let title = format!("{} (rtprof record)", self.command.join(" "));
+        let saved: SavedProfile = save_profile_files(
+            dir,
+            "",
+            &ProfileToSave {
+                stem: self.name(),
+                title: &title,
+                wall_seconds: self.finished.wall.as_secs_f64(),
+                sampled: format!("one run of {}, {}", self.name(), self.finished.end),
+                views: vec![ViewToSave {
+                    view: &self.view,
+                    suffix: "",
+                }],
+            },
+        )?;
+        let modules_json = serde_json::to_string_pretty(&self.perf.modules)
+            .map_err(|e| RunError::Profile(e.to_string()))?;
+        let mut files = Vec::new();
+        for v in &saved.views {
+            files.extend([
+                v.flat_text.clone(),
+                v.callgraph_text.clone(),
+                v.flame_svg.clone(),
+            ]);
+        }
+        files.extend(saved.exports);
+        files.push(save(
+            dir,
+            "modules.txt",
+            modules_text(&self.perf.modules).as_bytes(),
+        )?);
+        files.push(save(dir, "modules.json", modules_json.as_bytes())?);
+        files.extend(["perf.data".to_string(), "perf.log".to_string()]);
+        files.push("record.json".to_string());
+        let (exit_code, signal) = match self.finished.end {
+            launch::End::Exited(code) => (Some(code), None),
+            launch::End::Signalled(s) => (None, Some(s)),
+            _ => (None, None),
+        };
+        let summary = RecordSummary {
+            command: &self.command,
+            end: self.finished.end.to_string(),
+            exit_code,
+            signal,
+            success: self.finished.end.success(),
+            cpu_seconds: self.cpu_seconds(),
+            wall_seconds: self.finished.wall.as_secs_f64(),
+            samples: self.samples(),
+            samples_per_cpu_second: self.rate(),
+            frequency: self.frequency,
+            call_graph: self.call_graph,
+            seconds_per_sample: self.perf.samples.seconds_per_sample,
+            lost_samples: self.perf.lost,
+            processes: self.perf.processes,
+            modules: &self.perf.modules,
+            files,
+        };
+        let json =
+            serde_json::to_string_pretty(&summary).map_err(|e| RunError::Profile(e.to_string()))?;
+        save(dir, "record.json", json.as_bytes())?;
+        Ok(summary)
+    }
+
+    /// The summary `rtprof record` prints: how the program ended, what was sampled,
+    /// the functions with the most self time, the module table, the files.
+    pub fn to_text(&self, dir: &Path, summary: &RecordSummary) -> String {
+        let mut out = format!(
+            "{} {}: {} samples in {} of CPU ({} wall), {} samples per CPU second (asked {} Hz), call stacks by {}\n",
+            self.command.join(" "),
+            self.finished.end,
+            format::count(self.samples()),
+            format::seconds(self.cpu_seconds()),
+            format::seconds(self.finished.wall.as_secs_f64()),
+            format::count(self.rate().round() as u64),
+            format::count(u64::from(self.frequency)),
+            match self.call_graph {
+                CallGraph::Fp => "frame pointers",
+                CallGraph::Dwarf => "DWARF unwinding",
+            },
+        );
+        if self.perf.lost > 0 {
+            out += &format!(
+                "perf lost {} samples (its buffers were full)\n",
+                format::count(self.perf.lost)
+            );
+        }
+        out += "\n   self  inclusive  function\n";
+        for row in self.view.flat.rows.iter().take(SUMMARY_ROWS) {
+            out += &format!(
+                "{:>7}  {:>9}  {}\n",
+                format::percent(row.percent, 1),
+                format::percent(row.inclusive_percent, 1),
+                row.name
+            );
+        }
+        out.push('\n');
+        out += &modules_text(&self.perf.modules);
+        out += &format!(
+            "\nwrote {}/{{{}}}\n",
+            dir.display(),
+            summary.files.join(", ")
+        );
+        out
+    }
+}
+
+/// The module table: samples per module (of the innermost frame), the shares with no
+/// symbol and no stack, and the advice for large ones.
+pub fn modules_text(modules: &[ModuleCoverage]) -> String {
+    let total: u64 = modules.iter().map(|m| m.samples).sum();
+    let width = modules
+        .iter()
+        .map(|m| m.module.chars().count())
+        .max()
+        .unwrap_or(6)
+        .max(6);
+    let mut out = format!(
+        "{:<width$}  {:>9}  {:>7}  {:>9}  {:>8}  {:>9}\n",
+        "module", "samples", "share", "no symbol", "no stack", "cut short"
+    );
+    for m in modules {
+        out += &format!(
+            "{:<width$}  {:>9}  {:>7}  {:>9}  {:>8}  {:>9}\n",
+            m.module,
+            format::count(m.samples),
+            format::percent(100.0 * m.samples as f64 / total.max(1) as f64, 1),
+            format::percent(m.percent(m.no_symbol), 1),
+            format::percent(m.percent(m.no_stack), 1),
+            format::percent(m.percent(m.cut_short), 1),
+        );
+        for advice in &m.advice {
+            out += &format!("  {}: {advice}\n", m.module);
+        }
+    }
+    out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_module_table_gives_shares_and_advice() {
+        let mut lib = ModuleCoverage::new(
+            "libtachyon-mt-thr.so.0.0.0",
+            "/usr/lib/libtachyon-mt-thr.so.0.0.0",
+        );
+        lib.samples = 300;
+        lib.no_symbol = 270;
+        lib.advise(false, 400);
+        let mut exe = ModuleCoverage::new("tachyon", "/usr/bin/tachyon");
+        exe.samples = 100;
+        let text = modules_text(&[lib, exe]);
+        let lines: Vec<&str> = text.lines().collect();
+        assert!(lines[0].starts_with("module"), "{text}");
+        assert!(lines[1].starts_with("libtachyon-mt-thr.so.0.0.0"), "{text}");
+        assert!(
+            lines[1].contains("75.0 %") && lines[1].contains("90.0 %"),
+            "{text}"
+        );
+        assert!(lines[2].contains("-g"), "{text}");
+        assert!(
+            lines[3].starts_with("tachyon") && lines[3].contains("25.0 %"),
+            "{text}"
+        );
+    }
+}

@@ -1,0 +1,20 @@
+//! `rtprof record [-o DIR] [--freq HZ] [--call-graph fp|dwarf] -- CMD [ARGS...]`: any
+//! program (a user's own tracer) sampled under Linux perf into rtprof's profile files
+//! (the flags are `runner::record::RecordSettings`).
+
+use super::Outcome;
+use anyhow::Result;
+use runner::record::RecordSettings;
+
+pub fn run(args: &RecordSettings) -> Result<()> {
+    let dir = args.dir();
+    let recording = runner::record::record(&args.plan(&dir, terminal::interrupt::install()))?;
+    let summary = recording.save(&dir)?;
+    // stdout is the program's (an image written there stays whole): ours goes to stderr.
+    eprint!("{}", recording.to_text(&dir, &summary));
+    match recording.failure() {
+        None => Ok(()),
+        Some((true, message)) => Err(Outcome::new(Outcome::INTERRUPTED, message).into()),
+        Some((false, message)) => Err(Outcome::new(Outcome::COMMAND_FAILED, message).into()),
+    }
+}

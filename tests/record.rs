@@ -1,0 +1,403 @@
+//! `rtprof record -- CMD` as a user meets it: programs rtprof did not write, profiled
+//! under Linux perf. The tests that need perf (and a C compiler) are ignored in a bare
+//! `cargo test`; `.ci/run` installs linux-perf and runs them with `--ignored`.
+
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
+
+fn rtprof(args: &[&str], env: &[(&str, &str)]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_rtprof"))
+        .args(args)
+        .envs(env.iter().copied())
+        .output()
+        .unwrap_or_else(|e| panic!("cannot run rtprof: {e}"))
+}
+
+fn stderr(out: &Output) -> String {
+    String::from_utf8_lossy(&out.stderr).into_owned()
+}
+
+/// A scratch directory unique to one test.
+fn scratch(test: &str) -> PathBuf {
+    let dir = std::env::temp_dir().join(format!("rtprof-record-{}-{test}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap_or_else(|e| panic!("{e}"));
+    dir
+}
+
+/// A C program whose time is, by construction, about 90 % in `hot` (nine times the
+/// loop of `cold`), with `step` forced inline into `hot`; it exits with `argv[1]`'s
+/// code, or kills itself with SIGSEGV when `argv[1]` is `segv`.
+const PROGRAM: &str = r#"
+#include <signal.h>
+#include <stdlib.h>
+#include <string.h>
+static volatile unsigned long sink;
+static inline __attribute__((always_inline)) unsigned long step(unsigned long x) {
+    return x * 2862933555777941757UL + 3037000493UL;
+}
+__attribute__((noinline)) void hot(long n) {
+    unsigned long x = sink;
+    for (long i = 0; i < 9 * n; i++) x = step(x);
+    sink = x;
+}
+__attribute__((noinline)) void cold(long n) {
+    unsigned long x = sink;
+    for (long i = 0; i < n; i++) x = x * 6364136223846793005UL + 1;
+    sink = x;
+}
+int main(int argc, char **argv) {
+    long n = 20000000;
+    hot(n);
+    cold(n);
+    if (argc > 1 && strcmp(argv[1], "segv") == 0) raise(SIGSEGV);
+    return argc > 1 ? atoi(argv[1]) : 0;
+}
+"#;
+
+/// Compiles [`PROGRAM`] with frame pointers and debug info into `dir/hot`. At -O1, as
+/// at -O2 with gcc 12, `hot` and `cold` are leaves without a frame of their own, so
+/// the kernel's walk goes from them to `main`'s caller; -O1 keeps `step` as an inlined
+/// subroutine in the debug info (-O2 folds it into the loop).
+fn hot_program(dir: &Path) -> PathBuf {
+    let source = dir.join("hot.c");
+    std::fs::write(&source, PROGRAM).unwrap_or_else(|e| panic!("{e}"));
+    let exe = dir.join("hot");
+    let status = Command::new("cc")
+        .args(["-O1", "-g", "-fno-omit-frame-pointer", "-o"])
+        .arg(&exe)
+        .arg(&source)
+        .status()
+        .unwrap_or_else(|e| panic!("cannot run cc: {e}"));
+    assert!(status.success(), "cc failed");
+    exe
+}
+
+/// Samples per innermost frame and per whole folded stack, from the folded file.
+fn folded(dir: &Path, stem: &str) -> Vec<(String, u64)> {
+    let text = std::fs::read_to_string(dir.join(format!("folded-{stem}.txt")))
+        .unwrap_or_else(|e| panic!("{e}"));
+    text.lines()
+        .filter_map(|l| {
+            let (stack, n) = l.rsplit_once(' ')?;
+            Some((stack.to_string(), n.parse().ok()?))
+        })
+        .collect()
+}
+
+/// The innermost frame of a folded stack, the kernel's left out.
+fn leaf(stack: &str) -> &str {
+    stack.split(';').rfind(|f| *f != "[kernel]").unwrap_or("")
+}
+
+fn share(stacks: &[(String, u64)], keep: impl Fn(&str) -> bool) -> f64 {
+    let total: u64 = stacks.iter().map(|s| s.1).sum();
+    let kept: u64 = stacks.iter().filter(|s| keep(&s.0)).map(|s| s.1).sum();
+    kept as f64 / total.max(1) as f64
+}
+
+fn record_json(dir: &Path) -> serde_json::Value {
+    let text = std::fs::read(dir.join("record.json")).unwrap_or_else(|e| panic!("{e}"));
+    serde_json::from_slice(&text).unwrap_or_else(|e| panic!("{e}"))
+}
+
+#[test]
+fn a_missing_command_exits_2_and_is_named() {
+    let dir = scratch("missing");
+    let out = rtprof(
+        &[
+            "record",
+            "-o",
+            dir.join("r").to_str().unwrap_or_default(),
+            "--",
+            "rtprof-no-such-tracer",
+            "scene.nff",
+        ],
+        &[],
+    );
+    assert_eq!(out.status.code(), Some(2), "{}", stderr(&out));
+    let err = stderr(&out);
+    assert!(
+        err.contains("command not found: rtprof-no-such-tracer"),
+        "{err}"
+    );
+    assert_eq!(err.trim().lines().count(), 1, "one line: {err}");
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+#[test]
+fn perf_missing_names_the_package_and_the_variable() {
+    let dir = scratch("no-perf");
+    let out = rtprof(
+        &[
+            "record",
+            "-o",
+            dir.join("r").to_str().unwrap_or_default(),
+            "--",
+            "true",
+        ],
+        &[("RTPROF_PERF", "/nonexistent/perf")],
+    );
+    assert_eq!(out.status.code(), Some(2), "{}", stderr(&out));
+    let err = stderr(&out);
+    assert!(
+        err.contains("linux-perf") && err.contains("RTPROF_PERF"),
+        "{err}"
+    );
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+#[test]
+fn a_command_is_required_after_the_separator() {
+    let out = rtprof(&["record"], &[]);
+    assert_eq!(out.status.code(), Some(2), "{}", stderr(&out));
+}
+
+#[test]
+#[ignore = "needs perf"]
+fn the_hot_function_of_a_c_program_takes_its_share() {
+    let dir = scratch("hot");
+    let exe = hot_program(&dir);
+    let out_dir = dir.join("r");
+    let out = Command::new(env!("CARGO_BIN_EXE_rtprof"))
+        .args(["record", "-o"])
+        .arg(&out_dir)
+        .arg("--")
+        .arg(&exe)
+        .output()
+        .unwrap_or_else(|e| panic!("{e}"));
+    assert_eq!(out.status.code(), Some(0), "{}", stderr(&out));
+    let stacks = folded(&out_dir, "hot");
+    // The leaf is `hot` or its inlined `step`, with a caller below it.
+    let hot = share(&stacks, |s| ["hot", "step"].contains(&leaf(s)));
+    let cold = share(&stacks, |s| leaf(s) == "cold");
+    let with_caller = share(&stacks, |s| {
+        s.contains("__libc_start_call_main;hot") || s.contains("main;hot")
+    });
+    eprintln!("hot {:.1} %, cold {:.1} %", hot * 100.0, cold * 100.0);
+    assert!(hot >= 0.80, "hot {hot}: {stacks:?}");
+    assert!(cold > 0.02 && cold < 0.2, "cold {cold}");
+    assert!(with_caller >= 0.80, "callers found: {stacks:?}");
+    assert!(
+        stacks.iter().any(|s| s.0.ends_with("hot;step")),
+        "the inlined step shows as its own frame: {stacks:?}"
+    );
+    let json = record_json(&out_dir);
+    assert_eq!(json["exit_code"], 0);
+    let rate = json["samples_per_cpu_second"].as_f64().unwrap_or(0.0);
+    assert!(rate >= 1000.0, "{json}");
+    let hot_module = &json["modules"][0];
+    assert_eq!(hot_module["module"], "hot", "{json}");
+    assert_eq!(hot_module["no_symbol"], 0, "{json}");
+    for file in [
+        "flat-hot.txt",
+        "callgraph-hot.txt",
+        "flame-hot.svg",
+        "profile-hot.pb.gz",
+    ] {
+        assert!(out_dir.join(file).is_file(), "{file}");
+    }
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+#[test]
+#[ignore = "needs perf"]
+fn the_processes_a_command_starts_are_sampled() {
+    let dir = scratch("children");
+    let exe = hot_program(&dir);
+    let out_dir = dir.join("r");
+    // sh runs the program as its child (twice, so that sh cannot exec it in place).
+    let script = format!("{0} && {0}", exe.display());
+    let out = Command::new(env!("CARGO_BIN_EXE_rtprof"))
+        .args(["record", "-o"])
+        .arg(&out_dir)
+        .args(["--", "sh", "-c", &script])
+        .output()
+        .unwrap_or_else(|e| panic!("{e}"));
+    assert_eq!(out.status.code(), Some(0), "{}", stderr(&out));
+    let stacks = folded(&out_dir, "sh");
+    let hot = share(&stacks, |s| ["hot", "step"].contains(&leaf(s)));
+    assert!(hot >= 0.80, "hot {hot}: {stacks:?}");
+    assert_eq!(record_json(&out_dir)["processes"], 3);
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+#[test]
+#[ignore = "needs perf"]
+fn a_failing_command_keeps_its_profile_and_exits_4() {
+    let dir = scratch("fails");
+    let exe = hot_program(&dir);
+    for (arg, code, signal, says) in [
+        ("3", Some(3), None, "exited with code 3"),
+        ("segv", None, Some(11), "SIGSEGV"),
+    ] {
+        let out_dir = dir.join(arg);
+        let out = Command::new(env!("CARGO_BIN_EXE_rtprof"))
+            .args(["record", "-o"])
+            .arg(&out_dir)
+            .arg("--")
+            .arg(&exe)
+            .arg(arg)
+            .output()
+            .unwrap_or_else(|e| panic!("{e}"));
+        assert_eq!(out.status.code(), Some(4), "{}", stderr(&out));
+        assert!(stderr(&out).contains(says), "{}", stderr(&out));
+        let json = record_json(&out_dir);
+        assert_eq!(json["exit_code"].as_i64(), code.map(i64::from), "{json}");
+        assert_eq!(json["signal"].as_i64(), signal.map(i64::from), "{json}");
+        assert_eq!(json["success"], false);
+        let stacks = folded(&out_dir, "hot");
+        assert!(share(&stacks, |s| ["hot", "step"].contains(&leaf(s))) >= 0.8);
+    }
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+#[test]
+#[ignore = "needs perf"]
+fn rtprof_render_as_an_outside_program_shows_its_intersection_tests() {
+    let dir = scratch("own");
+    let out_dir = dir.join("r");
+    let image = dir.join("rings.png");
+    let out = Command::new(env!("CARGO_BIN_EXE_rtprof"))
+        .args(["record", "--call-graph", "dwarf", "-o"])
+        .arg(&out_dir)
+        .args([
+            "--",
+            env!("CARGO_BIN_EXE_rtprof"),
+            "render",
+            "spd:rings",
+            "--threads",
+            "1",
+        ])
+        .args(["--size", "40x30", "-o"])
+        .arg(&image)
+        .output()
+        .unwrap_or_else(|e| panic!("{e}"));
+    assert_eq!(out.status.code(), Some(0), "{}", stderr(&out));
+    assert!(image.is_file());
+    let stacks = folded(&out_dir, "rtprof");
+    // Each sample to the innermost intersection test on its stack, inlined frames
+    // included.
+    let kind = |s: &str| {
+        s.split(';')
+            .rev()
+            .find_map(|f| {
+                if f.contains("Cylinder::intersect") {
+                    Some("cylinder")
+                } else if f.contains("Sphere::intersect") {
+                    Some("sphere")
+                } else {
+                    None
+                }
+            })
+            .unwrap_or("other")
+    };
+    let cylinder = share(&stacks, |s| kind(s) == "cylinder");
+    let sphere = share(&stacks, |s| kind(s) == "sphere");
+    eprintln!(
+        "cylinder {:.1} %, sphere {:.1} %",
+        cylinder * 100.0,
+        sphere * 100.0
+    );
+    // SPD rings: as many cylinders as spheres, and a cylinder test costs about twice
+    // a sphere test (rtprof profile's phases: 66 % and 33 % at 96x72).
+    assert!(cylinder > sphere && sphere > 0.1, "{stacks:?}");
+    assert!(
+        stacks
+            .iter()
+            .any(|s| s.0.contains("main") && kind(&s.0) == "cylinder"),
+        "DWARF unwinding reaches main"
+    );
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+#[test]
+#[ignore = "needs perf and tachyon (Debian tachyon-bin-nox)"]
+fn tachyon_s_renderer_is_named_as_a_library_without_symbols() {
+    let dir = scratch("tachyon");
+    let out_dir = dir.join("r");
+    let balls = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../shared/spd/balls.nff");
+    let out = Command::new(env!("CARGO_BIN_EXE_rtprof"))
+        .args(["record", "-o"])
+        .arg(&out_dir)
+        .args(["--", "tachyon"])
+        .arg(&balls)
+        .args([
+            "-numthreads",
+            "1",
+            "-res",
+            "96",
+            "96",
+            "-format",
+            "PPM",
+            "-o",
+        ])
+        .arg(dir.join("t.ppm"))
+        .output()
+        .unwrap_or_else(|e| panic!("{e}"));
+    assert_eq!(out.status.code(), Some(0), "{}", stderr(&out));
+    let json = record_json(&out_dir);
+    let modules = json["modules"].as_array().cloned().unwrap_or_default();
+    // Debian's Tachyon renders in libtachyon-mt-*.so, which exports only its rt_* API.
+    let lib = modules
+        .iter()
+        .find(|m| {
+            m["module"]
+                .as_str()
+                .is_some_and(|n| n.starts_with("libtachyon"))
+        })
+        .unwrap_or_else(|| panic!("no libtachyon module: {json}"));
+    let samples = lib["samples"].as_f64().unwrap_or(0.0);
+    let total = json["samples"].as_f64().unwrap_or(1.0);
+    assert!(
+        samples / total > 0.5,
+        "the renderer's library holds most samples: {json}"
+    );
+    assert!(
+        lib["no_symbol"].as_f64().unwrap_or(0.0) / samples > 0.9,
+        "{lib}"
+    );
+    assert!(
+        lib["advice"][0].as_str().is_some_and(|a| a.contains("-g")),
+        "{lib}"
+    );
+    assert!(stderr(&out).contains("libtachyon"), "the summary names it");
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+#[test]
+#[ignore = "needs perf"]
+fn ctrl_c_stops_the_program_and_keeps_what_was_sampled() {
+    use std::os::unix::process::CommandExt;
+    let dir = scratch("ctrl-c");
+    let out_dir = dir.join("r");
+    // In a process group of its own, as a shell runs a foreground job: Ctrl-C is
+    // SIGINT to the whole group (rtprof and the program; perf has its own group).
+    let child = Command::new(env!("CARGO_BIN_EXE_rtprof"))
+        .args(["record", "-o"])
+        .arg(&out_dir)
+        .args(["--", "sh", "-c", "while :; do :; done"])
+        .process_group(0)
+        .stderr(std::process::Stdio::piped())
+        .spawn()
+        .unwrap_or_else(|e| panic!("{e}"));
+    // Until perf runs (its file exists) and the program has run a while: on a busy
+    // machine rtprof itself may take a second to start.
+    let started = std::time::Instant::now();
+    while !out_dir.join("perf.data").is_file() && started.elapsed().as_secs() < 30 {
+        std::thread::sleep(std::time::Duration::from_millis(50));
+    }
+    std::thread::sleep(std::time::Duration::from_millis(1000));
+    let group = format!("-{}", child.id());
+    let status = Command::new("kill")
+        .args(["-INT", "--", &group])
+        .status()
+        .unwrap_or_else(|e| panic!("{e}"));
+    assert!(status.success());
+    let out = child.wait_with_output().unwrap_or_else(|e| panic!("{e}"));
+    assert_eq!(out.status.code(), Some(130), "{}", stderr(&out));
+    assert!(stderr(&out).contains("interrupted"), "{}", stderr(&out));
+    let json = record_json(&out_dir);
+    assert!(json["samples"].as_u64().unwrap_or(0) > 100, "{json}");
+    assert!(out_dir.join("flame-sh.svg").is_file());
+    std::fs::remove_dir_all(&dir).ok();
+}
