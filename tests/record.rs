@@ -381,12 +381,13 @@ fn ctrl_c_stops_the_program_and_keeps_what_was_sampled() {
         .spawn()
         .unwrap_or_else(|e| panic!("{e}"));
     // Until perf runs (its file exists) and the program has run a while: on a busy
-    // machine rtprof itself may take a second to start.
+    // machine rtprof itself may take a second to start, and perf another to attach
+    // (one run in six failed here with a one-second wait while other tests ran).
     let started = std::time::Instant::now();
     while !out_dir.join("perf.data").is_file() && started.elapsed().as_secs() < 30 {
         std::thread::sleep(std::time::Duration::from_millis(50));
     }
-    std::thread::sleep(std::time::Duration::from_millis(1000));
+    std::thread::sleep(std::time::Duration::from_millis(3000));
     let group = format!("-{}", child.id());
     let status = Command::new("kill")
         .args(["-INT", "--", &group])
