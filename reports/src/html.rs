@@ -137,14 +137,22 @@ impl Page<'_> {
         let doc = self.doc;
         let _ = write!(
             self.out,
-            "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n<meta name=\"viewport\" content=\"width=device-width, initial-scale=1\">\n<meta name=\"generator\" content=\"{}\">\n<title>{}: {}</title>\n<style>{STYLE}</style>\n</head>\n<body>\n<header><h1>{}</h1><p class=\"sub\">{}</p><p class=\"sub\">{}</p><p class=\"reference\">Reproduces {}.</p></header>\n",
+            "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n<meta name=\"viewport\" content=\"width=device-width, initial-scale=1\">\n<meta name=\"generator\" content=\"{}\">\n<title>{}: {}</title>\n<style>{STYLE}</style>\n</head>\n<body>\n<header><h1>{}</h1><p class=\"sub\">{}</p><p class=\"sub\">{}</p>{}</header>\n",
             escape(&doc.metadata.generator),
             escape(&doc.title),
             escape(&doc.metadata.subject),
             escape(&doc.title),
             escape(&doc.metadata.subtitle),
             escape(&doc.metadata.byline),
-            escape(&doc.metadata.reference),
+            // A recorded program's report reproduces no publication: no line.
+            if doc.metadata.reference.is_empty() {
+                String::new()
+            } else {
+                format!(
+                    "<p class=\"reference\">Reproduces {}.</p>",
+                    escape(&doc.metadata.reference)
+                )
+            },
         );
         for notice in &doc.notices {
             let _ = writeln!(

@@ -34,6 +34,7 @@ pub mod page_values;
 pub mod pdf;
 pub mod pixel_maps;
 mod print;
+pub mod record_report;
 pub mod scaling_text;
 pub mod sections;
 pub mod table_format;

@@ -78,6 +78,7 @@ pub mod progress;
 pub mod ray_rates;
 pub mod record;
 pub mod record_files;
+pub mod record_phases;
 pub mod reference_job;
 pub mod render_job;
 pub mod render_setup;

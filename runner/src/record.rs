@@ -17,6 +17,7 @@ use std::time::{Duration, Instant};
 
 use analysis::profile::CallCounts;
 use analysis::profile::perf_data::{PerfProfile, read_perf_data};
+use analysis::profile::phase_rules::{PhaseBreakdown, PhaseRules};
 pub use launch::End;
 use launch::{Finished, Launch, Running, Stream};
 use results::ProfileView;
@@ -45,6 +46,14 @@ pub enum CallGraph {
 }
 
 impl CallGraph {
+    /// How the summary and the report say it.
+    pub fn describe(self) -> &'static str {
+        match self {
+            CallGraph::Fp => "frame pointers",
+            CallGraph::Dwarf => "DWARF unwinding",
+        }
+    }
+
     fn perf_option(self) -> &'static str {
         match self {
             CallGraph::Fp => "fp",
@@ -62,7 +71,7 @@ impl CallGraph {
 pub struct RecordSettings {
     /// Output directory [default: record-<program>]: perf.data, flat-<program>.txt,
     /// callgraph-, flame-, folded-, amdahl-, profile-…pb.gz, speedscope-, modules.txt,
-    /// modules.json, record.json.
+    /// modules.json, phases-, report.html, report.pdf, record.json.
     #[cfg_attr(feature = "clap", arg(short, long, value_name = "DIR"))]
     pub output: Option<PathBuf>,
     /// Samples per CPU second of each thread (perf's cpu-clock).
@@ -78,6 +87,10 @@ pub struct RecordSettings {
     #[cfg_attr(feature = "clap", arg(long, value_name = "SECONDS",
         value_parser = parse_seconds))]
     pub time_limit: Option<Duration>,
+    /// Phase rules (TOML: function-name and source-file patterns to phases of ray
+    /// tracing) instead of the built-in ones; docs/record.md shows the form.
+    #[cfg_attr(feature = "clap", arg(long, value_name = "FILE"))]
+    pub phases: Option<PathBuf>,
     /// The program and its arguments, after `--` (run without a shell).
     #[cfg_attr(
         feature = "clap",
@@ -116,6 +129,7 @@ impl RecordSettings {
             dir,
             stop,
             time_limit: self.time_limit,
+            phases: self.phases.as_deref(),
         }
     }
 }
@@ -132,6 +146,18 @@ pub struct RecordPlan<'a> {
     pub stop: &'a AtomicBool,
     /// Longest the program may run.
     pub time_limit: Option<Duration>,
+    /// A phase rules file; `None`: the built-in rules.
+    pub phases: Option<&'a Path>,
+}
+
+/// The phase rules of a plan: its file's, or the built-in ones. Read before the
+/// program runs, so a bad file costs nothing (exit 2, `file:line: …`).
+pub fn phase_rules(file: Option<&Path>) -> Result<PhaseRules, RunError> {
+    match file {
+        Some(path) => PhaseRules::load(path),
+        None => PhaseRules::builtin(),
+    }
+    .map_err(|e| RunError::Input(e.to_string()))
 }
 
 /// A recorded run: how the program ended and its profile.
@@ -144,6 +170,8 @@ pub struct Recording {
     pub perf: PerfProfile,
     /// The native-symbol view: flat profile, call graph, folded stacks, Amdahl.
     pub view: ViewProfile,
+    /// The samples by phase of ray tracing, by the phase rules.
+    pub phases: PhaseBreakdown,
     pub perf_data: PathBuf,
 }
 
@@ -189,6 +217,7 @@ pub fn record(plan: &RecordPlan) -> Result<Recording, RunError> {
             "no command to record (give it after --)".into(),
         ));
     };
+    let rules = phase_rules(plan.phases)?;
     // Found before perf starts: "not found" names the user's program, not perf's.
     let program_path = launch::resolve(program)?;
     let perf_program = std::env::var_os(PERF_VARIABLE).unwrap_or_else(|| "perf".into());
@@ -241,12 +270,13 @@ pub fn record(plan: &RecordPlan) -> Result<Recording, RunError> {
         message: format!("{e} (perf {})", perf_end.end),
         log: log.clone(),
     })?;
-    Ok(recording(plan, finished, profile, perf_data))
+    Ok(recording(plan, &rules, finished, profile, perf_data))
 }
 
 /// The profile's views from what perf.data held.
 fn recording(
     plan: &RecordPlan,
+    rules: &PhaseRules,
     finished: Finished,
     mut perf: PerfProfile,
     perf_data: PathBuf,
@@ -276,6 +306,7 @@ fn recording(
         1,
         &name,
     );
+    let phases = rules.classify(&perf.samples, &perf.sources);
     Recording {
         command,
         finished,
@@ -283,6 +314,7 @@ fn recording(
         call_graph: plan.call_graph,
         perf,
         view,
+        phases,
         perf_data,
     }
 }

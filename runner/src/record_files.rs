@@ -7,7 +7,8 @@
 //! |---|---|
 //! | `perf.data`, `perf.log` | perf's recording (`perf report -i` reads it) and its messages |
 //! | `modules.txt`, `modules.json` | per module: samples, shares without a symbol or a stack, what to do |
-//! | `record.json` | the command, how it ended, CPU and wall time, samples, rate, files |
+//! | `phases-P.txt` | the time by phase of ray tracing, by the phase rules ([`crate::record_phases`]) |
+//! | `record.json` | the command, how it ended, CPU and wall time, samples, rate, phases, files |
 
 use std::path::Path;
 
@@ -18,7 +19,10 @@ use serde::Serialize;
 use crate::error::RunError;
 use crate::profile_files::{ProfileToSave, SavedProfile, ViewToSave, save_profile_files};
 use crate::record::{CallGraph, Recording};
+use crate::record_phases::{phase_table, phases_text};
 use crate::staging::save;
+use analysis::profile::phase_rules::PhaseBreakdown;
+use reports::record_report::RecordReport;
 
 /// Rows of the flat profile the summary prints (the file has them all).
 const SUMMARY_ROWS: usize = 12;
@@ -42,6 +46,8 @@ pub struct RecordSummary<'a> {
     pub lost_samples: u64,
     pub processes: usize,
     pub modules: &'a [ModuleCoverage],
+    /// The samples by phase of ray tracing, by the phase rules.
+    pub phases: &'a PhaseBreakdown,
     /// Every file written, relative to the directory.
     pub files: Vec<String>,
 }
@@ -86,8 +92,19 @@ impl Recording {
             modules_text(&self.perf.modules).as_bytes(),
         )?);
         files.push(save(dir, "modules.json", modules_json.as_bytes())?);
+        files.push(save(
+            dir,
+            &format!("phases-{}.txt", self.name()),
+            phases_text(&title, &self.phases).as_bytes(),
+        )?);
         files.extend(["perf.data".to_string(), "perf.log".to_string()]);
+        files.extend(["report.html".to_string(), "report.pdf".to_string()]);
         files.push("record.json".to_string());
+        let flame = saved.views.first().and_then(|v| {
+            let svg = std::fs::read_to_string(dir.join(&v.flame_svg)).ok()?;
+            Some((svg, v.flame_svg.clone()))
+        });
+        self.save_report(dir, flame, &files)?;
         let (exit_code, signal) = match self.finished.end {
             launch::End::Exited(code) => (Some(code), None),
             launch::End::Signalled(s) => (None, Some(s)),
@@ -109,12 +126,47 @@ impl Recording {
             lost_samples: self.perf.lost,
             processes: self.perf.processes,
             modules: &self.perf.modules,
+            phases: &self.phases,
             files,
         };
         let json =
             serde_json::to_string_pretty(&summary).map_err(|e| RunError::Profile(e.to_string()))?;
         save(dir, "record.json", json.as_bytes())?;
         Ok(summary)
+    }
+
+    /// report.html and report.pdf: where the time goes, by phase and by function.
+    fn save_report(
+        &self,
+        dir: &Path,
+        flamegraph: Option<(String, String)>,
+        files: &[String],
+    ) -> Result<(), RunError> {
+        let command = self.command.join(" ");
+        let end = self.finished.end.to_string();
+        let doc = reports::record_report::build(&RecordReport {
+            program: self.name(),
+            command: &command,
+            end: &end,
+            success: self.finished.end.success(),
+            cpu_seconds: self.cpu_seconds(),
+            wall_seconds: self.finished.wall.as_secs_f64(),
+            samples: self.samples(),
+            frequency: self.frequency,
+            call_graph: self.call_graph.describe(),
+            lost_samples: self.perf.lost,
+            processes: self.perf.processes,
+            flat: &self.view.flat,
+            phases: &self.phases,
+            modules: &self.perf.modules,
+            flamegraph,
+            files,
+        });
+        save(dir, "report.html", reports::html::render(&doc).as_bytes())?;
+        let pdf = reports::pdf::render(&doc)
+            .map_err(|e| RunError::Report(format!("cannot build report.pdf: {e}")))?;
+        save(dir, "report.pdf", &pdf)?;
+        Ok(())
     }
 
     /// The summary `rtprof record` prints: how the program ended, what was sampled,
@@ -129,10 +181,7 @@ impl Recording {
             format::seconds(self.finished.wall.as_secs_f64()),
             format::count(self.rate().round() as u64),
             format::count(u64::from(self.frequency)),
-            match self.call_graph {
-                CallGraph::Fp => "frame pointers",
-                CallGraph::Dwarf => "DWARF unwinding",
-            },
+            self.call_graph.describe(),
         );
         if self.perf.lost > 0 {
             out += &format!(
@@ -149,6 +198,12 @@ impl Recording {
                 row.name
             );
         }
+        out += &format!(
+            "\nby phase of ray tracing ({}; rules classified {}):\n",
+            self.phases.origin,
+            format::percent(100.0 * self.phases.classified_share(), 1)
+        );
+        out += &phase_table(&self.phases);
         out.push('\n');
         out += &modules_text(&self.perf.modules);
         out += &format!(

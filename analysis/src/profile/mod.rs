@@ -5,7 +5,9 @@
 //! as a [`session`], its signals from the [`timer`] of [`perf_clock`] or setitimer)
 //! produces [`StackSamples`], and so does a Linux perf recording of another program
 //! ([`perf_data`], `rtprof record`); everything else reads it. GNU gprof's own output is
-//! read into the same flat profile and call graph by [`gprof_import`].
+//! read into the same flat profile and call graph by [`gprof_import`]. The phases of
+//! ray tracing of a program rtprof did not write come from name rules
+//! ([`phase_rules`]).
 
 pub mod amdahl;
 mod c_format;
@@ -21,6 +23,7 @@ pub mod names;
 pub mod perf_clock;
 pub mod perf_data;
 mod phase_handler;
+pub mod phase_rules;
 mod sample_options;
 pub mod sampler;
 pub mod session;

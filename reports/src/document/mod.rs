@@ -15,7 +15,7 @@ mod outline;
 mod prune;
 pub mod tone;
 
-pub use assets::{Asset, AssetKind, Assets};
+pub use assets::{Asset, AssetKind, Assets, svg_size};
 pub use build::build;
 pub(crate) use builder::Builder;
 pub use outline::{Part, SECTIONS, heading_of, part_of};

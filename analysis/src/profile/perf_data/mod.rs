@@ -43,6 +43,8 @@ pub struct PerfProfile {
     pub processes: usize,
     /// The user stacks were copied for unwinding here (`--call-graph dwarf`).
     pub dwarf: bool,
+    /// Each function's source file, where the debug info names one (the first seen).
+    pub sources: BTreeMap<String, String>,
 }
 
 /// A `perf.data` that could not be read.
@@ -84,6 +86,7 @@ impl Names for Symbolizer {
 pub struct Folding {
     stacks: HashMap<Vec<String>, u64>,
     modules: BTreeMap<String, ModuleCoverage>,
+    sources: BTreeMap<String, String>,
 }
 
 impl Folding {
@@ -117,6 +120,13 @@ impl Folding {
             }
             // Innermost first here; each address's own frames are outer first.
             frames.extend(resolved.frames.iter().rev().cloned());
+            for (name, file) in resolved.frames.iter().zip(&resolved.files) {
+                if let Some(file) = file
+                    && !self.sources.contains_key(name)
+                {
+                    self.sources.insert(name.clone(), file.clone());
+                }
+            }
             placed += 1;
         }
         frames.reverse();
@@ -147,6 +157,11 @@ impl Folding {
             }
         }
         *self.stacks.entry(frames).or_default() += 1;
+    }
+
+    /// Each function's source file so far (the first seen), taken out.
+    pub fn take_sources(&mut self) -> BTreeMap<String, String> {
+        std::mem::take(&mut self.sources)
     }
 
     /// The stacks (sorted, for stable outputs) and the modules, most samples first.
@@ -237,6 +252,7 @@ pub fn read_perf_data(path: &Path) -> Result<PerfProfile, PerfDataError> {
         }
     }
     let sampled_seconds = periods as f64 * 1e-9;
+    let sources = folding.take_sources();
     let (stacks, modules) = folding.finish(dwarf, sampled_seconds / samples.max(1) as f64);
     Ok(PerfProfile {
         samples: stacks,
@@ -245,6 +261,7 @@ pub fn read_perf_data(path: &Path) -> Result<PerfProfile, PerfDataError> {
         sampled_seconds,
         processes: pids.len(),
         dwarf,
+        sources,
     })
 }
 
@@ -305,10 +322,12 @@ mod tests {
             Rc::new(match hit {
                 Some((_, _, frames)) => Resolved {
                     frames: frames.iter().map(|s| s.to_string()).collect(),
+                    files: frames.iter().map(|f| Some(format!("{f}.cc"))).collect(),
                     symbol: true,
                 },
                 None => Resolved {
                     frames: vec![unknown_in(module)],
+                    files: vec![None],
                     symbol: false,
                 },
             })

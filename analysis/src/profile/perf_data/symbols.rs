@@ -18,6 +18,9 @@ pub struct Resolved {
     /// Function names, the outer function first and the innermost inlined call last;
     /// one name when nothing was inlined there, or `[unknown in MODULE]`.
     pub frames: Vec<String>,
+    /// The source file of each frame's code, where the debug info says (the phase
+    /// rules' `file` patterns read it), in the order of `frames`.
+    pub files: Vec<Option<String>>,
     /// A symbol (debug info or symbol table) named it.
     pub symbol: bool,
 }
@@ -95,12 +98,14 @@ impl Symbolizer {
             names_at(f.loader.as_ref()?, address)
         });
         let resolved = Rc::new(match named {
-            Some(frames) => Resolved {
+            Some((frames, files)) => Resolved {
                 frames,
+                files,
                 symbol: true,
             },
             None => Resolved {
                 frames: vec![unknown_in(module)],
+                files: vec![None],
                 symbol: false,
             },
         });
@@ -114,9 +119,16 @@ pub fn unknown_in(module: &str) -> String {
     format!("[unknown in {module}]")
 }
 
-/// Outer function first, innermost inlined call last; `None` without a symbol.
-fn names_at(loader: &addr2line::Loader, address: u64) -> Option<Vec<String>> {
+/// Names and source files at an address: outer function first, innermost inlined call
+/// last; `None` without a symbol. A frame's file is that of its location (for the
+/// innermost, the address's own line; for an outer one, the line of the inlined call:
+/// both in that frame's function).
+fn names_at(
+    loader: &addr2line::Loader,
+    address: u64,
+) -> Option<(Vec<String>, Vec<Option<String>>)> {
     let mut names = Vec::new();
+    let mut files = Vec::new();
     if let Ok(mut frames) = loader.find_frames(address) {
         while let Ok(Some(frame)) = frames.next() {
             let Some(function) = frame.function else {
@@ -124,15 +136,18 @@ fn names_at(loader: &addr2line::Loader, address: u64) -> Option<Vec<String>> {
             };
             if let Ok(raw) = function.raw_name() {
                 names.push(demangle(&raw, function.language));
+                files.push(frame.location.and_then(|l| l.file).map(str::to_string));
             }
         }
     }
     if names.is_empty() {
         names.push(demangle(loader.find_symbol(address)?, None));
+        files.push(None);
     }
     // addr2line lists the innermost inlined call first.
     names.reverse();
-    Some(names)
+    files.reverse();
+    Some((names, files))
 }
 
 /// A symbol as the reports print it: Rust paths cleaned, C++ names without their
