@@ -310,6 +310,111 @@ fn rtprof_render_as_an_outside_program_shows_its_intersection_tests() {
     std::fs::remove_dir_all(&dir).ok();
 }
 
+/// A phase's self share (percent) in a gprof-layout flat profile: the first row, of
+/// the table with shares first, whose name is `phase`.
+fn flat_share(text: &str, phase: &str) -> f64 {
+    text.lines()
+        .filter(|l| l.trim_end().ends_with(&format!("  {phase}")))
+        .find_map(|l| l.split_whitespace().next()?.parse::<f64>().ok())
+        .unwrap_or(0.0)
+}
+
+#[test]
+#[ignore = "needs perf"]
+fn the_phase_rules_agree_with_rtprof_s_own_phases() {
+    // rtprof render as an outside program: by the built-in rules (innermost matching
+    // frame, inlined frames included), its sphere- and cylinder-test shares within 5
+    // points of `rtprof profile`'s phases (the tracer's own phase probe) on the same
+    // render. The BVH variant: its traversal is a phase of its own in both views.
+    let dir = scratch("phases");
+    let render = [
+        "spd:rings",
+        "--variant",
+        "bvh",
+        "--threads",
+        "1",
+        "--size",
+        "480x360",
+    ];
+    let out_dir = dir.join("r");
+    let out = Command::new(env!("CARGO_BIN_EXE_rtprof"))
+        .args(["record", "--call-graph", "dwarf", "-o"])
+        .arg(&out_dir)
+        .args(["--", env!("CARGO_BIN_EXE_rtprof"), "render"])
+        .args(render)
+        .arg("-o")
+        .arg(dir.join("rings.png"))
+        .output()
+        .unwrap_or_else(|e| panic!("{e}"));
+    assert_eq!(out.status.code(), Some(0), "{}", stderr(&out));
+    let json = record_json(&out_dir);
+    let rules = |phase: &str| {
+        json["phases"]["phases"]
+            .as_array()
+            .and_then(|a| a.iter().find(|p| p["phase"] == phase))
+            .and_then(|p| p["share"].as_f64())
+            .unwrap_or(0.0)
+            * 100.0
+    };
+    let profile_dir = dir.join("p");
+    let mut args = vec!["profile"];
+    args.extend(render);
+    let profile_dir_text = profile_dir.display().to_string();
+    args.extend(["-o", &profile_dir_text]);
+    let out = rtprof(&args, &[]);
+    assert_eq!(out.status.code(), Some(0), "{}", stderr(&out));
+    let flat =
+        std::fs::read_to_string(profile_dir.join("flat-bvh.txt")).unwrap_or_else(|e| panic!("{e}"));
+    for phase in ["cylinder test", "sphere test"] {
+        let (by_rules, own) = (rules(phase), flat_share(&flat, phase));
+        eprintln!("{phase}: rules {by_rules:.1} %, rtprof profile {own:.1} %");
+        assert!(
+            (by_rules - own).abs() <= 5.0,
+            "{phase}: rules {by_rules:.1} % against {own:.1} %\n{flat}"
+        );
+    }
+    // The cylinder test is most of the tests' time (as many cylinders as spheres, and
+    // the rays reach the cylinders): not a pass by two zeros.
+    assert!(rules("cylinder test") > 5.0, "{json}");
+    let phases = std::fs::read_to_string(out_dir.join("phases-rtprof.txt"))
+        .unwrap_or_else(|e| panic!("{e}"));
+    assert!(phases.contains("rules classified"), "{phases}");
+    let report =
+        std::fs::read_to_string(out_dir.join("report.html")).unwrap_or_else(|e| panic!("{e}"));
+    assert!(report.contains("Where the time goes in rtprof"));
+    assert!(out_dir.join("report.pdf").is_file());
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+#[test]
+fn a_bad_phase_rules_file_is_refused_before_the_program_runs() {
+    // Read before perf is looked for: no perf needed.
+    let dir = scratch("bad-rules");
+    let rules = dir.join("rules.toml");
+    std::fs::write(&rules, "[[rule]]\nphase = \"x\"\nsymbol = ['(']\n")
+        .unwrap_or_else(|e| panic!("{e}"));
+    let marker = dir.join("ran");
+    let out = rtprof(
+        &[
+            "record",
+            "--phases",
+            &rules.display().to_string(),
+            "--",
+            "touch",
+            &marker.display().to_string(),
+        ],
+        &[],
+    );
+    assert_eq!(out.status.code(), Some(2), "{}", stderr(&out));
+    assert!(
+        stderr(&out).contains(&format!("{}:3: bad pattern", rules.display())),
+        "{}",
+        stderr(&out)
+    );
+    assert!(!marker.exists(), "the program must not run");
+    std::fs::remove_dir_all(&dir).ok();
+}
+
 #[test]
 #[ignore = "needs perf and tachyon (Debian tachyon-bin-nox)"]
 fn tachyon_s_renderer_is_named_as_a_library_without_symbols() {
@@ -361,6 +466,17 @@ fn tachyon_s_renderer_is_named_as_a_library_without_symbols() {
         "{lib}"
     );
     assert!(stderr(&out).contains("libtachyon"), "the summary names it");
+    // The report renders, names the library and its share without symbols.
+    let report =
+        std::fs::read_to_string(out_dir.join("report.html")).unwrap_or_else(|e| panic!("{e}"));
+    let no_symbol = 100.0 * lib["no_symbol"].as_f64().unwrap_or(0.0) / samples;
+    let module = lib["module"].as_str().unwrap_or("?");
+    assert!(report.contains(module), "report.html names {module}");
+    assert!(
+        report.contains(&format!("{no_symbol:.1} %")),
+        "report.html gives {no_symbol:.1} % without symbols"
+    );
+    assert!(out_dir.join("report.pdf").is_file());
     std::fs::remove_dir_all(&dir).ok();
 }
 
