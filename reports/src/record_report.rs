@@ -46,6 +46,9 @@ pub struct RecordReport<'a> {
     pub flamegraph: Option<(String, String)>,
     /// The files written beside the report.
     pub files: &'a [String],
+    /// What the call stacks may get wrong (a frame-pointer recording with much time in
+    /// libraries built without them).
+    pub caveat: Option<String>,
 }
 
 /// `a – b` of an interval given in percent.
@@ -130,6 +133,14 @@ fn notices(r: &RecordReport) -> Vec<String> {
             "perf lost {} samples (its buffers were full): shares may be skewed.",
             format::count(r.lost_samples)
         ));
+    }
+    if let Some(caveat) = &r.caveat {
+        let mut c = caveat.clone();
+        if let Some(first) = c.get(..1) {
+            let upper = first.to_uppercase();
+            c.replace_range(..1, &upper);
+        }
+        out.push(format!("{c}."));
     }
     if r.samples < 100 {
         out.push(format!(
@@ -453,6 +464,7 @@ mod tests {
             modules: &[],
             flamegraph: None,
             files: &[],
+            caveat: None,
         });
         let first = &doc.sections[0];
         let Block::Paragraph { content } = &first.blocks[0] else {

@@ -27,6 +27,9 @@ use crate::profile_job::ViewProfile;
 
 /// Samples per CPU second asked by default: the in-process sampler's perf rate.
 pub const DEFAULT_FREQUENCY: u32 = 4000;
+/// Share of the samples in shared libraries from which a frame-pointer recording warns
+/// that their callers may be skipped ([`Recording::frame_pointer_caveat`]).
+const LIBRARY_SHARE_CAVEAT: f64 = 0.05;
 /// Longest perf may take to attach and say its events are on.
 const ATTACH_LIMIT: Duration = Duration::from_secs(30);
 /// Longest perf may take to write its file once told to stop.
@@ -184,6 +187,33 @@ impl Recording {
     /// CPU seconds of the program and the processes it waited for.
     pub fn cpu_seconds(&self) -> f64 {
         self.finished.cpu.as_secs_f64()
+    }
+
+    /// Under frame pointers, what the phases may get wrong, when shared libraries hold
+    /// enough samples for it to matter: a leaf function of a library built without
+    /// frame pointers (Debian's libc and libm) loses its caller in the kernel's walk, so
+    /// its samples go to the caller's caller.
+    pub fn frame_pointer_caveat(&self) -> Option<String> {
+        if self.call_graph != CallGraph::Fp {
+            return None;
+        }
+        let total: u64 = self.perf.modules.iter().map(|m| m.samples).sum();
+        let in_libraries: u64 = self
+            .perf
+            .modules
+            .iter()
+            .filter(|m| m.path.contains(".so"))
+            .map(|m| m.samples)
+            .sum();
+        let share = in_libraries as f64 / total.max(1) as f64;
+        (share >= LIBRARY_SHARE_CAVEAT).then(|| {
+            format!(
+                "shared libraries hold {} of the samples: under frame pointers a library \
+                 function built without them loses its caller (its time goes to the \
+                 caller's caller, and so to that one's phase); --call-graph dwarf finds it",
+                reports::format::percent(100.0 * share, 1)
+            )
+        })
     }
 
     /// Why the command counts as failed, if it does: `Some((interrupted, message))`.

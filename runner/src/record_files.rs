@@ -95,7 +95,7 @@ impl Recording {
         files.push(save(
             dir,
             &format!("phases-{}.txt", self.name()),
-            phases_text(&title, &self.phases).as_bytes(),
+            phases_text(&title, &self.phases, self.frame_pointer_caveat().as_deref()).as_bytes(),
         )?);
         files.extend(["perf.data".to_string(), "perf.log".to_string()]);
         files.extend(["report.html".to_string(), "report.pdf".to_string()]);
@@ -161,6 +161,7 @@ impl Recording {
             modules: &self.perf.modules,
             flamegraph,
             files,
+            caveat: self.frame_pointer_caveat(),
         });
         save(dir, "report.html", reports::html::render(&doc).as_bytes())?;
         let pdf = reports::pdf::render(&doc)
@@ -204,6 +205,9 @@ impl Recording {
             format::percent(100.0 * self.phases.classified_share(), 1)
         );
         out += &phase_table(&self.phases);
+        if let Some(caveat) = self.frame_pointer_caveat() {
+            out += &format!("note: {caveat}\n");
+        }
         out.push('\n');
         out += &modules_text(&self.perf.modules);
         out += &format!(

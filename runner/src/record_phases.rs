@@ -7,7 +7,8 @@ use analysis::profile::phase_rules::{PhaseBreakdown, UNCLASSIFIED};
 use reports::format;
 
 /// The phases as text: the table, Amdahl per phase, the rules, the unclassified frames.
-pub fn phases_text(title: &str, b: &PhaseBreakdown) -> String {
+/// `caveat`: what the call stacks may get wrong ([`crate::record::Recording::frame_pointer_caveat`]).
+pub fn phases_text(title: &str, b: &PhaseBreakdown, caveat: Option<&str>) -> String {
     let mut out = format!(
         "Phases of {title}, by {}\n\
          A sample's phase is that of the innermost frame of its stack a rule matches\n\
@@ -17,6 +18,9 @@ pub fn phases_text(title: &str, b: &PhaseBreakdown) -> String {
         format::count(b.samples),
     );
     out += &phase_table(b);
+    if let Some(caveat) = caveat {
+        out += &format!("\nNote: {caveat}.\n");
+    }
     out +=
         "\nWhole-run speed-up (Amdahl's law) if a phase became 2x, 10x or infinitely faster:\n\n";
     out += &format!(
@@ -131,7 +135,8 @@ mod tests {
         let b = PhaseRules::builtin()
             .unwrap()
             .classify(&samples, &BTreeMap::new());
-        let text = phases_text("rtiow", &b);
+        let text = phases_text("rtiow", &b, Some("a caveat"));
+        assert!(text.contains("Note: a caveat."), "{text}");
         // By hand: sphere 3 of 5 = 60 %, 0.03 s; traversal 20 %; 20 % unclassified.
         let line = |start: &str| {
             text.lines()
