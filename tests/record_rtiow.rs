@@ -19,9 +19,9 @@
 //!
 //! Both sides sample at 10,000 Hz (the highest rate `rtprof record` takes), on runs
 //! long enough for 10,000 samples or more each: the two runs' shares differ by chance
-//! alone by a standard deviation of sqrt(2 p (1 - p) / n) at most, 0.5 points for
-//! RTIOW's largest share (46 %, n = 20,000) where the limit is 2; at the default
-//! 4,000 Hz on a 1.4 s run that deviation was 0.9 points and the check failed by
+//! alone with a standard deviation of about sqrt(2 p (1 - p) / n): 0.45 points for
+//! RTIOW's largest share (46 %, n = 25,000) where the limit is 2; at the default
+//! 4,000 Hz on a 1.4 s run that deviation is 0.9 points, and the check would fail by
 //! chance in about 3 % of runs. The samples per CPU second at the default rate are
 //! checked in tests/record.rs.
 //!
@@ -38,9 +38,10 @@ use std::process::{Command, Output, Stdio};
 const FREQUENCY: u32 = 10_000;
 /// Fewer samples than this on either side and chance alone could exceed the limits.
 const MIN_SAMPLES: u64 = 10_000;
-/// Samples per pixel of the `-fno-inline` build: about 2.1 s bare on this machine.
+/// Samples per pixel of the `-fno-inline` build: about 2.1 s bare on this machine,
+/// 25,000 samples at `FREQUENCY`.
 const NO_INLINE_SAMPLES_PER_PIXEL: u32 = 6;
-/// Samples per pixel of the normal build: about 1.1 s bare.
+/// Samples per pixel of the normal build: about 1.1 s bare, 13,000 samples.
 const INLINED_SAMPLES_PER_PIXEL: u32 = 12;
 /// How many of rtprof's largest self-time entries are checked.
 const TOP: usize = 5;
@@ -179,6 +180,11 @@ fn rtprof_self(exe: &Path, dir: &Path) -> SelfSamples {
     .unwrap_or_else(|e| panic!("{e}"));
     assert_eq!(json["samples"].as_f64(), Some(samples.total), "{json}");
     assert!(samples.total >= MIN_SAMPLES as f64, "{json}");
+    eprintln!(
+        "rtprof record: {} samples, {:.0} per CPU second",
+        samples.total,
+        json["samples_per_cpu_second"].as_f64().unwrap_or(0.0)
+    );
     samples
 }
 
