@@ -382,6 +382,10 @@ fn perf_launch(
         control,
         "-o".into(),
         data.into(),
+        // No copies of every sampled binary in ~/.debug (perf's build-id cache):
+        // rtprof names the samples from the files themselves, and the cache grows by
+        // a copy of each rebuilt program on every run (gigabytes over a day of tests).
+        "--no-buildid-cache".into(),
     ];
     if plan.call_graph == CallGraph::Dwarf {
         // 32 KiB a sample fills perf's default 512 KiB buffers between its reads:
