@@ -104,6 +104,15 @@ fn the_hot_function_of_a_c_program_takes_its_share() {
     ] {
         assert!(out_dir.join(file).is_file(), "{file}");
     }
+    // One run of an outside program, not one of rtprof's renders.
+    for file in ["flat-hot.txt", "callgraph-hot.txt"] {
+        let text = std::fs::read_to_string(out_dir.join(file)).unwrap_or_default();
+        assert!(
+            text.contains("1 run of the program sampled; seconds are per run"),
+            "{text}"
+        );
+        assert!(!text.contains("render"), "{file}: {text}");
+    }
     std::fs::remove_dir_all(&dir).ok();
 }
 

@@ -15,7 +15,6 @@ use std::sync::atomic::AtomicBool;
 use std::sync::mpsc;
 use std::time::{Duration, Instant};
 
-use analysis::profile::CallCounts;
 use analysis::profile::perf_data::{PerfProfile, read_perf_data};
 pub use launch::End;
 use launch::{Finished, Launch, Running, Stream};
@@ -269,13 +268,7 @@ fn recording(
         .unwrap_or("command")
         .to_string();
     // One run of the program: no exact call counts (the probe will bring them).
-    let view = ViewProfile::new(
-        ProfileView::Native,
-        perf.samples.clone(),
-        &CallCounts::new(),
-        1,
-        &name,
-    );
+    let view = ViewProfile::of_run(ProfileView::Native, perf.samples.clone(), &name);
     Recording {
         command,
         finished,
