@@ -80,9 +80,14 @@ pub struct RecordSettings {
     /// The program and its arguments, after `--` (run without a shell).
     #[cfg_attr(
         feature = "clap",
-        arg(required = true, last = true, value_name = "CMD")
+        arg(required_unless_present = "import", last = true, value_name = "CMD")
     )]
     pub command: Vec<OsString>,
+    /// Read a recording made elsewhere instead of running a program: a perf.data
+    /// (perf record -g) or GNU gprof's text output (gprof PROG gmon.out > prof.txt).
+    #[cfg_attr(feature = "clap", arg(long, value_name = "FILE",
+        conflicts_with_all = ["command", "freq", "call_graph", "time_limit"]))]
+    pub import: Option<PathBuf>,
 }
 
 /// A positive number of seconds.

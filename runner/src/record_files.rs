@@ -11,6 +11,7 @@
 
 use std::path::Path;
 
+use analysis::profile::flat::FlatProfile;
 use analysis::profile::perf_data::coverage::ModuleCoverage;
 use reports::format;
 use serde::Serialize;
@@ -140,15 +141,7 @@ impl Recording {
                 format::count(self.perf.lost)
             );
         }
-        out += "\n   self  inclusive  function\n";
-        for row in self.view.flat.rows.iter().take(SUMMARY_ROWS) {
-            out += &format!(
-                "{:>7}  {:>9}  {}\n",
-                format::percent(row.percent, 1),
-                format::percent(row.inclusive_percent, 1),
-                row.name
-            );
-        }
+        out += &top_functions_text(&self.view.flat);
         out.push('\n');
         out += &modules_text(&self.perf.modules);
         out += &format!(
@@ -158,6 +151,20 @@ impl Recording {
         );
         out
     }
+}
+
+/// The functions with the most self time, with their self and inclusive shares.
+pub fn top_functions_text(flat: &FlatProfile) -> String {
+    let mut out = String::from("\n   self  inclusive  function\n");
+    for row in flat.rows.iter().take(SUMMARY_ROWS) {
+        out += &format!(
+            "{:>7}  {:>9}  {}\n",
+            format::percent(row.percent, 1),
+            format::percent(row.inclusive_percent, 1),
+            row.name
+        );
+    }
+    out
 }
 
 /// The module table: samples per module (of the innermost frame), the shares with no

@@ -1,12 +1,19 @@
 //! `rtprof record [-o DIR] [--freq HZ] [--call-graph fp|dwarf] -- CMD [ARGS...]`: any
 //! program (a user's own tracer) sampled under Linux perf into rtprof's profile files
-//! (the flags are `runner::record::RecordSettings`).
+//! (the flags are `runner::record::RecordSettings`); `rtprof record --import FILE [-o
+//! DIR]`: a perf.data or gprof output recorded elsewhere into the same files
+//! (`runner::record_import`).
+
+use std::path::Path;
 
 use super::Outcome;
 use anyhow::Result;
 use runner::record::RecordSettings;
 
 pub fn run(args: &RecordSettings) -> Result<()> {
+    if let Some(file) = &args.import {
+        return import(file, args.output.as_deref());
+    }
     let dir = args.dir();
     let recording = runner::record::record(&args.plan(&dir, terminal::interrupt::install()))?;
     let summary = recording.save(&dir)?;
@@ -17,4 +24,13 @@ pub fn run(args: &RecordSettings) -> Result<()> {
         Some((true, message)) => Err(Outcome::new(Outcome::INTERRUPTED, message).into()),
         Some((false, message)) => Err(Outcome::new(Outcome::COMMAND_FAILED, message).into()),
     }
+}
+
+/// No program runs here: the summary goes to stdout.
+fn import(file: &Path, output: Option<&Path>) -> Result<()> {
+    let imported = runner::record_import::import(file)?;
+    let dir = output.map_or_else(|| imported.default_dir(), Path::to_path_buf);
+    let summary = imported.save(&dir)?;
+    print!("{}", imported.to_text(&dir, &summary));
+    Ok(())
 }
