@@ -136,6 +136,15 @@ fn not_a_recording(path: &Path, why: &str) -> RunError {
     ))
 }
 
+/// `rtprof record --import`: reads `file`, writes its files under `output` (or
+/// [`Imported::default_dir`]) and returns the summary to print.
+pub fn import_into(file: &Path, output: Option<&Path>) -> Result<String, RunError> {
+    let imported = import(file)?;
+    let dir = output.map_or_else(|| imported.default_dir(), Path::to_path_buf);
+    let summary = imported.save(&dir)?;
+    Ok(imported.to_text(&dir, &summary))
+}
+
 /// Reads `path`: a perf.data (by its magic) or gprof's text output.
 pub fn import(path: &Path) -> Result<Imported, RunError> {
     let io = |e: std::io::Error| RunError::io("read", path, &e);

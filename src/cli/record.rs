@@ -1,10 +1,7 @@
 //! `rtprof record [-o DIR] [--freq HZ] [--call-graph fp|dwarf] -- CMD [ARGS...]`: any
 //! program (a user's own tracer) sampled under Linux perf into rtprof's profile files
-//! (the flags are `runner::record::RecordSettings`); `rtprof record --import FILE [-o
-//! DIR]`: a perf.data or gprof output recorded elsewhere into the same files
-//! (`runner::record_import`).
-
-use std::path::Path;
+//! (the flags are `runner::record::RecordSettings`); `--import FILE`: a perf.data or
+//! gprof output recorded elsewhere into the same files (`runner::record_import`).
 
 use super::Outcome;
 use anyhow::Result;
@@ -12,7 +9,10 @@ use runner::record::RecordSettings;
 
 pub fn run(args: &RecordSettings) -> Result<()> {
     if let Some(file) = &args.import {
-        return import(file, args.output.as_deref());
+        // No program shares the terminal: the summary goes to stdout.
+        let text = runner::record_import::import_into(file, args.output.as_deref())?;
+        print!("{text}");
+        return Ok(());
     }
     let dir = args.dir();
     let recording = runner::record::record(&args.plan(&dir, terminal::interrupt::install()))?;
@@ -24,13 +24,4 @@ pub fn run(args: &RecordSettings) -> Result<()> {
         Some((true, message)) => Err(Outcome::new(Outcome::INTERRUPTED, message).into()),
         Some((false, message)) => Err(Outcome::new(Outcome::COMMAND_FAILED, message).into()),
     }
-}
-
-/// No program runs here: the summary goes to stdout.
-fn import(file: &Path, output: Option<&Path>) -> Result<()> {
-    let imported = runner::record_import::import(file)?;
-    let dir = output.map_or_else(|| imported.default_dir(), Path::to_path_buf);
-    let summary = imported.save(&dir)?;
-    print!("{}", imported.to_text(&dir, &summary));
-    Ok(())
 }
