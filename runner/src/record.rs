@@ -58,6 +58,11 @@ impl CallGraph {
 // would replace the command's help line.)
 #[derive(Clone, Debug)]
 #[cfg_attr(feature = "clap", derive(clap::Args))]
+// A program to run or a recording to import: one of them, named in the usage error;
+// the usage shows both forms (the group's own would hide the `--` before CMD).
+#[cfg_attr(feature = "clap", command(group(clap::ArgGroup::new("source")
+    .required(true).args(["command", "import"])),
+    override_usage = "rtprof record [OPTIONS] -- <CMD>...\n       rtprof record --import <FILE> [-o <DIR>]"))]
 pub struct RecordSettings {
     /// Output directory [default: record-<program>]: perf.data, flat-<program>.txt,
     /// callgraph-, flame-, folded-, amdahl-, profile-…pb.gz, speedscope-, modules.txt,
@@ -78,10 +83,7 @@ pub struct RecordSettings {
         value_parser = parse_seconds))]
     pub time_limit: Option<Duration>,
     /// The program and its arguments, after `--` (run without a shell).
-    #[cfg_attr(
-        feature = "clap",
-        arg(required_unless_present = "import", last = true, value_name = "CMD")
-    )]
+    #[cfg_attr(feature = "clap", arg(last = true, value_name = "CMD"))]
     pub command: Vec<OsString>,
     /// Read a recording made elsewhere instead of running a program: a perf.data
     /// (perf record -g) or GNU gprof's text output (gprof PROG gmon.out > prof.txt).
