@@ -97,13 +97,19 @@ impl Running {
         let pid = libc::pid_t::try_from(self.pid).map_err(|_| self.wait_error("bad pid"))?;
         let mut asked: Option<(End, Instant)> = None;
         loop {
-            // A program the terminal's Ctrl-C killed before the flag was seen was
-            // stopped all the same.
             let why = match &asked {
                 Some((why, _)) => Some(why.clone()),
                 None => stop.load(Ordering::Relaxed).then_some(End::Stopped),
             };
-            if let Some(done) = self.reap(pid, why.as_ref())? {
+            if let Some(mut done) = self.reap(pid, why.as_ref())? {
+                // The terminal's Ctrl-C reaches the program and us at once; it may die
+                // of it before our handler has set the flag: it was stopped all the same.
+                if why.is_none()
+                    && done.end == End::Signalled(libc::SIGINT)
+                    && flag_within(stop, HANDLER_DELAY)
+                {
+                    done.end = End::Stopped;
+                }
                 return Ok(done);
             }
             match &asked {
@@ -135,6 +141,23 @@ impl Running {
     }
 }
 
+/// Longest our SIGINT handler may lag behind the program's death by the same signal.
+const HANDLER_DELAY: Duration = Duration::from_millis(500);
+
+/// Whether `flag` is set now or becomes set within `limit`.
+fn flag_within(flag: &AtomicBool, limit: Duration) -> bool {
+    let start = Instant::now();
+    loop {
+        if flag.load(Ordering::Relaxed) {
+            return true;
+        }
+        if start.elapsed() >= limit {
+            return false;
+        }
+        std::thread::sleep(Duration::from_millis(5));
+    }
+}
+
 fn cpu_time(usage: &libc::rusage) -> Duration {
     let tv = |t: libc::timeval| {
         Duration::from_secs(u64::try_from(t.tv_sec).unwrap_or(0))
@@ -162,6 +185,26 @@ mod tests {
         assert_eq!(done.end, End::Exited(3));
         let done = sh("kill -SEGV $$").start().unwrap().wait(&stop).unwrap();
         assert_eq!(done.end, End::Signalled(libc::SIGSEGV));
+    }
+
+    #[test]
+    fn a_program_killed_by_sigint_as_the_flag_is_set_was_stopped() {
+        // The flag set 50 ms after the program died of SIGINT (our handler running
+        // late): stopped. Never set: killed by the signal.
+        let stop = AtomicBool::new(false);
+        let done = std::thread::scope(|scope| {
+            let running = sh("kill -INT $$").start().unwrap();
+            scope.spawn(|| {
+                std::thread::sleep(Duration::from_millis(150));
+                stop.store(true, std::sync::atomic::Ordering::Relaxed);
+            });
+            std::thread::sleep(Duration::from_millis(100));
+            running.wait(&stop).unwrap()
+        });
+        assert_eq!(done.end, End::Stopped);
+        let unset = AtomicBool::new(false);
+        let done = sh("kill -INT $$").start().unwrap().wait(&unset).unwrap();
+        assert_eq!(done.end, End::Signalled(libc::SIGINT));
     }
 
     #[test]

@@ -28,7 +28,7 @@ use analysis::profile::perf_clock::WorkThreads;
 use analysis::profile::sampler::{RepeatedError, SampleOptions, effective_rate, sample_repeated};
 use analysis::profile::tally::ProfileInput;
 use analysis::profile::timer::Timer;
-use analysis::profile::{CallCounts, Stack, StackSamples};
+use analysis::profile::{CallCounts, Origin, Stack, StackSamples};
 use results::ProfileView;
 use serde::Serialize;
 use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
@@ -81,6 +81,23 @@ impl ViewProfile {
         runs: u64,
         root: &str,
     ) -> ViewProfile {
+        Self::with_origin(view, stacks, calls, runs, root, Origin::Sampled)
+    }
+
+    /// One view of one run of another program (`rtprof record`, recorded here or
+    /// imported): no call counts, and its texts say it is one run, not a render.
+    pub fn of_run(view: ProfileView, stacks: StackSamples, root: &str) -> ViewProfile {
+        Self::with_origin(view, stacks, &CallCounts::new(), 1, root, Origin::Recorded)
+    }
+
+    fn with_origin(
+        view: ProfileView,
+        stacks: StackSamples,
+        calls: &CallCounts,
+        runs: u64,
+        root: &str,
+        origin: Origin,
+    ) -> ViewProfile {
         // Counts for functions this run never entered (another accelerator's queries)
         // would list them with zero time; keep the counts of those the samples saw.
         let seen: BTreeSet<&String> = stacks.stacks.iter().flat_map(|s| &s.frames).collect();
@@ -94,8 +111,11 @@ impl ViewProfile {
             calls: &calls,
             renders: runs,
         };
-        let flat = flat_profile(&input);
-        let graph = call_graph(&input);
+        let mut flat = flat_profile(&input);
+        let mut graph = call_graph(&input);
+        // The figures are the same; the origin says what the texts call the run.
+        flat.origin = origin;
+        graph.origin = origin;
         let amdahl = amdahl_table(&flat, AMDAHL_ROWS);
         ViewProfile {
             view,

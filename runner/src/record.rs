@@ -15,7 +15,7 @@ use std::sync::atomic::AtomicBool;
 use std::sync::mpsc;
 use std::time::{Duration, Instant};
 
-use analysis::profile::CallCounts;
+use analysis::profile::perf_data::coverage::ModuleCoverage;
 use analysis::profile::perf_data::{PerfProfile, read_perf_data};
 use analysis::profile::phase_rules::{PhaseBreakdown, PhaseRules};
 pub use launch::End;
@@ -71,6 +71,11 @@ impl CallGraph {
 // would replace the command's help line.)
 #[derive(Clone, Debug)]
 #[cfg_attr(feature = "clap", derive(clap::Args))]
+// A program to run or a recording to import: one of them, named in the usage error;
+// the usage shows both forms (the group's own would hide the `--` before CMD).
+#[cfg_attr(feature = "clap", command(group(clap::ArgGroup::new("source")
+    .required(true).args(["command", "import"])),
+    override_usage = "rtprof record [OPTIONS] -- <CMD>...\n       rtprof record --import <FILE> [-o <DIR>]"))]
 pub struct RecordSettings {
     /// Output directory [default: record-<program>]: perf.data, flat-<program>.txt,
     /// callgraph-, flame-, folded-, amdahl-, profile-…pb.gz, speedscope-, modules.txt,
@@ -95,11 +100,13 @@ pub struct RecordSettings {
     #[cfg_attr(feature = "clap", arg(long, value_name = "FILE"))]
     pub phases: Option<PathBuf>,
     /// The program and its arguments, after `--` (run without a shell).
-    #[cfg_attr(
-        feature = "clap",
-        arg(required = true, last = true, value_name = "CMD")
-    )]
+    #[cfg_attr(feature = "clap", arg(last = true, value_name = "CMD"))]
     pub command: Vec<OsString>,
+    /// Read a recording made elsewhere instead of running a program: a perf.data
+    /// (perf record -g) or GNU gprof's text output (gprof PROG gmon.out > prof.txt).
+    #[cfg_attr(feature = "clap", arg(long, value_name = "FILE",
+        conflicts_with_all = ["command", "freq", "call_graph", "time_limit"]))]
+    pub import: Option<PathBuf>,
 }
 
 /// A positive number of seconds.
@@ -189,31 +196,9 @@ impl Recording {
         self.finished.cpu.as_secs_f64()
     }
 
-    /// Under frame pointers, what the phases may get wrong, when shared libraries hold
-    /// enough samples for it to matter: a leaf function of a library built without
-    /// frame pointers (Debian's libc and libm) loses its caller in the kernel's walk, so
-    /// its samples go to the caller's caller.
+    /// What the phases may get wrong under frame pointers ([`frame_pointer_caveat`]).
     pub fn frame_pointer_caveat(&self) -> Option<String> {
-        if self.call_graph != CallGraph::Fp {
-            return None;
-        }
-        let total: u64 = self.perf.modules.iter().map(|m| m.samples).sum();
-        let in_libraries: u64 = self
-            .perf
-            .modules
-            .iter()
-            .filter(|m| m.path.contains(".so"))
-            .map(|m| m.samples)
-            .sum();
-        let share = in_libraries as f64 / total.max(1) as f64;
-        (share >= LIBRARY_SHARE_CAVEAT).then(|| {
-            format!(
-                "shared libraries hold {} of the samples: under frame pointers a library \
-                 function built without them loses its caller (its time goes to the \
-                 caller's caller, and so to that one's phase); --call-graph dwarf finds it",
-                reports::format::percent(100.0 * share, 1)
-            )
-        })
+        frame_pointer_caveat(self.call_graph, &self.perf.modules)
     }
 
     /// Why the command counts as failed, if it does: `Some((interrupted, message))`.
@@ -236,6 +221,31 @@ impl Recording {
         let first = self.command.first().map_or("command", String::as_str);
         first.rsplit('/').next().unwrap_or(first)
     }
+}
+
+/// Under frame pointers, what the phases may get wrong, when shared libraries hold
+/// enough samples for it to matter: a leaf function of a library built without frame
+/// pointers (Debian's libc and libm) loses its caller in the kernel's walk, so its
+/// samples go to the caller's caller.
+pub fn frame_pointer_caveat(call_graph: CallGraph, modules: &[ModuleCoverage]) -> Option<String> {
+    if call_graph != CallGraph::Fp {
+        return None;
+    }
+    let total: u64 = modules.iter().map(|m| m.samples).sum();
+    let in_libraries: u64 = modules
+        .iter()
+        .filter(|m| m.path.contains(".so"))
+        .map(|m| m.samples)
+        .sum();
+    let share = in_libraries as f64 / total.max(1) as f64;
+    (share >= LIBRARY_SHARE_CAVEAT).then(|| {
+        format!(
+            "shared libraries hold {} of the samples: under frame pointers a library \
+             function built without them loses its caller (its time goes to the \
+             caller's caller, and so to that one's phase); --call-graph dwarf finds it",
+            reports::format::percent(100.0 * share, 1)
+        )
+    })
 }
 
 /// Records `plan.command` under perf. A program that fails still gives its profile
@@ -329,13 +339,7 @@ fn recording(
         .unwrap_or("command")
         .to_string();
     // One run of the program: no exact call counts (the probe will bring them).
-    let view = ViewProfile::new(
-        ProfileView::Native,
-        perf.samples.clone(),
-        &CallCounts::new(),
-        1,
-        &name,
-    );
+    let view = ViewProfile::of_run(ProfileView::Native, perf.samples.clone(), &name);
     let phases = rules.classify(&perf.samples, &perf.sources);
     Recording {
         command,

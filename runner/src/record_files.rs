@@ -12,6 +12,7 @@
 
 use std::path::Path;
 
+use analysis::profile::flat::FlatProfile;
 use analysis::profile::perf_data::coverage::ModuleCoverage;
 use reports::format;
 use serde::Serialize;
@@ -85,25 +86,26 @@ impl Recording {
                 v.flame_svg.clone(),
             ]);
         }
-        files.extend(saved.exports);
+        // Written beside the flamegraph, not named by the results' view entry.
+        files.push(format!("folded-{}.txt", results::slug(self.name())));
+        files.extend(saved.exports.iter().cloned());
         files.push(save(
             dir,
             "modules.txt",
             modules_text(&self.perf.modules).as_bytes(),
         )?);
         files.push(save(dir, "modules.json", modules_json.as_bytes())?);
-        files.push(save(
+        files.push(save_phases(
             dir,
-            &format!("phases-{}.txt", self.name()),
-            phases_text(&title, &self.phases, self.frame_pointer_caveat().as_deref()).as_bytes(),
+            self.name(),
+            &title,
+            &self.phases,
+            self.frame_pointer_caveat().as_deref(),
         )?);
         files.extend(["perf.data".to_string(), "perf.log".to_string()]);
         files.extend(["report.html".to_string(), "report.pdf".to_string()]);
         files.push("record.json".to_string());
-        let flame = saved.views.first().and_then(|v| {
-            let svg = std::fs::read_to_string(dir.join(&v.flame_svg)).ok()?;
-            Some((svg, v.flame_svg.clone()))
-        });
+        let flame = saved_flamegraph(dir, &saved);
         self.save_report(dir, flame, &files)?;
         let (exit_code, signal) = match self.finished.end {
             launch::End::Exited(code) => (Some(code), None),
@@ -144,30 +146,28 @@ impl Recording {
     ) -> Result<(), RunError> {
         let command = self.command.join(" ");
         let end = self.finished.end.to_string();
-        let doc = reports::record_report::build(&RecordReport {
-            program: self.name(),
-            command: &command,
-            end: &end,
-            success: self.finished.end.success(),
-            cpu_seconds: self.cpu_seconds(),
-            wall_seconds: self.finished.wall.as_secs_f64(),
-            samples: self.samples(),
-            frequency: self.frequency,
-            call_graph: self.call_graph.describe(),
-            lost_samples: self.perf.lost,
-            processes: self.perf.processes,
-            flat: &self.view.flat,
-            phases: &self.phases,
-            modules: &self.perf.modules,
-            flamegraph,
-            files,
-            caveat: self.frame_pointer_caveat(),
-        });
-        save(dir, "report.html", reports::html::render(&doc).as_bytes())?;
-        let pdf = reports::pdf::render(&doc)
-            .map_err(|e| RunError::Report(format!("cannot build report.pdf: {e}")))?;
-        save(dir, "report.pdf", &pdf)?;
-        Ok(())
+        write_report(
+            dir,
+            &RecordReport {
+                program: self.name(),
+                command: &command,
+                end: &end,
+                success: self.finished.end.success(),
+                cpu_seconds: self.cpu_seconds(),
+                wall_seconds: self.finished.wall.as_secs_f64(),
+                samples: self.samples(),
+                frequency: self.frequency,
+                call_graph: self.call_graph.describe(),
+                lost_samples: self.perf.lost,
+                processes: self.perf.processes,
+                flat: &self.view.flat,
+                phases: &self.phases,
+                modules: &self.perf.modules,
+                flamegraph,
+                files,
+                caveat: self.frame_pointer_caveat(),
+            },
+        )
     }
 
     /// The summary `rtprof record` prints: how the program ended, what was sampled,
@@ -190,24 +190,8 @@ impl Recording {
                 format::count(self.perf.lost)
             );
         }
-        out += "\n   self  inclusive  function\n";
-        for row in self.view.flat.rows.iter().take(SUMMARY_ROWS) {
-            out += &format!(
-                "{:>7}  {:>9}  {}\n",
-                format::percent(row.percent, 1),
-                format::percent(row.inclusive_percent, 1),
-                row.name
-            );
-        }
-        out += &format!(
-            "\nby phase of ray tracing ({}; rules classified {}):\n",
-            self.phases.origin,
-            format::percent(100.0 * self.phases.classified_share(), 1)
-        );
-        out += &phase_table(&self.phases);
-        if let Some(caveat) = self.frame_pointer_caveat() {
-            out += &format!("note: {caveat}\n");
-        }
+        out += &top_functions_text(&self.view.flat);
+        out += &phases_summary(&self.phases, self.frame_pointer_caveat().as_deref());
         out.push('\n');
         out += &modules_text(&self.perf.modules);
         out += &format!(
@@ -217,6 +201,66 @@ impl Recording {
         );
         out
     }
+}
+
+/// The functions with the most self time, with their self and inclusive shares.
+pub fn top_functions_text(flat: &FlatProfile) -> String {
+    let mut out = String::from("\n   self  inclusive  function\n");
+    for row in flat.rows.iter().take(SUMMARY_ROWS) {
+        out += &format!(
+            "{:>7}  {:>9}  {}\n",
+            format::percent(row.percent, 1),
+            format::percent(row.inclusive_percent, 1),
+            row.name
+        );
+    }
+    out
+}
+
+/// Writes `phases-NAME.txt`; returns its name.
+pub fn save_phases(
+    dir: &Path,
+    name: &str,
+    title: &str,
+    phases: &PhaseBreakdown,
+    caveat: Option<&str>,
+) -> Result<String, RunError> {
+    save(
+        dir,
+        &format!("phases-{name}.txt"),
+        phases_text(title, phases, caveat).as_bytes(),
+    )
+}
+
+/// The flamegraph just written (its SVG and file name), for the report to embed.
+pub fn saved_flamegraph(dir: &Path, saved: &SavedProfile) -> Option<(String, String)> {
+    let file = &saved.views.first()?.flame_svg;
+    let svg = std::fs::read_to_string(dir.join(file)).ok()?;
+    Some((svg, file.clone()))
+}
+
+/// Writes report.html and report.pdf of a recorded (or imported) run.
+pub fn write_report(dir: &Path, report: &RecordReport) -> Result<(), RunError> {
+    let doc = reports::record_report::build(report);
+    save(dir, "report.html", reports::html::render(&doc).as_bytes())?;
+    let pdf = reports::pdf::render(&doc)
+        .map_err(|e| RunError::Report(format!("cannot build report.pdf: {e}")))?;
+    save(dir, "report.pdf", &pdf)?;
+    Ok(())
+}
+
+/// The phases' summary lines: the table and, when it applies, the frame-pointer caveat.
+pub fn phases_summary(phases: &PhaseBreakdown, caveat: Option<&str>) -> String {
+    let mut out = format!(
+        "\nby phase of ray tracing ({}; rules classified {}):\n",
+        phases.origin,
+        format::percent(100.0 * phases.classified_share(), 1)
+    );
+    out += &phase_table(phases);
+    if let Some(caveat) = caveat {
+        out += &format!("note: {caveat}\n");
+    }
+    out
 }
 
 /// The module table: samples per module (of the innermost frame), the shares with no

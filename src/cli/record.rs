@@ -1,12 +1,23 @@
 //! `rtprof record [-o DIR] [--freq HZ] [--call-graph fp|dwarf] -- CMD [ARGS...]`: any
 //! program (a user's own tracer) sampled under Linux perf into rtprof's profile files
-//! (the flags are `runner::record::RecordSettings`).
+//! (the flags are `runner::record::RecordSettings`); `--import FILE`: a perf.data or
+//! gprof output recorded elsewhere into the same files (`runner::record_import`).
 
 use super::Outcome;
 use anyhow::Result;
 use runner::record::RecordSettings;
 
 pub fn run(args: &RecordSettings) -> Result<()> {
+    if let Some(file) = &args.import {
+        // No program shares the terminal: the summary goes to stdout.
+        let text = runner::record_import::import_into(
+            file,
+            args.output.as_deref(),
+            args.phases.as_deref(),
+        )?;
+        print!("{text}");
+        return Ok(());
+    }
     let dir = args.dir();
     let recording = runner::record::record(&args.plan(&dir, terminal::interrupt::install()))?;
     let summary = recording.save(&dir)?;

@@ -26,7 +26,8 @@
 //!
 //! # Text
 //! gprof's flat table with its header, preceded by the number of renders sampled
-//! (for a profile read from gprof, [`super::gprof_import`], a line saying so).
+//! (for a profile read from gprof, [`super::gprof_import`], a line saying so; for
+//! one run of another program, [`Origin::Recorded`], that it is one run).
 //! Noise rows are left out of the table rather than printed as `0.00`: a gprof reader
 //! would take `0.00` for "costs nothing". After the table (after a blank line, where
 //! gprof prints its explanations) come the noise rows with their calls per render,
@@ -45,6 +46,10 @@ use std::fmt::Write as _;
 /// outermost frames, the single root): such rows are no bottleneck and are left out of
 /// the Amdahl table, where "make the whole run free" tells nothing.
 pub const WHOLE_RUN_PERCENT: f64 = 99.5;
+
+/// What the texts of a recorded run ([`Origin::Recorded`]) say above their tables.
+pub(super) const RECORDED_LINE: &str =
+    "1 run of the program sampled; seconds are per run, no calls counted.\n";
 
 /// Per-call units, coarsest first: the unit's name and the factor from seconds.
 const PER_CALL_UNITS: [(&str, f64); 4] = [(" s", 1.0), ("ms", 1e3), ("us", 1e6), ("ns", 1e9)];
@@ -257,6 +262,8 @@ impl FlatProfile {
         let renders = self.renders.max(1);
         if self.origin == Origin::Gprof {
             out.push_str("Read from gprof's output; calls counted by -pg.\n");
+        } else if self.origin == Origin::Recorded {
+            out.push_str(RECORDED_LINE);
         } else if renders == 1 {
             out.push_str("1 render sampled; calls are per render, seconds for that render.\n");
         } else {
@@ -620,6 +627,20 @@ mod tests {
         assert!(
             one.contains("\n1 render sampled; calls are per render, seconds for that render.\n")
         );
+    }
+
+    #[test]
+    fn a_recorded_run_says_per_run_not_render() {
+        let mut profile = flat(&three_functions(), &CallCounts::new(), 1);
+        profile.origin = Origin::Recorded;
+        let text = profile.to_text();
+        assert!(
+            text.contains(
+                "\n1 run of the program sampled; seconds are per run, no calls counted.\n"
+            ),
+            "{text}"
+        );
+        assert!(!text.contains("render"), "{text}");
     }
 
     #[test]

@@ -67,7 +67,8 @@
 //! # Columns
 //! What each column of the call graph text holds, in rtprof's file (sampled,
 //! [`Origin::Sampled`]) and for a graph read from gprof ([`Origin::Gprof`],
-//! [`super::gprof_import`]), whose text is gprof's own:
+//! [`super::gprof_import`]), whose text is gprof's own. A recorded run of another
+//! program ([`Origin::Recorded`], `rtprof record`) is sampled, without call counts.
 //!
 //! | line | column | sampled (rtprof) | read from gprof |
 //! |---|---|---|---|
@@ -90,6 +91,7 @@
 //! function): they are in its members' entries, and in [`CallGraphEntry::parents`].
 
 use super::Origin;
+use super::flat::RECORDED_LINE;
 pub use super::flat::{
     FlatProfile, FlatRow, WHOLE_RUN_PERCENT, bottleneck, flat_profile, largest_inclusive,
 };
@@ -122,6 +124,18 @@ the S samples that flowed along the call out of the T that entered the function
 (or its cycle) from outside its cycle. A <cycle N> entry sums its members and
 lists them below it, each with its calls per render (0: not counted); the
 cycle's callers are in its members' entries.
+";
+
+/// The explanation after the entries of a recorded run's graph: no calls counted.
+const RECORDED_NOTES: &str = "
+Callers are listed above each function's own line, callees below, with the time
+that flowed along each call (self: function running; children: its callees). A
+sample counts once per function, recursion included. One run of the program was
+sampled and its calls were not counted: a function's own `called` is blank. On
+its callers' and callees' lines `called` holds samples: S/T is the S samples
+that flowed along the call out of the T that entered the function (or its cycle)
+from outside its cycle. A <cycle N> entry sums its members and lists them below
+it; the cycle's callers are in its members' entries.
 ";
 
 /// The explanation after the entries of a graph read from gprof.
@@ -487,9 +501,12 @@ impl CallGraph {
                             .get(&arc.index)
                             .is_some_and(|t| !t.whole_cycle && t.cycle == entry.cycle))
         };
-        let count = |arc: &CallArc| match self.origin {
-            Origin::Sampled => arc.samples,
-            Origin::Gprof => arc.calls.unwrap_or(0),
+        let count = |arc: &CallArc| {
+            if self.origin.sampled() {
+                arc.samples
+            } else {
+                arc.calls.unwrap_or(0)
+            }
         };
         // The denominator of `count/total`: what entered the function, or the cycle
         // it belongs to, from outside that cycle (gprof's cycle head's calls).
@@ -503,13 +520,13 @@ impl CallGraph {
                 }
                 _ => target,
             };
-            match self.origin {
-                Origin::Sampled => head
-                    .parents
+            if self.origin.sampled() {
+                head.parents
                     .iter()
                     .filter(|p| !sibling(head, p))
-                    .fold(0u64, |sum, p| sum.saturating_add(p.samples)),
-                Origin::Gprof => head.calls.unwrap_or(0),
+                    .fold(0u64, |sum, p| sum.saturating_add(p.samples))
+            } else {
+                head.calls.unwrap_or(0)
             }
         };
         let arc_line = |out: &mut String, entry: &CallGraphEntry, arc: &CallArc, total: u64| {
@@ -529,7 +546,9 @@ impl CallGraph {
 
         let mut out = String::from("\t\t     Call graph (explanation follows)\n\n\n");
         out.push_str(match self.origin {
-            Origin::Sampled => "granularity: each sample hit covers one call stack",
+            Origin::Sampled | Origin::Recorded => {
+                "granularity: each sample hit covers one call stack"
+            }
             Origin::Gprof => "granularity: each sample hit covers one histogram bucket",
         });
         if self.total_samples > 0 {
@@ -555,6 +574,11 @@ impl CallGraph {
                         "{renders} renders sampled; calls are per render, seconds for all {renders} renders."
                     );
                 }
+                out.push_str(SAMPLED_COUNTS_LINE);
+                out.push_str("\n\n");
+            }
+            Origin::Recorded => {
+                out.push_str(RECORDED_LINE);
                 out.push_str(SAMPLED_COUNTS_LINE);
                 out.push_str("\n\n");
             }
@@ -607,6 +631,7 @@ impl CallGraph {
         }
         out.push_str(match self.origin {
             Origin::Sampled => SAMPLED_NOTES,
+            Origin::Recorded => RECORDED_NOTES,
             Origin::Gprof => GPROF_NOTES,
         });
         // gprof ends the call graph with a form feed; gprof2dot reads up to it.

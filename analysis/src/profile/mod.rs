@@ -74,4 +74,14 @@ pub enum Origin {
     Sampled,
     /// GNU gprof's output ([`gprof_import`]): calls counted by a `-pg` build.
     Gprof,
+    /// One run of another program, its stacks sampled by Linux perf (`rtprof record`,
+    /// [`perf_data`]): no renders to count, no calls.
+    Recorded,
+}
+
+impl Origin {
+    /// Whether the call graph's arcs hold samples (not gprof's calls).
+    pub fn sampled(self) -> bool {
+        matches!(self, Origin::Sampled | Origin::Recorded)
+    }
 }

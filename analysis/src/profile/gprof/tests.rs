@@ -186,6 +186,25 @@ index % time    self  children    called     name\n\
 }
 
 #[test]
+fn a_recorded_run_s_graph_says_per_run_and_counts_samples_on_arcs() {
+    let mut graph = graph_of(&three_functions(), &CallCounts::new());
+    graph.origin = Origin::Recorded;
+    let text = graph.to_text();
+    assert!(
+        text.contains(
+            "1 run of the program sampled; seconds are per run, no calls counted.\n\
+             On callers' and callees' lines"
+        ),
+        "{text}"
+    );
+    assert!(!text.contains("render"), "{text}");
+    // main -> a: the 80 samples that flowed along the call, of the 80 that entered a.
+    assert!(text.contains("     80/80          a [2]\n"), "{text}");
+    // Samples on its arcs: gprof's importer refuses it, as it does a sampled graph.
+    assert!(crate::profile::gprof_import::parse(&text).is_err());
+}
+
+#[test]
 fn call_graph_says_renders_and_shows_calls_per_render() {
     let stacks = samples(&[(&["main", "foo"], 240)], 0.01);
     let graph = call_graph(&ProfileInput {

@@ -4,23 +4,30 @@
 //! ([`maps`]), unwound from the copied stack under `--call-graph dwarf` ([`unwind`]),
 //! named with inlined functions as themselves ([`symbols`]), folded into distinct
 //! stacks, and what could not be named or placed counted per module ([`coverage`]).
-//! The file is parsed with `linux-perf-data` (samply's reader); no `perf script`.
+//! The file is parsed with `linux-perf-data` (samply's reader), its header checked
+//! first ([`header`]); no `perf script`. How it was recorded and the CPU time its
+//! samples stand for are read from it too ([`info`]), for a recording made elsewhere.
 
 pub mod coverage;
+pub mod header;
+pub mod info;
 pub mod maps;
 pub mod symbols;
 pub mod unwind;
 
 use std::collections::{BTreeMap, HashMap};
-use std::path::Path;
+use std::io::{Seek, SeekFrom};
+use std::path::{Path, PathBuf};
 use std::rc::Rc;
 
 use linux_perf_data::linux_perf_event_reader::{EventRecord, SampleRecord, constants};
-use linux_perf_data::{PerfFileReader, PerfFileRecord};
+use linux_perf_data::{Feature, PerfFileReader, PerfFileRecord};
 
 use super::{Stack, StackSamples};
 use coverage::{KERNEL, ModuleCoverage, module_name};
+pub use info::{CpuTimeSource, RecordingInfo};
 use maps::Maps;
+pub use symbols::MissingFile;
 use symbols::{Resolved, Symbolizer, unknown_in};
 use unwind::{REG_BP, REG_IP, REG_SP, Unwinders};
 
@@ -37,14 +44,20 @@ pub struct PerfProfile {
     pub modules: Vec<ModuleCoverage>,
     /// Samples the kernel dropped (perf's buffers full).
     pub lost: u64,
-    /// CPU seconds the samples' periods add up to.
+    /// CPU seconds the samples stand for, from [`PerfProfile::cpu_seconds_from`].
     pub sampled_seconds: f64,
+    pub cpu_seconds_from: CpuTimeSource,
     /// Processes that were sampled.
     pub processes: usize,
     /// The user stacks were copied for unwinding here (`--call-graph dwarf`).
     pub dwarf: bool,
     /// Each function's source file, where the debug info names one (the first seen).
     pub sources: BTreeMap<String, String>,
+    /// The event, rate, perf's command line and program of the recording.
+    pub recording: RecordingInfo,
+    /// Files with samples whose names could not be read: not at their recorded path
+    /// nor in perf's cache, or another build than the one recorded.
+    pub missing_files: Vec<MissingFile>,
 }
 
 /// A `perf.data` that could not be read.
@@ -54,6 +67,16 @@ pub enum PerfDataError {
     Open { path: String, message: String },
     #[error("{path} is not a perf.data file rtprof can read: {message}")]
     Parse { path: String, message: String },
+    /// The header, checked before reading: truncated, damaged, or a kind not read.
+    #[error("{path}: {problem}")]
+    Header { path: String, problem: String },
+}
+
+/// perf's build-id cache: `$PERF_BUILDID_DIR`, else `~/.debug` (perf's default).
+fn perf_cache_dir() -> Option<PathBuf> {
+    std::env::var_os("PERF_BUILDID_DIR")
+        .map(PathBuf::from)
+        .or_else(|| std::env::var_os("HOME").map(|home| Path::new(&home).join(".debug")))
 }
 
 /// One sample's addresses before they are named.
@@ -203,25 +226,55 @@ pub fn read_perf_data(path: &Path) -> Result<PerfProfile, PerfDataError> {
         path: name.clone(),
         message: e.to_string(),
     };
-    let file = std::fs::File::open(path).map_err(|e| PerfDataError::Open {
+    let open_error = |e: std::io::Error| PerfDataError::Open {
         path: name.clone(),
         message: e.to_string(),
+    };
+    let mut file = std::fs::File::open(path).map_err(open_error)?;
+    let length = file.metadata().map_err(open_error)?.len();
+    header::check(&mut file, length).map_err(|problem| PerfDataError::Header {
+        path: name.clone(),
+        problem,
     })?;
+    file.seek(SeekFrom::Start(0)).map_err(open_error)?;
     let PerfFileReader {
         mut perf_file,
         mut record_iter,
     } = PerfFileReader::parse_file(std::io::BufReader::new(file)).map_err(|e| parse_error(&e))?;
+    // One sampling event is read: the first that samples (perf adds a `dummy` one for
+    // side-band records); samples of others would mix units.
+    let attributes = perf_file.event_attributes();
+    let sampled = attributes
+        .iter()
+        .position(info::samples_anything)
+        .unwrap_or(0);
+    let mut recording = attributes
+        .get(sampled)
+        .map(RecordingInfo::of_event)
+        .unwrap_or_default();
+    recording.perf_command = perf_file
+        .feature_section_data(Feature::CMDLINE)
+        .map(|section| info::command_line(section, perf_file.endian()))
+        .unwrap_or_default();
+    let build_ids = perf_file
+        .build_ids()
+        .unwrap_or_default()
+        .into_values()
+        .map(|d| (String::from_utf8_lossy(&d.path).into_owned(), d.build_id))
+        .collect();
     let mut maps = Maps::default();
-    let mut symbols = Symbolizer::default();
+    let mut symbols = Symbolizer::new(build_ids, perf_cache_dir());
     let mut unwinders = Unwinders::default();
     let mut folding = Folding::default();
     let (mut lost, mut periods, mut samples, mut dwarf) = (0u64, 0u64, 0u64, false);
-    let mut pids = std::collections::HashSet::new();
+    let mut per_pid: HashMap<i32, u64> = HashMap::new();
+    let mut names: HashMap<i32, String> = HashMap::new();
+    let mut times: Option<(u64, u64)> = None;
     while let Some(record) = record_iter
         .next_record(&mut perf_file)
         .map_err(|e| parse_error(&e))?
     {
-        let PerfFileRecord::EventRecord { record, .. } = record else {
+        let PerfFileRecord::EventRecord { attr_index, record } = record else {
             continue;
         };
         // A record this reader does not know is skipped, not fatal.
@@ -229,12 +282,18 @@ pub fn read_perf_data(path: &Path) -> Result<PerfProfile, PerfDataError> {
             continue;
         };
         match parsed {
+            EventRecord::Sample(_) if attr_index != sampled => {
+                recording.other_event_samples += 1;
+            }
             EventRecord::Sample(s) => {
                 let raw = raw_stack(&s, &maps, &mut unwinders);
                 dwarf |= s.user_stack.is_some();
                 periods += s.period.unwrap_or(0);
                 samples += 1;
-                pids.insert(raw.pid);
+                *per_pid.entry(raw.pid).or_default() += 1;
+                if let Some(t) = s.timestamp {
+                    times = Some(times.map_or((t, t), |(a, b)| (a.min(t), b.max(t))));
+                }
                 folding.add(&maps, &mut symbols, &raw);
             }
             EventRecord::Mmap(m) if m.is_executable => {
@@ -245,13 +304,26 @@ pub fn read_perf_data(path: &Path) -> Result<PerfProfile, PerfDataError> {
                 let path = String::from_utf8_lossy(&m.path.as_slice()).into_owned();
                 maps.map(m.pid, m.address, m.length, m.page_offset, &path);
             }
-            EventRecord::Comm(c) if c.is_execve => maps.exec(c.pid),
+            EventRecord::Comm(c) => {
+                names.insert(
+                    c.pid,
+                    String::from_utf8_lossy(&c.name.as_slice()).into_owned(),
+                );
+                if c.is_execve {
+                    maps.exec(c.pid);
+                }
+            }
             EventRecord::Fork(f) => maps.fork(f.ppid, f.pid),
             EventRecord::Lost(l) => lost += l.count,
             _ => {}
         }
     }
-    let sampled_seconds = periods as f64 * 1e-9;
+    recording.span_seconds = times.map_or(0.0, |(a, b)| (b - a) as f64 * 1e-9);
+    recording.program = per_pid
+        .iter()
+        .max_by_key(|&(pid, n)| (n, std::cmp::Reverse(pid)))
+        .and_then(|(pid, _)| names.get(pid).cloned());
+    let (sampled_seconds, cpu_seconds_from) = recording.cpu_seconds(samples, periods);
     let sources = folding.take_sources();
     let (stacks, modules) = folding.finish(dwarf, sampled_seconds / samples.max(1) as f64);
     Ok(PerfProfile {
@@ -259,9 +331,12 @@ pub fn read_perf_data(path: &Path) -> Result<PerfProfile, PerfDataError> {
         modules,
         lost,
         sampled_seconds,
-        processes: pids.len(),
+        cpu_seconds_from,
+        processes: per_pid.len(),
         dwarf,
         sources,
+        recording,
+        missing_files: symbols.missing().to_vec(),
     })
 }
 
@@ -463,7 +538,8 @@ mod tests {
         let bad = dir.join("perf.data");
         std::fs::write(&bad, b"not a perf file at all, just text").unwrap();
         let err = read_perf_data(&bad).unwrap_err();
-        assert!(matches!(err, PerfDataError::Parse { .. }), "{err}");
+        assert!(matches!(err, PerfDataError::Header { .. }), "{err}");
+        assert!(err.to_string().contains("PERFILE2"), "{err}");
         assert!(matches!(
             read_perf_data(&dir.join("missing")),
             Err(PerfDataError::Open { .. })

@@ -3,8 +3,16 @@
 //! symbol table (`.symtab`, or `.dynsym` when stripped), else no symbol. C++ names are
 //! demangled without their parameter lists, Rust names cleaned into plain paths
 //! ([`clean_symbol`]), as the reports print them.
+//!
+//! The file is the one at the path perf recorded, when it is the build that was
+//! recorded (its build id is the one the recording lists, or either has none); else
+//! perf's copy by build id in its cache (`~/.debug/.build-id/`, which `perf record`
+//! fills and `perf archive` packs for another machine). A file found in neither, or
+//! only as another build, names nothing ([`MissingFile`]): its samples count as
+//! without a symbol.
 
 use std::collections::HashMap;
+use std::path::{Path, PathBuf};
 use std::rc::Rc;
 
 use addr2line::gimli;
@@ -33,9 +41,48 @@ struct FileSymbols {
 }
 
 impl FileSymbols {
-    fn open(path: &str) -> Option<FileSymbols> {
-        let data = std::fs::read(path).ok()?;
-        let file = object::File::parse(&*data).ok()?;
+    /// The symbols of the file at `path` (the recorded build when `expected` names
+    /// it), or why there are none.
+    fn open(path: &str, expected: Option<&[u8]>, cache: Option<&Path>) -> Result<Self, String> {
+        let cached = || {
+            let id = expected?;
+            let copy = cache?.join(build_id_path(id)?).join("elf");
+            copy.is_file().then_some(copy)
+        };
+        let (file_path, data) = match std::fs::read(path) {
+            Ok(data) => {
+                let id = object::File::parse(&*data)
+                    .ok()
+                    .and_then(|f| f.build_id().ok().flatten().map(<[u8]>::to_vec));
+                match (expected, id) {
+                    (Some(want), Some(have)) if want != have.as_slice() => match cached() {
+                        Some(copy) => read_copy(copy)?,
+                        None => {
+                            return Err(format!(
+                                "another build: its build id {} is not the recording's {}, and perf's cache has no copy",
+                                hex(&have),
+                                hex(want)
+                            ));
+                        }
+                    },
+                    _ => (PathBuf::from(path), data),
+                }
+            }
+            Err(e) => match cached() {
+                Some(copy) => read_copy(copy)?,
+                None => {
+                    return Err(match (expected, cache) {
+                        (Some(id), Some(cache)) => format!(
+                            "cannot read it ({e}), and perf's cache {} has no copy of its build id {}",
+                            cache.display(),
+                            hex(id)
+                        ),
+                        _ => format!("cannot read it ({e})"),
+                    });
+                }
+            },
+        };
+        let file = object::File::parse(&*data).map_err(|e| format!("not readable: {e}"))?;
         let segments = file
             .segments()
             .map(|s| {
@@ -45,10 +92,10 @@ impl FileSymbols {
             .collect();
         // A debug package's file (`-dbgsym`, `libc6-dbg`) found by build id has the
         // symbols a stripped library lacks; the addresses are the same.
-        let loader = debug_file(&file)
+        let loader = debug_file(&file, cache)
             .and_then(|debug| addr2line::Loader::new(debug).ok())
-            .or_else(|| addr2line::Loader::new(path).ok());
-        Some(FileSymbols { loader, segments })
+            .or_else(|| addr2line::Loader::new(&file_path).ok());
+        Ok(FileSymbols { loader, segments })
     }
 
     /// The address in the file (its own, before relocation) of a file offset.
@@ -60,18 +107,55 @@ impl FileSymbols {
     }
 }
 
+fn read_copy(copy: PathBuf) -> Result<(PathBuf, Vec<u8>), String> {
+    let data = std::fs::read(&copy).map_err(|e| format!("{}: {e}", copy.display()))?;
+    Ok((copy, data))
+}
+
 /// Where Debian's debug packages put a file's symbols: by its GNU build id.
 const DEBUG_DIR: &str = "/usr/lib/debug/.build-id";
 
-/// The separate debug file of `file`, when one is installed.
-fn debug_file(file: &object::File) -> Option<std::path::PathBuf> {
+/// A build id in lower-case hex.
+fn hex(id: &[u8]) -> String {
+    id.iter().map(|b| format!("{b:02x}")).collect()
+}
+
+/// `.build-id/ab/cdef…`: where perf's cache and debug packages file a build id.
+fn build_id_path(id: &[u8]) -> Option<PathBuf> {
+    let (first, rest) = id.split_first()?;
+    Some(
+        Path::new(".build-id")
+            .join(format!("{first:02x}"))
+            .join(hex(rest)),
+    )
+}
+
+/// The separate debug file of `file`, when one is installed (a debug package), or
+/// perf's cache holds one (`perf buildid-cache` keeps it beside the copy).
+fn debug_file(file: &object::File, cache: Option<&Path>) -> Option<PathBuf> {
     let id = file.build_id().ok()??;
     let (first, rest) = id.split_first()?;
-    let hex: String = rest.iter().map(|b| format!("{b:02x}")).collect();
-    let path = std::path::Path::new(DEBUG_DIR)
+    let package = Path::new(DEBUG_DIR)
         .join(format!("{first:02x}"))
-        .join(format!("{hex}.debug"));
-    path.is_file().then_some(path)
+        .join(format!("{}.debug", hex(rest)));
+    let cached = cache.and_then(|c| Some(c.join(build_id_path(id)?).join("debug")));
+    std::iter::once(package)
+        .chain(cached)
+        .find(|path| path.is_file())
+}
+
+/// A file of the recording that names nothing: not on this machine, or another build.
+#[derive(Clone, Debug, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
+pub struct MissingFile {
+    /// The path perf recorded.
+    pub path: String,
+    /// What is wrong, as a sentence.
+    pub problem: String,
+}
+
+/// Whether perf's `path` names a file (not `[vdso]`, `//anon`, `/memfd:…`).
+fn is_file_path(path: &str) -> bool {
+    path.starts_with('/') && !path.starts_with("//") && !path.starts_with("/memfd:")
 }
 
 /// Resolves addresses of many files, each file opened once and each address once.
@@ -79,9 +163,30 @@ fn debug_file(file: &object::File) -> Option<std::path::PathBuf> {
 pub struct Symbolizer {
     files: HashMap<String, Option<FileSymbols>>,
     cache: HashMap<(String, u64), Rc<Resolved>>,
+    /// The build id of each file the recording lists, by path.
+    build_ids: HashMap<String, Vec<u8>>,
+    /// perf's build-id cache (`~/.debug`).
+    cache_dir: Option<PathBuf>,
+    missing: Vec<MissingFile>,
 }
 
 impl Symbolizer {
+    /// A symbolizer that checks each file against the build id the recording lists
+    /// for its path and falls back to perf's copies under `cache_dir`.
+    pub fn new(build_ids: HashMap<String, Vec<u8>>, cache_dir: Option<PathBuf>) -> Self {
+        Symbolizer {
+            build_ids,
+            cache_dir,
+            ..Symbolizer::default()
+        }
+    }
+
+    /// The files (with samples) that could not be read or were another build, in the
+    /// order they were met.
+    pub fn missing(&self) -> &[MissingFile] {
+        &self.missing
+    }
+
     /// The functions at `file_offset` of the file at `path` (`module` is its short
     /// name for the unknown frame).
     pub fn resolve(&mut self, path: &str, module: &str, file_offset: u64) -> Rc<Resolved> {
@@ -89,11 +194,23 @@ impl Symbolizer {
         if let Some(hit) = self.cache.get(&key) {
             return hit.clone();
         }
-        let file = self
-            .files
-            .entry(path.to_string())
-            .or_insert_with(|| FileSymbols::open(path));
-        let named = file.as_ref().and_then(|f| {
+        if !self.files.contains_key(path) {
+            let expected = self.build_ids.get(path).map(Vec::as_slice);
+            let opened = FileSymbols::open(path, expected, self.cache_dir.as_deref());
+            let opened = opened
+                .map_err(|problem| {
+                    if is_file_path(path) {
+                        self.missing.push(MissingFile {
+                            path: path.to_string(),
+                            problem,
+                        });
+                    }
+                })
+                .ok();
+            self.files.insert(path.to_string(), opened);
+        }
+        let file = self.files.get(path).and_then(Option::as_ref);
+        let named = file.and_then(|f| {
             let address = f.file_address(file_offset)?;
             names_at(f.loader.as_ref()?, address)
         });
@@ -249,12 +366,10 @@ mod tests {
         assert!(!r.symbol);
     }
 
-    #[test]
-    fn this_test_binary_names_its_own_functions() {
-        // The test binary has debug info: a function of it, by the file offset of its
-        // address, resolves to its own name.
+    /// This test binary's path and the file offset of one of its functions.
+    fn own_function() -> (String, u64) {
         let exe = std::env::current_exe().unwrap();
-        let path = exe.to_str().unwrap();
+        let path = exe.to_str().unwrap().to_string();
         let maps = std::fs::read_to_string("/proc/self/maps").unwrap();
         let here = this_test_binary_names_its_own_functions as *const () as u64;
         let line = maps
@@ -273,15 +388,89 @@ mod tests {
         let start =
             u64::from_str_radix(fields.next().unwrap().split('-').next().unwrap(), 16).unwrap();
         let offset = u64::from_str_radix(fields.nth(1).unwrap(), 16).unwrap();
-        let mut s = Symbolizer::default();
-        let r = s.resolve(path, "test", here - start + offset);
-        assert!(r.symbol, "{r:?}");
-        assert!(
-            r.frames
+        (path, here - start + offset)
+    }
+
+    fn names_this_function(r: &Resolved) -> bool {
+        r.symbol
+            && r.frames
                 .last()
                 .unwrap()
-                .ends_with("this_test_binary_names_its_own_functions"),
-            "{r:?}"
+                .ends_with("this_test_binary_names_its_own_functions")
+    }
+
+    #[test]
+    fn this_test_binary_names_its_own_functions() {
+        // The test binary has debug info: a function of it, by the file offset of its
+        // address, resolves to its own name.
+        let (path, offset) = own_function();
+        let mut s = Symbolizer::default();
+        let r = s.resolve(&path, "test", offset);
+        assert!(names_this_function(&r), "{r:?}");
+    }
+
+    #[test]
+    fn a_file_gone_from_its_path_is_read_from_perfs_cache_by_build_id() {
+        let (path, offset) = own_function();
+        let data = std::fs::read(&path).unwrap();
+        let Some(id) = object::File::parse(&*data)
+            .unwrap()
+            .build_id()
+            .unwrap()
+            .map(<[u8]>::to_vec)
+        else {
+            return; // linked without a build id: nothing to look up
+        };
+        let cache = std::env::temp_dir().join(format!("symbols-cache-{}", std::process::id()));
+        let copy_dir = cache.join(build_id_path(&id).unwrap());
+        std::fs::create_dir_all(&copy_dir).unwrap();
+        let copy = copy_dir.join("elf");
+        if std::fs::hard_link(&path, &copy).is_err() {
+            std::fs::copy(&path, &copy).unwrap();
+        }
+        let gone = "/nonexistent/the-test-binary";
+        let ids = HashMap::from([(gone.to_string(), id.clone())]);
+        let mut s = Symbolizer::new(ids.clone(), Some(cache.clone()));
+        let r = s.resolve(gone, "the-test-binary", offset);
+        assert!(names_this_function(&r), "{r:?}");
+        assert!(s.missing().is_empty());
+        // Without the cache: nothing named, and the file is listed with the cache's
+        // absence said.
+        let mut s = Symbolizer::new(ids, Some(cache.join("empty")));
+        assert!(!s.resolve(gone, "the-test-binary", offset).symbol);
+        assert_eq!(s.missing().len(), 1);
+        assert_eq!(s.missing()[0].path, gone);
+        assert!(
+            s.missing()[0].problem.contains(&hex(&id)),
+            "{:?}",
+            s.missing()
         );
+        std::fs::remove_dir_all(&cache).unwrap();
+    }
+
+    #[test]
+    fn another_build_at_the_recorded_path_names_nothing() {
+        let (path, offset) = own_function();
+        let data = std::fs::read(&path).unwrap();
+        if object::File::parse(&*data)
+            .unwrap()
+            .build_id()
+            .unwrap()
+            .is_none()
+        {
+            return; // linked without a build id: no build to tell apart
+        }
+        let mut s = Symbolizer::new(HashMap::from([(path.clone(), vec![1, 2, 3, 4])]), None);
+        let r = s.resolve(&path, "test", offset);
+        assert!(!r.symbol, "{r:?}");
+        assert!(
+            s.missing()[0].problem.starts_with("another build"),
+            "{:?}",
+            s.missing()
+        );
+        // Pseudo-files perf records are not listed as missing.
+        s.resolve("[vdso]", "[vdso]", 0x10);
+        s.resolve("//anon", "//anon", 0x10);
+        assert_eq!(s.missing().len(), 1);
     }
 }
