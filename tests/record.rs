@@ -435,3 +435,55 @@ fn ctrl_c_stops_the_program_and_keeps_what_was_sampled() {
     assert!(out_dir.join("flame-sh.svg").is_file());
     std::fs::remove_dir_all(&dir).ok();
 }
+
+#[test]
+#[ignore = "needs perf"]
+fn a_baseline_record_gives_the_differential_flamegraphs() {
+    let dir = scratch("baseline");
+    let exe = hot_program(&dir);
+    let (before, after) = (dir.join("before"), dir.join("after"));
+    let exe_text = exe.display().to_string();
+    for (out_dir, baseline) in [(&before, None), (&after, Some(&before))] {
+        let mut args = vec![
+            "record".to_string(),
+            "-o".into(),
+            out_dir.display().to_string(),
+        ];
+        if let Some(b) = baseline {
+            args.extend(["--baseline".into(), b.display().to_string()]);
+        }
+        args.extend(["--".into(), exe_text.clone(), "0".into()]);
+        let args: Vec<&str> = args.iter().map(String::as_str).collect();
+        let out = rtprof(&args, &[]);
+        assert_eq!(out.status.code(), Some(0), "{}", stderr(&out));
+    }
+    let json = record_json(&after);
+    let files: Vec<&str> = json["files"]
+        .as_array()
+        .map(|a| a.iter().filter_map(|f| f.as_str()).collect())
+        .unwrap_or_default();
+    for file in [
+        "flame-diff-before-after.svg",
+        "flame-diff-before-after-shrunk.svg",
+    ] {
+        assert!(files.contains(&file), "{file} in {files:?}");
+        let svg = std::fs::read_to_string(after.join(file)).unwrap_or_else(|e| panic!("{e}"));
+        // The same program twice: both drawings name its hot function, per run.
+        assert!(svg.contains("hot") && svg.contains("per run"), "{file}");
+    }
+    // A directory that is no record: refused before the program runs.
+    let out = rtprof(
+        &[
+            "record",
+            "--baseline",
+            &dir.display().to_string(),
+            "--",
+            &exe_text,
+            "0",
+        ],
+        &[],
+    );
+    assert_eq!(out.status.code(), Some(2), "{}", stderr(&out));
+    assert!(stderr(&out).contains("folded-*.txt"), "{}", stderr(&out));
+    std::fs::remove_dir_all(&dir).ok();
+}

@@ -78,6 +78,7 @@ pub mod profile_settings;
 pub mod progress;
 pub mod ray_rates;
 pub mod record;
+pub mod record_diff;
 pub mod record_files;
 pub mod record_import;
 pub mod record_phases;

@@ -257,11 +257,13 @@ pub fn save_differential(
             folded: &bf,
             label: &bl,
             seconds_per_render: bs,
+            unit: "render",
         },
         &DiffSide {
             folded: &af,
             label: &al,
             seconds_per_render: as_,
+            unit: "render",
         },
         scene,
     )

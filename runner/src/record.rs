@@ -15,6 +15,7 @@ use std::sync::atomic::AtomicBool;
 use std::sync::mpsc;
 use std::time::{Duration, Instant};
 
+use crate::record_diff::{Baseline, read_baseline};
 use analysis::profile::perf_data::coverage::ModuleCoverage;
 use analysis::profile::perf_data::{PerfProfile, read_perf_data};
 use analysis::profile::phase_rules::{PhaseBreakdown, PhaseRules};
@@ -99,6 +100,10 @@ pub struct RecordSettings {
     /// tracing) instead of the built-in ones; docs/record.md shows the form.
     #[cfg_attr(feature = "clap", arg(long, value_name = "FILE"))]
     pub phases: Option<PathBuf>,
+    /// An earlier record's directory: differential flamegraphs from it to this run
+    /// (what grew, what shrank), flame-diff-*.svg.
+    #[cfg_attr(feature = "clap", arg(long, value_name = "DIR"))]
+    pub baseline: Option<PathBuf>,
     /// The program and its arguments, after `--` (run without a shell).
     #[cfg_attr(feature = "clap", arg(last = true, value_name = "CMD"))]
     pub command: Vec<OsString>,
@@ -140,6 +145,7 @@ impl RecordSettings {
             stop,
             time_limit: self.time_limit,
             phases: self.phases.as_deref(),
+            baseline: self.baseline.as_deref(),
         }
     }
 }
@@ -158,6 +164,8 @@ pub struct RecordPlan<'a> {
     pub time_limit: Option<Duration>,
     /// A phase rules file; `None`: the built-in rules.
     pub phases: Option<&'a Path>,
+    /// An earlier record to draw the differences from.
+    pub baseline: Option<&'a Path>,
 }
 
 /// The phase rules of a plan: its file's, or the built-in ones. Read before the
@@ -182,6 +190,8 @@ pub struct Recording {
     pub view: ViewProfile,
     /// The samples by phase of ray tracing, by the phase rules.
     pub phases: PhaseBreakdown,
+    /// The earlier record `--baseline` named.
+    pub baseline: Option<Baseline>,
     pub perf_data: PathBuf,
 }
 
@@ -258,6 +268,7 @@ pub fn record(plan: &RecordPlan) -> Result<Recording, RunError> {
         ));
     };
     let rules = phase_rules(plan.phases)?;
+    let baseline = plan.baseline.map(read_baseline).transpose()?;
     // Found before perf starts: "not found" names the user's program, not perf's.
     let program_path = launch::resolve(program)?;
     let perf_program = std::env::var_os(PERF_VARIABLE).unwrap_or_else(|| "perf".into());
@@ -310,7 +321,9 @@ pub fn record(plan: &RecordPlan) -> Result<Recording, RunError> {
         message: format!("{e} (perf {})", perf_end.end),
         log: log.clone(),
     })?;
-    Ok(recording(plan, &rules, finished, profile, perf_data))
+    let mut recording = recording(plan, &rules, finished, profile, perf_data);
+    recording.baseline = baseline;
+    Ok(recording)
 }
 
 /// The profile's views from what perf.data held.
@@ -349,6 +362,7 @@ fn recording(
         perf,
         view,
         phases,
+        baseline: None,
         perf_data,
     }
 }

@@ -20,6 +20,7 @@ use serde::Serialize;
 use crate::error::RunError;
 use crate::profile_files::{ProfileToSave, SavedProfile, ViewToSave, save_profile_files};
 use crate::record::{CallGraph, Recording};
+use crate::record_diff::save_record_differential;
 use crate::record_phases::{phase_table, phases_text};
 use crate::staging::save;
 use analysis::profile::phase_rules::PhaseBreakdown;
@@ -102,6 +103,17 @@ impl Recording {
             &self.phases,
             self.frame_pointer_caveat().as_deref(),
         )?);
+        if let Some(baseline) = &self.baseline {
+            let (grown, shrunk) = save_record_differential(
+                dir,
+                self.name(),
+                &self.view.folded,
+                self.cpu_seconds(),
+                &dir_label(dir),
+                baseline,
+            )?;
+            files.extend([grown, shrunk]);
+        }
         files.extend(["perf.data".to_string(), "perf.log".to_string()]);
         files.extend(["report.html".to_string(), "report.pdf".to_string()]);
         files.push("record.json".to_string());
@@ -215,6 +227,12 @@ pub fn top_functions_text(flat: &FlatProfile) -> String {
         );
     }
     out
+}
+
+/// This run's name in a differential's titles: its directory's.
+pub fn dir_label(dir: &Path) -> String {
+    dir.file_name()
+        .map_or_else(|| "this run".into(), |n| n.to_string_lossy().into_owned())
 }
 
 /// Writes `phases-NAME.txt`; returns its name.

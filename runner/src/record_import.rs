@@ -36,8 +36,10 @@ use crate::error::RunError;
 use crate::profile_files::{ProfileToSave, ViewToSave, save_profile_files};
 use crate::profile_job::ViewProfile;
 use crate::record::{CallGraph, frame_pointer_caveat};
+use crate::record_diff::{Baseline, read_baseline, save_record_differential};
 use crate::record_files::{
-    modules_text, phases_summary, save_phases, saved_flamegraph, top_functions_text, write_report,
+    dir_label, modules_text, phases_summary, save_phases, saved_flamegraph, top_functions_text,
+    write_report,
 };
 use crate::staging::save;
 use analysis::profile::phase_rules::{PhaseBreakdown, PhaseRules};
@@ -68,6 +70,8 @@ pub struct PerfImport {
     pub view: ViewProfile,
     /// The samples by phase of ray tracing, by the phase rules.
     pub phases: PhaseBreakdown,
+    /// The earlier record `--baseline` named.
+    pub baseline: Option<Baseline>,
 }
 
 /// gprof's flat profile and call graph.
@@ -151,9 +155,14 @@ pub fn import_into(
     file: &Path,
     output: Option<&Path>,
     phases: Option<&Path>,
+    baseline: Option<&Path>,
 ) -> Result<String, RunError> {
     let rules = crate::record::phase_rules(phases)?;
-    let imported = import(file, &rules)?;
+    let baseline = baseline.map(read_baseline).transpose()?;
+    let mut imported = import(file, &rules)?;
+    if let (Imported::Perf(p), Some(b)) = (&mut imported, baseline) {
+        p.baseline = Some(b);
+    }
     let dir = output.map_or_else(|| imported.default_dir(), Path::to_path_buf);
     let summary = imported.save(&dir)?;
     Ok(imported.to_text(&dir, &summary))
@@ -235,6 +244,7 @@ fn import_perf(path: &Path, rules: &PhaseRules) -> Result<Imported, RunError> {
         perf,
         view,
         phases,
+        baseline: None,
     })))
 }
 
@@ -334,6 +344,17 @@ impl PerfImport {
             serde_json::to_string_pretty(modules).map_err(|e| RunError::Profile(e.to_string()))?;
         files.push(save(dir, "modules.txt", modules_text(modules).as_bytes())?);
         files.push(save(dir, "modules.json", modules_json.as_bytes())?);
+        if let Some(baseline) = &self.baseline {
+            let (grown, shrunk) = save_record_differential(
+                dir,
+                &self.name,
+                &self.view.folded,
+                self.cpu_seconds(),
+                &dir_label(dir),
+                baseline,
+            )?;
+            files.extend([grown, shrunk]);
+        }
         let caveat = frame_pointer_caveat(self.call_graph(), modules);
         files.push(save_phases(
             dir,

@@ -14,6 +14,7 @@ pub fn run(args: &RecordSettings) -> Result<()> {
             file,
             args.output.as_deref(),
             args.phases.as_deref(),
+            args.baseline.as_deref(),
         )?;
         print!("{text}");
         return Ok(());

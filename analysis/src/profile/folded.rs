@@ -169,6 +169,8 @@ pub struct DiffSide<'a> {
     /// CPU seconds of one render as sampled (`FlatProfile::seconds_per_render`): the
     /// titles state the whole render's absolute change from these.
     pub seconds_per_render: f64,
+    /// What one of those is: "render" (rtprof's tracer), "run" (a recorded program).
+    pub unit: &'a str,
 }
 
 /// The two differential flamegraphs of a change from `before` to `after`.
@@ -191,7 +193,11 @@ pub fn differential_svgs(
     after: &DiffSide<'_>,
     title: &str,
 ) -> Result<DifferentialSvgs, FlamegraphError> {
-    let change = render_change(before.seconds_per_render, after.seconds_per_render);
+    let change = render_change(
+        before.seconds_per_render,
+        after.seconds_per_render,
+        after.unit,
+    );
     let (from, to) = (before.label, after.label);
     // Short titles; how to read the colours goes in the subtitle, with the change.
     let grown = differential_drawing(
@@ -216,7 +222,7 @@ pub fn differential_svgs(
 }
 
 /// `whole render: 12.0 ms → 4.00 ms per render (-8.00 ms, speed-up 3.00×)`.
-fn render_change(before: f64, after: f64) -> String {
+fn render_change(before: f64, after: f64, unit: &str) -> String {
     let delta = after - before;
     let sign = if delta < 0.0 { "-" } else { "+" };
     let ratio = if before > 0.0 {
@@ -226,7 +232,7 @@ fn render_change(before: f64, after: f64) -> String {
         String::new()
     };
     format!(
-        "whole render: {} \u{2192} {} per render ({sign}{}{ratio})",
+        "whole {unit}: {} \u{2192} {} per {unit} ({sign}{}{ratio})",
         duration_text(before),
         duration_text(after),
         duration_text(delta.abs())
@@ -334,11 +340,13 @@ mod tests {
                 folded: before,
                 label: "baseline",
                 seconds_per_render: 0.012,
+                unit: "render",
             },
             &DiffSide {
                 folded: after,
                 label: "bvh",
                 seconds_per_render: 0.004,
+                unit: "render",
             },
             "rings",
         )
@@ -397,6 +405,7 @@ mod tests {
             folded,
             label: "x",
             seconds_per_render: 1.0,
+            unit: "render",
         };
         let svgs = differential_svgs(&side(before), &side(after), "same").unwrap();
         for svg in [&svgs.grown, &svgs.shrunk] {
