@@ -77,11 +77,11 @@ pub const PARANOID: &str = "/proc/sys/kernel/perf_event_paranoid";
 #[derive(Debug, thiserror::Error)]
 pub enum PerfError {
     #[error(
-        "perf is not installed ({program}): install the linux-perf package (Debian; linux-tools on Ubuntu), or set {PERF_VARIABLE} to perf's path"
+        "perf is not installed ({program}): install the linux-perf package (Debian; linux-tools on Ubuntu), or set {PERF_VARIABLE} to perf's path (rtprof's own tracer needs no perf: `rtprof profile` samples it in-process)"
     )]
     Missing { program: String },
     #[error(
-        "perf may not sample this program: {PARANOID} is {paranoid}; lower it (sysctl kernel.perf_event_paranoid=1) or run as root or with CAP_PERFMON (in a container, the container must allow perf_event_open)"
+        "perf may not sample this program: {PARANOID} is {paranoid}; lower it (sysctl kernel.perf_event_paranoid=1) or run as root or with CAP_PERFMON (in a container, the container must allow perf_event_open); rtprof's own tracer can still be sampled in-process: `rtprof profile`"
     )]
     NotPermitted { paranoid: String },
     #[error("perf failed: {message} (its log: {})", log.display())]
