@@ -54,6 +54,57 @@ fn perf_missing_names_the_package_and_the_variable() {
     std::fs::remove_dir_all(&dir).ok();
 }
 
+/// perf 6.1's refusal, word for word as it printed it on this machine when run as
+/// `nobody` to attach to another user's process (perf_event_paranoid 2).
+const PERF_REFUSAL: &str = "Error:
+Access to performance monitoring and observability operations is limited.
+Consider adjusting /proc/sys/kernel/perf_event_paranoid setting to open
+access to performance monitoring and observability operations for processes
+without CAP_PERFMON, CAP_SYS_PTRACE or CAP_SYS_ADMIN Linux capability.
+More information can be found at 'Perf events and tool security' document:
+https://www.kernel.org/doc/html/latest/admin-guide/perf-security.html
+perf_event_paranoid setting is 2:
+";
+
+#[test]
+fn perf_refused_names_the_setting_and_the_program_never_runs() {
+    // A stand-in perf that refuses as perf does (its message, exit 255): rtprof must
+    // name the setting and its value, exit 2, and never release the program.
+    use std::os::unix::fs::PermissionsExt;
+    let dir = scratch("refused");
+    let perf = dir.join("perf");
+    std::fs::write(
+        &perf,
+        format!("#!/bin/sh\ncat >&2 <<'END'\n{PERF_REFUSAL}END\nexit 255\n"),
+    )
+    .unwrap_or_else(|e| panic!("{e}"));
+    std::fs::set_permissions(&perf, std::fs::Permissions::from_mode(0o755))
+        .unwrap_or_else(|e| panic!("{e}"));
+    let marker = dir.join("ran");
+    let out = rtprof(
+        &[
+            "record",
+            "-o",
+            dir.join("r").to_str().unwrap_or_default(),
+            "--",
+            "touch",
+            marker.to_str().unwrap_or_default(),
+        ],
+        &[("RTPROF_PERF", perf.to_str().unwrap_or_default())],
+    );
+    assert_eq!(out.status.code(), Some(2), "{}", stderr(&out));
+    let err = stderr(&out);
+    let paranoid = std::fs::read_to_string("/proc/sys/kernel/perf_event_paranoid")
+        .map(|s| s.trim().to_string())
+        .unwrap_or_else(|_| "unreadable".into());
+    assert!(
+        err.contains(&format!("perf_event_paranoid is {paranoid}")) && err.contains("CAP_PERFMON"),
+        "{err}"
+    );
+    assert!(!marker.exists(), "the program must not run when perf cannot sample it");
+    std::fs::remove_dir_all(&dir).ok();
+}
+
 #[test]
 fn a_command_is_required_after_the_separator() {
     let out = rtprof(&["record"], &[]);
