@@ -23,7 +23,8 @@
 //!   gprof tables, folded stacks, Amdahl; [`profile_files`]: their files, one naming scheme;
 //!   `profile_settings`: `rtprof profile`'s flags (with the `clap` feature);
 //! - [`record`]: `rtprof record -- CMD`, another program under perf into the same
-//!   profile model; [`record_files`]: its files and summary;
+//!   profile model; [`record_files`]: its files and summary; [`record_probe`]: what the
+//!   program's probe file gives (exact counts, phases, the FPGA question);
 //! - [`hardware_job`]: the FPGA model, emulator and software time on the same job;
 //! - [`hardware_prediction`]: `rtprof hw time`: frame time, fit and what-ifs;
 //! - [`hardware_tables`]: `rtprof hw table` as text; [`hardware_files`]: `hw render`, `hw mif`;
@@ -79,6 +80,7 @@ pub mod ray_rates;
 pub mod record;
 pub mod record_files;
 pub mod record_phases;
+pub mod record_probe;
 pub mod reference_job;
 pub mod render_job;
 pub mod render_setup;
