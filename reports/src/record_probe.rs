@@ -313,7 +313,7 @@ pub fn table6_section(
              its query, traversal and test phases.",
         ),
         Cell::number(format::fixed(thesis, 2), thesis).detail(format!(
-            "{} with its tests' - and ·",
+            "{} with Vector - and dotPoint",
             format::fixed(with_operations, 2)
         )),
         share_cell(ours),
