@@ -101,7 +101,10 @@ fn perf_refused_names_the_setting_and_the_program_never_runs() {
         err.contains(&format!("perf_event_paranoid is {paranoid}")) && err.contains("CAP_PERFMON"),
         "{err}"
     );
-    assert!(!marker.exists(), "the program must not run when perf cannot sample it");
+    assert!(
+        !marker.exists(),
+        "the program must not run when perf cannot sample it"
+    );
     std::fs::remove_dir_all(&dir).ok();
 }
 

@@ -2,9 +2,10 @@
 //! built with the system's C compiler (`cc`, or `$CC`: a given wherever Rust links),
 //! run with the probe on, and its file read by this crate's reader.
 //!
-//! The expected counts are computed here independently: eye rays and sphere tests by
-//! hand from the size (W·H and W·H·32), hits by an f64 ray-sphere test of another form
-//! (closest approach, not the fixture's quadratic) on the scene the fixture prints.
+//! The expected counts are computed independently (`tests/common/hand.rs`, which
+//! `rtprof record`'s test of the fixture shares): eye rays and sphere tests by hand from
+//! the size (W·H and W·H·32), hits by an f64 ray-sphere test of another form (closest
+//! approach, not the fixture's quadratic) on the scene the fixture prints.
 //! Also: the same counts on 1 and 8 threads, a program stopped by SIGINT or SIGTERM
 //! leaves its counts, phases are sampled and add up, and with the probe off nothing is
 //! written.
@@ -17,9 +18,8 @@ use std::process::{Command, Stdio};
 use std::sync::OnceLock;
 
 mod common;
+use common::hand::{self, SPHERES};
 use common::{fixture, scratch};
-
-const SPHERES: u64 = 32;
 
 fn probed() -> &'static Path {
     static BIN: OnceLock<PathBuf> = OnceLock::new();
@@ -48,54 +48,15 @@ fn scene() -> Vec<([f64; 3], f64)> {
         .arg("scene")
         .output()
         .unwrap_or_else(|e| panic!("{e}"));
-    let text = String::from_utf8_lossy(&out.stdout);
-    let spheres: Vec<_> = text
-        .lines()
-        .map(|l| {
-            let v: Vec<f64> = l
-                .split(' ')
-                .skip(1)
-                .map(|x| x.parse().unwrap_or_else(|e| panic!("{l}: {e}")))
-                .collect();
-            ([v[0], v[1], v[2]], v[3])
-        })
-        .collect();
+    let spheres = hand::parse_scene(&String::from_utf8_lossy(&out.stdout));
     assert_eq!(spheres.len() as u64, SPHERES);
     spheres
 }
 
-/// Eye rays that hit a sphere, and ray-sphere pairs that hit, for a W x H image: the
-/// camera of the fixture's description (origin, -z, pixel centres, 90 degrees across),
-/// each pair by its closest approach to the sphere's centre.
+/// Eye rays that hit a sphere, and ray-sphere pairs that hit, for a W x H image
+/// ([`hand::expected_hits`]).
 fn expected_hits(width: u32, height: u32) -> (u64, u64) {
-    let spheres = scene();
-    let (mut rays_hit, mut hits) = (0, 0);
-    let aspect = f64::from(height) / f64::from(width);
-    for j in 0..height {
-        for i in 0..width {
-            let x = 2.0 * (f64::from(i) + 0.5) / f64::from(width) - 1.0;
-            let y = (1.0 - 2.0 * (f64::from(j) + 0.5) / f64::from(height)) * aspect;
-            let length = (x * x + y * y + 1.0).sqrt();
-            let d = [x / length, y / length, -1.0 / length];
-            let mut any = false;
-            for (c, r) in &spheres {
-                let along = c[0] * d[0] + c[1] * d[1] + c[2] * d[2];
-                let square = c[0] * c[0] + c[1] * c[1] + c[2] * c[2];
-                let miss2 = square - along * along; // squared distance of closest approach
-                assert!(
-                    (miss2 - r * r).abs() > 1e-6,
-                    "pixel ({i}, {j}) grazes a sphere: the count would depend on rounding"
-                );
-                // The far intersection in front of the eye (the eye is outside).
-                if miss2 < r * r && along + (r * r - miss2).sqrt() > 1e-9 {
-                    hits += 1;
-                    any = true;
-                }
-            }
-            rays_hit += u64::from(any);
-        }
-    }
-    (rays_hit, hits)
+    hand::expected_hits(&scene(), width, height)
 }
 
 /// Every standard counter but these is zero.

@@ -34,6 +34,8 @@ pub mod page_values;
 pub mod pdf;
 pub mod pixel_maps;
 mod print;
+pub mod record_fpga;
+pub mod record_probe;
 pub mod record_report;
 pub mod scaling_text;
 pub mod sections;

@@ -1,14 +1,17 @@
 //! The report of `rtprof record` (report.html, report.pdf): one recorded run of a
 //! program rtprof did not write. Its first page answers "where does the time go" by
-//! phase of ray tracing (the phase rules) and by function (the flat profile), each
-//! share with its 95 % interval; then the flamegraph, what the symbols and stacks
-//! covered per module, and the recording's facts. Built as a [`Document`] like the
-//! suite's report, so the same renderers lay it out.
+//! phase of ray tracing (the program's probe when it wrote one, else the phase rules)
+//! and by function (the flat profile), each share with its 95 % interval; with a probe
+//! file, the FPGA question for the program, its exact counts and its phases beside the
+//! rules' ([`crate::record_probe`]); the program beside the thesis's table 6; then the
+//! flamegraph, what the symbols and stacks covered per module, and the recording's
+//! facts. Built as a [`Document`] like the suite's report, so the same renderers lay it
+//! out.
 
 use analysis::profile::amdahl::speedup;
 use analysis::profile::flat::FlatProfile;
 use analysis::profile::perf_data::coverage::ModuleCoverage;
-use analysis::profile::phase_rules::{PhaseBreakdown, UNCLASSIFIED};
+use analysis::profile::phase_rules::{PhaseBreakdown, PhaseSource};
 use analysis::profile::share_interval::ShareInterval;
 
 use crate::document::{
@@ -16,6 +19,9 @@ use crate::document::{
     Section, Table, Tone, Visual, svg_size,
 };
 use crate::format;
+use crate::record_probe::{
+    ProbeReport, comparison_section, counts_section, fpga_section, table6_section,
+};
 
 /// Functions the first page lists by self time.
 const FUNCTIONS_LISTED: usize = 15;
@@ -40,6 +46,7 @@ pub struct RecordReport<'a> {
     pub lost_samples: u64,
     pub processes: usize,
     pub flat: &'a FlatProfile,
+    /// The phases by the phase rules (the report's phases unless the probe sampled).
     pub phases: &'a PhaseBreakdown,
     pub modules: &'a [ModuleCoverage],
     /// The flamegraph SVG and its file name beside the report.
@@ -49,6 +56,20 @@ pub struct RecordReport<'a> {
     /// What the call stacks may get wrong (a frame-pointer recording with much time in
     /// libraries built without them).
     pub caveat: Option<String>,
+    /// What the program's probe file gave, when it wrote one that could be read.
+    pub probe: Option<ProbeReport<'a>>,
+    /// Why the probe file the program wrote could not be read.
+    pub probe_error: Option<&'a str>,
+}
+
+impl RecordReport<'_> {
+    /// The phases the report shows: the probe's when it sampled any, else the rules'.
+    pub fn shown_phases(&self) -> &PhaseBreakdown {
+        self.probe
+            .as_ref()
+            .and_then(|p| p.phases)
+            .unwrap_or(self.phases)
+    }
 }
 
 /// `a – b` of an interval given in percent.
@@ -64,6 +85,20 @@ fn interval_text(i: ShareInterval) -> String {
 pub fn build(r: &RecordReport) -> Document {
     let mut assets = Assets::default();
     let mut sections = vec![where_the_time_goes(r)];
+    if let Some(fpga) = r.probe.as_ref().and_then(|p| p.fpga) {
+        sections.push(fpga_section(r.program, fpga));
+    }
+    sections.push(table6_section(
+        r.program,
+        r.shown_phases(),
+        r.probe.as_ref(),
+    ));
+    if let Some(p) = &r.probe {
+        sections.push(counts_section(p));
+        if !p.comparison.is_empty() {
+            sections.push(comparison_section(p.comparison));
+        }
+    }
     if let Some((svg, file)) = &r.flamegraph {
         let (width, height) = svg_size(svg).unwrap_or((1200.0, 600.0));
         let asset = assets.add(AssetKind::Svg, svg.clone().into_bytes());
@@ -142,6 +177,12 @@ fn notices(r: &RecordReport) -> Vec<String> {
         }
         out.push(format!("{c}."));
     }
+    if let Some(e) = r.probe_error {
+        out.push(format!(
+            "The program's probe file could not be read ({e}): no exact counts and no probe \
+             phases; the profile from perf's samples stands, with the phase rules' phases."
+        ));
+    }
     if r.samples < 100 {
         out.push(format!(
             "Only {}: every share below has a wide interval. Run longer or raise --freq.",
@@ -155,7 +196,7 @@ fn notices(r: &RecordReport) -> Vec<String> {
 fn where_the_time_goes(r: &RecordReport) -> Section {
     let mut blocks = vec![Block::Paragraph { content: answer(r) }];
     blocks.push(Block::heading("By phase of ray tracing"));
-    blocks.push(Block::Table(phase_table(r.phases)));
+    blocks.push(Block::Table(phase_table(r.shown_phases())));
     blocks.push(Block::heading("By function"));
     blocks.push(Block::Table(function_table(r.flat)));
     section("record-answer", "Where the time goes", blocks)
@@ -164,11 +205,11 @@ fn where_the_time_goes(r: &RecordReport) -> Section {
 /// The answer in a sentence or two: the largest phase and the hottest function.
 fn answer(r: &RecordReport) -> Vec<Inline> {
     let mut out = Vec::new();
-    let classified: Vec<_> = r
-        .phases
+    let phases = r.shown_phases();
+    let classified: Vec<_> = phases
         .phases
         .iter()
-        .filter(|p| p.phase != UNCLASSIFIED)
+        .filter(|p| !phases.is_rest(&p.phase))
         .collect();
     match classified.first() {
         Some(top) => {
@@ -197,9 +238,10 @@ fn answer(r: &RecordReport) -> Vec<Inline> {
                 format::speedup(speedup(top.share, f64::INFINITY))
             )));
         }
-        None => out.push(Inline::text(
-            "No phase rule matched any sample (see the rules below). ",
-        )),
+        None => out.push(Inline::text(match phases.source {
+            PhaseSource::Rules => "No phase rule matched any sample (see the rules below). ",
+            PhaseSource::Probe => "No sample fell in a phase the program marked. ",
+        })),
     }
     if let Some(row) = r.flat.rows.iter().find(|row| !row.whole_run()) {
         out.push(Inline::text("The function with the most self time is "));
@@ -210,12 +252,20 @@ fn answer(r: &RecordReport) -> Vec<Inline> {
             format::percent(row.inclusive_percent, 1)
         )));
     }
-    out.push(Inline::text(format!(
-        "Phases by {}, which classified {} of {} samples.",
-        r.phases.origin,
-        format::percent(100.0 * r.phases.classified_share(), 1),
-        format::count(r.phases.samples)
-    )));
+    out.push(Inline::text(match phases.source {
+        PhaseSource::Rules => format!(
+            "Phases by {}, which classified {} of {} samples.",
+            phases.origin,
+            format::percent(100.0 * phases.classified_share(), 1),
+            format::count(phases.samples)
+        ),
+        PhaseSource::Probe => format!(
+            "Phases by {}: {} of its {} samples fell in a phase the program marked.",
+            phases.origin,
+            format::percent(100.0 * phases.classified_share(), 1),
+            format::count(phases.samples)
+        ),
+    }));
     out
 }
 
@@ -227,12 +277,19 @@ fn phase_table(b: &PhaseBreakdown) -> Table {
         Column::number("samples"),
         Column::number("if free").detail("whole run"),
     ])
-    .caption(
-        "A sample's phase is that of the innermost frame of its stack a rule matches; \
-         \"if free\" is Amdahl's law: the whole run's speed-up if the phase took no time.",
-    );
+    .caption(match b.source {
+        PhaseSource::Rules => {
+            "A sample's phase is that of the innermost frame of its stack a rule matches; \
+             \"if free\" is Amdahl's law: the whole run's speed-up if the phase took no time."
+        }
+        PhaseSource::Probe => {
+            "A sample's phase is the innermost phase the program had marked when the probe's \
+             sampler (inside the program, on each thread's CPU time) took it; \"if free\" is \
+             Amdahl's law: the whole run's speed-up if the phase took no time."
+        }
+    });
     for p in &b.phases {
-        let unclassified = p.phase == UNCLASSIFIED;
+        let unclassified = b.is_rest(&p.phase);
         t.rows.push(vec![
             Cell::text(p.phase.clone()).tone(if unclassified {
                 Tone::Muted
@@ -402,6 +459,23 @@ fn recording_section(r: &RecordReport) -> Section {
                 ),
                 pair("processes", r.processes.to_string()),
                 pair("lost samples", format::count(r.lost_samples)),
+                pair(
+                    "probe",
+                    match (&r.probe, r.probe_error) {
+                        (Some(p), _) => format!(
+                            "{} (written by the {} probe; {}; {})",
+                            p.file,
+                            p.writer,
+                            format::plural(p.threads as usize, "thread"),
+                            p.phases.map_or_else(
+                                || "no phase samples".to_string(),
+                                |b| format!("{} phase samples", format::count(b.samples))
+                            ),
+                        ),
+                        (None, Some(e)) => format!("unreadable: {e}"),
+                        (None, None) => "none written (the program has no probe)".to_string(),
+                    },
+                ),
             ],
         },
         Block::text(format!("Files beside this report: {}.", r.files.join(", "))),
@@ -417,6 +491,136 @@ mod tests {
     use analysis::profile::tally::ProfileInput;
     use analysis::profile::{CallCounts, Stack, StackSamples};
     use std::collections::BTreeMap;
+
+    /// The text of a paragraph block.
+    fn paragraph(block: &Block) -> String {
+        let Block::Paragraph { content } = block else {
+            panic!("not a paragraph: {block:?}")
+        };
+        content
+            .iter()
+            .map(|i| match i {
+                Inline::Text { text } | Inline::Strong { text } | Inline::Code { text } => {
+                    text.as_str()
+                }
+                _ => "",
+            })
+            .collect()
+    }
+
+    #[test]
+    fn with_the_probe_its_phases_lead_and_the_fpga_counts_and_table_6_follow() {
+        use crate::record_fpga::tracer_fpga;
+        use crate::record_probe::{CountRow, ProbeReport};
+        use analysis::profile::phase_compare::{compare, intersection_time};
+        let rules = PhaseRules::builtin().unwrap().classify(
+            &StackSamples {
+                stacks: vec![Stack {
+                    frames: ["main", "bvh_node::hit", "sphere::hit"]
+                        .map(String::from)
+                        .to_vec(),
+                    count: 10,
+                }],
+                seconds_per_sample: 0.01,
+            },
+            &BTreeMap::new(),
+        );
+        let probe_phases = PhaseBreakdown::from_counted(
+            "the probe (the program's own phase marks)",
+            &[("closest hit".into(), 75), ("shading".into(), 20)],
+            5,
+            0.004,
+        );
+        let comparison = compare(&probe_phases, &rules);
+        let fpga = tracer_fpga(
+            &[("sphere", 2_000_000)],
+            intersection_time(&probe_phases),
+            "the probe",
+            0.4,
+            2,
+        );
+        let counts =
+            [("rays.primary", 1_000), ("tests.sphere.tests", 2_000_000)].map(|(k, v)| CountRow {
+                key: k.into(),
+                value: v,
+                meaning: "m".into(),
+            });
+        let flat = flat_profile(&ProfileInput {
+            samples: &StackSamples {
+                stacks: Vec::new(),
+                seconds_per_sample: 0.001,
+            },
+            calls: &CallCounts::new(),
+            renders: 1,
+        });
+        let report = RecordReport {
+            program: "rtiow",
+            command: "./rtiow",
+            end: "exited with code 0",
+            success: true,
+            cpu_seconds: 0.4,
+            wall_seconds: 0.5,
+            samples: 1000,
+            frequency: 4000,
+            call_graph: "frame pointers",
+            lost_samples: 0,
+            processes: 1,
+            flat: &flat,
+            phases: &rules,
+            modules: &[],
+            flamegraph: None,
+            files: &[],
+            caveat: None,
+            probe: Some(ProbeReport {
+                file: "probe.rtprof",
+                writer: "c",
+                threads: 1,
+                counts: &counts,
+                user_counters: &[],
+                phases: Some(&probe_phases),
+                comparison: &comparison,
+                fpga: fpga.as_ref(),
+            }),
+            probe_error: None,
+        };
+        let doc = build(&report);
+        let answer = paragraph(&doc.sections[0].blocks[0]);
+        // By hand: closest hit 75 of 100 probe samples; free, 1 / 0.25 = 4x.
+        assert!(answer.contains("closest hit takes 75.0 %"), "{answer}");
+        assert!(answer.contains("4.00× faster"), "{answer}");
+        assert!(answer.contains("Phases by the probe"), "{answer}");
+        let ids: Vec<&str> = doc.sections.iter().map(|s| s.id.as_str()).collect();
+        assert_eq!(
+            ids,
+            [
+                "record-answer",
+                "record-fpga",
+                "record-table6",
+                "record-counts",
+                "record-phase-comparison",
+                "record-phase-rules",
+                "record-coverage",
+                "record-run"
+            ]
+        );
+        // The FPGA: 2,000,000 × 3 / 50 MHz = 0.12 s against 75 × 4 ms = 0.3 s: 2.5×.
+        let fpga = paragraph(&doc.sections[1].blocks[0]);
+        assert!(fpga.contains("would take 120 ms"), "{fpga}");
+        assert!(fpga.contains("2.50× faster than one core"), "{fpga}");
+        // An unreadable probe file is a notice; the report is still made.
+        let doc = build(&RecordReport {
+            probe: None,
+            probe_error: Some("DIR/probe.rtprof: not a valid probe file: line 3 (byte 20): …"),
+            ..report
+        });
+        assert!(doc.notices.iter().any(|n| n.contains("DIR/probe.rtprof")));
+        assert!(answer_of(&doc).contains("Phases by rtprof's built-in phase rules"));
+        assert!(crate::pdf::render(&doc).is_ok_and(|pdf| pdf.starts_with(b"%PDF")));
+    }
+
+    fn answer_of(doc: &Document) -> String {
+        paragraph(&doc.sections[0].blocks[0])
+    }
 
     #[test]
     fn the_first_page_answers_by_phase_and_by_function() {
@@ -465,20 +669,11 @@ mod tests {
             flamegraph: None,
             files: &[],
             caveat: None,
+            probe: None,
+            probe_error: None,
         });
         let first = &doc.sections[0];
-        let Block::Paragraph { content } = &first.blocks[0] else {
-            panic!("no answer paragraph")
-        };
-        let answer: String = content
-            .iter()
-            .map(|i| match i {
-                Inline::Text { text } | Inline::Strong { text } | Inline::Code { text } => {
-                    text.as_str()
-                }
-                _ => "",
-            })
-            .collect();
+        let answer = paragraph(&first.blocks[0]);
         // By hand: the sphere test 60 of 100 samples; free, 1 / 0.4 = 2.5x.
         assert!(answer.contains("sphere test takes 60.0 %"), "{answer}");
         assert!(answer.contains("traversal 30.0 %"), "{answer}");
@@ -491,7 +686,10 @@ mod tests {
             panic!("no phase table")
         };
         assert_eq!(phase.rows.len(), 3, "sphere, traversal, unclassified");
-        assert_eq!(phase.rows[2][0].text, UNCLASSIFIED);
+        assert_eq!(
+            phase.rows[2][0].text,
+            analysis::profile::phase_rules::UNCLASSIFIED
+        );
         // The HTML and the PDF both lay it out.
         let html = crate::html::render(&doc);
         assert!(html.contains("Where the time goes in rtiow"));

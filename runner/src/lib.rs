@@ -24,7 +24,9 @@
 //!   `profile_settings`: `rtprof profile`'s flags (with the `clap` feature);
 //! - [`record`]: `rtprof record -- CMD`, another program under perf into the same
 //!   profile model; [`record_files`]: its files and summary; [`record_import`]: a
-//!   perf.data or gprof output recorded elsewhere, into the same files;
+//!   perf.data or gprof output recorded elsewhere, into the same files; [`record_probe`]:
+//!   what the program's probe file gives (exact counts, phases, the FPGA question);
+//!   [`record_diff`]: differential flamegraphs against an earlier record;
 //! - [`hardware_job`]: the FPGA model, emulator and software time on the same job;
 //! - [`hardware_prediction`]: `rtprof hw time`: frame time, fit and what-ifs;
 //! - [`hardware_tables`]: `rtprof hw table` as text; [`hardware_files`]: `hw render`, `hw mif`;
@@ -82,6 +84,7 @@ pub mod record_diff;
 pub mod record_files;
 pub mod record_import;
 pub mod record_phases;
+pub mod record_probe;
 pub mod reference_job;
 pub mod render_job;
 pub mod render_setup;

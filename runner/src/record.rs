@@ -25,6 +25,7 @@ use results::ProfileView;
 
 use crate::error::{PARANOID, PERF_VARIABLE, PerfError, RunError};
 use crate::profile_job::ViewProfile;
+use crate::record_probe::{self, ProbeOutcome};
 
 /// Samples per CPU second asked by default: the in-process sampler's perf rate.
 pub const DEFAULT_FREQUENCY: u32 = 4000;
@@ -80,7 +81,8 @@ impl CallGraph {
 pub struct RecordSettings {
     /// Output directory [default: record-<program>]: perf.data, flat-<program>.txt,
     /// callgraph-, flame-, folded-, amdahl-, profile-…pb.gz, speedscope-, modules.txt,
-    /// modules.json, phases-, report.html, report.pdf, record.json.
+    /// modules.json, phases-, report.html, report.pdf, record.json; with rtprof's
+    /// probe in the program, probe.rtprof and counts-.
     #[cfg_attr(feature = "clap", arg(short, long, value_name = "DIR"))]
     pub output: Option<PathBuf>,
     /// Samples per CPU second of each thread (perf's cpu-clock).
@@ -193,6 +195,8 @@ pub struct Recording {
     /// The earlier record `--baseline` named.
     pub baseline: Option<Baseline>,
     pub perf_data: PathBuf,
+    /// What the program's probe file gave ([`crate::record_probe`]).
+    pub probe: ProbeOutcome,
 }
 
 impl Recording {
@@ -289,6 +293,11 @@ pub fn record(plan: &RecordPlan) -> Result<Recording, RunError> {
     let mut child = Launch::new(program_path.clone(), args.iter().cloned());
     child.program = program_path.into_os_string();
     child.time_limit = plan.time_limit;
+    // The probe, if the program has one, writes its counts and phases there.
+    let probe_file = record_probe::prepare(plan.dir)?;
+    child
+        .env
+        .push((rtprof_probe::ENV_FILE.into(), probe_file.clone().into()));
     let held = child.start_held()?;
     let perf = perf_launch(
         &perf_program,
@@ -323,6 +332,7 @@ pub fn record(plan: &RecordPlan) -> Result<Recording, RunError> {
     })?;
     let mut recording = recording(plan, &rules, finished, profile, perf_data);
     recording.baseline = baseline;
+    recording.probe = record_probe::read(&probe_file, &recording.phases, record_probe::cores());
     Ok(recording)
 }
 
@@ -364,6 +374,7 @@ fn recording(
         phases,
         baseline: None,
         perf_data,
+        probe: ProbeOutcome::Absent,
     }
 }
 

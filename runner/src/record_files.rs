@@ -7,8 +7,10 @@
 //! |---|---|
 //! | `perf.data`, `perf.log` | perf's recording (`perf report -i` reads it) and its messages |
 //! | `modules.txt`, `modules.json` | per module: samples, shares without a symbol or a stack, what to do |
-//! | `phases-P.txt` | the time by phase of ray tracing, by the phase rules ([`crate::record_phases`]) |
-//! | `record.json` | the command, how it ended, CPU and wall time, samples, rate, phases, files |
+//! | `phases-P.txt` | the time by phase of ray tracing, by the phase rules ([`crate::record_phases`]), or by the probe beside the rules', and the FPGA question |
+//! | `counts-P.txt` | with a probe file: the exact counts, in `rtprof count`'s table, per eye ray ([`crate::record_probe`]) |
+//! | `probe.rtprof` | the probe file the program wrote, when it has the probe |
+//! | `record.json` | the command, how it ended, CPU and wall time, samples, rate, phases (and the rules' beside the probe's), counts, the FPGA answer, files |
 
 use std::path::Path;
 
@@ -21,10 +23,15 @@ use crate::error::RunError;
 use crate::profile_files::{ProfileToSave, SavedProfile, ViewToSave, save_profile_files};
 use crate::record::{CallGraph, Recording};
 use crate::record_diff::save_record_differential;
-use crate::record_phases::{phase_table, phases_text};
+use crate::record_phases::{comparison_table, phase_table, phases_text, probe_phases_text};
+use crate::record_probe::{PROBE_FILE, ProbeOutcome, ProbeSummary};
 use crate::staging::save;
-use analysis::profile::phase_rules::PhaseBreakdown;
+use analysis::profile::phase_compare::PhaseComparison;
+use analysis::profile::phase_rules::{PhaseBreakdown, PhaseSource};
+use reports::record_fpga::TracerFpga;
+use reports::record_probe::ProbeReport;
 use reports::record_report::RecordReport;
+use tracer::Counts;
 
 /// Rows of the flat profile the summary prints (the file has them all).
 const SUMMARY_ROWS: usize = 12;
@@ -48,8 +55,23 @@ pub struct RecordSummary<'a> {
     pub lost_samples: u64,
     pub processes: usize,
     pub modules: &'a [ModuleCoverage],
-    /// The samples by phase of ray tracing, by the phase rules.
+    /// Where `phases` come from: the probe when it sampled phases, else the rules.
+    pub phases_source: PhaseSource,
+    /// The samples by phase of ray tracing: the probe's, or the phase rules'.
     pub phases: &'a PhaseBreakdown,
+    /// The phase rules' breakdown of the same run (the same as `phases` without probe
+    /// phases), kept to compare.
+    pub rule_phases: &'a PhaseBreakdown,
+    /// The probe's phases beside the rules', group by group (empty without them).
+    pub phase_comparison: &'a [PhaseComparison],
+    /// The probe's exact counts (`rtprof count --json`'s shape); null without a probe file.
+    pub counts: Option<&'a Counts>,
+    /// The probe file: who wrote it, why, its sampler's figures; null without one.
+    pub probe: Option<ProbeSummary<'a>>,
+    /// Why the probe file the program wrote could not be read.
+    pub probe_error: Option<&'a str>,
+    /// The thesis's pipeline on the counted tests against the intersection phases.
+    pub fpga: Option<&'a TracerFpga>,
     /// Every file written, relative to the directory.
     pub files: Vec<String>,
 }
@@ -58,6 +80,32 @@ impl Recording {
     /// Samples per CPU second taken.
     pub fn rate(&self) -> f64 {
         self.samples() as f64 / self.cpu_seconds().max(1e-9)
+    }
+
+    /// The phases shown: the probe's when it sampled any, else the phase rules'.
+    pub fn shown_phases(&self) -> &PhaseBreakdown {
+        self.probe
+            .record()
+            .and_then(|p| p.phases.as_ref())
+            .unwrap_or(&self.phases)
+    }
+
+    /// phases-P.txt: by the probe beside the rules, or by the rules; then the FPGA
+    /// question when the probe counted tests.
+    fn phases_file(&self, title: &str) -> String {
+        let probe = self.probe.record();
+        let mut out = match probe.and_then(|p| p.phases.as_ref().map(|b| (p, b))) {
+            Some((p, b)) => probe_phases_text(title, b, &self.phases, &p.comparison),
+            None => phases_text(title, &self.phases),
+        };
+        if let Some(caveat) = self.frame_pointer_caveat() {
+            out += &format!("\nNote: {caveat}.\n");
+        }
+        if let Some(fpga) = probe.and_then(|p| p.fpga.as_ref()) {
+            out += "\nWould the thesis's FPGA pay off for this program?\n\n";
+            out += &fpga.text(self.name());
+        }
+        out
     }
 
     /// Writes the profile's files, the module table and record.json under `dir`.
@@ -96,13 +144,21 @@ impl Recording {
             modules_text(&self.perf.modules).as_bytes(),
         )?);
         files.push(save(dir, "modules.json", modules_json.as_bytes())?);
-        files.push(save_phases(
+        files.push(save(
             dir,
-            self.name(),
-            &title,
-            &self.phases,
-            self.frame_pointer_caveat().as_deref(),
+            &format!("phases-{}.txt", self.name()),
+            self.phases_file(&title).as_bytes(),
         )?);
+        if let Some(p) = self.probe.record() {
+            files.push(save(
+                dir,
+                &format!("counts-{}.txt", self.name()),
+                p.counts_text(&title).as_bytes(),
+            )?);
+        }
+        if !matches!(self.probe, ProbeOutcome::Absent) {
+            files.push(PROBE_FILE.to_string());
+        }
         if let Some(baseline) = &self.baseline {
             let (grown, shrunk) = save_record_differential(
                 dir,
@@ -140,7 +196,14 @@ impl Recording {
             lost_samples: self.perf.lost,
             processes: self.perf.processes,
             modules: &self.perf.modules,
-            phases: &self.phases,
+            phases_source: self.shown_phases().source,
+            phases: self.shown_phases(),
+            rule_phases: &self.phases,
+            phase_comparison: self.probe.record().map_or(&[], |p| p.comparison.as_slice()),
+            counts: self.probe.record().map(|p| &p.counts),
+            probe: self.probe.record().map(|p| p.summary()),
+            probe_error: self.probe.error(),
+            fpga: self.probe.record().and_then(|p| p.fpga.as_ref()),
             files,
         };
         let json =
@@ -158,6 +221,19 @@ impl Recording {
     ) -> Result<(), RunError> {
         let command = self.command.join(" ");
         let end = self.finished.end.to_string();
+        let record = self.probe.record();
+        let counts = record.map(|p| p.count_rows()).unwrap_or_default();
+        let user_counters = record.map(|p| p.user_counters()).unwrap_or_default();
+        let probe = record.map(|p| ProbeReport {
+            file: PROBE_FILE,
+            writer: &p.file.writer,
+            threads: p.file.threads,
+            counts: &counts,
+            user_counters: &user_counters,
+            phases: p.phases.as_ref(),
+            comparison: &p.comparison,
+            fpga: p.fpga.as_ref(),
+        });
         write_report(
             dir,
             &RecordReport {
@@ -177,6 +253,8 @@ impl Recording {
                 modules: &self.perf.modules,
                 flamegraph,
                 files,
+                probe,
+                probe_error: self.probe.error(),
                 caveat: self.frame_pointer_caveat(),
             },
         )
@@ -203,7 +281,39 @@ impl Recording {
             );
         }
         out += &top_functions_text(&self.view.flat);
-        out += &phases_summary(&self.phases, self.frame_pointer_caveat().as_deref());
+        if let Some(e) = self.probe.error() {
+            out += &format!(
+                "\nwarning: {e}: no exact counts or probe phases; the profile from perf's samples is written\n"
+            );
+        }
+        let shown = self.shown_phases();
+        out += &match shown.source {
+            PhaseSource::Rules => format!(
+                "\nby phase of ray tracing ({}; rules classified {}):\n",
+                shown.origin,
+                format::percent(100.0 * shown.classified_share(), 1)
+            ),
+            PhaseSource::Probe => format!(
+                "\nby phase of ray tracing ({}: {} samples inside the program, {} in a marked phase):\n",
+                shown.origin,
+                format::count(shown.samples),
+                format::percent(100.0 * shown.classified_share(), 1)
+            ),
+        };
+        out += &phase_table(shown);
+        if let Some(caveat) = self.frame_pointer_caveat() {
+            out += &format!("note: {caveat}\n");
+        }
+        if let Some(p) = self.probe.record() {
+            if !p.comparison.is_empty() {
+                out += &format!("\nbeside {} (perf's samples):\n", self.phases.origin);
+                out += &comparison_table(&p.comparison);
+            }
+            out += &format!("\n{}\n", self.probe_counts_line(p));
+            if let Some(fpga) = &p.fpga {
+                out += &format!("\n{}\n", fpga.sentence(self.name()));
+            }
+        }
         out.push('\n');
         out += &modules_text(&self.perf.modules);
         out += &format!(
@@ -212,6 +322,41 @@ impl Recording {
             summary.files.join(", ")
         );
         out
+    }
+}
+
+impl Recording {
+    /// One line of what the probe counted: the eye rays and the primitive tests.
+    fn probe_counts_line(&self, p: &crate::record_probe::ProbeRecord) -> String {
+        let eye = p.counts.rays.primary;
+        let tests: Vec<String> = p
+            .count_rows()
+            .into_iter()
+            .filter(|c| c.value > 0 && c.key.starts_with("tests.") && c.key.ends_with(".tests"))
+            .map(|c| {
+                let per_ray = if eye > 0 {
+                    format!(
+                        " ({} per eye ray)",
+                        format::quantity(c.value as f64 / eye as f64)
+                    )
+                } else {
+                    String::new()
+                };
+                // tests.sphere.tests -> "sphere tests"
+                let kind = c.key.split('.').nth(1).unwrap_or_default();
+                format!("{} {kind} tests{per_ray}", format::count(c.value))
+            })
+            .collect();
+        format!(
+            "the probe counted {} eye rays{}; every count in counts-{}.txt",
+            format::count(eye),
+            if tests.is_empty() {
+                String::new()
+            } else {
+                format!(" and {}", format::join_list(&tests))
+            },
+            self.name()
+        )
     }
 }
 
@@ -246,7 +391,7 @@ pub fn save_phases(
     save(
         dir,
         &format!("phases-{name}.txt"),
-        phases_text(title, phases, caveat).as_bytes(),
+        phases_with_caveat(title, phases, caveat).as_bytes(),
     )
 }
 
@@ -277,6 +422,15 @@ pub fn phases_summary(phases: &PhaseBreakdown, caveat: Option<&str>) -> String {
     out += &phase_table(phases);
     if let Some(caveat) = caveat {
         out += &format!("note: {caveat}\n");
+    }
+    out
+}
+
+/// The rules' phases text with the frame-pointer caveat, when there is one.
+fn phases_with_caveat(title: &str, phases: &PhaseBreakdown, caveat: Option<&str>) -> String {
+    let mut out = phases_text(title, phases);
+    if let Some(caveat) = caveat {
+        out += &format!("\nNote: {caveat}.\n");
     }
     out
 }

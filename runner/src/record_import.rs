@@ -391,6 +391,9 @@ impl PerfImport {
                 flamegraph: saved_flamegraph(dir, &saved),
                 files: &files,
                 caveat,
+                // A recording made elsewhere has no probe file beside it.
+                probe: None,
+                probe_error: None,
             },
         )?;
         let recording = &self.perf.recording;

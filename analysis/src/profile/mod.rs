@@ -7,7 +7,8 @@
 //! ([`perf_data`], `rtprof record`); everything else reads it. GNU gprof's own output is
 //! read into the same flat profile and call graph by [`gprof_import`]. The phases of
 //! ray tracing of a program rtprof did not write come from name rules
-//! ([`phase_rules`]).
+//! ([`phase_rules`]) or from its probe, and the two are set side by side by
+//! [`phase_compare`].
 
 pub mod amdahl;
 mod c_format;
@@ -22,6 +23,7 @@ pub mod gprof_text;
 pub mod names;
 pub mod perf_clock;
 pub mod perf_data;
+pub mod phase_compare;
 mod phase_handler;
 pub mod phase_rules;
 mod sample_options;

@@ -24,6 +24,8 @@ pub const BUILTIN_RULES: &str = include_str!("phase_rules.toml");
 pub const BUILTIN_ORIGIN: &str = "rtprof's built-in phase rules";
 /// The phase of samples no rule matched.
 pub const UNCLASSIFIED: &str = "other (no rule matched)";
+/// The phase of the probe's samples taken outside any phase the program marked.
+pub const OUTSIDE: &str = "outside any phase";
 /// Unclassified samples' innermost frames listed, at most.
 const UNCLASSIFIED_LISTED: usize = 12;
 
@@ -120,15 +122,30 @@ pub struct RuleUse {
     pub functions: Vec<(String, u64)>,
 }
 
-/// A profile by phase: the rules' answer to "where does the time go".
+/// Where a breakdown's phases come from.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum PhaseSource {
+    /// Rules on the names of the sampled stacks' frames.
+    #[default]
+    Rules,
+    /// The program's own phase marks, sampled inside it by rtprof's probe.
+    Probe,
+}
+
+/// A profile by phase: the rules' (or the probe's) answer to "where does the time go".
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct PhaseBreakdown {
+    /// Where the phases come from; older record.json files have only rules.
+    #[serde(default)]
+    pub source: PhaseSource,
     pub origin: String,
     pub samples: u64,
     /// Most samples first; the unclassified samples last, as [`UNCLASSIFIED`].
     pub phases: Vec<PhaseShare>,
     pub rules: Vec<RuleUse>,
-    /// Samples no rule matched, and their innermost frames (most samples first).
+    /// Samples no rule matched (for the probe: outside any phase), and their innermost
+    /// frames (most samples first; none for the probe).
     pub unclassified: u64,
     pub unclassified_frames: Vec<(String, u64)>,
 }
@@ -150,6 +167,77 @@ impl PhaseBreakdown {
             .find(|p| p.phase == phase)
             .map_or(0.0, |p| p.share)
     }
+
+    /// The name of the row of samples in no phase: [`UNCLASSIFIED`] for rules,
+    /// [`OUTSIDE`] for the probe.
+    pub fn rest(&self) -> &'static str {
+        match self.source {
+            PhaseSource::Rules => UNCLASSIFIED,
+            PhaseSource::Probe => OUTSIDE,
+        }
+    }
+
+    /// Whether `phase` is the row of samples in no phase (not a phase of the work).
+    pub fn is_rest(&self, phase: &str) -> bool {
+        phase == self.rest()
+    }
+
+    /// A breakdown of samples already counted by phase: the probe's, whose sampler
+    /// read each thread's innermost phase. `counted` gives each phase's samples (self:
+    /// with it innermost; a name given twice is summed), `outside` the samples in no
+    /// phase; `origin` says where they come from.
+    pub fn from_counted(
+        origin: &str,
+        counted: &[(String, u64)],
+        outside: u64,
+        seconds_per_sample: f64,
+    ) -> Self {
+        let mut per_phase: BTreeMap<&str, u64> = BTreeMap::new();
+        for (name, n) in counted {
+            *per_phase.entry(name).or_default() += n;
+        }
+        let total = per_phase.values().sum::<u64>() + outside;
+        PhaseBreakdown {
+            source: PhaseSource::Probe,
+            origin: origin.to_string(),
+            samples: total,
+            phases: shares(total, per_phase, (OUTSIDE, outside), seconds_per_sample),
+            rules: Vec::new(),
+            unclassified: outside,
+            unclassified_frames: Vec::new(),
+        }
+    }
+}
+
+/// Each phase's share of `total` samples, most samples first, the row of samples in no
+/// phase (`rest`) last; phases without samples are left out.
+fn shares(
+    total: u64,
+    per_phase: BTreeMap<&str, u64>,
+    rest: (&str, u64),
+    seconds_per_sample: f64,
+) -> Vec<PhaseShare> {
+    let share = |phase: &str, n: u64| PhaseShare {
+        phase: phase.to_string(),
+        samples: n,
+        share: if total == 0 {
+            0.0
+        } else {
+            n as f64 / total as f64
+        },
+        interval: wilson_interval(n, total, Z_95),
+        seconds: n as f64 * seconds_per_sample,
+    };
+    let mut phases: Vec<PhaseShare> = per_phase
+        .into_iter()
+        .filter(|&(_, n)| n > 0)
+        .map(|(phase, n)| share(phase, n))
+        .collect();
+    phases.sort_by(|a, b| b.samples.cmp(&a.samples).then(a.phase.cmp(&b.phase)));
+    if rest.1 > 0 {
+        phases.push(share(rest.0, rest.1));
+    }
+    phases
 }
 
 /// The 1-based line of byte `offset` in `text`.
@@ -273,30 +361,16 @@ impl PhaseRules {
             })
             .collect();
         let unclassified_samples: u64 = unclassified.values().sum();
-        let share = |phase: &str, n: u64| PhaseShare {
-            phase: phase.to_string(),
-            samples: n,
-            share: if total == 0 {
-                0.0
-            } else {
-                n as f64 / total as f64
-            },
-            interval: wilson_interval(n, total, Z_95),
-            seconds: n as f64 * samples.seconds_per_sample,
-        };
-        let mut phases: Vec<PhaseShare> = per_phase
-            .into_iter()
-            .filter(|&(_, n)| n > 0)
-            .map(|(phase, n)| share(phase, n))
-            .collect();
-        phases.sort_by(|a, b| b.samples.cmp(&a.samples).then(a.phase.cmp(&b.phase)));
-        if unclassified_samples > 0 {
-            phases.push(share(UNCLASSIFIED, unclassified_samples));
-        }
         PhaseBreakdown {
+            source: PhaseSource::Rules,
             origin: self.origin.clone(),
             samples: total,
-            phases,
+            phases: shares(
+                total,
+                per_phase,
+                (UNCLASSIFIED, unclassified_samples),
+                samples.seconds_per_sample,
+            ),
             rules,
             unclassified: unclassified_samples,
             unclassified_frames: most_first(&unclassified, UNCLASSIFIED_LISTED),
@@ -428,6 +502,32 @@ mod tests {
         ] {
             assert_eq!(phase(name), want, "{name}");
         }
+    }
+
+    #[test]
+    fn counted_samples_make_a_breakdown_with_the_outside_row_last() {
+        let counted = [
+            ("closest hit".to_string(), 60),
+            ("camera ray".to_string(), 10),
+            ("shading".to_string(), 0),
+            ("bvh build".to_string(), 5),
+            ("camera ray".to_string(), 5),
+        ];
+        let b = PhaseBreakdown::from_counted("the probe", &counted, 20, 0.004);
+        // By hand: 60 + 15 + 5 + 20 outside = 100 samples.
+        assert_eq!(b.samples, 100);
+        assert_eq!(b.source, PhaseSource::Probe);
+        let names: Vec<&str> = b.phases.iter().map(|p| p.phase.as_str()).collect();
+        assert_eq!(names, ["closest hit", "camera ray", "bvh build", OUTSIDE]);
+        assert_eq!(b.share_of("camera ray"), 0.15);
+        assert!((b.phases[0].seconds - 0.24).abs() < 1e-12);
+        assert_eq!(b.unclassified, 20);
+        assert!((b.classified_share() - 0.8).abs() < 1e-12);
+        assert!(b.is_rest(OUTSIDE) && !b.is_rest(UNCLASSIFIED));
+        assert!(b.rules.is_empty());
+        // Nothing sampled: no rows, no division by zero.
+        let empty = PhaseBreakdown::from_counted("the probe", &[], 0, 0.0);
+        assert!(empty.phases.is_empty() && empty.classified_share() == 0.0);
     }
 
     #[test]

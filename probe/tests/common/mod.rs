@@ -6,6 +6,8 @@
 use std::path::PathBuf;
 use std::process::Command;
 
+pub mod hand;
+
 pub fn probe_dir() -> PathBuf {
     PathBuf::from(env!("CARGO_MANIFEST_DIR"))
 }

@@ -9,7 +9,8 @@
 //! the JSON of `rtprof count --json`), what it counts, and the profiled functions that
 //! are called exactly that many times, by the name the profile prints (see
 //! [`CounterDef::functions`]). From the table come the [`Stat`] enum, [`COUNTERS`],
-//! [`Counts::from_parts`], [`Counts::rows`] and [`Counts::function_calls`].
+//! [`Counts::from_parts`], [`Counts::from_keys`], [`Counts::rows`] and
+//! [`Counts::function_calls`].
 
 use super::counts::{Counts, RayCounts};
 
@@ -32,6 +33,9 @@ pub struct CounterDef {
     pub functions: &'static [&'static str],
     /// Reads this counter from a report.
     pub value: fn(&Counts) -> u64,
+    /// Writes this counter into a report ([`Counts::from_keys`]: counts another
+    /// program's probe made, by key).
+    pub set: fn(&mut Counts, u64),
 }
 
 /// A profiled function whose calls are a combination of counters (not one counter).
@@ -94,6 +98,7 @@ macro_rules! counter_table {
                 description: $description,
                 functions: &[$($function),*],
                 value: |counts: &Counts| counts.$first $(.$rest)+,
+                set: |counts: &mut Counts, value: u64| counts.$first $(.$rest)+ = value,
             },
         )*];
 
@@ -212,13 +217,45 @@ impl Counts {
     /// The counts as a text table (`rtprof count`): name, value, and what the counter
     /// counts (its description in the counter table).
     pub fn to_text(&self) -> String {
+        self.to_text_with(None)
+    }
+
+    /// The table of [`Counts::to_text`] with one more column before the meaning,
+    /// `(heading, cell of a value)`: `rtprof record` adds each count per eye ray. The
+    /// caller formats the cells (numbers are formatted in `reports`, which the tracer
+    /// does not depend on), so there is one table and one layout.
+    pub fn to_text_with(&self, extra: Option<(&str, &dyn Fn(u64) -> String)>) -> String {
         let width = COUNTERS.iter().map(|d| d.key.len()).max().unwrap_or(4);
-        let mut out = format!("{:<width$}  {:>16}  meaning\n", "name", "calls");
+        let extra_width = extra.map_or(0, |(heading, _)| heading.chars().count().max(12));
+        let mut out = format!("{:<width$}  {:>16}  ", "name", "calls");
+        if let Some((heading, _)) = extra {
+            out += &format!("{heading:>extra_width$}  ");
+        }
+        out += "meaning\n";
         for def in COUNTERS {
             let value = (def.value)(self);
-            out += &format!("{:<width$}  {value:>16}  {}\n", def.key, def.description);
+            out += &format!("{:<width$}  {value:>16}  ", def.key);
+            if let Some((_, cell)) = extra {
+                out += &format!("{:>extra_width$}  ", cell(value));
+            }
+            out += def.description;
+            out.push('\n');
         }
         out
+    }
+
+    /// A report from counts given by dotted key (another program's probe writes the
+    /// counter table's keys): the counts, and the keys the table does not have.
+    pub fn from_keys<'k>(totals: impl IntoIterator<Item = (&'k str, u64)>) -> (Self, Vec<String>) {
+        let mut counts = Counts::default();
+        let mut unknown = Vec::new();
+        for (key, value) in totals {
+            match by_key(key) {
+                Some(def) => (def.set)(&mut counts, value),
+                None => unknown.push(key.to_string()),
+            }
+        }
+        (counts, unknown)
     }
 
     /// The counter table as a Markdown page (docs/counters.md is this text; a test
@@ -353,6 +390,49 @@ mod tests {
             Some(Some(Stat::SphereTest))
         );
         assert!(by_key("tests.sphere").is_none());
+    }
+
+    #[test]
+    fn counts_made_from_keys_read_back_by_the_same_keys() {
+        let counts = distinct_counts();
+        let (back, unknown) = Counts::from_keys(counts.rows());
+        assert_eq!(back, counts);
+        assert!(unknown.is_empty());
+        let (one, unknown) = Counts::from_keys([("tests.sphere.tests", 7), ("bvh refits", 3)]);
+        assert_eq!(one.tests.sphere.tests, 7);
+        assert_eq!(one.rows().iter().map(|r| r.1).sum::<u64>(), 7);
+        assert_eq!(unknown, ["bvh refits"]);
+    }
+
+    #[test]
+    fn the_table_with_a_column_keeps_the_plain_table_s_rows() {
+        let mut counts = Counts::default();
+        counts.rays.primary = 4;
+        counts.tests.sphere.tests = 10;
+        let plain = counts.to_text();
+        let per = |v: u64| format!("{}/4", v);
+        let with = counts.to_text_with(Some(("per eye ray", &per)));
+        assert_eq!(plain.lines().count(), with.lines().count());
+        let sphere = with
+            .lines()
+            .find(|l| l.starts_with("tests.sphere.tests "))
+            .unwrap_or_default();
+        assert!(sphere.contains(" 10  ") && sphere.contains("10/4  ray-sphere tests run"));
+        assert!(
+            with.lines()
+                .next()
+                .unwrap_or_default()
+                .contains("per eye ray  meaning")
+        );
+        // Without the column, the line is the plain table's.
+        let plain_sphere = plain
+            .lines()
+            .find(|l| l.starts_with("tests.sphere.tests "))
+            .unwrap_or_default();
+        assert_eq!(
+            plain_sphere.replace(" ", ""),
+            sphere.replace("10/4", "").replace(" ", "")
+        );
     }
 
     #[test]
