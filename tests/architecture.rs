@@ -374,3 +374,26 @@ fn counters_are_declared_only_in_the_counter_table() {
         .collect();
     assert_eq!(declaring, ["tracer/src/counter/table.rs"]);
 }
+
+/// The binary's share of the code (docs/architecture.md): it only parses and prints.
+const BINARY_LINES: usize = 1_200;
+
+#[test]
+fn the_binary_stays_thin() {
+    let mut files = Vec::new();
+    sources(&root().join("src"), &mut files);
+    let lines: usize = files
+        .iter()
+        .map(|f| {
+            std::fs::read_to_string(f)
+                .unwrap_or_else(|e| panic!("{}: {e}", f.display()))
+                .lines()
+                .count()
+        })
+        .sum();
+    assert!(
+        files.len() > 3 && lines <= BINARY_LINES,
+        "src/ has {lines} lines in {} files (at most {BINARY_LINES}): move logic into a library crate",
+        files.len()
+    );
+}

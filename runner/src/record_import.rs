@@ -35,7 +35,7 @@ use serde::Serialize;
 use crate::error::RunError;
 use crate::profile_files::{ProfileToSave, ViewToSave, save_profile_files};
 use crate::profile_job::ViewProfile;
-use crate::record::{CallGraph, frame_pointer_caveat};
+use crate::record::{CallGraph, RecordSettings, frame_pointer_caveat};
 use crate::record_diff::{Baseline, read_baseline, save_record_differential};
 use crate::record_files::{
     dir_label, modules_text, phases_summary, save_phases, saved_flamegraph, top_functions_text,
@@ -148,17 +148,17 @@ fn not_a_recording(path: &Path, why: &str) -> RunError {
     ))
 }
 
-/// `rtprof record --import`: reads `file`, writes its files under `output` (or
-/// [`Imported::default_dir`]) and returns the summary to print.
-/// `phases`: a phase rules file for a perf.data's samples (`None`: the built-in rules).
-pub fn import_into(
-    file: &Path,
-    output: Option<&Path>,
-    phases: Option<&Path>,
-    baseline: Option<&Path>,
-) -> Result<String, RunError> {
-    let rules = crate::record::phase_rules(phases)?;
-    let baseline = baseline.map(read_baseline).transpose()?;
+/// `rtprof record --import`: reads `file`, writes its files under `--output` (or
+/// [`Imported::default_dir`]) and returns the summary to print. A perf.data's samples
+/// get phases by `--phases` (or the built-in rules) and differentials from `--baseline`.
+pub fn import_into(file: &Path, settings: &RecordSettings) -> Result<String, RunError> {
+    let rules = crate::record::phase_rules(settings.phases.as_deref())?;
+    let baseline = settings
+        .baseline
+        .as_deref()
+        .map(read_baseline)
+        .transpose()?;
+    let output = settings.output.as_deref();
     let mut imported = import(file, &rules)?;
     if let (Imported::Perf(p), Some(b)) = (&mut imported, baseline) {
         p.baseline = Some(b);

@@ -10,13 +10,7 @@ use runner::record::RecordSettings;
 pub fn run(args: &RecordSettings) -> Result<()> {
     if let Some(file) = &args.import {
         // No program shares the terminal: the summary goes to stdout.
-        let text = runner::record_import::import_into(
-            file,
-            args.output.as_deref(),
-            args.phases.as_deref(),
-            args.baseline.as_deref(),
-        )?;
-        print!("{text}");
+        print!("{}", runner::record_import::import_into(file, args)?);
         return Ok(());
     }
     let dir = args.dir();
