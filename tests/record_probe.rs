@@ -4,7 +4,7 @@
 //! against the hand computation its own tests use (`probe/tests/common/hand.rs`), the
 //! FPGA answer against the tests × 3 cycles / 50 MHz worked out here, and RTIOW's
 //! probe phases against the phase rules' of the same run. A program without the probe
-//! changes nothing; a truncated probe file is named and the profile still written.
+//! changes nothing; a truncated probe file is named (exit 2) and the profile still written.
 //!
 //! Every test needs perf (and a C or C++ compiler): ignored in a bare `cargo test`;
 //! `.ci/run` runs them with `--ignored`.
@@ -223,7 +223,8 @@ fn a_program_without_the_probe_changes_nothing_and_a_truncated_file_is_named() {
         !err.contains("probe.rtprof") && !err.contains("warning"),
         "{err}"
     );
-    // A file cut short (no `end` line): named, the rest written, the program's exit code.
+    // A file cut short (no `end` line): named, the rest written; bad input (exit 2)
+    // when the program itself succeeded.
     let cut = dir.join("cut");
     let out = record(
         &cut,
@@ -234,7 +235,7 @@ fn a_program_without_the_probe_changes_nothing_and_a_truncated_file_is_named() {
         ],
         &[],
     );
-    assert_eq!(out.status.code(), Some(0), "{}", stderr(&out));
+    assert_eq!(out.status.code(), Some(2), "{}", stderr(&out));
     let err = stderr(&out);
     let file = cut.join("probe.rtprof");
     assert!(

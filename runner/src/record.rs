@@ -180,6 +180,17 @@ pub fn phase_rules(file: Option<&Path>) -> Result<PhaseRules, RunError> {
     .map_err(|e| RunError::Input(e.to_string()))
 }
 
+/// How a recording counts as failed (each its exit code in the binary).
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub enum Failure {
+    /// Ctrl-C stopped the program (130).
+    Interrupted(String),
+    /// The program exited non-zero, was killed or timed out (4).
+    CommandFailed(String),
+    /// The program's probe file could not be read (2, bad input).
+    BadProbeFile(String),
+}
+
 /// A recorded run: how the program ended and its profile.
 pub struct Recording {
     pub command: Vec<String>,
@@ -215,18 +226,22 @@ impl Recording {
         frame_pointer_caveat(self.call_graph, &self.perf.modules)
     }
 
-    /// Why the command counts as failed, if it does: `Some((interrupted, message))`.
-    pub fn failure(&self) -> Option<(bool, String)> {
+    /// Why the recording counts as failed, if it does. The program's own failure comes
+    /// first; a probe file it wrote that cannot be read is bad input (everything else
+    /// is written: the profile from perf's samples stands).
+    pub fn failure(&self) -> Option<Failure> {
         match &self.finished.end {
-            end if end.success() => None,
-            End::Stopped => Some((
-                true,
+            end if end.success() => self.probe.error().map(|e| {
+                Failure::BadProbeFile(format!(
+                    "{e}; no exact counts or probe phases, the rest of the profile is written"
+                ))
+            }),
+            End::Stopped => Some(Failure::Interrupted(
                 "interrupted: the program was stopped; what was sampled is written".into(),
             )),
-            end => Some((
-                false,
-                format!("the recorded program {end}; its profile is written"),
-            )),
+            end => Some(Failure::CommandFailed(format!(
+                "the recorded program {end}; its profile is written"
+            ))),
         }
     }
 

@@ -5,7 +5,7 @@
 
 use super::Outcome;
 use anyhow::Result;
-use runner::record::RecordSettings;
+use runner::record::{Failure, RecordSettings};
 
 pub fn run(args: &RecordSettings) -> Result<()> {
     if let Some(file) = &args.import {
@@ -20,7 +20,8 @@ pub fn run(args: &RecordSettings) -> Result<()> {
     eprint!("{}", recording.to_text(&dir, &summary));
     match recording.failure() {
         None => Ok(()),
-        Some((true, message)) => Err(Outcome::new(Outcome::INTERRUPTED, message).into()),
-        Some((false, message)) => Err(Outcome::new(Outcome::COMMAND_FAILED, message).into()),
+        Some(Failure::Interrupted(m)) => Err(Outcome::new(Outcome::INTERRUPTED, m).into()),
+        Some(Failure::CommandFailed(m)) => Err(Outcome::new(Outcome::COMMAND_FAILED, m).into()),
+        Some(Failure::BadProbeFile(m)) => Err(anyhow::anyhow!(m)),
     }
 }
