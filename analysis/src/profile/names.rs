@@ -4,9 +4,23 @@
 //! the profiled program's knowledge, so the caller passes it ([`BareMethods`]); so is
 //! the table of exact calls by short name ([`super::CallCounts`]).
 
+/// The name of a frame whose symbol is empty (or nothing but generic arguments): perf's
+/// own name for it. gprof text, folded stacks and flamegraphs all need a name to show;
+/// gprof2dot rejects a call-graph entry without one.
+pub const UNNAMED_FRAME: &str = "[unknown]";
+
 /// A demangled symbol as a plain path: no hash suffix, no generic arguments, and
-/// `<Type as Trait>::method` written `Type::method`.
+/// `<Type as Trait>::method` written `Type::method`. Never empty: see [`UNNAMED_FRAME`].
 pub fn clean_symbol(raw: &str) -> String {
+    let clean = clean_path(raw);
+    if clean.trim().is_empty() {
+        UNNAMED_FRAME.to_string()
+    } else {
+        clean
+    }
+}
+
+fn clean_path(raw: &str) -> String {
     let mut name = raw.trim();
     // Legacy mangling leaves `::h` + 16 hex digits at the end.
     if let Some(at) = name.rfind("::h") {
@@ -119,6 +133,15 @@ mod tests {
         );
         // A hash-like tail that is not 16 hex digits stays.
         assert_eq!(clean_symbol("a::hello"), "a::hello");
+    }
+
+    #[test]
+    fn an_empty_symbol_still_has_a_name() {
+        // An empty symbol, or one that is all generic arguments, once broke gprof2dot's
+        // reading of the call graph (an entry with no name).
+        for raw in ["", "   ", "<>", "::<T>"] {
+            assert_eq!(clean_symbol(raw), "[unknown]", "{raw:?}");
+        }
     }
 
     #[test]
