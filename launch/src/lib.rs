@@ -60,6 +60,8 @@ pub struct Launch {
     /// In a process group of its own: the terminal's Ctrl-C does not reach it, the
     /// caller stops it (a profiler that must outlive the program it records).
     pub own_process_group: bool,
+    /// Its working directory (`None`: the caller's).
+    pub dir: Option<PathBuf>,
 }
 
 impl Launch {
@@ -89,6 +91,9 @@ impl Launch {
         command.stdin(stdio(&self.stdin, &self.name())?);
         command.stdout(stdio(&self.stdout, &self.name())?);
         command.stderr(stdio(&self.stderr, &self.name())?);
+        if let Some(dir) = &self.dir {
+            command.current_dir(dir);
+        }
         if self.own_process_group {
             std::os::unix::process::CommandExt::process_group(&mut command, 0);
         }

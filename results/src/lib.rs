@@ -47,7 +47,7 @@ pub use pixel_stats::{PixelMap, PixelStats, VariantPixelMaps};
 pub use read::{FileError, ResultsError};
 pub use schema::*;
 pub use timing_policy::{TimeCovers, TimingPolicy};
-pub use variant_name::VariantName;
+pub use variant_name::{OUTSIDE_PREFIX, VariantName};
 
 /// An id- and file-name-safe form of a name (ASCII letters, digits and '-'; the rest
 /// become '_'): the runner names the files beside results.json with it, the reports

@@ -1,11 +1,16 @@
 //! The name of a variant (or combination) as results record it: the canonical form of
-//! [`tracer::VariantSet`] (`"baseline"`, `"bvh"`, `"bvh+bounded"`).
+//! [`tracer::VariantSet`] (`"baseline"`, `"bvh"`, `"bvh+bounded"`), or an outside
+//! tracer's, its definition's name after [`OUTSIDE_PREFIX`] (`"tracer:povray"`).
 
 use std::fmt;
 
 use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
 use tracer::{Variant, VariantError, VariantSet};
+
+/// What starts an outside tracer's name: it is a program run by its definition
+/// (docs/tracers.md), not a variant of rtprof's tracer.
+pub const OUTSIDE_PREFIX: &str = "tracer:";
 
 /// A variant set's name, always in [`VariantSet`]'s canonical spelling: names in
 /// lower case, joined with `+`. Reading one checks it with [`VariantSet::parse`], so
@@ -14,13 +19,43 @@ use tracer::{Variant, VariantError, VariantSet};
     Clone, Debug, PartialEq, Eq, Hash, PartialOrd, Ord, Serialize, Deserialize, JsonSchema,
 )]
 #[serde(try_from = "String", into = "String")]
-#[schemars(extend("pattern" = r"^[a-z0-9-]+(\+[a-z0-9-]+)*$"))]
+#[schemars(extend("pattern" = r"^([a-z0-9-]+(\+[a-z0-9-]+)*|tracer:[A-Za-z0-9._-]+)$"))]
 pub struct VariantName(String);
 
 impl VariantName {
-    /// Parses `"a,b"` or `"a+b"` into the canonical name.
+    /// Parses `"a,b"` or `"a+b"` into the canonical name; `tracer:NAME` is an outside
+    /// tracer's.
     pub fn parse(list: &str) -> Result<Self, VariantError> {
-        VariantSet::parse(list).map(|set| Self::of(&set))
+        match list.strip_prefix(OUTSIDE_PREFIX) {
+            Some(name) => Self::outside(name),
+            None => VariantSet::parse(list).map(|set| Self::of(&set)),
+        }
+    }
+
+    /// The name of the outside tracer `name` (letters, digits, `-`, `_`, `.`).
+    pub fn outside(name: &str) -> Result<Self, VariantError> {
+        if name.is_empty()
+            || !name
+                .bytes()
+                .all(|b| b.is_ascii_alphanumeric() || b"-_.".contains(&b))
+        {
+            return Err(VariantError::Unknown {
+                name: format!("{OUTSIDE_PREFIX}{name}"),
+                known: "an outside tracer's name is letters, digits, '-', '_' and '.'".into(),
+            });
+        }
+        Ok(Self(format!("{OUTSIDE_PREFIX}{name}")))
+    }
+
+    /// The outside tracer's own name (`povray` of `tracer:povray`); `None` for
+    /// rtprof's variants.
+    pub fn outside_name(&self) -> Option<&str> {
+        self.0.strip_prefix(OUTSIDE_PREFIX)
+    }
+
+    /// Whether an outside program drew it, not rtprof's tracer.
+    pub fn is_outside(&self) -> bool {
+        self.outside_name().is_some()
     }
 
     /// The name of `set`.
@@ -47,6 +82,10 @@ impl VariantName {
     /// Whether the variant counts the work inside its queries (Embree does not: its
     /// `tests.*` are absent, not zero).
     pub fn counts_its_work(&self) -> bool {
+        if self.is_outside() {
+            // What it counts is its probe's to say; nothing is known to be zero.
+            return false;
+        }
         self.set()
             .map_or(true, |s| s.config().accel.counts_its_work())
     }
@@ -114,6 +153,16 @@ mod tests {
         assert_eq!(name("bvh,bounded").ok().as_deref(), Some("bvh+bounded"));
         assert!(name("warp-drive").is_err());
         assert!(name("baseline+bvh").is_err());
+        // An outside tracer's name keeps its spelling; its set is none of rtprof's.
+        assert_eq!(
+            name("tracer:POV-Ray_3.7").ok().as_deref(),
+            Some("tracer:POV-Ray_3.7")
+        );
+        assert!(name("tracer:").is_err() && name("tracer:a b").is_err());
+        let outside = VariantName::parse("tracer:tachyon").unwrap();
+        assert_eq!(outside.outside_name(), Some("tachyon"));
+        assert!(outside.set().is_err() && !outside.counts_its_work());
+        assert!(VariantName::parse("bvh").unwrap().outside_name().is_none());
         assert!(VariantName::reference().is_reference());
         assert!(!VariantName::parse("bvh").is_ok_and(|n| n.is_reference()));
         let json: Result<VariantName, _> = serde_json::from_str("\"fast-sqrt\"");

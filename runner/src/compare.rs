@@ -20,6 +20,7 @@ use serde::Serialize;
 use tracer::{Counts, ShadingMode, VariantSet};
 
 use crate::error::RunError;
+use crate::outside::{Failure, OutsideJobs, ProgramIdentity, TracerDef, TracerFlags};
 use crate::pool::thread_pool;
 use crate::progress::Progress;
 use crate::reference_job::ImageError;
@@ -43,13 +44,16 @@ pub struct VariantRow {
     pub speedup: Estimate,
     /// Faster, slower or within noise against the reference (`None` for the reference).
     pub verdict: Option<Verdict>,
-    pub rms: f64,
-    pub band: Band,
-    /// `null` when the images are identical (infinite PSNR).
-    pub psnr: Option<f64>,
-    pub ssim: f64,
-    pub max_abs_diff: u8,
-    pub counts: Counts,
+    /// The image error against the reference's picture; absent for an outside tracer
+    /// that draws a scene of its own.
+    #[serde(flatten)]
+    pub error: Option<RowError>,
+    /// Exact counts (an outside tracer's from its probe; absent without one).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub counts: Option<Counts>,
+    /// An outside tracer's definition and program (`None`: one of rtprof's variants).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub outside: Option<OutsideFacts>,
     /// The image error against the f64 reference renderer (`--reference` only).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub vs_f64_reference: Option<ImageError>,
@@ -64,6 +68,37 @@ pub struct VariantRow {
     pub vs_f64_quality: Option<Quality>,
 }
 
+/// A row's image error against the reference's picture.
+#[derive(Serialize)]
+pub struct RowError {
+    pub rms: f64,
+    pub band: Band,
+    /// `null` when the images are identical (infinite PSNR).
+    pub psnr: Option<f64>,
+    pub ssim: f64,
+    pub max_abs_diff: u8,
+}
+
+/// What a row of an outside tracer records beside its figures.
+#[derive(Serialize)]
+pub struct OutsideFacts {
+    /// The definition it ran by.
+    pub definition: TracerDef,
+    /// The program found on disk (`None`: not found by the time it was described).
+    pub program: Option<ProgramIdentity>,
+    /// Samples per pixel of its timed runs.
+    pub spp: u32,
+    /// What its time covers.
+    pub time_covers: String,
+}
+
+/// An entry that failed: its name and why.
+#[derive(Serialize)]
+pub struct FailedRow {
+    pub name: String,
+    pub failure: Failure,
+}
+
 /// `rtprof compare SCENE --variants …`: the variant sets `sets` side by side on one
 /// scene, each timed `repeats` times at least (no minimum time: the count is what was
 /// asked), images and heat maps into `out` when given (created if missing).
@@ -76,11 +111,15 @@ pub struct SideBySide<'a> {
     pub out: Option<&'a Path>,
     /// Also against the f64 reference renderer.
     pub f64_reference: bool,
+    /// Outside tracers run beside the variants (docs/tracers.md), and their samples
+    /// per pixel.
+    pub tracers: &'a TracerFlags,
 }
 
 impl SideBySide<'_> {
     /// Loads the scene, sets up the pool and runs [`compare_variants`].
     pub fn run(&self, progress: &dyn Progress) -> Result<VariantsReport, RunError> {
+        let tracers = self.tracers.load()?;
         if let Some(dir) = self.out {
             std::fs::create_dir_all(dir).map_err(|e| RunError::io("create directory", dir, &e))?;
         }
@@ -98,14 +137,30 @@ impl SideBySide<'_> {
             stop: &never,
         };
         let policy = TimingPolicy::new(self.repeats, 0.0);
-        compare_variants(
+        // The outside tracers' scene files and runs: beside the images when kept.
+        let work = match self.out {
+            Some(dir) => dir.join("tracers"),
+            None => std::env::temp_dir().join(format!("rtprof-compare-{}", std::process::id())),
+        };
+        let outside = OutsideJobs {
+            defs: &tracers,
+            dir: &work,
+            spp: self.tracers.spp,
+        };
+        let report = compare_variants(
             &setup,
             self.sets,
+            &outside,
             &policy,
             self.out,
             self.f64_reference,
             progress,
-        )
+        );
+        if self.out.is_none() && work.exists() {
+            // Only a temporary directory; what matters is in the report.
+            let _ = std::fs::remove_dir_all(&work);
+        }
+        report
     }
 }
 
@@ -118,6 +173,7 @@ impl SideBySide<'_> {
 pub fn compare_variants(
     setup: &RenderSetup<'_>,
     sets: &[VariantSet],
+    outside: &OutsideJobs<'_>,
     policy: &TimingPolicy,
     out: Option<&Path>,
     f64_reference: bool,
@@ -138,7 +194,8 @@ pub fn compare_variants(
         save_png(dir, "f64-reference.png", &truth.image)?;
     }
     let truth_image = truth.as_ref().map(|t| &t.image);
-    let variants = variant_rows(setup, sets, policy, out, truth_image, progress)?;
+    let (variants, failed) =
+        variant_rows(setup, sets, outside, policy, out, truth_image, progress)?;
     Ok(VariantsReport {
         scene: setup.name.to_string(),
         primitives: setup.scene.primitive_count() as u64,
@@ -151,58 +208,150 @@ pub fn compare_variants(
         reference: reference.to_string(),
         f64_reference: truth.map(|t| F64Reference { seconds: t.seconds }),
         variants,
+        failed,
     })
+}
+
+/// One measured entry, rtprof's variant or an outside tracer, as a row is made from it.
+struct Entry<'a> {
+    name: String,
+    variant: VariantName,
+    samples: &'a [f64],
+    time: Estimate,
+    preprocessing: f64,
+    counts: Option<Counts>,
+    image: &'a RgbImage,
+    /// Whether its picture is of the same scene and frame as the reference's.
+    same_scene: bool,
+    outside: Option<OutsideFacts>,
 }
 
 fn variant_rows(
     setup: &RenderSetup<'_>,
     sets: &[VariantSet],
+    outside: &OutsideJobs<'_>,
     policy: &TimingPolicy,
     out: Option<&Path>,
     truth: Option<&RgbImage>,
     progress: &dyn Progress,
-) -> Result<Vec<VariantRow>, RunError> {
+) -> Result<(Vec<VariantRow>, Vec<FailedRow>), RunError> {
     progress.begin("variants", 0);
     let all = setup.measure_all(
         sets,
+        outside,
         policy,
         false,
         &|what| progress.message(what),
         &|done, total| progress.within(crate::progress::TIMED, done, total),
     )?;
     progress.end();
+    // rtprof's own variants must all work (a failure is rtprof's, and an error); an
+    // outside tracer that fails is recorded and the others go on.
     let measured: Vec<VariantMeasurement> = all.variants.into_iter().collect::<Result<_, _>>()?;
+    let mut failed = Vec::new();
+    let mut entries: Vec<Entry<'_>> = measured
+        .iter()
+        .map(|m| Entry {
+            name: m.variants.to_string(),
+            variant: VariantName::of(&m.variants),
+            samples: &m.samples,
+            time: m.time,
+            preprocessing: m.preprocessing,
+            counts: Some(m.counts),
+            image: &m.image,
+            same_scene: true,
+            outside: None,
+        })
+        .collect();
+    let outside_measured: Vec<_> = all
+        .outside
+        .into_iter()
+        .filter_map(|m| match m {
+            Ok(m) => Some(m),
+            Err(RunError::Outside { tracer, failure }) => {
+                failed.push(FailedRow {
+                    name: format!("{}{tracer}", results::OUTSIDE_PREFIX),
+                    failure,
+                });
+                None
+            }
+            Err(e) => {
+                failed.push(FailedRow {
+                    name: "an outside tracer".into(),
+                    failure: Failure {
+                        kind: crate::outside::FailureKind::Setup,
+                        reason: e.to_string(),
+                        stderr_tail: Vec::new(),
+                    },
+                });
+                None
+            }
+        })
+        .collect();
+    for m in &outside_measured {
+        let def = &m.prepared.def;
+        entries.push(Entry {
+            name: m.name.to_string(),
+            variant: m.name.clone(),
+            samples: &m.samples,
+            time: m.time,
+            preprocessing: 0.0,
+            counts: m.prepared.counts(),
+            image: &m.image,
+            same_scene: def.scene != crate::outside::SceneFormat::Own,
+            outside: Some(OutsideFacts {
+                definition: def.clone(),
+                program: m.prepared.identity.clone(),
+                spp: m.prepared.spp,
+                time_covers: def.time.covers(),
+            }),
+        });
+    }
     let Some(reference) = measured.first() else {
-        return Ok(Vec::new());
+        return Ok((Vec::new(), failed));
     };
-    let mut rows = Vec::with_capacity(measured.len());
-    for (index, m) in measured.iter().enumerate() {
+    let mut rows = Vec::with_capacity(entries.len());
+    for (index, e) in entries.into_iter().enumerate() {
+        let file = e.name.replace(':', "-");
         if let Some(dir) = out {
-            save_png(dir, &format!("{}.png", m.variants), &m.image)?;
+            save_png(dir, &format!("{file}.png"), e.image)?;
         }
-        let metrics = compare(&reference.image, &m.image)?;
-        if let (Some(dir), true) = (out, index > 0) {
-            let heat = difference_heat_map(&reference.image, &m.image)?;
-            save_png(dir, &format!("{}-diff.png", m.variants), &heat)?;
-        }
+        let comparable = e.same_scene
+            && (e.image.width, e.image.height) == (reference.image.width, reference.image.height);
+        let error = if comparable {
+            let m = compare(&reference.image, e.image)?;
+            if let (Some(dir), true) = (out, index > 0) {
+                let heat = difference_heat_map(&reference.image, e.image)?;
+                save_png(dir, &format!("{file}-diff.png"), &heat)?;
+            }
+            Some(RowError {
+                rms: m.rms,
+                band: m.band,
+                psnr: m.psnr.is_finite().then_some(m.psnr),
+                ssim: m.ssim,
+                max_abs_diff: m.max_abs_diff,
+            })
+        } else {
+            None
+        };
         let (vs_f64_reference, vs_f64_quality) = match truth {
-            Some(truth) => {
+            Some(truth) if comparable => {
                 if let Some(dir) = out {
-                    let heat = difference_heat_map(truth, &m.image)?;
-                    save_png(dir, &format!("{}-vs-f64.png", m.variants), &heat)?;
+                    let heat = difference_heat_map(truth, e.image)?;
+                    save_png(dir, &format!("{file}-vs-f64.png"), &heat)?;
                 }
                 (
-                    Some(ImageError::between(truth, &m.image)?),
-                    Some(crate::collect::quality(&compare(truth, &m.image)?)),
+                    Some(ImageError::between(truth, e.image)?),
+                    Some(crate::collect::quality(&compare(truth, e.image)?)),
                 )
             }
-            None => (None, None),
+            _ => (None, None),
         };
-        let speedup = results::change::speedup(&reference.samples, &m.samples);
+        let speedup = results::change::speedup(&reference.samples, e.samples);
         rows.push(VariantRow {
-            name: m.variants.to_string(),
-            seconds: m.time,
-            preprocessing_seconds: m.preprocessing,
+            name: e.name,
+            seconds: e.time,
+            preprocessing_seconds: e.preprocessing,
             speedup: speedup.unwrap_or(Estimate {
                 median: f64::NAN,
                 low: f64::NAN,
@@ -211,19 +360,16 @@ fn variant_rows(
             verdict: speedup
                 .filter(|_| index > 0)
                 .map(|s| judge_speedup(&s, NOISE_THRESHOLD)),
-            rms: metrics.rms,
-            band: metrics.band,
-            psnr: metrics.psnr.is_finite().then_some(metrics.psnr),
-            ssim: metrics.ssim,
-            max_abs_diff: metrics.max_abs_diff,
-            counts: m.counts,
+            error,
+            counts: e.counts,
+            outside: e.outside,
             vs_f64_reference,
-            samples: m.samples.clone(),
-            variant: VariantName::of(&m.variants),
+            samples: e.samples.to_vec(),
+            variant: e.variant,
             vs_f64_quality,
         });
     }
-    Ok(rows)
+    Ok((rows, failed))
 }
 
 /// `rtprof compare SCENE --variants`: the setting and one row per variant.
@@ -243,6 +389,9 @@ pub struct VariantsReport {
     #[serde(skip_serializing_if = "Option::is_none")]
     pub f64_reference: Option<F64Reference>,
     pub variants: Vec<VariantRow>,
+    /// Outside tracers that failed, with why (the rows above are the ones that ran).
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub failed: Vec<FailedRow>,
 }
 
 /// The f64 reference render of a side-by-side run.
@@ -286,7 +435,10 @@ impl VariantsReport {
                 time: v.seconds,
                 samples: v.samples.clone(),
                 cpu_samples: Vec::new(),
-                preprocessing_seconds: Some(v.preprocessing_seconds),
+                // An outside program's preparation is in its time or not, as its
+                // definition says: none is apart.
+                preprocessing_seconds: Some(v.preprocessing_seconds)
+                    .filter(|_| v.outside.is_none()),
                 speedup: Some(v.speedup.median).filter(|s| s.is_finite()),
                 speedup_interval: v
                     .speedup
@@ -294,15 +446,19 @@ impl VariantsReport {
                     .is_finite()
                     .then_some([v.speedup.low, v.speedup.high]),
                 verdict: v.verdict,
-                counts: crate::collect::count_map(&v.counts),
+                counts: v
+                    .counts
+                    .as_ref()
+                    .map(crate::collect::count_map)
+                    .unwrap_or_default(),
                 image: None,
                 heat_map: None,
-                quality: Some(Quality {
-                    rms: v.rms,
-                    band: v.band,
-                    psnr: v.psnr,
-                    ssim: v.ssim,
-                    max_abs_diff: u32::from(v.max_abs_diff),
+                quality: v.error.as_ref().map(|e| Quality {
+                    rms: e.rms,
+                    band: e.band,
+                    psnr: e.psnr,
+                    ssim: e.ssim,
+                    max_abs_diff: u32::from(e.max_abs_diff),
                 }),
                 vs_f64_reference: v.vs_f64_quality.clone(),
                 histogram: Vec::new(),
@@ -342,10 +498,52 @@ impl VariantsReport {
     }
 }
 
+impl VariantsReport {
+    /// "N outside tracers failed" when any did (the command's exit: parts failed).
+    pub fn failure_summary(&self) -> Option<String> {
+        match self.failed.len() {
+            0 => None,
+            1 => Some(format!("{} failed", self.failed[0].name)),
+            n => Some(format!("{n} outside tracers failed")),
+        }
+    }
+
+    /// The failed entries, one paragraph each ("" without any).
+    pub fn failures(&self) -> String {
+        let mut out = String::new();
+        for f in &self.failed {
+            out += &format!("\n{} failed: {}\n", f.name, f.failure.describe());
+        }
+        out
+    }
+
+    /// What the outside tracers' times cover, one line each ("" without any).
+    pub fn outside_notes(&self) -> String {
+        let mut out = String::new();
+        for v in &self.variants {
+            if let Some(o) = &v.outside {
+                let program = o.program.as_ref().map_or("not found".to_string(), |p| {
+                    format!("{}, {} bytes", p.path.display(), format::count(p.bytes))
+                });
+                out += &format!(
+                    "{}: {} ({program}); time: {}\n",
+                    v.name,
+                    o.definition.command.join(" "),
+                    o.time_covers
+                );
+            }
+        }
+        out
+    }
+}
+
 impl Exports for VariantsReport {
-    /// The table the command prints.
+    /// The table the command prints, and the entries that failed.
     fn to_text(&self) -> String {
-        self.heading() + &reports::text::table(&self.table())
+        self.heading()
+            + &reports::text::table(&self.table())
+            + &self.outside_notes()
+            + &self.failures()
     }
 
     /// A GitHub-flavoured Markdown table under a one-line heading.
@@ -419,9 +617,9 @@ pub fn compare_images(
     })
 }
 
-impl ImageReport {
+impl Exports for ImageReport {
     /// The metrics as the command prints them.
-    pub fn to_text(&self) -> String {
+    fn to_text(&self) -> String {
         use reports::format::{count, fixed, size};
         let m = &self.metrics;
         let mut out = format!("{} vs {} ({})\n", self.a, self.b, size(m.width, m.height));
@@ -443,5 +641,76 @@ impl ImageReport {
             out += &format!("difference heat map: {path}\n");
         }
         out
+    }
+
+    /// One GitHub-flavoured Markdown row under its header.
+    fn to_markdown(&self) -> String {
+        let header = ["A", "B"].iter().chain(&IMAGE_COLUMNS);
+        let cells: Vec<String> = [self.a.clone(), self.b.clone()]
+            .into_iter()
+            .chain(self.cells(false))
+            .collect();
+        let rule: Vec<&str> = header.clone().map(|_| "---").collect();
+        format!(
+            "| {} |\n| {} |\n| {} |\n",
+            header.copied().collect::<Vec<_>>().join(" | "),
+            rule.join(" | "),
+            cells.join(" | ")
+        )
+    }
+
+    /// A header and one row, numbers in full.
+    fn to_csv(&self) -> String {
+        let quote = |s: &str| format!("\"{}\"", s.replace('"', "\"\""));
+        let header: Vec<String> = ["a", "b"]
+            .iter()
+            .chain(&IMAGE_COLUMNS)
+            .map(|h| h.to_lowercase().replace([' ', '|'], "_"))
+            .collect();
+        let cells: Vec<String> = [quote(&self.a), quote(&self.b)]
+            .into_iter()
+            .chain(self.cells(true))
+            .collect();
+        format!("{}\n{}\n", header.join(","), cells.join(","))
+    }
+}
+
+/// The metric columns of two images' Markdown and CSV forms.
+const IMAGE_COLUMNS: [&str; 7] = [
+    "RMS",
+    "band",
+    "PSNR dB",
+    "SSIM",
+    "max |diff|",
+    "mean |diff|",
+    "differing px",
+];
+
+impl ImageReport {
+    /// The metrics in [`IMAGE_COLUMNS`]' order, rounded as the table prints them or
+    /// in full (`full`); PSNR empty for identical images (infinite).
+    fn cells(&self, full: bool) -> Vec<String> {
+        use reports::format::fixed;
+        let m = &self.metrics;
+        let number = |v: f64, places: usize| {
+            if full {
+                v.to_string()
+            } else {
+                fixed(v, places)
+            }
+        };
+        vec![
+            number(m.rms, 3),
+            m.band.name().to_string(),
+            if m.psnr.is_finite() {
+                number(m.psnr, 2)
+            } else {
+                String::new()
+            },
+            number(m.ssim, 5),
+            m.max_abs_diff.to_string(),
+            number(m.mean_abs_diff, 3),
+            m.differing_pixels.to_string(),
+        ]
     }
 }

@@ -57,6 +57,13 @@ pub enum RunError {
     /// perf, which `rtprof record` drives, missing, not permitted or failing.
     #[error(transparent)]
     Perf(#[from] PerfError),
+    /// An outside tracer's run that failed (docs/tracers.md): recorded with its reason,
+    /// the other entries go on.
+    #[error("tracer {tracer}: {}", failure.describe())]
+    Outside {
+        tracer: String,
+        failure: crate::outside::Failure,
+    },
     /// The caller asked the run to stop (Ctrl-C).
     #[error("stopped on request")]
     Stopped,

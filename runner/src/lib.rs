@@ -27,6 +27,8 @@
 //!   perf.data or gprof output recorded elsewhere, into the same files; [`record_probe`]:
 //!   what the program's probe file gives (exact counts, phases, the FPGA question);
 //!   [`record_diff`]: differential flamegraphs against an earlier record;
+//! - [`outside`]: outside tracers as variants (a definition file, one run, the
+//!   program's identity, the scene in the format it reads);
 //! - [`hardware_job`]: the FPGA model, emulator and software time on the same job;
 //! - [`hardware_prediction`]: `rtprof hw time`: frame time, fit and what-ifs;
 //! - [`hardware_tables`]: `rtprof hw table` as text; [`hardware_files`]: `hw render`, `hw mif`;
@@ -71,6 +73,7 @@ pub mod machine;
 pub mod machine_peak;
 pub mod merge;
 pub mod messages;
+pub mod outside;
 pub mod pixel_maps;
 pub mod pool;
 pub mod profile_files;

@@ -393,7 +393,14 @@ impl SceneRunner<'_> {
                 .progress
                 .within(crate::progress::TIMED, done, total)
         };
-        let measured = setup.measure_all(&sets, &self.def.timing(), true, &doing, &timed)?;
+        let measured = setup.measure_all(
+            &sets,
+            &crate::outside::OutsideJobs::none(),
+            &self.def.timing(),
+            true,
+            &doing,
+            &timed,
+        )?;
         let truth = self.f64_reference(spec, &setup, &doing, failures)?;
         let mut variants: Vec<VariantResult> = Vec::new();
         let memory = memory_use(&scene, &measured.variants);

@@ -88,6 +88,11 @@ pub trait PhaseTimes {
     fn tracing(&self) -> Duration;
     /// Preprocessing time (reported apart).
     fn preprocessing(&self) -> Duration;
+    /// CPU time its own account gives (an outside program's, from the kernel), when the
+    /// measuring process's CPU clock does not see it; `None`: that clock's.
+    fn cpu(&self) -> Option<Duration> {
+        None
+    }
 }
 
 impl<C> PhaseTimes for VariantRender<C> {
@@ -280,7 +285,8 @@ pub fn measure_interleaved<'a, R: PhaseTimes>(
             let cpu = process_cpu_time().saturating_sub(cpu_before).as_secs_f64();
             match outcome {
                 Ok(out) => {
-                    slot.cpu_samples.push(cpu);
+                    slot.cpu_samples
+                        .push(out.cpu().map_or(cpu, |own| own.as_secs_f64()));
                     slot.samples.push(out.tracing().as_secs_f64());
                     slot.preprocessing.push(out.preprocessing().as_secs_f64());
                     slot.last = Some(out);

@@ -12,9 +12,13 @@ use tracer::{Count, Counts, NoCount, VariantRender, VariantSet, render_variant_u
 
 use crate::calibration::time_kernel;
 use crate::error::RunError;
+use crate::outside::measure::{OutsideJobs, OutsideMeasurement, Prepared, prepare};
+use crate::outside::run::OutsideRun;
 use crate::ray_rates::{QueryShares, clocked_pass};
 use crate::render_setup::RenderSetup;
-use crate::timing::{KernelTimes, RenderJob, RoundJob, TimingPolicy, measure_interleaved};
+use crate::timing::{
+    KernelTimes, PhaseTimes, RenderJob, RoundJob, TimingPolicy, measure_interleaved,
+};
 
 /// A measured variant.
 pub struct VariantMeasurement {
@@ -43,6 +47,8 @@ pub struct VariantMeasurement {
 /// yardsticks timed between them.
 pub struct VariantsMeasured {
     pub variants: Vec<Result<VariantMeasurement, RunError>>,
+    /// Every outside tracer, in the order asked.
+    pub outside: Vec<Result<OutsideMeasurement, RunError>>,
     /// The calibration kernel's times (one per round).
     pub calibration: Option<KernelTimes>,
     /// The f64 reference renderer's times at [`yardstick_size`] (one per round).
@@ -56,18 +62,49 @@ pub fn yardstick_size(width: u32, height: u32) -> (u32, u32) {
     (side(width), side(height))
 }
 
+/// A timed run: a render of rtprof's tracer or a run of an outside program.
+enum Timed {
+    Own(VariantRender<NoCount>),
+    Outside(OutsideRun),
+}
+
+impl PhaseTimes for Timed {
+    fn tracing(&self) -> std::time::Duration {
+        match self {
+            Timed::Own(r) => r.tracing,
+            Timed::Outside(r) => std::time::Duration::from_secs_f64(r.seconds),
+        }
+    }
+    fn preprocessing(&self) -> std::time::Duration {
+        match self {
+            Timed::Own(r) => r.preprocessing,
+            // What an outside program spends before tracing is in its time or not,
+            // as its definition's time source says; none is apart.
+            Timed::Outside(_) => std::time::Duration::ZERO,
+        }
+    }
+    fn cpu(&self) -> Option<std::time::Duration> {
+        match self {
+            Timed::Own(_) => None,
+            Timed::Outside(r) => Some(std::time::Duration::from_secs_f64(r.cpu)),
+        }
+    }
+}
+
 impl RenderSetup<'_> {
     /// Counts and pictures every set of `sets`, timing them interleaved: one counted
     /// render each first (exact counts; it also warms caches and the pool up), then
     /// rounds of one uncounted render of each set still short of `policy`'s samples,
     /// with the gate's yardsticks at the start of each round (when `calibrate`): the f64
     /// reference renderer on the scene at [`yardstick_size`] and the calibration kernel. A set
-    /// that fails is reported in its place; the others are measured. `doing` hears what
-    /// is being done and `told` the timed renders done and planned (for a progress
-    /// display).
+    /// that fails is reported in its place; the others are measured. The outside
+    /// tracers of `outside` are prepared (one untimed run each) and timed in the same
+    /// rounds. `doing` hears what is being done and `told` the timed renders done and
+    /// planned (for a progress display).
     pub fn measure_all(
         &self,
         sets: &[VariantSet],
+        outside: &OutsideJobs<'_>,
         policy: &TimingPolicy,
         calibrate: bool,
         doing: &dyn Fn(&str),
@@ -105,9 +142,19 @@ impl RenderSetup<'_> {
                 clocked_pass(self, set).ok()
             })
             .collect();
+        let threads = self.pool.current_num_threads();
+        let size = (self.options.width, self.options.height);
+        let mut prepared: Vec<Result<Prepared, RunError>> = Vec::new();
+        for def in outside.defs {
+            doing(&format!("running {} once", def.name));
+            match prepare(def, self.scene, size, threads, outside, self.stop) {
+                Err(RunError::Stopped) => return Err(RunError::Stopped),
+                other => prepared.push(other),
+            }
+        }
         // Only the sets whose counted render worked are timed.
         let timed: Vec<usize> = (0..sets.len()).filter(|&i| counts[i].is_ok()).collect();
-        let jobs: Vec<RenderJob<'_, VariantRender<NoCount>>> = timed
+        let mut jobs: Vec<RenderJob<'_, Timed>> = timed
             .iter()
             .map(|&i| {
                 let set = &sets[i];
@@ -122,10 +169,15 @@ impl RenderSetup<'_> {
                                 self.stop,
                             )
                         })
+                        .map(Timed::Own)
                         .map_err(fail)
                 }) as RenderJob<'_, _>
             })
             .collect();
+        // And the outside tracers whose first run worked.
+        for p in prepared.iter().flatten() {
+            jobs.push(Box::new(move || p.run(self.stop).map(Timed::Outside)));
+        }
         doing(&format!("timing {} variants", jobs.len()));
         let (width, height) = yardstick_size(self.options.width, self.options.height);
         let small = tracer::RenderOptions {
@@ -159,7 +211,10 @@ impl RenderSetup<'_> {
         let mut each_round = measured.each_round.into_iter();
         let yardstick = each_round.next().flatten().map(|t| ((width, height), t));
         let calibration = each_round.next().flatten();
-        let mut timings = timed.into_iter().zip(measured.renders);
+        let mut renders = measured.renders;
+        let outside_timings = renders.split_off(timed.len().min(renders.len()));
+        let outside = outside_results(prepared, outside_timings)?;
+        let mut timings = timed.into_iter().zip(renders);
         let mut variants = Vec::with_capacity(sets.len());
         for (i, ((set, counted), query_shares)) in sets.iter().zip(counts).zip(shares).enumerate() {
             let counts = match counted {
@@ -174,7 +229,11 @@ impl RenderSetup<'_> {
                 _ => Err(RunError::Stopped),
             };
             variants.push(timing.and_then(|m| {
-                let frame = &m.last.rendered.frame;
+                // The first jobs are the sets' renders: another kind is a bug.
+                let Timed::Own(last) = m.last else {
+                    return Err(RunError::Panicked);
+                };
+                let frame = &last.rendered.frame;
                 let image = RgbImage::new(frame.width, frame.height, frame.to_rgb8())?;
                 Ok(VariantMeasurement {
                     variants: set.clone(),
@@ -184,16 +243,57 @@ impl RenderSetup<'_> {
                     preprocessing: m.preprocessing,
                     counts,
                     image,
-                    accelerator_bytes: m.last.accelerator_bytes,
-                    framebuffer_bytes: m.last.rendered.frame.memory_bytes(),
+                    accelerator_bytes: last.accelerator_bytes,
+                    framebuffer_bytes: last.rendered.frame.memory_bytes(),
                     query_shares,
                 })
             }));
         }
         Ok(VariantsMeasured {
             variants,
+            outside,
             calibration,
             yardstick,
         })
     }
+}
+
+/// Each prepared outside tracer with its timed runs (`timings`: one per tracer whose
+/// first run worked, in order).
+fn outside_results(
+    prepared: Vec<Result<Prepared, RunError>>,
+    timings: Vec<Result<crate::timing::Measured<Timed>, RunError>>,
+) -> Result<Vec<Result<OutsideMeasurement, RunError>>, RunError> {
+    let mut timings = timings.into_iter();
+    let mut out = Vec::with_capacity(prepared.len());
+    for p in prepared {
+        let p = match p {
+            Ok(p) => p,
+            Err(e) => {
+                out.push(Err(e));
+                continue;
+            }
+        };
+        let measured = match timings.next() {
+            Some(Ok(m)) => m,
+            Some(Err(e)) => {
+                out.push(Err(e));
+                continue;
+            }
+            None => return Err(RunError::Stopped),
+        };
+        // The jobs after the sets' are the outside runs: another kind is a bug.
+        let Timed::Outside(last) = measured.last else {
+            return Err(RunError::Panicked);
+        };
+        out.push(Ok(OutsideMeasurement {
+            name: results::VariantName::outside(&p.def.name)?,
+            prepared: p,
+            samples: measured.samples,
+            cpu_samples: measured.cpu_samples,
+            time: measured.time,
+            image: last.image,
+        }));
+    }
+    Ok(out)
 }

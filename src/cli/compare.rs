@@ -3,9 +3,10 @@
 //! against the first image or variant.
 
 use super::scene_args::ShadingFlags;
-use super::{Exports, Format};
+use super::{Exports, Format, Outcome};
 use anyhow::{Result, bail};
 use runner::compare::SideBySide;
+use runner::outside::TracerFlags;
 use runner::render_job::RenderSettings;
 use runner::scene_input::SceneInput;
 use std::path::{Path, PathBuf};
@@ -35,10 +36,12 @@ pub struct CompareArgs {
     render: RenderSettings,
     #[command(flatten)]
     shading: ShadingFlags,
+    #[command(flatten)]
+    tracers: TracerFlags,
     /// Print the result as JSON (the same as --format json).
     #[arg(long)]
     json: bool,
-    /// Output of a side-by-side run: a table, GitHub Markdown, CSV or JSON.
+    /// Output: a table, GitHub Markdown, CSV or JSON.
     #[arg(long, value_enum, default_value_t = Format::Text)]
     format: Format,
     /// Images: the difference heat map (two images), or a directory for every variant's
@@ -57,18 +60,10 @@ pub fn run(args: &CompareArgs) -> Result<()> {
 }
 
 fn compare_images(args: &CompareArgs, a: &Path, b: &Path) -> Result<()> {
-    let json = args.json || args.format == Format::Json;
-    if matches!(args.format, Format::Markdown | Format::Csv) {
-        bail!(
-            "two images compare as text or --format json; markdown and csv are for a side-by-side run of --variants"
-        );
-    }
-    let report = runner::compare::compare_images(a, b, args.output.as_deref(), json)?;
-    if json {
-        println!("{}", serde_json::to_string_pretty(&report)?);
-    } else {
-        print!("{}", report.to_text());
-    }
+    let format = if args.json { Format::Json } else { args.format };
+    let report =
+        runner::compare::compare_images(a, b, args.output.as_deref(), format == Format::Json)?;
+    print!("{}", report.render(format)?);
     Ok(())
 }
 
@@ -83,9 +78,13 @@ fn side_by_side(args: &CompareArgs, scene_arg: &Path, list: &str) -> Result<()> 
         repeats: args.repeats,
         out: args.output.as_deref(),
         f64_reference: args.reference,
+        tracers: &args.tracers,
     }
     .run(&Bars::default())?;
     let format = if args.json { Format::Json } else { args.format };
     print!("{}", report.render(format)?);
-    Ok(())
+    match report.failure_summary() {
+        Some(message) => Err(Outcome::new(Outcome::PARTS_FAILED, message).into()),
+        None => Ok(()),
+    }
 }

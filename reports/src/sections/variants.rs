@@ -385,6 +385,9 @@ pub fn scene_table(scene: &SceneResult, base: Option<&VariantResult>, detail: De
         }
         row.push(if is_base(v) {
             Cell::text("reference").tone(Tone::Muted)
+        } else if v.variant.is_outside() && v.counts.is_empty() {
+            // An outside program counts only through the probe: nothing is not zero.
+            Cell::text("not counted (no probe)").tone(Tone::Muted)
         } else {
             other_changes(base, v, detail == Detail::Full)
         });
@@ -423,6 +426,11 @@ fn counter_cell(v: &VariantResult, base: Option<&VariantResult>, key: &str) -> C
     let inside_queries = ["ops.", "tests.", "accel."]
         .iter()
         .any(|p| key.starts_with(p));
+    if v.variant.is_outside() && value.is_none() {
+        return Cell::text("not counted")
+            .tone(Tone::Muted)
+            .hover("an outside program: counted only where its probe counts".to_string());
+    }
     if inside_queries && !v.variant.counts_its_work() {
         // Embree: the work inside a query is uncounted, so a drop would be a lie.
         return Cell::text("not counted").tone(Tone::Muted).hover(format!(

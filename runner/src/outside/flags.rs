@@ -1,0 +1,52 @@
+//! The command-line flags that bring outside tracers into a run (`rtprof compare`,
+//! `rtprof suite`): declared here, beside what they load, behind the `clap` feature.
+
+use std::path::PathBuf;
+
+use super::definition::TracerDef;
+use crate::error::RunError;
+
+/// `--tracer FILE` (repeatable) and `--spp N`.
+#[derive(Clone, Debug, Default)]
+#[cfg_attr(feature = "clap", derive(clap::Args))]
+pub struct TracerFlags {
+    /// An outside tracer's definition (TOML, docs/tracers.md), or a built-in peer's
+    /// name (povray, tachyon), run beside the variants; repeat for several.
+    #[cfg_attr(feature = "clap", arg(long = "tracer", value_name = "FILE"))]
+    pub tracers: Vec<PathBuf>,
+    /// Samples per pixel of the outside tracers' timed runs ({spp}; default: each
+    /// definition's own, else 1).
+    #[cfg_attr(
+        feature = "clap",
+        arg(long, value_name = "N", value_parser = clap::value_parser!(u32).range(1..=1_000_000))
+    )]
+    pub spp: Option<u32>,
+}
+
+impl TracerFlags {
+    /// Every definition named, read and checked; two with one name are refused.
+    pub fn load(&self) -> Result<Vec<TracerDef>, RunError> {
+        let mut defs: Vec<TracerDef> = Vec::new();
+        for path in &self.tracers {
+            let builtin = path
+                .to_str()
+                .filter(|_| !path.exists())
+                .and_then(super::peers::peer);
+            let def = match builtin {
+                Some(def) => def?,
+                None => TracerDef::load(path)?,
+            };
+            if let Some(other) = defs.iter().find(|d| d.name == def.name) {
+                return Err(RunError::Definition {
+                    file: def.file.clone(),
+                    message: format!(
+                        "tracer name '{}' is also {}'s: give each its own name",
+                        def.name, other.file
+                    ),
+                });
+            }
+            defs.push(def);
+        }
+        Ok(defs)
+    }
+}

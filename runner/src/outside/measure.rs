@@ -1,0 +1,153 @@
+//! Outside tracers measured beside rtprof's variants: each prepared once (its scene
+//! written in the format it reads, one untimed run that checks it works, warms the
+//! caches and gives its picture and its probe's counts, and for a noisy tracer one run
+//! at its converged samples per pixel), then timed in the variant job's interleaved
+//! rounds, one run at a time, like the built-in variants.
+
+use std::path::{Path, PathBuf};
+use std::sync::atomic::AtomicBool;
+
+use analysis::{Estimate, RgbImage};
+use results::VariantName;
+use tracer::{Counts, Scene};
+
+use super::definition::TracerDef;
+use super::identity::ProgramIdentity;
+use super::run::{OutsideRun, RunEnd, RunPlan, run_once};
+use super::scene_file::write_scene;
+use crate::error::RunError;
+
+/// The outside tracers of a measurement and where their files go.
+#[derive(Clone, Copy, Debug)]
+pub struct OutsideJobs<'a> {
+    pub defs: &'a [TracerDef],
+    /// A directory of their own: each tracer's scene file and runs in `NAME/`.
+    pub dir: &'a Path,
+    /// Samples per pixel of the timed runs (`{spp}`): the caller's, else each
+    /// definition's own, else 1.
+    pub spp: Option<u32>,
+}
+
+impl OutsideJobs<'_> {
+    /// No outside tracer.
+    pub fn none() -> OutsideJobs<'static> {
+        OutsideJobs {
+            defs: &[],
+            dir: Path::new(""),
+            spp: None,
+        }
+    }
+}
+
+/// An outside tracer ready to be timed.
+pub struct Prepared {
+    pub def: TracerDef,
+    pub identity: Option<ProgramIdentity>,
+    scene_file: Option<PathBuf>,
+    runs: PathBuf,
+    pub width: u32,
+    pub height: u32,
+    pub threads: usize,
+    pub spp: u32,
+    /// The untimed first run.
+    pub first: OutsideRun,
+    /// The picture at the definition's converged samples per pixel (noisy tracers).
+    pub converged: Option<RgbImage>,
+}
+
+/// A run's end as the runner's error.
+fn run_error(def: &TracerDef, end: RunEnd) -> RunError {
+    match end {
+        RunEnd::Stopped => RunError::Stopped,
+        RunEnd::Failed(failure) => RunError::Outside {
+            tracer: def.name.clone(),
+            failure,
+        },
+    }
+}
+
+/// Writes `def`'s scene into `jobs.dir/NAME/`, runs it once untimed (and once at its
+/// converged samples per pixel when it is noisy).
+pub fn prepare(
+    def: &TracerDef,
+    scene: &Scene,
+    (width, height): (u32, u32),
+    threads: usize,
+    jobs: &OutsideJobs<'_>,
+    stop: &AtomicBool,
+) -> Result<Prepared, RunError> {
+    let home = jobs.dir.join(&def.name);
+    let scene_file = write_scene(scene, def.scene, &home).map_err(|failure| RunError::Outside {
+        tracer: def.name.clone(),
+        failure,
+    })?;
+    let spp = jobs.spp.or(def.spp).unwrap_or(1);
+    let runs = home.join("run");
+    let plan = RunPlan {
+        def,
+        scene_file: scene_file.as_deref(),
+        width,
+        height,
+        threads,
+        spp,
+    };
+    let first = run_once(&plan, &runs, stop).map_err(|e| run_error(def, e))?;
+    let converged = match def.converged_spp {
+        Some(spp) => {
+            let plan = RunPlan { spp, ..plan };
+            let run = run_once(&plan, &home.join("converged"), stop);
+            Some(run.map_err(|e| run_error(def, e))?.image)
+        }
+        None => None,
+    };
+    Ok(Prepared {
+        def: def.clone(),
+        identity: def.command.first().and_then(|p| ProgramIdentity::of(p)),
+        scene_file,
+        runs,
+        width,
+        height,
+        threads,
+        spp,
+        first,
+        converged,
+    })
+}
+
+impl Prepared {
+    fn plan(&self) -> RunPlan<'_> {
+        RunPlan {
+            def: &self.def,
+            scene_file: self.scene_file.as_deref(),
+            width: self.width,
+            height: self.height,
+            threads: self.threads,
+            spp: self.spp,
+        }
+    }
+
+    /// One run, timed by its definition's source.
+    pub fn run(&self, stop: &AtomicBool) -> Result<OutsideRun, RunError> {
+        run_once(&self.plan(), &self.runs, stop).map_err(|e| run_error(&self.def, e))
+    }
+
+    /// Its exact counts, when its probe wrote them (rtprof's counters by their keys).
+    pub fn counts(&self) -> Option<Counts> {
+        let probe = self.first.probe.as_ref()?;
+        (!probe.counters.is_empty())
+            .then(|| Counts::from_keys(probe.counters.iter().map(|c| (c.name.as_str(), c.value))).0)
+    }
+}
+
+/// An outside tracer measured.
+pub struct OutsideMeasurement {
+    pub name: VariantName,
+    pub prepared: Prepared,
+    /// Seconds of each timed run, by its definition's source.
+    pub samples: Vec<f64>,
+    /// CPU seconds of each timed run (the kernel's account of the process).
+    pub cpu_samples: Vec<f64>,
+    pub time: Estimate,
+    /// The last timed run's picture.
+    pub image: RgbImage,
+}

@@ -1,0 +1,50 @@
+//! The outside tracers rtprof ships definitions for (`runner/tracers/*.toml`): POV-Ray
+//! 3.7 and Tachyon, as Debian installs them. `--tracer NAME` names one, and
+//! `rtprof suite --peers` runs every one that is installed.
+
+use super::definition::TracerDef;
+use crate::error::RunError;
+
+/// Each built-in peer: its name and its definition's text.
+pub const PEERS: [(&str, &str); 2] = [
+    ("povray", include_str!("../../tracers/povray.toml")),
+    ("tachyon", include_str!("../../tracers/tachyon.toml")),
+];
+
+/// The built-in definition called `name`, if there is one.
+pub fn peer(name: &str) -> Option<Result<TracerDef, RunError>> {
+    PEERS
+        .iter()
+        .find(|(n, _)| *n == name)
+        .map(|(n, text)| TracerDef::parse(text, &format!("built-in {n}.toml")))
+}
+
+/// The built-in peers, each with whether its program is installed.
+pub fn peers() -> Result<Vec<(TracerDef, bool)>, RunError> {
+    PEERS
+        .iter()
+        .map(|(n, text)| {
+            let def = TracerDef::parse(text, &format!("built-in {n}.toml"))?;
+            let installed = def
+                .command
+                .first()
+                .is_some_and(|p| launch::resolve(std::ffi::OsStr::new(p)).is_ok());
+            Ok((def, installed))
+        })
+        .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_built_in_definitions_are_valid_and_named_as_listed() {
+        for (name, _) in PEERS {
+            let def = peer(name).unwrap().unwrap();
+            assert_eq!(def.name, name);
+            assert!(def.deterministic);
+        }
+        assert!(peer("embree").is_none());
+    }
+}
