@@ -49,6 +49,7 @@ pub mod image_io;
 pub mod nff;
 pub mod nff_writer;
 pub mod pixel_stats;
+pub mod pov_writer;
 pub mod primitives;
 pub mod ray;
 pub mod render;
@@ -74,6 +75,7 @@ pub use nff::{
 };
 pub use nff_writer::{scene_to_nff, write_scene};
 pub use pixel_stats::SampleStats;
+pub use pov_writer::scene_to_pov;
 pub use ray::{Hit, HitBound, PrimKind, PrimRef, Ray};
 pub use render::{
     Frame, NEVER_STOP, RenderError, RenderMethod, RenderOptions, Rendered, render, render_until,

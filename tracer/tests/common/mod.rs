@@ -1,6 +1,8 @@
 //! Helpers shared by the integration tests.
 #![allow(dead_code)]
 
+pub mod pov;
+
 use std::path::PathBuf;
 use tracer::{BruteForce, Count, RenderOptions, Rendered, Sampling, Scene, ShadingMode, load_nff};
 
