@@ -19,13 +19,7 @@ pub fn write_scene(
     let (name, text) = match format {
         SceneFormat::Own => return Ok(None),
         SceneFormat::Nff => ("scene.nff", tracer::nff_writer::scene_to_nff(scene)),
-        SceneFormat::Pov => {
-            return Err(Failure {
-                kind: FailureKind::Setup,
-                reason: "MERGE-POV-WRITER".into(),
-                stderr_tail: Vec::new(),
-            });
-        }
+        SceneFormat::Pov => ("scene.pov", tracer::scene_to_pov(scene)),
     };
     let path = dir.join(name);
     let failed = |e: &dyn std::fmt::Display| Failure {
