@@ -32,6 +32,8 @@ pub enum MetricsError {
     P3 { line: usize, problem: String },
     #[error("plain PPM of {width}x{height} exceeds the limit of {limit} pixels")]
     TooLarge { width: u64, height: u64, limit: u64 },
+    #[error("FLIP takes images of at most {limit} pixels, not {width}x{height}")]
+    FlipTooLarge { width: u32, height: u32, limit: u64 },
 }
 
 /// Why timing statistics could not be computed.

@@ -1,15 +1,30 @@
 //! Method 1 of the thesis: comparing two renders pixel by pixel (RMS with its verbal
-//! band, PSNR, SSIM, difference statistics) and grayscale intensity histograms.
+//! band, PSNR, SSIM, difference statistics) and grayscale intensity histograms; and for
+//! the pictures of outside renderers, Monte Carlo noise against a converged run
+//! (relMSE, efficiency), NVIDIA's FLIP, and whether a picture shows the same scene
+//! drawn with the same conventions at all (likeness).
 
 mod band;
+mod edges;
+mod flip;
 mod heat_map;
+mod likeness;
+mod noise;
 mod rgb_image;
 mod ssim;
+#[cfg(test)]
+mod test_scenes;
 
 use serde::{Deserialize, Serialize};
 
 pub use band::Band;
+pub use flip::{FLIP_MAX_PIXELS, FLIP_PIXELS_PER_DEGREE, flip_mean};
 pub use heat_map::difference_heat_map;
+pub use likeness::{
+    Likeness, LikenessMeasures, Mismatch, SAME_SCENE_MIN_EDGE_AGREEMENT, SAME_TONES_MAX_RMS,
+    likeness,
+};
+pub use noise::{NoiseError, REL_MSE_EPSILON, efficiency, noise_error};
 pub use rgb_image::RgbImage;
 
 use crate::error::MetricsError;

@@ -6,7 +6,9 @@
 //! Modules:
 //! - [`image_metrics`]: method 1 of the thesis, pixel comparison of two renders (RMS
 //!   and its verbal band, PSNR, SSIM, difference statistics, heat map) and grayscale
-//!   histograms;
+//!   histograms; for outside renderers' pictures, Monte Carlo noise (pbrt's relMSE and
+//!   efficiency), mean FLIP, and likeness (same scene and conventions, same scene with
+//!   other conventions, or another picture);
 //! - [`ppm_text`]: method 2 of the thesis, histograms from the plain-text PPM (P3) form,
 //!   with a P3 writer and parser;
 //! - [`timing`]: median run time with a seeded percentile-bootstrap interval;
@@ -34,7 +36,10 @@ pub mod timing;
 pub mod verdict;
 
 pub use error::{MetricsError, StatsError};
-pub use image_metrics::{Band, Comparison, RgbImage, compare, difference_heat_map, gray_histogram};
+pub use image_metrics::{
+    Band, Comparison, Likeness, LikenessMeasures, Mismatch, NoiseError, RgbImage, compare,
+    difference_heat_map, efficiency, flip_mean, gray_histogram, likeness, noise_error,
+};
 pub use ppm_text::{MAX_P3_PIXELS, P3Histograms, p3_histograms, parse_p3, to_p3};
 pub use timing::{Estimate, median, median_with_bootstrap};
 pub use verdict::{NOISE_THRESHOLD, Verdict};
