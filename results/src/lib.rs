@@ -26,6 +26,7 @@ pub mod gate;
 pub mod hardware;
 pub mod json_schema;
 pub mod limits;
+pub mod outside;
 pub mod pixel_stats;
 mod read;
 pub mod scaling;
@@ -43,6 +44,7 @@ pub use hardware::{
     DeviceUse, HardwareResult, HwColumn, HwErrors, HwFigures, HwRow, HwRowKind, RtlClock,
     SceneHardware, SoftwarePeer, SynthBlock, Synthesis, Upload,
 };
+pub use outside::{Noise, OutsideTracer, Program};
 pub use pixel_stats::{PixelMap, PixelStats, VariantPixelMaps};
 pub use read::{FileError, ResultsError};
 pub use schema::*;

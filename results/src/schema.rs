@@ -378,6 +378,9 @@ pub struct VariantResult {
     /// Time and rays per second by ray kind. `None` in older files.
     #[serde(default)]
     pub ray_rates: Option<RayRates>,
+    /// An outside tracer's definition and program (`None`: one of rtprof's variants).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub outside: Option<crate::OutsideTracer>,
 }
 
 /// Image error against baseline.

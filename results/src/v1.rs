@@ -325,6 +325,7 @@ fn variant_result(v: VariantResult, path: &str) -> Result<v2::VariantResult, Res
         lane_utilization: None,
         efficiency: None,
         ray_rates: None,
+        outside: None,
     })
 }
 

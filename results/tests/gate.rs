@@ -58,6 +58,7 @@ fn variant(name: &str, median: f64, dots: u64) -> VariantResult {
         lane_utilization: None,
         efficiency: None,
         ray_rates: None,
+        outside: None,
     }
 }
 

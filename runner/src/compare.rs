@@ -20,7 +20,7 @@ use serde::Serialize;
 use tracer::{Counts, ShadingMode, VariantSet};
 
 use crate::error::RunError;
-use crate::outside::{Failure, OutsideJobs, ProgramIdentity, TracerDef, TracerFlags};
+use crate::outside::{Failure, OutsideJobs, TracerFlags};
 use crate::pool::thread_pool;
 use crate::progress::Progress;
 use crate::reference_job::ImageError;
@@ -53,7 +53,7 @@ pub struct VariantRow {
     pub counts: Option<Counts>,
     /// An outside tracer's definition and program (`None`: one of rtprof's variants).
     #[serde(skip_serializing_if = "Option::is_none")]
-    pub outside: Option<OutsideFacts>,
+    pub outside: Option<results::OutsideTracer>,
     /// The image error against the f64 reference renderer (`--reference` only).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub vs_f64_reference: Option<ImageError>,
@@ -77,19 +77,6 @@ pub struct RowError {
     pub psnr: Option<f64>,
     pub ssim: f64,
     pub max_abs_diff: u8,
-}
-
-/// What a row of an outside tracer records beside its figures.
-#[derive(Serialize)]
-pub struct OutsideFacts {
-    /// The definition it ran by.
-    pub definition: TracerDef,
-    /// The program found on disk (`None`: not found by the time it was described).
-    pub program: Option<ProgramIdentity>,
-    /// Samples per pixel of its timed runs.
-    pub spp: u32,
-    /// What its time covers.
-    pub time_covers: String,
 }
 
 /// An entry that failed: its name and why.
@@ -119,7 +106,10 @@ pub struct SideBySide<'a> {
 impl SideBySide<'_> {
     /// Loads the scene, sets up the pool and runs [`compare_variants`].
     pub fn run(&self, progress: &dyn Progress) -> Result<VariantsReport, RunError> {
-        let tracers = self.tracers.load()?;
+        let (tracers, missing) = self.tracers.load_with_peers()?;
+        for name in &missing {
+            progress.note(&format!("--peers: {name} is not installed"));
+        }
         if let Some(dir) = self.out {
             std::fs::create_dir_all(dir).map_err(|e| RunError::io("create directory", dir, &e))?;
         }
@@ -223,7 +213,7 @@ struct Entry<'a> {
     image: &'a RgbImage,
     /// Whether its picture is of the same scene and frame as the reference's.
     same_scene: bool,
-    outside: Option<OutsideFacts>,
+    outside: Option<results::OutsideTracer>,
 }
 
 fn variant_rows(
@@ -288,6 +278,7 @@ fn variant_rows(
             }
         })
         .collect();
+    let reference_image = measured.first().map(|m| &m.image);
     for m in &outside_measured {
         let def = &m.prepared.def;
         entries.push(Entry {
@@ -299,12 +290,7 @@ fn variant_rows(
             counts: m.prepared.counts(),
             image: &m.image,
             same_scene: def.scene != crate::outside::SceneFormat::Own,
-            outside: Some(OutsideFacts {
-                definition: def.clone(),
-                program: m.prepared.identity.clone(),
-                spp: m.prepared.spp,
-                time_covers: def.time.covers(),
-            }),
+            outside: Some(m.record(truth.or(reference_image))?),
         });
     }
     let Some(reference) = measured.first() else {
@@ -465,6 +451,7 @@ impl VariantsReport {
                 lane_utilization: None,
                 efficiency: None,
                 ray_rates: None,
+                outside: v.outside.clone(),
             })
             .collect();
         SceneResult {
@@ -523,12 +510,12 @@ impl VariantsReport {
         for v in &self.variants {
             if let Some(o) = &v.outside {
                 let program = o.program.as_ref().map_or("not found".to_string(), |p| {
-                    format!("{}, {} bytes", p.path.display(), format::count(p.bytes))
+                    format!("{}, {} bytes", p.path, format::count(p.bytes))
                 });
                 out += &format!(
                     "{}: {} ({program}); time: {}\n",
                     v.name,
-                    o.definition.command.join(" "),
+                    o.command.join(" "),
                     o.time_covers
                 );
             }

@@ -85,6 +85,11 @@ pub struct SuiteDef {
     /// The SPD databases, generated, each run twice (see [`SpdDef`]).
     #[serde(default)]
     pub spd: Option<SpdDef>,
+    /// Outside tracers run beside the variants on every scene but the SPD's small runs
+    /// (docs/tracers.md): each `{ peer = "povray" }`, `{ file = "tracer.toml" }` (from
+    /// the suite file's directory) or a definition in place.
+    #[serde(default)]
+    pub tracers: Vec<crate::outside::TracerEntry>,
     pub quick: Option<QuickDef>,
 }
 

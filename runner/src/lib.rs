@@ -100,6 +100,7 @@ pub mod shard;
 pub mod staging;
 pub mod suite;
 pub mod suite_dir;
+mod suite_outside;
 pub mod timing;
 pub mod variant_catalogue;
 pub mod variant_job;

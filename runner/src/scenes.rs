@@ -27,6 +27,8 @@ pub struct SceneSpec {
     /// Rendered on one thread rather than the suite's (the SPD's small frames: see
     /// [`crate::definition::SpdDef::small_on_one_thread`]).
     pub one_thread: bool,
+    /// The SPD's small every-variant run ([`SceneSpec::spd_pair`]).
+    pub small_spd_run: bool,
     /// What the entry named (`None` for a file found in a `--scenes` directory).
     pub input: Option<SceneInput>,
 }
@@ -35,6 +37,13 @@ impl SceneSpec {
     /// The variants this scene runs in `def`'s suite: its own subset, or the suite's.
     pub fn variants_in<'a>(&'a self, def: &'a crate::definition::SuiteDef) -> &'a [String] {
         self.variants.as_deref().unwrap_or(&def.variants)
+    }
+
+    /// Whether the suite's outside tracers run on it: on every scene but the SPD's
+    /// small every-variant run (its frame is for brute force; the tracers draw the
+    /// scene at the SPD's own frame).
+    pub fn runs_tracers(&self) -> bool {
+        !self.small_spd_run
     }
 
     /// The two runs of an SPD entry (see [`crate::definition::SpdDef`]): the accelerated
@@ -54,6 +63,7 @@ impl SceneSpec {
         };
         let small = SceneSpec {
             name: format!("{}-small", full.name),
+            small_spd_run: true,
             size: (def.size[0], def.size[1]),
             spd_sampling: false,
             variants: None,
@@ -86,6 +96,7 @@ pub fn resolve_scene(entry: &str, size: (u32, u32), base: &Path) -> Result<Scene
         text,
         size,
         spd_sampling: false,
+        small_spd_run: false,
         variants: None,
         profile_candidate: true,
         one_thread: false,
@@ -117,6 +128,7 @@ pub fn extra_scenes(dir: &Path, size: (u32, u32)) -> Result<Vec<SceneSpec>, RunE
             let text =
                 std::fs::read_to_string(&path).map_err(|e| RunError::io("read", &path, &e))?;
             Ok(SceneSpec {
+                small_spd_run: false,
                 name: path
                     .file_stem()
                     .map_or_else(String::new, |s| s.to_string_lossy().into_owned()),

@@ -46,6 +46,11 @@ pub struct Suite {
     pub profile_scene: Option<SceneSpec>,
     /// The share of the scenes this run holds ([`Suite::with_shard`]); `None`: all.
     pub shard: Option<Shard>,
+    /// The outside tracers run beside the variants (the definition's `[[tracers]]`,
+    /// `--tracer`, `--peers`).
+    pub tracers: Vec<crate::outside::TracerDef>,
+    /// Built-in peers `--peers` asked for that are not installed.
+    pub missing_peers: Vec<String>,
 }
 
 /// Where a suite's work happens.
@@ -80,6 +85,13 @@ impl Suite {
             output.display(),
             pdf.documents()
         );
+        if !self.tracers.is_empty() {
+            let names: Vec<&str> = self.tracers.iter().map(|t| t.name.as_str()).collect();
+            text += &format!("  outside tracers: {}\n", names.join(", "));
+        }
+        for name in &self.missing_peers {
+            text += &format!("  --peers: {name} is not installed, so it did not run\n");
+        }
         for f in &results.failures {
             text += &format!("  failed: {}: {}\n", f.place(), f.message);
         }
@@ -129,13 +141,56 @@ impl Suite {
             .as_deref()
             .map(|entry| resolve_scene(entry, profile_size, base_dir))
             .transpose()?;
-        Ok(Suite {
+        let tracers = def
+            .tracers
+            .iter()
+            .enumerate()
+            .map(|(i, entry)| entry.resolve(&def.name, base_dir, i))
+            .collect::<Result<Vec<_>, _>>()?;
+        let suite = Suite {
             def,
             quick,
             scenes,
             profile_scene,
             shard: None,
-        })
+            tracers: Vec::new(),
+            missing_peers: Vec::new(),
+        };
+        suite.with_tracers(tracers)
+    }
+
+    /// The suite with the outside tracers `more` added; two with one name are refused.
+    pub fn with_tracers(
+        mut self,
+        more: impl IntoIterator<Item = crate::outside::TracerDef>,
+    ) -> Result<Self, RunError> {
+        for def in more {
+            if let Some(other) = self.tracers.iter().find(|t| t.name == def.name) {
+                return Err(RunError::Definition {
+                    file: def.file.clone(),
+                    message: format!(
+                        "tracer name '{}' is also {}'s: give each its own name",
+                        def.name, other.file
+                    ),
+                });
+            }
+            self.tracers.push(def);
+        }
+        Ok(self)
+    }
+
+    /// The suite with the tracers `flags` name (`--tracer`, `--peers`) added to its
+    /// own; the built-in peers asked for but not installed are kept by name.
+    pub fn with_tracer_flags(self, flags: &crate::outside::TracerFlags) -> Result<Self, RunError> {
+        let (defs, missing) = flags.load_with_peers()?;
+        let own: Vec<String> = self.tracers.iter().map(|t| t.name.clone()).collect();
+        // A peer the definition already runs is not added twice.
+        let defs = defs
+            .into_iter()
+            .filter(|d| !(flags.peers && own.contains(&d.name) && d.file.starts_with("built-in")));
+        let mut suite = self.with_tracers(defs)?;
+        suite.missing_peers = missing;
+        Ok(suite)
     }
 
     /// Keeps only `shard`'s scenes (each with all its variants: a scene's variants are
@@ -156,11 +211,18 @@ impl Suite {
         Ok(self)
     }
 
-    /// Renders per progress step count: every scene's variants.
+    /// Renders per progress step count: every scene's variants and outside tracers.
     pub fn steps(&self) -> u64 {
         self.scenes
             .iter()
-            .map(|s| s.variants_in(&self.def).len() as u64)
+            .map(|s| {
+                let tracers = if s.runs_tracers() {
+                    self.tracers.len()
+                } else {
+                    0
+                };
+                (s.variants_in(&self.def).len() + tracers) as u64
+            })
             .sum()
     }
 
@@ -195,8 +257,13 @@ impl Suite {
             }
         };
         ctx.progress.end();
+        // The outside tracers' scene files and runs: a directory of the run's own.
+        let tracer_dir =
+            std::env::temp_dir().join(format!("rtprof-tracers-{}", std::process::id()));
         let runner = SceneRunner {
             def: &self.def,
+            tracers: &self.tracers,
+            tracer_dir: &tracer_dir,
             ctx,
             pool: &pool,
             timed: &timed,
@@ -239,6 +306,10 @@ impl Suite {
             }
         }
         ctx.progress.end();
+        if tracer_dir.exists() {
+            // Scratch only: the pictures that matter were saved with the results.
+            let _ = std::fs::remove_dir_all(&tracer_dir);
+        }
 
         ctx.progress.begin("profile", 0);
         ctx.progress.message("heaviest scene");
@@ -276,6 +347,7 @@ impl Suite {
                     .variants
                     .iter()
                     .map(|v| VariantName::parse(v))
+                    .chain(self.tracers.iter().map(|t| VariantName::outside(&t.name)))
                     .collect::<Result<_, _>>()?,
                 timing: policy.record(),
                 wall_seconds: started.elapsed().as_secs_f64(),
@@ -332,6 +404,9 @@ type VariantOutcome = Result<(VariantResult, analysis::RgbImage), RunError>;
 
 struct SceneRunner<'a> {
     def: &'a SuiteDef,
+    /// Outside tracers, and the directory of their scene files and runs.
+    tracers: &'a [crate::outside::TracerDef],
+    tracer_dir: &'a Path,
     ctx: &'a RunContext<'a>,
     /// Every core: counted renders, pictures, the f64 reference, the profile.
     pool: &'a rayon::ThreadPool,
@@ -393,14 +468,18 @@ impl SceneRunner<'_> {
                 .progress
                 .within(crate::progress::TIMED, done, total)
         };
-        let measured = setup.measure_all(
-            &sets,
-            &crate::outside::OutsideJobs::none(),
-            &self.def.timing(),
-            true,
-            &doing,
-            &timed,
-        )?;
+        let tracer_home = self.tracer_dir.join(slug(&spec.name));
+        let outside = crate::outside::OutsideJobs {
+            defs: if spec.runs_tracers() {
+                self.tracers
+            } else {
+                &[]
+            },
+            dir: &tracer_home,
+            spp: None,
+        };
+        let mut measured =
+            setup.measure_all(&sets, &outside, &self.def.timing(), true, &doing, &timed)?;
         let truth = self.f64_reference(spec, &setup, &doing, failures)?;
         let mut variants: Vec<VariantResult> = Vec::new();
         let memory = memory_use(&scene, &measured.variants);
@@ -416,6 +495,7 @@ impl SceneRunner<'_> {
         // nothing renders meanwhile, and each is a second of single-threaded work on a
         // large frame (PNG encoding, SSIM, heat maps).
         let truth_image = truth.as_ref().map(|(_, image)| image);
+        let outside_measured = std::mem::take(&mut measured.outside);
         let mut outcomes: Vec<Option<VariantOutcome>> =
             (0..measured.variants.len()).map(|_| None).collect();
         let mut pending: Vec<(usize, Result<VariantMeasurement, RunError>)> =
@@ -459,6 +539,28 @@ impl SceneRunner<'_> {
                         VariantName::parse(name).map_or(FailedPart::Scene, FailedPart::Variant);
                     failures.push(failure(Some(&spec.name), part, &e));
                 }
+            }
+            self.ctx.progress.advance(1);
+        }
+        for m in outside_measured {
+            match m {
+                Ok(m) => {
+                    let stem = format!("images/{}-{}", slug(&spec.name), slug(m.name.as_str()));
+                    let result = crate::suite_outside::outside_result(
+                        self.ctx.out,
+                        &stem,
+                        m,
+                        reference.as_ref(),
+                        truth_image,
+                    );
+                    match result {
+                        Ok(v) => variants.push(v),
+                        Err(e) => {
+                            failures.push(crate::suite_outside::outside_failure(&spec.name, e)?)
+                        }
+                    }
+                }
+                Err(e) => failures.push(crate::suite_outside::outside_failure(&spec.name, e)?),
             }
             self.ctx.progress.advance(1);
         }
@@ -715,6 +817,7 @@ impl SceneRunner<'_> {
                 lane_utilization,
                 efficiency,
                 ray_rates,
+                outside: None,
             },
             m.image,
         ))

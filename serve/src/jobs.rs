@@ -385,6 +385,7 @@ fn definition(request: &JobRequest, catalogue: &Catalogue) -> Result<(SuiteDef, 
         profile_scene: None,
         pixel_stats: Vec::new(),
         spd: None,
+        tracers: Vec::new(),
         quick: None,
     };
     Ok((def.checked("the job").map_err(|e| failed(&e))?, false))

@@ -6,7 +6,6 @@ use super::scene_args::ShadingFlags;
 use super::{Exports, Format, Outcome};
 use anyhow::{Result, bail};
 use runner::compare::SideBySide;
-use runner::outside::TracerFlags;
 use runner::render_job::RenderSettings;
 use runner::scene_input::SceneInput;
 use std::path::{Path, PathBuf};
@@ -37,7 +36,7 @@ pub struct CompareArgs {
     #[command(flatten)]
     shading: ShadingFlags,
     #[command(flatten)]
-    tracers: TracerFlags,
+    tracers: runner::outside::TracerFlags,
     /// Print the result as JSON (the same as --format json).
     #[arg(long)]
     json: bool,

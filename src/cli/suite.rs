@@ -48,6 +48,8 @@ pub struct SuiteArgs {
     benchmarks: runner::benchmarks::BenchmarkDirs,
     #[command(flatten)]
     pdf: runner::report_files::PdfFlag,
+    #[command(flatten)]
+    tracers: runner::outside::TracerFlags,
 }
 
 pub fn run(args: &SuiteArgs) -> Result<()> {
@@ -68,7 +70,8 @@ pub fn run(args: &SuiteArgs) -> Result<()> {
         .and_then(|p| p.parent().map(Path::to_path_buf))
         .unwrap_or_default();
     let suite = Suite::prepare(def, args.quick, &base_dir, args.scenes.as_deref())?
-        .with_shard(args.shard)?;
+        .with_shard(args.shard)?
+        .with_tracer_flags(&args.tracers)?;
     let stop = terminal::interrupt::install();
     let pdf = args.pdf.choice();
     let run = DirRun {

@@ -455,6 +455,7 @@ fn sample_variant(s: &SceneSpec, variant: &str, base_median: f64) -> VariantResu
         lane_utilization: (variant == "simd").then(|| lane_utilization(s)),
         efficiency: Some(sample_efficiency(s, variant, &counts, median)),
         ray_rates: Some(sample_ray_rates(s, variant, &counts, median)),
+        outside: None,
         counts,
     }
 }

@@ -82,8 +82,9 @@ pub enum TimeSource {
     /// The program's own printout: the first capture group of `pattern` (a regular
     /// expression) in its standard output or error, in seconds times `scale`.
     Printout { pattern: String, scale: f64 },
-    /// The probe's phases (docs/instrumenting.md): the wall seconds the probe file
-    /// gives for the phases named, summed.
+    /// The probe's phases (docs/instrumenting.md): the CPU seconds the probe's samples
+    /// give for the phases named (each phase's samples anywhere on a stack, all
+    /// threads), summed.
     Probe { phases: Vec<String> },
 }
 
@@ -132,6 +133,43 @@ pub struct TracerDef {
     pub time_limit: f64,
     /// Where it was defined (a file, or `built-in`).
     pub file: String,
+}
+
+/// An outside tracer as a suite definition names it (`[[tracers]]`): a built-in peer,
+/// a definition file (from the suite file's directory), or a definition in place.
+#[derive(Clone, Debug, Deserialize)]
+#[serde(untagged)]
+pub enum TracerEntry {
+    Peer { peer: String },
+    File { file: std::path::PathBuf },
+    InPlace(toml::Table),
+}
+
+impl TracerEntry {
+    /// The definition it names; `suite` names the suite file in errors, `base` is the
+    /// directory its relative paths start from, `index` its place among `[[tracers]]`.
+    pub fn resolve(&self, suite: &str, base: &Path, index: usize) -> Result<TracerDef, RunError> {
+        match self {
+            TracerEntry::Peer { peer } => super::peers::peer(peer).unwrap_or_else(|| {
+                Err(RunError::Definition {
+                    file: suite.to_string(),
+                    message: format!(
+                        "[[tracers]] #{}: no built-in peer '{peer}' (there are: {})",
+                        index + 1,
+                        super::peers::PEERS.map(|(n, _)| n).join(", ")
+                    ),
+                })
+            }),
+            TracerEntry::File { file } => TracerDef::load(&base.join(file)),
+            TracerEntry::InPlace(table) => {
+                let text = toml::to_string(table).map_err(|e| RunError::Definition {
+                    file: suite.to_string(),
+                    message: format!("[[tracers]] #{}: {e}", index + 1),
+                })?;
+                TracerDef::parse(&text, &format!("{suite} [[tracers]] #{}", index + 1))
+            }
+        }
+    }
 }
 
 /// The file as written.

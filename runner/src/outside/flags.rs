@@ -21,9 +21,32 @@ pub struct TracerFlags {
         arg(long, value_name = "N", value_parser = clap::value_parser!(u32).range(1..=1_000_000))
     )]
     pub spp: Option<u32>,
+    /// Also run every built-in peer that is installed (POV-Ray, Tachyon); the others
+    /// are named as missing.
+    #[cfg_attr(feature = "clap", arg(long))]
+    pub peers: bool,
 }
 
 impl TracerFlags {
+    /// Every definition named, read and checked, and with `--peers` every installed
+    /// built-in peer not named already; the names of the peers not installed.
+    pub fn load_with_peers(&self) -> Result<(Vec<TracerDef>, Vec<String>), RunError> {
+        let mut defs = self.load()?;
+        let mut missing = Vec::new();
+        if self.peers {
+            for (def, installed) in super::peers::peers()? {
+                if defs.iter().any(|d| d.name == def.name) {
+                    continue;
+                }
+                match installed {
+                    true => defs.push(def),
+                    false => missing.push(def.name),
+                }
+            }
+        }
+        Ok((defs, missing))
+    }
+
     /// Every definition named, read and checked; two with one name are refused.
     pub fn load(&self) -> Result<Vec<TracerDef>, RunError> {
         let mut defs: Vec<TracerDef> = Vec::new();

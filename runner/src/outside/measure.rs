@@ -131,6 +131,32 @@ impl Prepared {
         run_once(&self.plan(), &self.runs, stop).map_err(|e| run_error(&self.def, e))
     }
 
+    /// What results record about it: its definition's facts and the program that ran.
+    pub fn record(&self) -> results::OutsideTracer {
+        let def = &self.def;
+        results::OutsideTracer {
+            definition: def.file.clone(),
+            command: def.command.clone(),
+            scene_format: match def.scene {
+                super::SceneFormat::Nff => "nff",
+                super::SceneFormat::Pov => "pov",
+                super::SceneFormat::Own => "own",
+            }
+            .to_string(),
+            time_covers: def.time.covers(),
+            deterministic: def.deterministic,
+            spp: self.spp,
+            conventions: def.conventions.clone(),
+            program: self.identity.as_ref().map(|p| results::Program {
+                path: p.path.display().to_string(),
+                bytes: p.bytes,
+                build_id: p.build_id.clone(),
+            }),
+            likeness: None,
+            noise: None,
+        }
+    }
+
     /// Its exact counts, when its probe wrote them (rtprof's counters by their keys).
     pub fn counts(&self) -> Option<Counts> {
         let probe = self.first.probe.as_ref()?;
@@ -150,4 +176,33 @@ pub struct OutsideMeasurement {
     pub time: Estimate,
     /// The last timed run's picture.
     pub image: RgbImage,
+}
+
+impl OutsideMeasurement {
+    /// What results record about it, its picture judged: against `truth` (the f64
+    /// reference's picture, else the reference variant's) for likeness when it drew
+    /// rtprof's scene at the same frame, and against its own converged run for noise.
+    pub fn record(&self, truth: Option<&RgbImage>) -> Result<results::OutsideTracer, RunError> {
+        let mut record = self.prepared.record();
+        let same_frame = |other: &RgbImage| {
+            self.prepared.def.scene != super::SceneFormat::Own
+                && (other.width, other.height) == (self.image.width, self.image.height)
+        };
+        if let Some(truth) = truth.filter(|t| same_frame(t)) {
+            record.likeness = Some(analysis::likeness(&self.image, truth)?);
+        }
+        if let (Some(converged), Some(spp)) =
+            (&self.prepared.converged, self.prepared.def.converged_spp)
+        {
+            let error = analysis::noise_error(&self.image, converged)?;
+            record.noise = Some(results::Noise {
+                converged_spp: spp,
+                rel_mse: error.rel_mse,
+                mse: error.mse,
+                efficiency: analysis::efficiency(error.rel_mse, self.time.median),
+                flip: analysis::flip_mean(&self.image, converged).ok(),
+            });
+        }
+        Ok(record)
+    }
 }

@@ -14,7 +14,7 @@ pub mod peers;
 pub mod run;
 pub mod scene_file;
 
-pub use definition::{ImageFormat, ImageOutput, SceneFormat, TimeSource, TracerDef};
+pub use definition::{ImageFormat, ImageOutput, SceneFormat, TimeSource, TracerDef, TracerEntry};
 pub use flags::TracerFlags;
 pub use identity::ProgramIdentity;
 pub use measure::{OutsideJobs, OutsideMeasurement, Prepared};
