@@ -78,7 +78,14 @@ struct VariantStats {
 fn variant_stats(results: &Results) -> Vec<VariantStats> {
     let mut stats: Vec<VariantStats> = Vec::new();
     for scene in &results.scenes {
-        for v in scene.variants.iter().filter(|v| !v.variant.is_reference()) {
+        // Findings are about rtprof's variants; outside tracers have their own table.
+        let own = |v: &&crate::results::VariantResult| !v.variant.is_outside();
+        for v in scene
+            .variants
+            .iter()
+            .filter(own)
+            .filter(|v| !v.variant.is_reference())
+        {
             let index = match stats.iter().position(|s| s.variant == v.variant) {
                 Some(i) => i,
                 None => {
@@ -167,7 +174,7 @@ pub fn truth_finding(results: &Results) -> Option<String> {
     let exact = baseline.iter().filter(|e| e.2 == 0.0).count();
     let furthest = errors
         .iter()
-        .filter(|e| !e.1.is_reference())
+        .filter(|e| !e.1.is_reference() && !e.1.is_outside())
         .max_by(|a, b| a.2.total_cmp(&b.2))
         .map(|(scene, variant, rms)| {
             format!(

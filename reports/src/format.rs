@@ -59,8 +59,12 @@ fn three_digit_decimals(v: f64) -> usize {
         0
     } else if a >= 9.995 {
         1
-    } else {
+    } else if a >= 0.0995 || a == 0.0 || !a.is_finite() {
         2
+    } else {
+        // Small ratios (an outside tracer hundreds of times slower) keep two
+        // significant digits rather than printing as 0.00.
+        ((-a.log10().floor()) as usize + 1).min(9)
     }
 }
 
@@ -395,6 +399,15 @@ pub fn pdf_pages(total: usize, main_body: usize) -> String {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn small_ratios_keep_two_significant_digits() {
+        // 1.6 ms against 0.70 s: 0.0023, not 0.00.
+        assert_eq!(speedup(0.0016 / 0.70), "0.0023×");
+        assert_eq!(speedup(0.042), "0.042×");
+        assert_eq!(speedup(0.5), "0.50×");
+        assert_eq!(speedup(0.0), "0.00×");
+    }
 
     #[test]
     fn page_helpers_write_clocks_guesses_and_edges() {

@@ -89,7 +89,7 @@ pub struct SuiteDef {
     /// (docs/tracers.md): each `{ peer = "povray" }`, `{ file = "tracer.toml" }` (from
     /// the suite file's directory) or a definition in place.
     #[serde(default)]
-    pub tracers: Vec<crate::outside::TracerEntry>,
+    pub tracers: Vec<crate::outside::entry::TracerEntry>,
     pub quick: Option<QuickDef>,
 }
 
@@ -133,14 +133,6 @@ pub struct QuickDef {
     pub spd: Option<SpdDef>,
 }
 
-/// The 1-based line and column (in characters) of byte `offset` of `text`.
-pub(crate) fn line_and_column(text: &str, offset: usize) -> (usize, usize) {
-    let before = text.get(..offset).unwrap_or(text);
-    let line = before.matches('\n').count() + 1;
-    let column = before.rsplit('\n').next().map_or(0, |l| l.chars().count()) + 1;
-    (line, column)
-}
-
 impl SuiteDef {
     /// Reads and parses the definition at `path`, or the embedded default suite.
     pub fn load(path: Option<&std::path::Path>) -> Result<Self, RunError> {
@@ -162,7 +154,7 @@ impl SuiteDef {
             // the line (several lines, which a one-line message would mangle).
             file: match e.span() {
                 Some(span) => {
-                    let (line, column) = line_and_column(text, span.start);
+                    let (line, column) = crate::text_position::line_and_column(text, span.start);
                     format!("{file}:{line}:{column}")
                 }
                 None => file.to_string(),

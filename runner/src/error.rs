@@ -62,7 +62,7 @@ pub enum RunError {
     #[error("tracer {tracer}: {}", failure.describe())]
     Outside {
         tracer: String,
-        failure: crate::outside::Failure,
+        failure: crate::outside::failure::Failure,
     },
     /// The caller asked the run to stop (Ctrl-C).
     #[error("stopped on request")]

@@ -101,6 +101,7 @@ pub mod staging;
 pub mod suite;
 pub mod suite_dir;
 mod suite_outside;
+pub mod text_position;
 pub mod timing;
 pub mod variant_catalogue;
 pub mod variant_job;

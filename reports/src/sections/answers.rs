@@ -98,7 +98,7 @@ pub fn three_answers(r: &Results) -> [Answer; 3] {
             why_none: "No profile in this run: the suite ran without profiling, or the profile failed (see Failures).",
         },
     };
-    let lines = variant_lines(r);
+    let lines = own_variant_lines(r);
     let optimizations = Answer {
         question: "What each optimization buys and costs",
         sentence: (!lines.is_empty()).then(|| optimization_sentence(&lines)),
@@ -412,6 +412,14 @@ pub fn variant_lines(r: &Results) -> Vec<VariantLine> {
             line.families[g].geomean = geometric_mean(speedups).map(|(m, _)| m);
         }
     }
+    lines
+}
+
+/// [`variant_lines`] of rtprof's own variants: the answers and findings are about
+/// them; outside tracers have their own table (`sections::outside_tracers`).
+pub fn own_variant_lines(r: &Results) -> Vec<VariantLine> {
+    let mut lines = variant_lines(r);
+    lines.retain(|l| !l.variant.is_outside());
     lines
 }
 

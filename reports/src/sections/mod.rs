@@ -37,6 +37,7 @@ pub mod family_groups;
 pub mod fpga_answer;
 pub mod hardware;
 pub mod images;
+pub mod outside_tracers;
 pub(crate) mod peer;
 pub(crate) mod pixel_maps;
 pub(crate) mod profile;

@@ -35,10 +35,17 @@ pub fn variants(b: &mut Builder) -> Section {
     if r.scenes.iter().all(|s| s.variants.is_empty()) {
         return s.empty("No scene has a variant result (see Failures).");
     }
+    // The matrix shows every variant, outside tracers too; the sentences are about
+    // rtprof's own.
     let lines = answers::variant_lines(r);
-    s.text(answers::optimization_sentence(&lines));
-    if let Some(peer) = super::peer::sentence(&lines) {
+    let own = answers::own_variant_lines(r);
+    s.text(answers::optimization_sentence(&own));
+    if let Some(peer) = super::peer::sentence(&own) {
         s.text(peer);
+    }
+    if let Some((sentence, table)) = super::outside_tracers::outside_tracers(r) {
+        s.text(sentence);
+        s.blocks.push(Block::Table(table));
     }
     s.blocks.push(Block::Paragraph {
         content: vec![

@@ -6,7 +6,8 @@ use std::path::PathBuf;
 use super::definition::TracerDef;
 use crate::error::RunError;
 
-/// `--tracer FILE` (repeatable) and `--spp N`.
+// `--tracer FILE` (repeatable), `--spp N` and `--peers`. (A plain comment: clap would
+// take a doc comment as the about of every command that flattens these flags.)
 #[derive(Clone, Debug, Default)]
 #[cfg_attr(feature = "clap", derive(clap::Args))]
 pub struct TracerFlags {

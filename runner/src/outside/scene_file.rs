@@ -7,7 +7,7 @@ use std::path::{Path, PathBuf};
 use tracer::Scene;
 
 use super::definition::SceneFormat;
-use super::run::{Failure, FailureKind};
+use super::failure::{Failure, FailureKind};
 
 /// Writes `scene` for a program reading `format` into `dir`; `None` for a program
 /// that draws its own scene.
