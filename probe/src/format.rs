@@ -484,8 +484,10 @@ impl<'a> Line<'a> {
             Ok(text) => text,
             Err(e) => return self.fail(e.valid_up_to(), "not UTF-8 text".into()),
         };
-        if let Some(i) = text.find(|c: char| c.is_control()) {
-            return self.fail(i, format!("control character {:?}", &text[i..i + 1]));
+        // The character itself, not its first byte: C1 controls (U+0080-U+009F) take
+        // two bytes in UTF-8 (the fuzz campaign found a slice inside one).
+        if let Some((i, c)) = text.char_indices().find(|(_, c)| c.is_control()) {
+            return self.fail(i, format!("control character {c:?}"));
         }
         Ok(text)
     }
@@ -738,6 +740,16 @@ mod tests {
         assert!(refusal(&good.replace("phase 5 7", "phase 8 7")).contains("must not exceed"));
         assert!(refusal(&good.replace("counter 307200 ", "counter 307200  ")).contains("a name"));
         assert!(refusal(&good.replace("writer c", "writer\tc")).contains("control character"));
+        // A two-byte control character (U+008B), as the fuzz campaign's finding had it:
+        // named whole, at its first byte.
+        let c1 = good.replace("writer c", "writer \u{8b}c");
+        let error = parse(c1.as_bytes()).err().map(|e| (e.offset, e.to_string()));
+        let at = c1.find('\u{8b}');
+        assert!(
+            error.as_ref().is_some_and(|(offset, text)| Some(*offset) == at
+                && text.contains("control character '\\u{8b}'")),
+            "{error:?}"
+        );
         assert!(
             refusal(&good.replace("reason signal 15", "reason signal 99")).contains("no signal")
         );
