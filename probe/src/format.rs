@@ -743,11 +743,15 @@ mod tests {
         // A two-byte control character (U+008B), as the fuzz campaign's finding had it:
         // named whole, at its first byte.
         let c1 = good.replace("writer c", "writer \u{8b}c");
-        let error = parse(c1.as_bytes()).err().map(|e| (e.offset, e.to_string()));
+        let error = parse(c1.as_bytes())
+            .err()
+            .map(|e| (e.offset, e.to_string()));
         let at = c1.find('\u{8b}');
         assert!(
-            error.as_ref().is_some_and(|(offset, text)| Some(*offset) == at
-                && text.contains("control character '\\u{8b}'")),
+            error
+                .as_ref()
+                .is_some_and(|(offset, text)| Some(*offset) == at
+                    && text.contains("control character '\\u{8b}'")),
             "{error:?}"
         );
         assert!(

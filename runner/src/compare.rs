@@ -518,6 +518,9 @@ impl VariantsReport {
                     o.command.join(" "),
                     o.time_covers
                 );
+                if let Some(note) = reports::sections::outside_tracers::picture_note(o) {
+                    out += &format!("  its picture: {note}\n");
+                }
             }
         }
         out

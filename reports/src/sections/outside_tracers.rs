@@ -142,3 +142,172 @@ pub fn outside_tracers(r: &Results) -> Option<(String, Table)> {
     );
     Some((sentence, table))
 }
+
+/// What an outside tracer's picture was judged to be, in a line: its likeness to
+/// rtprof's picture and its Monte Carlo noise; `None` when neither was measured.
+pub fn picture_note(o: &crate::results::OutsideTracer) -> Option<String> {
+    let mut parts = Vec::new();
+    match &o.likeness {
+        Some(Likeness::Same { .. }) => {
+            parts.push("the same scene with rtprof's conventions".to_string())
+        }
+        Some(Likeness::OtherConventions { .. }) => parts.push(
+            "the same scene with other conventions (judge it against its own runs)".to_string(),
+        ),
+        Some(Likeness::Different { reason, .. }) => {
+            let why = match reason {
+                Mismatch::PictureFlat => "its picture is flat",
+                Mismatch::ReferenceFlat => "rtprof's picture is flat",
+                Mismatch::EdgesDisagree => "another picture (framing or scene)",
+            };
+            parts.push(format!("not comparable: {why}"));
+        }
+        None => {}
+    }
+    if let Some(n) = &o.noise {
+        let efficiency = n
+            .efficiency
+            .map_or_else(|| format::DASH.to_string(), format::quantity);
+        let flip = n.flip.map_or_else(String::new, |f| {
+            format!(", mean FLIP {}", format::fixed(f, 3))
+        });
+        parts.push(format!(
+            "noise against its own {} spp run: relMSE {}, efficiency {efficiency} (1 / (relMSE × s)){flip}",
+            n.converged_spp,
+            format::significant(n.rel_mse)
+        ));
+    }
+    (!parts.is_empty()).then(|| parts.join("; "))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::results::{OutsideTracer, Results};
+    use analysis::LikenessMeasures;
+    use testkit::sample_results;
+
+    const MEASURES: LikenessMeasures = LikenessMeasures {
+        edge_agreement: 0.9,
+        picture_edges: 10,
+        reference_edges: 10,
+        tone_rms: 1.0,
+    };
+
+    /// `r` with tracer `name` on its first two scenes at the times given, the second
+    /// judged as drawing another picture when `second_differs`.
+    fn with_tracer(mut r: Results, name: &str, seconds: [f64; 2], second_differs: bool) -> Results {
+        let tracer = VariantName::outside(name).unwrap();
+        r.suite.variants.push(tracer.clone());
+        for (i, scene) in r.scenes.iter_mut().take(2).enumerate() {
+            let mut v = scene.variants[0].clone();
+            v.variant = tracer.clone();
+            v.time.median = seconds[i];
+            v.quality = None;
+            v.outside = Some(OutsideTracer {
+                definition: "built-in t.toml".into(),
+                command: vec!["t".into()],
+                scene_format: "nff".into(),
+                time_covers: "the whole process".into(),
+                deterministic: true,
+                spp: 1,
+                conventions: String::new(),
+                program: None,
+                likeness: Some(if second_differs && i == 1 {
+                    Likeness::Different {
+                        reason: Mismatch::PictureFlat,
+                        measures: MEASURES,
+                    }
+                } else {
+                    Likeness::Same { measures: MEASURES }
+                }),
+                noise: None,
+            });
+            scene.variants.push(v);
+        }
+        r
+    }
+
+    #[test]
+    fn each_scene_sets_rtprofs_fastest_kept_variant_against_the_tracer() {
+        let r = with_tracer(sample_results(), "t", [2.0, 4.0], false);
+        // rtprof's side, by hand: the fastest of the scene's own variants whose picture
+        // stayed visually identical (or the reference itself).
+        let best: Vec<f64> = r.scenes[..2]
+            .iter()
+            .map(|s| fastest_kept(s).unwrap().time.median)
+            .collect();
+        for s in &r.scenes[..2] {
+            let b = fastest_kept(s).unwrap();
+            assert!(!b.variant.is_outside());
+            for v in s.variants.iter().filter(|v| !v.variant.is_outside()) {
+                let kept = v.variant.is_reference()
+                    || v.quality
+                        .as_ref()
+                        .is_some_and(|q| q.band == Band::VisuallyIdentical);
+                assert!(!kept || v.time.median >= b.time.median);
+            }
+        }
+        let (sentence, table) = outside_tracers(&r).unwrap();
+        let ratios = [best[0] / 2.0, best[1] / 4.0];
+        assert_eq!(table.rows[0][2].text, format::speedup(ratios[0]));
+        assert_eq!(table.rows[1][2].text, format::speedup(ratios[1]));
+        let mean = (ratios[0] * ratios[1]).sqrt();
+        let last = table.rows.last().unwrap();
+        assert_eq!(last[1].text, format::speedup(mean));
+        assert!(
+            sentence.contains(&format!(
+                "rtprof takes {} of t's time",
+                format::speedup(mean)
+            )),
+            "{sentence}"
+        );
+        assert!(sentence.contains("the whole process"), "{sentence}");
+    }
+
+    #[test]
+    fn another_picture_is_marked_and_kept_out_of_the_mean() {
+        let r = with_tracer(sample_results(), "white", [2.0, 4.0], true);
+        let (sentence, table) = outside_tracers(&r).unwrap();
+        assert_eq!(table.rows[1][2].text, "not comparable");
+        let best = fastest_kept(&r.scenes[0]).unwrap().time.median;
+        // The mean is the first scene's ratio alone.
+        assert_eq!(
+            table.rows.last().unwrap()[1].text,
+            format::speedup(best / 2.0)
+        );
+        assert!(sentence.contains("not comparable on"), "{sentence}");
+        assert!(sentence.contains("its picture is flat"), "{sentence}");
+        assert!(outside_tracers(&sample_results()).is_none());
+    }
+
+    #[test]
+    fn the_picture_note_names_likeness_and_noise() {
+        let r = with_tracer(sample_results(), "t", [2.0, 4.0], true);
+        let mut o = r.scenes[1]
+            .variants
+            .last()
+            .unwrap()
+            .outside
+            .clone()
+            .unwrap();
+        assert_eq!(
+            picture_note(&o).unwrap(),
+            "not comparable: its picture is flat"
+        );
+        o.likeness = None;
+        o.noise = Some(crate::results::Noise {
+            converged_spp: 256,
+            rel_mse: 0.0400,
+            mse: 0.002,
+            efficiency: Some(34.5),
+            flip: None,
+        });
+        assert_eq!(
+            picture_note(&o).unwrap(),
+            "noise against its own 256 spp run: relMSE 0.040, efficiency 34.5 (1 / (relMSE × s))"
+        );
+        o.noise = None;
+        assert!(picture_note(&o).is_none());
+    }
+}
