@@ -179,6 +179,12 @@ pub fn headline(gate: &GateReport) -> String {
             format::count(unmatched as u64)
         );
     }
+    if !gate.failed_entries.is_empty() {
+        line += &format!(
+            "; {} failed in one of the runs (not compared)",
+            format::plural(gate.failed_entries.len(), "scene × variant")
+        );
+    }
     line
 }
 
@@ -259,6 +265,9 @@ fn notes(gate: &GateReport) -> Vec<String> {
     }
     for u in gate.unmatched.iter().chain(&gate.instructions_unmatched) {
         notes.push(format!("only in one run: {u}"));
+    }
+    for f in &gate.failed_entries {
+        notes.push(format!("not compared: {f}"));
     }
     notes
 }

@@ -186,6 +186,10 @@ pub struct GateReport {
     pub instructions: Vec<InstructionEntry>,
     /// `scene/variant` present in only one of the runs.
     pub unmatched: Vec<String>,
+    /// Entries that failed in either run (`scene/variant failed in the new run: why`):
+    /// nothing to compare, so the gate fails (an outside tracer that stopped working is
+    /// a regression, not a missing entry).
+    pub failed_entries: Vec<String>,
     /// Benchmark ids with an instruction count in only one of the runs (`id (old)` or
     /// `id (new)`), when both runs have instruction counts.
     pub instructions_unmatched: Vec<String>,
@@ -201,11 +205,13 @@ pub struct GateReport {
 }
 
 impl GateReport {
-    /// True when some entry is slower, changed a count, or an instruction count grew; in
+    /// True when some entry failed in either run, is slower, changed a count, or an
+    /// instruction count grew; in
     /// a strict gate also when an instruction count shrank beyond the threshold or an
     /// entry or benchmark is in only one run.
     pub fn failed(&self) -> bool {
-        self.entries.iter().any(Entry::failed)
+        !self.failed_entries.is_empty()
+            || self.entries.iter().any(Entry::failed)
             || self.instructions.iter().any(|i| self.instruction_failed(i))
             || (self.strict
                 && !(self.unmatched.is_empty() && self.instructions_unmatched.is_empty()))
@@ -409,6 +415,18 @@ pub fn gate(old: &Results, new: &Results, options: GateOptions) -> Result<GateRe
             "a strict gate across machines ({machine}): relative times move more between machines than between runs on one; the instruction counts do not"
         ));
     }
+    let mut failed_entries = Vec::new();
+    for (run, r) in [("old", old), ("new", new)] {
+        for f in &r.failures {
+            if let (Some(scene), crate::FailedPart::Variant(v)) = (&f.scene, &f.part) {
+                failed_entries.push(format!(
+                    "{scene}/{v} failed in the {run} run: {}",
+                    f.message
+                ));
+                unmatched.retain(|u| !u.starts_with(&format!("{scene}/{v} (")));
+            }
+        }
+    }
     let instructions = instruction_entries(&old.instructions, &new.instructions);
     let instructions_unmatched =
         unmatched_ids(&old.instructions, &new.instructions, options.strict);
@@ -425,6 +443,7 @@ pub fn gate(old: &Results, new: &Results, options: GateOptions) -> Result<GateRe
         entries,
         instructions,
         unmatched,
+        failed_entries,
         instructions_unmatched,
         strict: options.strict,
         warnings,

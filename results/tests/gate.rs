@@ -627,3 +627,33 @@ fn a_strict_gate_calls_slower_only_beyond_half_again() {
     assert_eq!(g.entries[1].verdict, Verdict::Slower);
     assert!((g.entries[1].change.median - 3.3).abs() < 1e-9);
 }
+
+#[test]
+fn an_entry_that_failed_in_either_run_is_not_compared_and_fails_the_gate() {
+    // An outside tracer ran in the old run and failed in the new one: its entry is gone
+    // from the new scene, and the new run's failures say why.
+    let tracer = VariantName::parse("tracer:tachyon").unwrap();
+    let mut old = run(1.0, 0.2, 0.01, 1000);
+    let mut entry = old.scenes[0].variants[1].clone();
+    entry.variant = tracer.clone();
+    old.scenes[0].variants.push(entry);
+    let mut new = run(1.0, 0.2, 0.01, 1000);
+    new.failures.push(results::Failure {
+        scene: Some("balls3".into()),
+        part: results::FailedPart::Variant(tracer),
+        message: "tracer tachyon: tachyon exited with code 1".into(),
+    });
+    let g = default_gate(&old, &new);
+    assert!(g.failed(), "a failed entry must fail the gate");
+    // Everything else is compared as before, and passes.
+    assert_eq!(g.entries.len(), 2);
+    assert!(g.entries.iter().all(|e| !e.failed()));
+    assert_eq!(
+        g.failed_entries,
+        ["balls3/tracer:tachyon failed in the new run: tracer tachyon: tachyon exited with code 1"]
+    );
+    // It is a failure, not an entry found in one run only.
+    assert!(g.unmatched.is_empty(), "{:?}", g.unmatched);
+    // The same run against itself, without the failure, passes.
+    assert!(!default_gate(&old, &old).failed());
+}

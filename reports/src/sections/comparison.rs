@@ -31,6 +31,7 @@ pub fn gate_against(first: &Run, run: &Run) -> GateReport {
             entries: Vec::new(),
             instructions: Vec::new(),
             unmatched: Vec::new(),
+            failed_entries: Vec::new(),
             instructions_unmatched: Vec::new(),
             strict: false,
             warnings: Vec::new(),
