@@ -307,3 +307,81 @@ fn tachyon_the_built_in_peer_renders_an_spd_scene_beside_rtprof() {
     // Same scene and frame: judged against rtprof's picture.
     assert!(row["rms"].as_f64().is_some(), "{row}");
 }
+
+/// RTIOW (../shared/peers/rtiow) built with the probe by scripts/rtiow-probe.sh, into a
+/// fresh directory; its path.
+fn build_rtiow(dir: &Path) -> PathBuf {
+    let out = Command::new("bash")
+        .arg(PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("scripts/rtiow-probe.sh"))
+        .arg(dir)
+        .arg("probe")
+        .output()
+        .unwrap_or_else(|e| panic!("{e}"));
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    PathBuf::from(String::from_utf8_lossy(&out.stdout).trim())
+}
+
+#[test]
+#[ignore = "needs g++ and ../shared/peers/rtiow"]
+fn a_path_tracers_noise_falls_with_its_samples_per_pixel() {
+    let dir = scratch("rtiow");
+    let rtiow = build_rtiow(&dir.join("build"));
+    let def = dir.join("rtiow.toml");
+    std::fs::write(
+        &def,
+        format!(
+            "name = \"rtiow\"\ncommand = [\"{}\", \"{{spp}}\", \"{{width}}\"]\nscene = \"own\"\nimage = \"ppm\"\noutput = \"stdout\"\ntime = \"process\"\ndeterministic = false\nconverged_spp = 256\n",
+            rtiow.display()
+        ),
+    )
+    .unwrap_or_else(|e| panic!("{e}"));
+    let (width, height) = (160u64, 90u64);
+    let mut noise = Vec::new();
+    for spp in [4u64, 16] {
+        let out = rtprof(&[
+            "compare",
+            "one-sphere",
+            "--size",
+            &format!("{width}x{height}"),
+            "--variants",
+            "baseline",
+            "--tracer",
+            &def.display().to_string(),
+            "--spp",
+            &spp.to_string(),
+            "--repeats",
+            "2",
+            "--json",
+        ]);
+        assert_eq!(out.status.code(), Some(0), "{}", stderr(&out));
+        let json = json(&out);
+        let row = &json["variants"][1];
+        // Its own probe counts one eye ray per sample: exact.
+        assert_eq!(
+            row["counts"]["rays"]["primary"],
+            width * height * spp,
+            "{row}"
+        );
+        let n = &row["outside"]["noise"];
+        assert_eq!(n["converged_spp"], 256);
+        let rel_mse = n["rel_mse"].as_f64().unwrap_or(f64::NAN);
+        let efficiency = n["efficiency"].as_f64().unwrap_or(f64::NAN);
+        let seconds = row["seconds"]["median"].as_f64().unwrap_or(f64::NAN);
+        // Efficiency is 1 / (relMSE × time), by its definition.
+        assert!((efficiency * rel_mse * seconds - 1.0).abs() < 1e-9, "{n}");
+        println!(
+            "rtiow {spp} spp: relMSE {rel_mse:.4}, efficiency {efficiency:.1}, {seconds:.3} s"
+        );
+        noise.push(rel_mse);
+    }
+    // Variance falls as 1/spp; the converged run's own noise (1/256) is in both:
+    // (1/4 + 1/256) / (1/16 + 1/256) = 3.82.
+    let ratio = noise[0] / noise[1];
+    println!("rtiow relMSE 4 spp / 16 spp: {ratio:.2}");
+    assert!((3.0..=5.0).contains(&ratio), "{ratio}");
+    std::fs::remove_dir_all(&dir).ok();
+}
