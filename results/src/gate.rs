@@ -187,9 +187,12 @@ pub struct GateReport {
     /// `scene/variant` present in only one of the runs.
     pub unmatched: Vec<String>,
     /// Entries that failed in either run (`scene/variant failed in the new run: why`):
-    /// nothing to compare, so the gate fails (an outside tracer that stopped working is
-    /// a regression, not a missing entry).
+    /// nothing to compare.
     pub failed_entries: Vec<String>,
+    /// How many of them failed in the new run and not in the old one: each fails the
+    /// gate (an outside tracer that stopped working is a regression, not a missing
+    /// entry); one that failed in both runs did not get worse.
+    pub newly_failed: usize,
     /// Benchmark ids with an instruction count in only one of the runs (`id (old)` or
     /// `id (new)`), when both runs have instruction counts.
     pub instructions_unmatched: Vec<String>,
@@ -205,12 +208,12 @@ pub struct GateReport {
 }
 
 impl GateReport {
-    /// True when some entry failed in either run, is slower, changed a count, or an
-    /// instruction count grew; in
+    /// True when some entry failed in the new run only, is slower, changed a count, or
+    /// an instruction count grew; in
     /// a strict gate also when an instruction count shrank beyond the threshold or an
     /// entry or benchmark is in only one run.
     pub fn failed(&self) -> bool {
-        !self.failed_entries.is_empty()
+        self.newly_failed > 0
             || self.entries.iter().any(Entry::failed)
             || self.instructions.iter().any(|i| self.instruction_failed(i))
             || (self.strict
@@ -415,16 +418,26 @@ pub fn gate(old: &Results, new: &Results, options: GateOptions) -> Result<GateRe
             "a strict gate across machines ({machine}): relative times move more between machines than between runs on one; the instruction counts do not"
         ));
     }
+    let failed_in = |r: &Results| -> Vec<(String, VariantName, String)> {
+        r.failures
+            .iter()
+            .filter_map(|f| match (&f.scene, &f.part) {
+                (Some(scene), crate::FailedPart::Variant(v)) => {
+                    Some((scene.clone(), v.clone(), f.message.clone()))
+                }
+                _ => None,
+            })
+            .collect()
+    };
+    let (old_failed, new_failed) = (failed_in(old), failed_in(new));
     let mut failed_entries = Vec::new();
-    for (run, r) in [("old", old), ("new", new)] {
-        for f in &r.failures {
-            if let (Some(scene), crate::FailedPart::Variant(v)) = (&f.scene, &f.part) {
-                failed_entries.push(format!(
-                    "{scene}/{v} failed in the {run} run: {}",
-                    f.message
-                ));
-                unmatched.retain(|u| !u.starts_with(&format!("{scene}/{v} (")));
-            }
+    let mut newly_failed = 0;
+    for (run, list) in [("old", &old_failed), ("new", &new_failed)] {
+        for (scene, v, message) in list {
+            failed_entries.push(format!("{scene}/{v} failed in the {run} run: {message}"));
+            unmatched.retain(|u| !u.starts_with(&format!("{scene}/{v} (")));
+            let before = old_failed.iter().any(|(s, o, _)| s == scene && o == v);
+            newly_failed += usize::from(run == "new" && !before);
         }
     }
     let instructions = instruction_entries(&old.instructions, &new.instructions);
@@ -444,6 +457,7 @@ pub fn gate(old: &Results, new: &Results, options: GateOptions) -> Result<GateRe
         instructions,
         unmatched,
         failed_entries,
+        newly_failed,
         instructions_unmatched,
         strict: options.strict,
         warnings,

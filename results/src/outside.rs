@@ -16,6 +16,10 @@ pub struct OutsideTracer {
     pub scene_format: String,
     /// What its time covers (`the whole process`, its own printout, its probe's phases).
     pub time_covers: String,
+    /// Whether its time is the whole process's (start-up, parse and writing included):
+    /// then rtprof's own whole process (`tracer:rtprof`) is what it is set against.
+    #[serde(default)]
+    pub whole_process: bool,
     /// Whether two runs draw the same picture.
     pub deterministic: bool,
     /// Samples per pixel of its timed runs.

@@ -656,4 +656,12 @@ fn an_entry_that_failed_in_either_run_is_not_compared_and_fails_the_gate() {
     assert!(g.unmatched.is_empty(), "{:?}", g.unmatched);
     // The same run against itself, without the failure, passes.
     assert!(!default_gate(&old, &old).failed());
+    // A run whose entry failed, against itself: nothing got worse; not compared, noted.
+    let both = default_gate(&new, &new);
+    assert!(!both.failed());
+    assert_eq!((both.failed_entries.len(), both.newly_failed), (2, 0));
+    // Failed before, works now: noted, and the gate passes.
+    let recovered = default_gate(&new, &old);
+    assert!(!recovered.failed());
+    assert_eq!(recovered.failed_entries.len(), 1);
 }

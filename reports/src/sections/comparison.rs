@@ -32,6 +32,7 @@ pub fn gate_against(first: &Run, run: &Run) -> GateReport {
             instructions: Vec::new(),
             unmatched: Vec::new(),
             failed_entries: Vec::new(),
+            newly_failed: 0,
             instructions_unmatched: Vec::new(),
             strict: false,
             warnings: Vec::new(),

@@ -58,6 +58,13 @@ pub fn outside_tracers(r: &Results) -> Option<(String, Table)> {
             .map(|t| Column::number(t.as_str()).detail("rtprof ÷ it · its time")),
     );
     let mut table = Table::new(columns).dense();
+    // rtprof itself run as a whole process (the built-in peer `rtprof`): what a tracer
+    // timed as a whole process is set against, like for like.
+    let whole_rtprof = tracers
+        .iter()
+        .find(|t| t.outside_name() == Some("rtprof"))
+        .copied();
+    let mut against_whole = vec![false; tracers.len()];
     let mut ratios: Vec<Vec<f64>> = vec![Vec::new(); tracers.len()];
     let mut excluded: Vec<Vec<String>> = vec![Vec::new(); tracers.len()];
     for scene in &r.scenes {
@@ -65,6 +72,10 @@ pub fn outside_tracers(r: &Results) -> Option<(String, Table)> {
             continue;
         }
         let best = fastest_kept(scene);
+        let rtprof_process = whole_rtprof
+            .and_then(|w| scene.variants.iter().find(|v| &v.variant == w))
+            .filter(|v| not_comparable(v).is_none())
+            .map(|v| v.time.median);
         let mut row = vec![
             Cell::text(scene.name.as_str()),
             match best {
@@ -89,9 +100,18 @@ pub fn outside_tracers(r: &Results) -> Option<(String, Table)> {
                 );
                 continue;
             }
-            match best {
-                Some(b) if v.time.median > 0.0 => {
-                    let ratio = b.time.median / v.time.median;
+            let whole = v.outside.as_ref().is_some_and(|o| o.whole_process)
+                && Some(*tracer) != whole_rtprof;
+            let ours = match rtprof_process {
+                Some(p) if whole => {
+                    against_whole[i] = true;
+                    Some(p)
+                }
+                _ => best.map(|b| b.time.median),
+            };
+            match ours {
+                Some(ours) if v.time.median > 0.0 => {
+                    let ratio = ours / v.time.median;
                     ratios[i].push(ratio);
                     row.push(Cell::number(format::speedup(ratio), ratio).detail(time));
                 }
@@ -117,17 +137,24 @@ pub fn outside_tracers(r: &Results) -> Option<(String, Table)> {
             .map_or_else(String::new, |o| {
                 format!("; its time covers {}", o.time_covers)
             });
+        let name = tracer.outside_name().unwrap_or(tracer.as_str());
         let mut part = match mean {
-            Some((m, n)) => format!(
-                "rtprof takes {} of {}'s time (geometric mean over {}{covers})",
+            Some((m, n)) if Some(*tracer) == whole_rtprof => format!(
+                "rtprof's fastest kept variant's tracing is {} of the whole process `rtprof render` takes (geometric mean over {})",
                 format::speedup(m),
-                tracer.outside_name().unwrap_or(tracer.as_str()),
                 format::plural(n, "scene")
             ),
-            None => format!(
-                "{} drew no scene rtprof's time can be set against",
-                tracer.outside_name().unwrap_or(tracer.as_str())
+            Some((m, n)) if against_whole[i] => format!(
+                "rtprof takes {} of {name}'s time, both as whole processes (rtprof as `rtprof render`; geometric mean over {})",
+                format::speedup(m),
+                format::plural(n, "scene")
             ),
+            Some((m, n)) => format!(
+                "rtprof takes {} of {name}'s time (geometric mean over {}{covers})",
+                format::speedup(m),
+                format::plural(n, "scene")
+            ),
+            None => format!("{name} drew no scene rtprof's time can be set against"),
         };
         if !excluded[i].is_empty() {
             part += &format!("; not comparable on {}", format::join_list(&excluded[i]));
@@ -136,7 +163,7 @@ pub fn outside_tracers(r: &Results) -> Option<(String, Table)> {
     }
     table.rows.push(means);
     let sentence = format!(
-        "Outside tracers (docs/tracers.md), each against rtprof's fastest variant that kept the picture on the scene, whose time covers {}: {}.",
+        "Outside tracers (docs/tracers.md), each against rtprof's fastest variant that kept the picture on the scene, whose time covers {}, or, for a tracer timed as a whole process, against rtprof's own whole process where the peer `rtprof` ran: {}.",
         super::summary::time_covers(r.suite.timing.covers),
         parts.join("; ")
     );
@@ -209,6 +236,7 @@ mod tests {
                 command: vec!["t".into()],
                 scene_format: "nff".into(),
                 time_covers: "the whole process".into(),
+                whole_process: true,
                 deterministic: true,
                 spp: 1,
                 conventions: String::new(),
@@ -263,6 +291,24 @@ mod tests {
             "{sentence}"
         );
         assert!(sentence.contains("the whole process"), "{sentence}");
+    }
+
+    #[test]
+    fn a_whole_process_is_set_against_rtprofs_own_whole_process() {
+        // rtprof as a whole process took 0.5 s and 1 s; the peer 2 s and 4 s: a quarter.
+        let r = with_tracer(sample_results(), "rtprof", [0.5, 1.0], false);
+        let r = with_tracer(r, "pov", [2.0, 4.0], false);
+        let (sentence, table) = outside_tracers(&r).unwrap();
+        // Columns: scene, rtprof's fastest kept variant, tracer:rtprof, tracer:pov.
+        assert_eq!(table.rows[0][3].text, format::speedup(0.25));
+        assert_eq!(table.rows[1][3].text, format::speedup(0.25));
+        // rtprof's own column: its fastest kept variant's tracing over its process.
+        let best = fastest_kept(&r.scenes[0]).unwrap().time.median;
+        assert_eq!(table.rows[0][2].text, format::speedup(best / 0.5));
+        assert!(
+            sentence.contains("rtprof takes 0.25× of pov's time, both as whole processes"),
+            "{sentence}"
+        );
     }
 
     #[test]

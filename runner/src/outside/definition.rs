@@ -13,7 +13,11 @@ use toml::Spanned;
 use crate::error::RunError;
 
 /// The placeholders a command or an environment value may name, and what each becomes.
-pub const PLACEHOLDERS: [(&str, &str); 7] = [
+pub const PLACEHOLDERS: [(&str, &str); 8] = [
+    (
+        "rtprof",
+        "this rtprof program (rtprof run as its users run it)",
+    ),
     ("scene", "the scene file rtprof wrote for the program"),
     ("width", "the picture's width in pixels"),
     ("height", "the picture's height in pixels"),
@@ -89,6 +93,11 @@ pub enum TimeSource {
 }
 
 impl TimeSource {
+    /// Whether a time covers the whole process (start-up, parse and writing included).
+    pub fn whole_process(&self) -> bool {
+        matches!(self, TimeSource::Process)
+    }
+
     /// What a time covers, for tables and the report.
     pub fn covers(&self) -> String {
         match self {

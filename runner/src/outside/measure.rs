@@ -102,7 +102,10 @@ pub fn prepare(
     };
     Ok(Prepared {
         def: def.clone(),
-        identity: def.command.first().and_then(|p| ProgramIdentity::of(p)),
+        // The program as its command expands ({rtprof} is this binary).
+        identity: super::run::command_line(&plan, &runs)
+            .ok()
+            .and_then(|line| ProgramIdentity::of(line.first()?)),
         scene_file,
         runs,
         width,
@@ -144,6 +147,7 @@ impl Prepared {
             }
             .to_string(),
             time_covers: def.time.covers(),
+            whole_process: def.time.whole_process(),
             deterministic: def.deterministic,
             spp: self.spp,
             conventions: def.conventions.clone(),

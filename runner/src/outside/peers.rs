@@ -1,14 +1,16 @@
 //! The outside tracers rtprof ships definitions for (`runner/tracers/*.toml`): POV-Ray
-//! 3.7 and Tachyon, as Debian installs them. `--tracer NAME` names one, and
-//! `rtprof suite --peers` runs every one that is installed.
+//! 3.7 and Tachyon, as Debian installs them, and rtprof itself as its users run it (a
+//! whole process, what a peer timed as a whole process is set against). `--tracer
+//! NAME` names one, and `--peers` runs every one that is installed.
 
 use super::definition::TracerDef;
 use crate::error::RunError;
 
 /// Each built-in peer: its name and its definition's text.
-pub const PEERS: [(&str, &str); 2] = [
+pub const PEERS: [(&str, &str); 3] = [
     ("povray", include_str!("../../tracers/povray.toml")),
     ("tachyon", include_str!("../../tracers/tachyon.toml")),
+    ("rtprof", include_str!("../../tracers/rtprof.toml")),
 ];
 
 /// The built-in definition called `name`, if there is one.
@@ -25,10 +27,9 @@ pub fn peers() -> Result<Vec<(TracerDef, bool)>, RunError> {
         .iter()
         .map(|(n, text)| {
             let def = TracerDef::parse(text, &format!("built-in {n}.toml"))?;
-            let installed = def
-                .command
-                .first()
-                .is_some_and(|p| launch::resolve(std::ffi::OsStr::new(p)).is_ok());
+            let installed = def.command.first().is_some_and(|p| {
+                p == "{rtprof}" || launch::resolve(std::ffi::OsStr::new(p)).is_ok()
+            });
             Ok((def, installed))
         })
         .collect()

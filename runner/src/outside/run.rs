@@ -86,6 +86,8 @@ fn values<'a>(plan: &'a RunPlan<'a>, workdir: &'a Path) -> impl Fn(&str) -> Opti
             "threads" => plan.threads.to_string(),
             "spp" => plan.spp.to_string(),
             "workdir" => workdir.display().to_string(),
+            // The program running this: rtprof's own binary, or a test's harness.
+            "rtprof" => std::env::current_exe().ok()?.display().to_string(),
             _ => return None,
         })
     }
