@@ -65,12 +65,18 @@ pub fn outside_tracers(r: &Results) -> Option<(String, Table)> {
         .find(|t| t.outside_name() == Some("rtprof"))
         .copied();
     let mut against_whole = vec![false; tracers.len()];
-    let mut ratios: Vec<Vec<f64>> = vec![Vec::new(); tracers.len()];
+    // Per tracer, per family group (as the variants matrix groups scenes).
+    let groups = super::family_groups::FAMILY_GROUPS;
+    let mut ratios: Vec<Vec<Vec<f64>>> = vec![vec![Vec::new(); groups.len()]; tracers.len()];
     let mut excluded: Vec<Vec<String>> = vec![Vec::new(); tracers.len()];
     for scene in &r.scenes {
         if !scene.variants.iter().any(|v| v.variant.is_outside()) {
             continue;
         }
+        let group = groups
+            .iter()
+            .position(|(_, members)| members.contains(&scene.family))
+            .unwrap_or(groups.len() - 1);
         let best = fastest_kept(scene);
         let rtprof_process = whole_rtprof
             .and_then(|w| scene.variants.iter().find(|v| &v.variant == w))
@@ -112,7 +118,7 @@ pub fn outside_tracers(r: &Results) -> Option<(String, Table)> {
             match ours {
                 Some(ours) if v.time.median > 0.0 => {
                     let ratio = ours / v.time.median;
-                    ratios[i].push(ratio);
+                    ratios[i][group].push(ratio);
                     row.push(Cell::number(format::speedup(ratio), ratio).detail(time));
                 }
                 _ => row.push(Cell::text(time)),
@@ -120,14 +126,30 @@ pub fn outside_tracers(r: &Results) -> Option<(String, Table)> {
         }
         table.rows.push(row);
     }
-    let mut means = vec![Cell::text("geometric mean").span(2)];
+    for (g, (family, _)) in groups.iter().enumerate() {
+        if ratios.iter().all(|r| r[g].is_empty()) {
+            continue;
+        }
+        let mut row = vec![Cell::text(format!("{family}: geometric mean")).span(2)];
+        for r in &ratios {
+            row.push(match geometric_mean(r[g].iter().copied()) {
+                Some((m, n)) => {
+                    Cell::number(format::speedup(m), m).detail(format::plural(n, "scene"))
+                }
+                None => Cell::dash(),
+            });
+        }
+        table.rows.push(row);
+    }
     let mut parts = Vec::new();
     for (i, tracer) in tracers.iter().enumerate() {
-        let mean = geometric_mean(ratios[i].iter().copied());
-        means.push(match mean {
-            Some((m, n)) => Cell::number(format::speedup(m), m).detail(format::plural(n, "scene")),
-            None => Cell::dash(),
-        });
+        // The sentence gives the SPD scenes' mean where the tracer drew any (the
+        // scenes peers are compared on), else the mean over every scene.
+        let spd = groups.iter().position(|(name, _)| *name == "SPD");
+        let (mean, over) = match spd.and_then(|g| geometric_mean(ratios[i][g].iter().copied())) {
+            Some(m) => (Some(m), "SPD "),
+            None => (geometric_mean(ratios[i].iter().flatten().copied()), ""),
+        };
         let covers = r
             .scenes
             .iter()
@@ -142,17 +164,17 @@ pub fn outside_tracers(r: &Results) -> Option<(String, Table)> {
             Some((m, n)) if Some(*tracer) == whole_rtprof => format!(
                 "rtprof's fastest kept variant's tracing is {} of the whole process `rtprof render` takes (geometric mean over {})",
                 format::speedup(m),
-                format::plural(n, "scene")
+                format::plural(n, &format!("{over}scene"))
             ),
             Some((m, n)) if against_whole[i] => format!(
                 "rtprof takes {} of {name}'s time, both as whole processes (rtprof as `rtprof render`; geometric mean over {})",
                 format::speedup(m),
-                format::plural(n, "scene")
+                format::plural(n, &format!("{over}scene"))
             ),
             Some((m, n)) => format!(
                 "rtprof takes {} of {name}'s time (geometric mean over {}{covers})",
                 format::speedup(m),
-                format::plural(n, "scene")
+                format::plural(n, &format!("{over}scene"))
             ),
             None => format!("{name} drew no scene rtprof's time can be set against"),
         };
@@ -161,7 +183,6 @@ pub fn outside_tracers(r: &Results) -> Option<(String, Table)> {
         }
         parts.push(part);
     }
-    table.rows.push(means);
     let sentence = format!(
         "Outside tracers (docs/tracers.md), each against rtprof's fastest variant that kept the picture on the scene, whose time covers {}, or, for a tracer timed as a whole process, against rtprof's own whole process where the peer `rtprof` ran: {}.",
         super::summary::time_covers(r.suite.timing.covers),
