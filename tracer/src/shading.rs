@@ -733,6 +733,7 @@ mod tests {
             shine: 100_000.0,
             t: 0.0,
             ior: 1.0,
+            ..Material::default()
         };
         let light = Light {
             position: Vec3::ZERO,
