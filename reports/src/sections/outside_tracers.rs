@@ -36,7 +36,7 @@ fn not_comparable(v: &VariantResult) -> Option<&'static str> {
         Likeness::Different { reason, .. } => Some(match reason {
             Mismatch::PictureFlat => "its picture is flat",
             Mismatch::ReferenceFlat => "rtprof's picture is flat",
-            Mismatch::EdgesDisagree => "another picture (framing or scene)",
+            Mismatch::EdgesDisagree => "another framing or scene",
         }),
         _ => None,
     }
@@ -162,12 +162,12 @@ pub fn outside_tracers(r: &Results) -> Option<(String, Table)> {
         let name = tracer.outside_name().unwrap_or(tracer.as_str());
         let mut part = match mean {
             Some((m, n)) if Some(*tracer) == whole_rtprof => format!(
-                "rtprof's fastest kept variant's tracing is {} of the whole process `rtprof render` takes (geometric mean over {})",
+                "rtprof's fastest kept variant's tracing is {} of the whole process 'rtprof render' takes (geometric mean over {})",
                 format::speedup(m),
                 format::plural(n, &format!("{over}scene"))
             ),
             Some((m, n)) if against_whole[i] => format!(
-                "rtprof takes {} of {name}'s time, both as whole processes (rtprof as `rtprof render`; geometric mean over {})",
+                "rtprof takes {} of {name}'s time, both as whole processes (rtprof as 'rtprof render'; geometric mean over {})",
                 format::speedup(m),
                 format::plural(n, &format!("{over}scene"))
             ),
@@ -184,7 +184,7 @@ pub fn outside_tracers(r: &Results) -> Option<(String, Table)> {
         parts.push(part);
     }
     let sentence = format!(
-        "Outside tracers (docs/tracers.md), each against rtprof's fastest variant that kept the picture on the scene, whose time covers {}, or, for a tracer timed as a whole process, against rtprof's own whole process where the peer `rtprof` ran: {}.",
+        "Outside tracers (docs/tracers.md), each against rtprof's fastest variant that kept the picture on the scene, whose time covers {}, or, for a tracer timed as a whole process, against rtprof's own whole process where the peer rtprof ran: {}.",
         super::summary::time_covers(r.suite.timing.covers),
         parts.join("; ")
     );
@@ -206,7 +206,7 @@ pub fn picture_note(o: &crate::results::OutsideTracer) -> Option<String> {
             let why = match reason {
                 Mismatch::PictureFlat => "its picture is flat",
                 Mismatch::ReferenceFlat => "rtprof's picture is flat",
-                Mismatch::EdgesDisagree => "another picture (framing or scene)",
+                Mismatch::EdgesDisagree => "another framing or scene",
             };
             parts.push(format!("not comparable: {why}"));
         }
