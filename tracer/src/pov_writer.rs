@@ -44,13 +44,10 @@
 //! [`Material::ambient`] and [`Material::highlight`], and this writer writes them as the
 //! SPD did (`ambient ka`, `phong ks_spec` when not 0, `reflection ks` when not 0).
 //!
-//! Geometry is printed to six significant digits, as the SPD printed it (C's `%g`): a
-//! scene the spd crate generates holds its numbers at f32's full precision, and the
-//! digits past the sixth moved balls' small spheres, each touching its parent, enough
-//! to change 340 of 16,384 pixels against the SPD's own file (RMS 1.05); an NFF file's
-//! numbers have six digits already and print as written. Six digits are a millionth of
-//! a coordinate. The camera, derived, is computed in f64 from the decimals and printed
-//! to six digits too, so that POV-Ray shoots the same eye rays from both files.
+//! The scene's numbers are printed with Rust's `Display` for `f32` (the shortest decimal
+//! that parses back to the same bits: the NFF's own text). The camera, derived, is
+//! computed in f64 from those decimals and printed to six digits, as the SPD computed
+//! and printed it, so that POV-Ray shoots the same eye rays from both files.
 
 use crate::color::Rgb;
 use crate::scene::{Light, Material, Scene, View};
@@ -104,7 +101,7 @@ pub fn scene_to_pov(scene: &Scene) -> String {
             format_args!(
                 "sphere {{ {}, {} material {{ {} }} }}",
                 Xyz(s.center),
-                g6(s.radius.abs()),
+                s.radius.abs(),
                 name(s.material)
             ),
         );
@@ -184,20 +181,14 @@ fn line(out: &mut String, args: std::fmt::Arguments<'_>) {
     out.push('\n');
 }
 
-/// `<x, y, z>`, each to six significant digits ([`g6`]).
+/// `<x, y, z>`, each the shortest decimal that parses back to the same f32.
 struct Xyz(Vec3);
 
 impl std::fmt::Display for Xyz {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        let [x, y, z] = self.0.to_array().map(g6);
+        let [x, y, z] = self.0.to_array();
         write!(f, "<{x}, {y}, {z}>")
     }
-}
-
-/// A coordinate or radius as the SPD printed it: six significant digits of the decimal
-/// the f32 was read from.
-fn g6(x: f32) -> f64 {
-    six_digits(as_written(x))
 }
 
 /// `color red r green g blue b`, the SPD's colour form.
@@ -345,7 +336,6 @@ fn write_material(out: &mut String, name: &str, m: &Material) {
 
 /// `cone { <apex>, ra, <base>, rb open material { name } }`: the SPD's order, no caps.
 fn write_cone(out: &mut String, base: Vec3, rb: f32, apex: Vec3, ra: f32, material: &str) {
-    let (rb, ra) = (g6(rb), g6(ra));
     line(
         out,
         format_args!(
