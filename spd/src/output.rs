@@ -92,8 +92,6 @@ pub struct Output {
     v_resolution: u32,
     /// `CurrentTx` and its stack.
     pub tx: TransformStack,
-    /// Every material written, in order, with the SPD surface terms the NFF drops.
-    materials: Vec<Material>,
 }
 
 impl Output {
@@ -105,20 +103,12 @@ impl Output {
             u_resolution: OUTPUT_RESOLUTION,
             v_resolution: OUTPUT_RESOLUTION,
             tx: TransformStack::default(),
-            materials: Vec::new(),
         }
     }
 
     /// The text and the primitive counts.
     pub fn finish(self) -> (String, Counts) {
         (self.text, self.counts)
-    }
-
-    /// The text, the primitive counts and every material written, in the order of
-    /// their `f` lines, each with the generator's [`Material::ambient`] and
-    /// [`Material::highlight`] (which the text cannot hold).
-    pub fn finish_with_materials(self) -> (String, Counts, Vec<Material>) {
-        (self.text, self.counts, self.materials)
     }
 
     /// `gU_resolution`, `gV_resolution`.
@@ -188,18 +178,15 @@ impl Output {
 
     /// `lib_output_color`: `f r g b Kd Ks Shine T ior`, the Phong exponent made from
     /// the half angle `ang` (degrees) at which the highlight falls to 50 %. `ka` and
-    /// `ks_spec` have no place in NFF: the material kept (see
-    /// [`finish_with_materials`](Self::finish_with_materials)) holds them as
-    /// [`Material::ambient`] and [`Material::highlight`], which the SPD's POV-Ray
-    /// output writes as `ambient ka` and `phong ks_spec`.
+    /// `ks_spec` have no place in NFF.
     #[allow(clippy::too_many_arguments)]
     pub fn color(
         &mut self,
         color: Coord3,
-        ka: f64,
+        _ka: f64,
         kd: f64,
         ks: f64,
-        ks_spec: f64,
+        _ks_spec: f64,
         ang: f64,
         kt: f64,
         ior: f64,
@@ -220,11 +207,8 @@ impl Output {
             shine: as_f32(phong_pow),
             t: as_f32(kt),
             ior: as_f32(ior),
-            ambient: Some(as_f32(ka)),
-            highlight: Some(as_f32(ks_spec)),
         };
         nff_writer::write_material(&mut self.text, &material);
-        self.materials.push(material);
     }
 
     /// `lib_output_sphere` (curves): `s x y z r`. Under a transform the centre goes

@@ -342,7 +342,6 @@ impl NffWriter {
             shine,
             t: 0.0,
             ior: 1.0,
-            ..Material::default()
         };
         nff_writer::write_material(&mut self.text, &material);
     }

@@ -441,9 +441,6 @@ impl<'a> Parser<'a> {
                         shine,
                         t,
                         ior,
-                        // The NFF holds neither: the SPD's terms are a generator's.
-                        ambient: None,
-                        highlight: None,
                     });
                 }
                 "s" => {

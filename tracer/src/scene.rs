@@ -44,17 +44,6 @@ pub struct Material {
     pub t: f32,
     /// Index of refraction.
     pub ior: f32,
-    /// The SPD generator's ambient term (`ka` of `lib_output_color`), which the NFF `f`
-    /// line cannot hold: only a generator sets it (the NFF parser gives `None`). Nothing
-    /// renders it, neither rtprof's renderer nor the NFF writer; the POV-Ray writer
-    /// writes it as `ambient` (`ambient 0` when `None`), as the SPD's POV-Ray output did.
-    pub ambient: Option<f32>,
-    /// The SPD generator's Phong highlight weight (`ks_spec` of `lib_output_color`),
-    /// separate from its reflection weight `ks`; the NFF `f` line has one `Ks` for
-    /// both. Only a generator sets it (the NFF parser gives `None`); rtprof's renderer
-    /// and the NFF writer ignore it (they use `ks`). The POV-Ray writer writes
-    /// `phong highlight` when it is not 0 (the SPD's rule), and `phong ks` when `None`.
-    pub highlight: Option<f32>,
 }
 
 impl Default for Material {
@@ -67,8 +56,6 @@ impl Default for Material {
             shine: 1.0,
             t: 0.0,
             ior: 1.0,
-            ambient: None,
-            highlight: None,
         }
     }
 }

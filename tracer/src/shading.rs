@@ -733,7 +733,6 @@ mod tests {
             shine: 100_000.0,
             t: 0.0,
             ior: 1.0,
-            ..Material::default()
         };
         let light = Light {
             position: Vec3::ZERO,

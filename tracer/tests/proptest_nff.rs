@@ -238,7 +238,6 @@ fn model(view: &View, background: [f32; 3], entities: &[Entity]) -> Scene {
                 shine,
                 t,
                 ior,
-                ..Material::default()
             }),
             Entity::Sphere { center, radius } => {
                 let m = material(&mut scene.materials);

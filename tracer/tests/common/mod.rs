@@ -2,7 +2,6 @@
 #![allow(dead_code)]
 
 pub mod pov;
-pub mod povray;
 
 use std::path::PathBuf;
 use tracer::{BruteForce, Count, RenderOptions, Rendered, Sampling, Scene, ShadingMode, load_nff};
