@@ -100,7 +100,6 @@ pub mod shard;
 pub mod staging;
 pub mod suite;
 pub mod suite_dir;
-mod suite_outside;
 pub mod text_position;
 pub mod timing;
 pub mod variant_catalogue;

@@ -37,6 +37,8 @@ use crate::scenes::{SceneSpec, extra_scenes, resolve_scene};
 use crate::staging::save_png;
 use crate::variant_job::VariantMeasurement;
 
+mod tracers;
+
 /// A suite ready to run: its definition and its resolved scenes.
 pub struct Suite {
     pub def: SuiteDef,
@@ -157,40 +159,6 @@ impl Suite {
             missing_peers: Vec::new(),
         };
         suite.with_tracers(tracers)
-    }
-
-    /// The suite with the outside tracers `more` added; two with one name are refused.
-    pub fn with_tracers(
-        mut self,
-        more: impl IntoIterator<Item = crate::outside::TracerDef>,
-    ) -> Result<Self, RunError> {
-        for def in more {
-            if let Some(other) = self.tracers.iter().find(|t| t.name == def.name) {
-                return Err(RunError::Definition {
-                    file: def.file.clone(),
-                    message: format!(
-                        "tracer name '{}' is also {}'s: give each its own name",
-                        def.name, other.file
-                    ),
-                });
-            }
-            self.tracers.push(def);
-        }
-        Ok(self)
-    }
-
-    /// The suite with the tracers `flags` name (`--tracer`, `--peers`) added to its
-    /// own; the built-in peers asked for but not installed are kept by name.
-    pub fn with_tracer_flags(self, flags: &crate::outside::TracerFlags) -> Result<Self, RunError> {
-        let (defs, missing) = flags.load_with_peers()?;
-        let own: Vec<String> = self.tracers.iter().map(|t| t.name.clone()).collect();
-        // A peer the definition already runs is not added twice.
-        let defs = defs
-            .into_iter()
-            .filter(|d| !(flags.peers && own.contains(&d.name) && d.file.starts_with("built-in")));
-        let mut suite = self.with_tracers(defs)?;
-        suite.missing_peers = missing;
-        Ok(suite)
     }
 
     /// Keeps only `shard`'s scenes (each with all its variants: a scene's variants are
@@ -542,28 +510,14 @@ impl SceneRunner<'_> {
             }
             self.ctx.progress.advance(1);
         }
-        for m in outside_measured {
-            match m {
-                Ok(m) => {
-                    let stem = format!("images/{}-{}", slug(&spec.name), slug(m.name.as_str()));
-                    let result = crate::suite_outside::outside_result(
-                        self.ctx.out,
-                        &stem,
-                        m,
-                        reference.as_ref(),
-                        truth_image,
-                    );
-                    match result {
-                        Ok(v) => variants.push(v),
-                        Err(e) => {
-                            failures.push(crate::suite_outside::outside_failure(&spec.name, e)?)
-                        }
-                    }
-                }
-                Err(e) => failures.push(crate::suite_outside::outside_failure(&spec.name, e)?),
-            }
-            self.ctx.progress.advance(1);
-        }
+        tracers::push_outside_results(
+            self.ctx,
+            &spec.name,
+            outside_measured,
+            (reference.as_ref(), truth_image),
+            &mut variants,
+            failures,
+        )?;
         let bvh_quality = self.bvh_quality(&setup, &sets, bvh_measured, &doing, failures)?;
         let pixel_maps = self.pixel_maps(spec, &setup, &sets, &doing, failures)?;
         let calibration = measured.calibration.map(|k| Calibration {

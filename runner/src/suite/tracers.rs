@@ -7,8 +7,9 @@
 use std::path::Path;
 
 use analysis::{RgbImage, compare, difference_heat_map, gray_histogram};
-use results::{FailedPart, Failure, VariantName, VariantResult};
+use results::{FailedPart, Failure, VariantName, VariantResult, slug};
 
+use super::{RunContext, Suite};
 use crate::collect::quality;
 use crate::error::RunError;
 use crate::outside::OutsideMeasurement;
@@ -85,4 +86,67 @@ pub(crate) fn outside_failure(scene: &str, error: RunError) -> Result<Failure, R
         part,
         message: format!("tracer {tracer}: {message}"),
     })
+}
+
+impl Suite {
+    /// The suite with the outside tracers `more` added; two with one name are refused.
+    pub fn with_tracers(
+        mut self,
+        more: impl IntoIterator<Item = crate::outside::TracerDef>,
+    ) -> Result<Self, RunError> {
+        for def in more {
+            if let Some(other) = self.tracers.iter().find(|t| t.name == def.name) {
+                return Err(RunError::Definition {
+                    file: def.file.clone(),
+                    message: format!(
+                        "tracer name '{}' is also {}'s: give each its own name",
+                        def.name, other.file
+                    ),
+                });
+            }
+            self.tracers.push(def);
+        }
+        Ok(self)
+    }
+
+    /// The suite with the tracers `flags` name (`--tracer`, `--peers`) added to its
+    /// own; the built-in peers asked for but not installed are kept by name.
+    pub fn with_tracer_flags(self, flags: &crate::outside::TracerFlags) -> Result<Self, RunError> {
+        let (defs, missing) = flags.load_with_peers()?;
+        let own: Vec<String> = self.tracers.iter().map(|t| t.name.clone()).collect();
+        // A peer the definition already runs is not added twice.
+        let defs = defs
+            .into_iter()
+            .filter(|d| !(flags.peers && own.contains(&d.name) && d.file.starts_with("built-in")));
+        let mut suite = self.with_tracers(defs)?;
+        suite.missing_peers = missing;
+        Ok(suite)
+    }
+}
+
+/// Each outside tracer's measurement of scene `scene` as a results entry in `variants`,
+/// or a failure in `failures`; `pictures` are the scene's reference variant's picture
+/// and the f64 reference's.
+pub(crate) fn push_outside_results(
+    ctx: &RunContext<'_>,
+    scene: &str,
+    measured: Vec<Result<OutsideMeasurement, RunError>>,
+    (reference, truth): (Option<&RgbImage>, Option<&RgbImage>),
+    variants: &mut Vec<VariantResult>,
+    failures: &mut Vec<Failure>,
+) -> Result<(), RunError> {
+    for m in measured {
+        match m {
+            Ok(m) => {
+                let stem = format!("images/{}-{}", slug(scene), slug(m.name.as_str()));
+                match outside_result(ctx.out, &stem, m, reference, truth) {
+                    Ok(v) => variants.push(v),
+                    Err(e) => failures.push(outside_failure(scene, e)?),
+                }
+            }
+            Err(e) => failures.push(outside_failure(scene, e)?),
+        }
+        ctx.progress.advance(1);
+    }
+    Ok(())
 }
