@@ -244,6 +244,24 @@ impl SceneInput {
             SceneInput::File(path) => {
                 load_nff_with_limits(path, limits).map_err(|e| RunError::load(&e))
             }
+            SceneInput::Spd {
+                program,
+                size_factor,
+            } => {
+                // The NFF text, and the SPD surface terms it cannot hold (for the
+                // POV-Ray writer: `tracer::Scene::surface_terms`).
+                let (text, terms) =
+                    spd::generate_with_surface_terms(program.name, Some(*size_factor)).map_err(
+                        |e| RunError::Scene {
+                            scene: self.to_string(),
+                            message: e.to_string(),
+                        },
+                    )?;
+                let mut scene = parse_nff_with_limits(&text, &self.to_string(), limits)
+                    .map_err(|e| RunError::parse(&e))?;
+                spd::add_surface_terms(&mut scene, &terms);
+                Ok(scene)
+            }
             _ => {
                 let text = self.text(limits)?;
                 parse_nff_with_limits(&text, &self.to_string(), limits)
@@ -393,6 +411,8 @@ mod tests {
         let flake = parse("sphereflake:1").unwrap().load(&limits).unwrap();
         assert_eq!(flake.spheres.len(), 1 + 9);
         let balls = parse("spd:balls:1").unwrap().load(&limits).unwrap();
+        // The generator's ambient term of the floor, which the NFF text cannot hold.
+        assert_eq!(balls.surface_terms(0).map(|t| t.ambient), Some(0.2));
         // SPD balls: the sphereflake and its ground polygon.
         assert_eq!((balls.spheres.len(), balls.polygons.len()), (10, 1));
     }

@@ -18,7 +18,7 @@ use crate::vector::{
 use std::fmt::Write as _;
 use tracer::nff_writer;
 use tracer::vec3::Vec3;
-use tracer::{Light, Material, Rgb, View};
+use tracer::{Light, Material, Rgb, SurfaceTerms, View};
 
 /// `OUTPUT_RESOLUTION` of `lib.h`: the default polygonalization.
 const OUTPUT_RESOLUTION: u32 = 3;
@@ -92,6 +92,9 @@ pub struct Output {
     v_resolution: u32,
     /// `CurrentTx` and its stack.
     pub tx: TransformStack,
+    /// Every material's SPD surface terms, in the order of the `f` lines: what the NFF
+    /// drops.
+    surface_terms: Vec<SurfaceTerms>,
 }
 
 impl Output {
@@ -103,12 +106,19 @@ impl Output {
             u_resolution: OUTPUT_RESOLUTION,
             v_resolution: OUTPUT_RESOLUTION,
             tx: TransformStack::default(),
+            surface_terms: Vec::new(),
         }
     }
 
     /// The text and the primitive counts.
     pub fn finish(self) -> (String, Counts) {
         (self.text, self.counts)
+    }
+
+    /// The text, the primitive counts and every material's [`SurfaceTerms`] (which the
+    /// text cannot hold), in the order of their `f` lines.
+    pub fn finish_with_surface_terms(self) -> (String, Counts, Vec<SurfaceTerms>) {
+        (self.text, self.counts, self.surface_terms)
     }
 
     /// `gU_resolution`, `gV_resolution`.
@@ -178,15 +188,17 @@ impl Output {
 
     /// `lib_output_color`: `f r g b Kd Ks Shine T ior`, the Phong exponent made from
     /// the half angle `ang` (degrees) at which the highlight falls to 50 %. `ka` and
-    /// `ks_spec` have no place in NFF.
+    /// `ks_spec` have no place in NFF: they are kept as the material's [`SurfaceTerms`]
+    /// (see [`finish_with_surface_terms`](Self::finish_with_surface_terms)), which the
+    /// SPD's POV-Ray output writes as `ambient ka` and `phong ks_spec`.
     #[allow(clippy::too_many_arguments)]
     pub fn color(
         &mut self,
         color: Coord3,
-        _ka: f64,
+        ka: f64,
         kd: f64,
         ks: f64,
-        _ks_spec: f64,
+        ks_spec: f64,
         ang: f64,
         kt: f64,
         ior: f64,
@@ -209,6 +221,10 @@ impl Output {
             ior: as_f32(ior),
         };
         nff_writer::write_material(&mut self.text, &material);
+        self.surface_terms.push(SurfaceTerms {
+            ambient: as_f32(ka),
+            highlight: as_f32(ks_spec),
+        });
     }
 
     /// `lib_output_sphere` (curves): `s x y z r`. Under a transform the centre goes

@@ -80,7 +80,7 @@ pub use ray::{Hit, HitBound, PrimKind, PrimRef, Ray};
 pub use render::{
     Frame, NEVER_STOP, RenderError, RenderMethod, RenderOptions, Rendered, render, render_until,
 };
-pub use scene::{Light, Material, Scene, View};
+pub use scene::{Light, Material, Scene, SurfaceTerms, View};
 pub use shading::{MAX_DEPTH, RayLog, ShadingMode};
 pub use variants::{
     Accelerator, DiffuseForm, RenderWith, SqrtMethod, Variant, VariantConfig, VariantError,

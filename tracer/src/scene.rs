@@ -60,6 +60,20 @@ impl Default for Material {
     }
 }
 
+/// The SPD generator's surface terms of one material, which the NFF `f` line cannot
+/// hold: `ka` and `ks_spec` of `lib_output_color`. Nothing renders them, neither rtprof's
+/// renderer nor the NFF writer; the POV-Ray writer writes them as the SPD's POV-Ray
+/// output did. Kept beside the materials ([`Scene::surface_terms`]), not in
+/// [`Material`], which shading copies per hit.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct SurfaceTerms {
+    /// The ambient term (`ka`): POV-Ray's `ambient`.
+    pub ambient: f32,
+    /// The Phong highlight weight (`ks_spec`), separate from the reflection weight
+    /// [`Material::ks`]: POV-Ray's `phong`.
+    pub highlight: f32,
+}
+
 /// A whole scene.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Scene {
@@ -72,6 +86,9 @@ pub struct Scene {
     pub cones: Vec<Cone>,
     pub polygons: Vec<Polygon>,
     pub patches: Vec<Patch>,
+    /// Each material's [`SurfaceTerms`], by material index, where a generator gave
+    /// them (the `spd` crate's scenes); empty for a scene read from an NFF file.
+    pub surface_terms: Vec<Option<SurfaceTerms>>,
 }
 
 impl Scene {
@@ -87,7 +104,13 @@ impl Scene {
             cones: Vec::new(),
             polygons: Vec::new(),
             patches: Vec::new(),
+            surface_terms: Vec::new(),
         }
+    }
+
+    /// Material `material`'s generator surface terms, if the scene has them.
+    pub fn surface_terms(&self, material: usize) -> Option<SurfaceTerms> {
+        self.surface_terms.get(material).copied().flatten()
     }
 
     /// Number of primitives of every kind.

@@ -11,6 +11,9 @@
 //! the RMS against the SPD's file as it is is printed beside it. For the other three
 //! the SPD's file is unchanged and the bound applies to it directly.
 //!
+//! The scenes rtprof generates itself (`spd:NAME`) carry those values, and their files
+//! match the SPD's as they are: spd/tests/pov_povray.rs.
+//!
 //! Needs `povray` on PATH (or POVRAY=path); `cargo test -p tracer --test
 //! pov_writer_povray -- --ignored --nocapture` prints each scene's RMS.
 
@@ -18,108 +21,9 @@ mod common;
 
 use common::load_spd;
 use common::pov::spd_pov_text;
-use std::path::{Path, PathBuf};
-use std::process::Command;
-
-const SCENES: [&str; 7] = [
-    "balls", "gears", "mount", "rings", "teapot", "tetra", "tree",
-];
-const SIZE: u32 = 128;
-
-/// The SPD's file with every texture as its NFF `f` line states it: `ambient 0`, and the
-/// Phong weight equal to the reflection weight (no highlight without reflection). The
-/// SPD's layout is one finish value per line inside `#declare txtNNN = texture { ... }
-/// // texture txtNNN`.
-fn as_its_nff_states(spd: &str) -> String {
-    let mut out = String::with_capacity(spd.len());
-    let mut texture: Vec<&str> = Vec::new();
-    let mut inside = false;
-    for line in spd.lines() {
-        if line.starts_with("#declare ") {
-            inside = true;
-        }
-        if !inside {
-            out.push_str(line);
-            out.push('\n');
-            continue;
-        }
-        texture.push(line);
-        if line.starts_with("} // texture") {
-            inside = false;
-            let reflection = texture
-                .iter()
-                .find_map(|l| l.trim().strip_prefix("reflection "))
-                .map(str::trim);
-            for l in texture.drain(..) {
-                let t = l.trim();
-                if t.starts_with("ambient ") {
-                    out.push_str("        ambient 0\n");
-                } else if let Some(rest) = t.strip_prefix("phong ") {
-                    let size = rest.split_once("phong_size").map_or("", |(_, s)| s.trim());
-                    if let Some(weight) = reflection {
-                        out.push_str(&format!("        phong {weight}  phong_size {size}\n"));
-                    }
-                } else {
-                    out.push_str(l);
-                    out.push('\n');
-                }
-            }
-        }
-    }
-    out
-}
-
-/// Renders `pov` text as `scripts/povray-compare.sh` does: in `dir`, under a HOME whose
-/// user povray.conf is empty, POVINI and POVRAYOPT unset, `+W +H -D +FN +WT1 -A`.
-/// Returns the picture's bytes, RGB 8-bit, row by row.
-fn render(povray: &str, dir: &Path, stem: &str, pov: &str) -> Vec<u8> {
-    let input = dir.join(format!("{stem}.pov"));
-    let output = dir.join(format!("{stem}.png"));
-    std::fs::write(&input, pov).unwrap_or_else(|e| panic!("{}: {e}", input.display()));
-    let result = Command::new(povray)
-        .current_dir(dir)
-        .env("HOME", dir.join("home"))
-        .env_remove("POVINI")
-        .env_remove("POVRAYOPT")
-        .arg(format!("+I{stem}.pov"))
-        .arg(format!("+O{stem}.png"))
-        .arg(format!("+W{SIZE}"))
-        .arg(format!("+H{SIZE}"))
-        .args(["-D", "+FN", "+WT1", "-A"])
-        .output()
-        .unwrap_or_else(|e| panic!("{povray}: {e} (install Debian's povray or set POVRAY)"));
-    let log = String::from_utf8_lossy(&result.stderr);
-    assert!(
-        result.status.success() && output.is_file(),
-        "POV-Ray failed on {stem} ({}):\n{log}",
-        result.status
-    );
-    assert!(!log.contains("Parse Error"), "{stem}:\n{log}");
-    image::open(&output)
-        .unwrap_or_else(|e| panic!("{}: {e}", output.display()))
-        .to_rgb8()
-        .into_raw()
-}
-
-/// Root mean square of the channel differences, 0-255 scale.
-fn rms(a: &[u8], b: &[u8]) -> f64 {
-    assert_eq!(a.len(), b.len());
-    let sum: f64 = a
-        .iter()
-        .zip(b)
-        .map(|(&x, &y)| (f64::from(x) - f64::from(y)).powi(2))
-        .sum();
-    (sum / a.len() as f64).sqrt()
-}
-
-/// A fresh scratch directory with the empty user povray.conf.
-fn scratch() -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("rtprof-pov-writer-{}", std::process::id()));
-    let conf = dir.join("home/.povray/3.7");
-    std::fs::create_dir_all(&conf).unwrap_or_else(|e| panic!("{}: {e}", conf.display()));
-    std::fs::write(conf.join("povray.conf"), "").unwrap_or_else(|e| panic!("{e}"));
-    dir
-}
+use common::povray::{
+    SCENES, TEXTURES_BEYOND_NFF, as_its_nff_states, povray, render, rms, scratch,
+};
 
 #[test]
 fn the_nff_states_only_the_known_texture_differences() {
@@ -127,11 +31,7 @@ fn the_nff_states_only_the_known_texture_differences() {
     for name in SCENES {
         let spd = spd_pov_text(name);
         let changed = as_its_nff_states(&spd) != spd;
-        assert_eq!(
-            changed,
-            ["balls", "gears", "mount", "rings"].contains(&name),
-            "{name}"
-        );
+        assert_eq!(changed, TEXTURES_BEYOND_NFF.contains(&name), "{name}");
     }
     let sample = "#declare txt001 = texture {\n    pigment {\n        color red 1 green 1 blue 1\n    } // pigment\n    finish {\n        ambient 0.2\n        diffuse 0.5\n        phong 0.3  phong_size 3.0827\n        reflection 0.6\n    } // finish\n} // texture txt001\n";
     assert_eq!(
@@ -145,8 +45,8 @@ fn the_nff_states_only_the_known_texture_differences() {
 #[test]
 #[ignore = "needs povray"]
 fn povray_draws_the_spds_pictures_from_rtprofs_files() {
-    let povray = std::env::var("POVRAY").unwrap_or_else(|_| "povray".to_string());
-    let dir = scratch();
+    let povray = povray();
+    let dir = scratch("pov-writer");
     let mut failures = Vec::new();
     println!("scene    RMS vs SPD file as its NFF states it   RMS vs SPD file as it is");
     for name in SCENES {

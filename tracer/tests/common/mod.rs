@@ -2,6 +2,7 @@
 #![allow(dead_code)]
 
 pub mod pov;
+pub mod povray;
 
 use std::path::PathBuf;
 use tracer::{BruteForce, Count, RenderOptions, Rendered, Sampling, Scene, ShadingMode, load_nff};
