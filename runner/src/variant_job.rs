@@ -143,11 +143,10 @@ impl RenderSetup<'_> {
             })
             .collect();
         let threads = self.pool.current_num_threads();
-        let size = (self.options.width, self.options.height);
         let mut prepared: Vec<Result<Prepared, RunError>> = Vec::new();
         for def in outside.defs {
             doing(&format!("running {} once", def.name));
-            match prepare(def, self.scene, size, threads, outside, self.stop) {
+            match prepare(def, self.scene, self.options, threads, outside, self.stop) {
                 Err(RunError::Stopped) => return Err(RunError::Stopped),
                 other => prepared.push(other),
             }

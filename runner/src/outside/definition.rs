@@ -13,7 +13,7 @@ use toml::Spanned;
 use crate::error::RunError;
 
 /// The placeholders a command or an environment value may name, and what each becomes.
-pub const PLACEHOLDERS: [(&str, &str); 8] = [
+pub const PLACEHOLDERS: [(&str, &str); 10] = [
     (
         "rtprof",
         "this rtprof program (rtprof run as its users run it)",
@@ -24,6 +24,14 @@ pub const PLACEHOLDERS: [(&str, &str); 8] = [
     ("output", "the image file the program is to write"),
     ("threads", "the threads the run may use"),
     ("spp", "samples per pixel (path tracers)"),
+    (
+        "shading",
+        "the shading asked of rtprof's variants: color, gray or diffuse-only",
+    ),
+    (
+        "depth",
+        "the ray-tree depth asked of rtprof's variants (the eye ray is 1)",
+    ),
     (
         "workdir",
         "the run's own empty directory (also the program's working directory)",

@@ -9,11 +9,11 @@ use std::sync::atomic::AtomicBool;
 
 use analysis::{Estimate, RgbImage};
 use results::VariantName;
-use tracer::{Counts, Scene};
+use tracer::{Counts, RenderOptions, Scene};
 
 use super::definition::TracerDef;
 use super::identity::ProgramIdentity;
-use super::run::{OutsideRun, RunEnd, RunPlan, run_once};
+use super::run::{OutsideRun, RunEnd, RunPlan, Shading, run_once};
 use super::scene_file::write_scene;
 use crate::error::RunError;
 
@@ -49,6 +49,7 @@ pub struct Prepared {
     pub height: u32,
     pub threads: usize,
     pub spp: u32,
+    pub shading: Shading,
     /// The untimed first run.
     pub first: OutsideRun,
     /// The picture at the definition's converged samples per pixel (noisy tracers).
@@ -67,11 +68,11 @@ fn run_error(def: &TracerDef, end: RunEnd) -> RunError {
 }
 
 /// Writes `def`'s scene into `jobs.dir/NAME/`, runs it once untimed (and once at its
-/// converged samples per pixel when it is noisy).
+/// converged samples per pixel when it is noisy), at the size and shading of `options`.
 pub fn prepare(
     def: &TracerDef,
     scene: &Scene,
-    (width, height): (u32, u32),
+    options: &RenderOptions,
     threads: usize,
     jobs: &OutsideJobs<'_>,
     stop: &AtomicBool,
@@ -83,6 +84,8 @@ pub fn prepare(
     })?;
     let spp = jobs.spp.or(def.spp).unwrap_or(1);
     let runs = home.join("run");
+    let (width, height) = (options.width, options.height);
+    let shading = Shading::of(options);
     let plan = RunPlan {
         def,
         scene_file: scene_file.as_deref(),
@@ -90,6 +93,7 @@ pub fn prepare(
         height,
         threads,
         spp,
+        shading,
     };
     let first = run_once(&plan, &runs, stop).map_err(|e| run_error(def, e))?;
     let converged = match def.converged_spp {
@@ -112,6 +116,7 @@ pub fn prepare(
         height,
         threads,
         spp,
+        shading,
         first,
         converged,
     })
@@ -126,6 +131,7 @@ impl Prepared {
             height: self.height,
             threads: self.threads,
             spp: self.spp,
+            shading: self.shading,
         }
     }
 

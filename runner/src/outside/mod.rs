@@ -23,4 +23,4 @@ pub use failure::{Failure, FailureKind};
 pub use flags::TracerFlags;
 pub use identity::ProgramIdentity;
 pub use measure::{OutsideJobs, OutsideMeasurement, Prepared};
-pub use run::{OutsideRun, RunEnd, RunPlan, run_once};
+pub use run::{OutsideRun, RunEnd, RunPlan, Shading, run_once};

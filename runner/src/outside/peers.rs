@@ -1,15 +1,25 @@
 //! The outside tracers rtprof ships definitions for (`runner/tracers/*.toml`): POV-Ray
-//! 3.7 and Tachyon, as Debian installs them, and rtprof itself as its users run it (a
-//! whole process, what a peer timed as a whole process is set against). `--tracer
-//! NAME` names one, and `--peers` runs every one that is installed.
+//! 3.7 and Tachyon, as Debian installs them; the Embree yardstick (peers/embree/, built
+//! by scripts/build-embree-peer.sh) in its packet and its single-ray mode; and rtprof
+//! itself as its users run it (a whole process, what a peer timed as a whole process is
+//! set against). `--tracer NAME` names one, and `--peers` runs every one that is
+//! installed.
 
 use super::definition::TracerDef;
 use crate::error::RunError;
 
 /// Each built-in peer: its name and its definition's text.
-pub const PEERS: [(&str, &str); 3] = [
+pub const PEERS: [(&str, &str); 5] = [
     ("povray", include_str!("../../tracers/povray.toml")),
     ("tachyon", include_str!("../../tracers/tachyon.toml")),
+    (
+        "embree-yardstick",
+        include_str!("../../tracers/embree-yardstick.toml"),
+    ),
+    (
+        "embree-yardstick-single",
+        include_str!("../../tracers/embree-yardstick-single.toml"),
+    ),
     ("rtprof", include_str!("../../tracers/rtprof.toml")),
 ];
 
@@ -46,6 +56,25 @@ mod tests {
             assert_eq!(def.name, name);
             assert!(def.deterministic);
         }
+        // `embree` names rtprof's own Embree variant, not a peer.
         assert!(peer("embree").is_none());
+        assert!(peer("embree-yardstick").is_some());
+    }
+
+    #[test]
+    fn the_embree_yardstick_is_asked_for_the_variants_shading_and_depth() {
+        for name in ["embree-yardstick", "embree-yardstick-single"] {
+            let def = peer(name).unwrap().unwrap();
+            assert_eq!(def.command[0], "rtprof-embree");
+            let line = def.command.join(" ");
+            assert!(
+                line.contains("--shading {shading} --depth {depth}"),
+                "{line}"
+            );
+            assert!(matches!(
+                def.time,
+                super::super::TimeSource::Printout { .. }
+            ));
+        }
     }
 }

@@ -11,6 +11,7 @@ use std::time::Duration;
 use analysis::RgbImage;
 use launch::{End, Launch, LaunchError, Stream};
 use rtprof_probe::format::{ENV_FILE, ProbeFile};
+use tracer::{MAX_DEPTH, RenderOptions, ShadingMode};
 
 use super::definition::{ImageOutput, SceneFormat, TimeSource, TracerDef, expand};
 use super::failure::{Failure, FailureKind};
@@ -28,6 +29,47 @@ pub struct RunPlan<'a> {
     pub height: u32,
     pub threads: usize,
     pub spp: u32,
+    /// The shading rtprof's variants render with (`{shading}`, `{depth}`).
+    pub shading: Shading,
+}
+
+/// How rtprof's variants shade the picture, for a program that can shade the same way:
+/// `{shading}` is the mode's name, `{depth}` the ray-tree depth.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Shading {
+    pub mode: ShadingMode,
+    /// Ray-tree depth, the eye ray being 1.
+    pub depth: u32,
+}
+
+impl Shading {
+    /// The shading of `options`.
+    pub fn of(options: &RenderOptions) -> Self {
+        Self {
+            mode: options.mode,
+            depth: options.max_depth,
+        }
+    }
+
+    /// `{shading}`: `color`, `gray` or `diffuse-only` (rtprof's `--gray` and
+    /// `--diffuse-only`).
+    pub fn name(self) -> &'static str {
+        match self.mode {
+            ShadingMode::Color => "color",
+            ShadingMode::Gray => "gray",
+            ShadingMode::DiffuseOnly => "diffuse-only",
+        }
+    }
+}
+
+impl Default for Shading {
+    /// Full Whitted colour to the SPD's depth, what `compare` and the suite render.
+    fn default() -> Self {
+        Self {
+            mode: ShadingMode::Color,
+            depth: MAX_DEPTH,
+        }
+    }
 }
 
 /// A run that worked.
@@ -85,6 +127,8 @@ fn values<'a>(plan: &'a RunPlan<'a>, workdir: &'a Path) -> impl Fn(&str) -> Opti
             "output" => output_path(plan, workdir).display().to_string(),
             "threads" => plan.threads.to_string(),
             "spp" => plan.spp.to_string(),
+            "shading" => plan.shading.name().to_string(),
+            "depth" => plan.shading.depth.to_string(),
             "workdir" => workdir.display().to_string(),
             // The program running this: rtprof's own binary, or a test's harness.
             "rtprof" => std::env::current_exe().ok()?.display().to_string(),
@@ -341,6 +385,7 @@ mod tests {
             height: 3,
             threads: 1,
             spp: 1,
+            shading: Shading::default(),
         };
         let out = run_once(&plan, &dir, &AtomicBool::new(false));
         let _ = std::fs::remove_dir_all(&dir);
@@ -413,6 +458,48 @@ mod tests {
     }
 
     #[test]
+    fn shading_and_depth_expand_to_the_variants_own() {
+        let def = TracerDef::parse(
+            "name = \"t\"\ncommand = [\"t\", \"--shading\", \"{shading}\", \"--depth\", \"{depth}\", \"{output}\"]\nscene = \"own\"\nimage = \"ppm\"\ntime = \"process\"\n",
+            "t.toml",
+        )
+        .unwrap();
+        let plan = |mode, depth| RunPlan {
+            def: &def,
+            scene_file: None,
+            width: 4,
+            height: 3,
+            threads: 1,
+            spp: 1,
+            shading: Shading { mode, depth },
+        };
+        let line =
+            |plan: RunPlan<'_>| command_line(&plan, Path::new("/w")).unwrap()[1..5].join(" ");
+        assert_eq!(
+            line(plan(ShadingMode::DiffuseOnly, 3)),
+            "--shading diffuse-only --depth 3"
+        );
+        assert_eq!(line(plan(ShadingMode::Gray, 5)), "--shading gray --depth 5");
+        let mut options =
+            RenderOptions::new(8, 8, tracer::Sampling::PixelCenters, ShadingMode::Color);
+        options.max_depth = 7;
+        assert_eq!(
+            line(plan(
+                Shading::of(&options).mode,
+                Shading::of(&options).depth
+            )),
+            "--shading color --depth 7"
+        );
+        assert_eq!(
+            Shading::default(),
+            Shading {
+                mode: ShadingMode::Color,
+                depth: MAX_DEPTH
+            }
+        );
+    }
+
+    #[test]
     fn an_image_of_another_size_is_refused_when_the_scene_is_rtprofs() {
         let mut def = sh_tracer(GREY, "\"process\"", 30.0);
         def.scene = SceneFormat::Nff;
@@ -426,6 +513,7 @@ mod tests {
             height: 3,
             threads: 1,
             spp: 1,
+            shading: Shading::default(),
         };
         // The script draws $1 x $2, but the command gives it "{width}" = 5... so make
         // it draw 4 by hand: replace the size arguments.
