@@ -39,6 +39,7 @@ pub mod hardware;
 pub mod images;
 pub mod outside_tracers;
 pub(crate) mod peer;
+pub(crate) mod peer_yardstick;
 pub(crate) mod pixel_maps;
 pub(crate) mod profile;
 pub(crate) mod ray_rates;

@@ -14,7 +14,7 @@ use crate::results::{Band, Results, SceneResult, VariantName, VariantResult};
 
 /// rtprof's fastest variant on `scene` whose picture stayed visually identical to the
 /// reference variant's (or, without one on the scene, to the f64 reference's).
-fn fastest_kept(scene: &SceneResult) -> Option<&VariantResult> {
+pub(crate) fn fastest_kept(scene: &SceneResult) -> Option<&VariantResult> {
     let kept = |v: &&VariantResult| {
         let band = |q: Option<&crate::results::Quality>| q.map(|q| q.band);
         v.variant.is_reference()
@@ -31,7 +31,7 @@ fn fastest_kept(scene: &SceneResult) -> Option<&VariantResult> {
 }
 
 /// Why a tracer's picture is no comparison, in a few words; `None` when it is one.
-fn not_comparable(v: &VariantResult) -> Option<&'static str> {
+pub(crate) fn not_comparable(v: &VariantResult) -> Option<&'static str> {
     match v.outside.as_ref()?.likeness.as_ref()? {
         Likeness::Different { reason, .. } => Some(match reason {
             Mismatch::PictureFlat => "its picture is flat",

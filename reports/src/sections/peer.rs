@@ -17,8 +17,9 @@ const MODES: [(&str, &str); 2] = [
 /// not a program written around Embree.
 const CAVEAT: &str = "Embree runs here inside rtprof's renderer, with rtprof's camera, \
     shading and bookkeeping per ray, its robust (watertight) triangle test, and rtprof's \
-    test of each primitive it finds (so the rays are the baseline's); a program built \
-    around Embree, shading in its own loop, can be faster than these figures.";
+    test of each primitive it finds (so the rays are the baseline's, counted); a program \
+    built around Embree, shading in its own loop, can be faster than these figures: \
+    the yardstick (peers/embree/, scripts/build-embree-peer.sh) measures that.";
 
 /// Whether Embree answers the variant's queries (any of its modes).
 fn is_embree(line: &VariantLine) -> bool {
@@ -31,8 +32,9 @@ fn is_embree(line: &VariantLine) -> bool {
 /// rays), X (a× geometric mean), runs at b× the
 /// speed of Embree's single-ray queries (`embree`, c×) and d× that of its packet
 /// queries (`embree-packets`, e×)", per family group where both sides ran; `None`
-/// without an Embree mode.
-pub fn sentence(lines: &[VariantLine]) -> Option<String> {
+/// without an Embree mode. The caveat (Embree inside rtprof's renderer is not Embree as
+/// its users run it) follows when `caveat`: when the yardstick did not run.
+pub fn sentence(lines: &[VariantLine], caveat: bool) -> Option<String> {
     let mut parts = Vec::new();
     for (g, (family, _)) in FAMILY_GROUPS.iter().enumerate() {
         let geomean = |l: &VariantLine| l.families.get(g).and_then(|f| f.geomean);
@@ -71,10 +73,15 @@ pub fn sentence(lines: &[VariantLine]) -> Option<String> {
         ));
     }
     (!parts.is_empty()).then(|| {
-        format!(
-            "Against the peer, Intel Embree 3 (rtprof's camera and shading, Embree's queries; speed-ups over baseline): {}. {CAVEAT}",
+        let text = format!(
+            "Against Intel Embree 3 inside rtprof's renderer (the embree variants: rtprof's camera, shading and counted rays, Embree's queries; speed-ups over baseline): {}.",
             parts.join("; ")
-        )
+        );
+        if caveat {
+            format!("{text} {CAVEAT}")
+        } else {
+            text
+        }
     })
 }
 
@@ -109,7 +116,7 @@ mod tests {
             line("embree", 50.0),
             line("embree-packets", 80.0),
         ];
-        let text = sentence(&lines).unwrap_or_default();
+        let text = sentence(&lines, true).unwrap_or_default();
         assert!(
             text.contains("bvh+simd+packets (40.0× geometric mean)"),
             "{text}"
@@ -135,13 +142,16 @@ mod tests {
         let mut pixel_avg = line("pixel-avg", 90.0);
         pixel_avg.picture_changed = true;
         let lines = [line("bvh+simd", 30.0), pixel_avg, line("embree", 60.0)];
-        let text = sentence(&lines).unwrap_or_default();
+        let text = sentence(&lines, true).unwrap_or_default();
         assert!(text.contains("bvh+simd (30.0× geometric mean)"), "{text}");
         assert!(!text.contains("pixel-avg"), "{text}");
     }
 
     #[test]
     fn no_sentence_without_embree() {
-        assert_eq!(sentence(&[line("bvh", 10.0), line("bvh+simd", 20.0)]), None);
+        assert_eq!(
+            sentence(&[line("bvh", 10.0), line("bvh+simd", 20.0)], true),
+            None
+        );
     }
 }

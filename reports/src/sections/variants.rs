@@ -40,8 +40,11 @@ pub fn variants(b: &mut Builder) -> Section {
     let lines = answers::variant_lines(r);
     let own = answers::own_variant_lines(r);
     s.text(answers::optimization_sentence(&own));
-    if let Some(peer) = super::peer::sentence(&own) {
-        s.text(peer);
+    // The peer as its users run it (the yardstick) first, then Embree inside rtprof.
+    let yardstick = super::peer_yardstick::sentence(r);
+    let in_tool = super::peer::sentence(&own, yardstick.is_none());
+    for sentence in [yardstick, in_tool].into_iter().flatten() {
+        s.text(sentence);
     }
     if let Some((sentence, table)) = super::outside_tracers::outside_tracers(r) {
         s.text(sentence);
