@@ -229,13 +229,13 @@ impl SuiteDef {
                 }
             }
         }
-        if let Some(at) = self.tracers.iter().position(|t| t.record()) {
-            if !self.profile {
-                return bad(format!(
-                    "[[tracers]] #{}: record = true records the tracer on the suite's profile scene, but profile = false: profile a scene, or drop record",
-                    at + 1
-                ));
-            }
+        if let Some(at) = self.tracers.iter().position(|t| t.record())
+            && !self.profile
+        {
+            return bad(format!(
+                "[[tracers]] #{}: record = true records the tracer on the suite's profile scene, but profile = false: profile a scene, or drop record",
+                at + 1
+            ));
         }
         for size in sizes {
             if let Err(e) =
