@@ -44,7 +44,7 @@ pub use hardware::{
     DeviceUse, HardwareResult, HwColumn, HwErrors, HwFigures, HwRow, HwRowKind, RtlClock,
     SceneHardware, SoftwarePeer, SynthBlock, Synthesis, Upload,
 };
-pub use outside::{Noise, OutsideTracer, Program};
+pub use outside::{Noise, OutsideProfile, OutsideTracer, Program};
 pub use pixel_stats::{PixelMap, PixelStats, VariantPixelMaps};
 pub use read::{FileError, ResultsError};
 pub use schema::*;

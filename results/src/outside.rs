@@ -1,6 +1,7 @@
 //! An outside tracer's entry in results (docs/tracers.md): the definition it ran by,
 //! the program that ran (so a rebuilt or replaced program is told apart), and how its
-//! picture was judged.
+//! picture was judged; and its run recorded with perf on the suite's profile scene
+//! where the suite asked ([`OutsideProfile`]).
 
 use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
@@ -61,6 +62,38 @@ pub struct Noise {
     pub efficiency: Option<f64>,
     /// Mean FLIP error against the converged picture (NVIDIA's FLIP, 67 pixels per degree).
     pub flip: Option<f64>,
+}
+
+/// An outside tracer's run sampled with Linux perf (`rtprof record`'s recording), where
+/// the suite's `[[tracers]]` entry asks (`record = true`): on the suite's profile scene
+/// at its profile size. Paths are relative to results.json.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize, JsonSchema)]
+pub struct OutsideProfile {
+    /// The tracer, `tracer:NAME`.
+    pub variant: crate::VariantName,
+    /// The scene recorded (the suite's profile scene) and the frame asked of it.
+    pub scene: String,
+    pub width: u32,
+    pub height: u32,
+    /// The command as it ran (placeholders expanded).
+    pub command: Vec<String>,
+    /// Samples taken, and the program's CPU and wall seconds.
+    pub samples: u64,
+    pub cpu_seconds: f64,
+    pub wall_seconds: f64,
+    /// Samples per CPU second asked of perf.
+    pub frequency: u32,
+    /// How callers were found ("frame pointers", "DWARF unwinding").
+    pub call_graph: String,
+    /// The directory of its files (`record.json`, `report.html`, `perf.data`, …).
+    pub directory: String,
+    /// The profile by native symbols: flat rows (self time first), the gprof-layout
+    /// flat profile and call graph, and the flamegraph.
+    pub profile: crate::ProfileViewFiles,
+    /// Its folded stacks (one line per stack, samples last).
+    pub folded: String,
+    /// Every file written, `directory` included in each path.
+    pub files: Vec<String>,
 }
 
 /// A program as found on disk when it ran.

@@ -64,6 +64,10 @@ pub struct Results {
     /// The machine's measured compute and bandwidth peaks (the roofline's roofs).
     #[serde(default)]
     pub peak: Option<MachinePeak>,
+    /// Outside tracers recorded with perf on the profile scene, where the suite asked
+    /// (`record = true` in its `[[tracers]]`); absent when none was.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub outside_profiles: Vec<crate::OutsideProfile>,
 }
 
 /// The machine the run was made on.

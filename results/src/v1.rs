@@ -490,6 +490,7 @@ impl Results {
             criterion: self.criterion,
             instructions: self.instructions,
             peak: None,
+            outside_profiles: Vec::new(),
         })
     }
 }

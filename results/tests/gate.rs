@@ -132,6 +132,7 @@ fn run(baseline_s: f64, bvh_s: f64, kernel_s: f64, dots: u64) -> Results {
         criterion: Vec::new(),
         instructions: Vec::new(),
         peak: None,
+        outside_profiles: Vec::new(),
     }
 }
 

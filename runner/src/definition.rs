@@ -86,7 +86,8 @@ pub struct SuiteDef {
     #[serde(default)]
     pub spd: Option<SpdDef>,
     /// Outside tracers run beside the variants on every scene but the SPD's small runs
-    /// (docs/tracers.md): each `{ peer = "povray" }`, `{ file = "tracer.toml" }` (from
+    /// (docs/tracers.md), each also recorded with perf on the profile scene when it says
+    /// `record = true`: each `{ peer = "povray" }`, `{ file = "tracer.toml" }` (from
     /// the suite file's directory) or a definition in place.
     #[serde(default)]
     pub tracers: Vec<crate::outside::entry::TracerEntry>,
@@ -227,6 +228,14 @@ impl SuiteDef {
                     Ok(_) => {}
                 }
             }
+        }
+        if let Some(at) = self.tracers.iter().position(|t| t.record())
+            && !self.profile
+        {
+            return bad(format!(
+                "[[tracers]] #{}: record = true records the tracer on the suite's profile scene, but profile = false: profile a scene, or drop record",
+                at + 1
+            ));
         }
         for size in sizes {
             if let Err(e) =

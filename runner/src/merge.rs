@@ -51,6 +51,12 @@ pub fn referenced_files(results: &Results) -> Vec<String> {
     if let Some(profile) = &results.profile {
         files.extend(profile_files(profile));
     }
+    files.extend(
+        results
+            .outside_profiles
+            .iter()
+            .flat_map(|p| p.files.iter().cloned()),
+    );
     files
 }
 
@@ -202,6 +208,13 @@ pub fn merge(parts: &[(PathBuf, Results)], options: MergeOptions) -> Result<Merg
     }
     if let Some((part, profile)) = profiled {
         gather(&mut files, part, profile_files(profile))?;
+        // The outside tracers were recorded on the same scene as that profile.
+        let recorded = part.results.outside_profiles.iter();
+        gather(
+            &mut files,
+            part,
+            recorded.flat_map(|p| p.files.clone()).collect(),
+        )?;
     }
 
     let mut results = first.results.clone();
@@ -225,6 +238,9 @@ pub fn merge(parts: &[(PathBuf, Results)], options: MergeOptions) -> Result<Merg
         .fold(0.0, f64::max);
     results.scenes = placed.iter().map(|&(_, s, _)| s.clone()).collect();
     results.profile = profiled.map(|(_, profile)| profile.clone());
+    results.outside_profiles = profiled
+        .map(|(part, _)| part.results.outside_profiles.clone())
+        .unwrap_or_default();
     results.failures = shards
         .iter()
         .flat_map(|p| p.results.failures.iter().cloned())

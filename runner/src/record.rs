@@ -148,8 +148,23 @@ impl RecordSettings {
             time_limit: self.time_limit,
             phases: self.phases.as_deref(),
             baseline: self.baseline.as_deref(),
+            setup: ProgramSetup::default(),
         }
     }
+}
+
+/// How the recorded program is started beyond its command: `rtprof record`'s default
+/// (the caller's directory, streams and environment), or an outside tracer's run in a
+/// suite (its own directory, its definition's variables, its output in files).
+#[derive(Clone, Debug, Default)]
+pub struct ProgramSetup {
+    /// Variables set on top of rtprof's environment.
+    pub env: Vec<(OsString, OsString)>,
+    /// Its working directory (`None`: the caller's).
+    pub dir: Option<PathBuf>,
+    pub stdin: Stream,
+    pub stdout: Stream,
+    pub stderr: Stream,
 }
 
 /// What to record and how.
@@ -168,6 +183,8 @@ pub struct RecordPlan<'a> {
     pub phases: Option<&'a Path>,
     /// An earlier record to draw the differences from.
     pub baseline: Option<&'a Path>,
+    /// Where the program runs and where its streams go.
+    pub setup: ProgramSetup,
 }
 
 /// The phase rules of a plan: its file's, or the built-in ones. Read before the
@@ -308,6 +325,11 @@ pub fn record(plan: &RecordPlan) -> Result<Recording, RunError> {
     let mut child = Launch::new(program_path.clone(), args.iter().cloned());
     child.program = program_path.into_os_string();
     child.time_limit = plan.time_limit;
+    child.env.clone_from(&plan.setup.env);
+    child.dir.clone_from(&plan.setup.dir);
+    child.stdin = plan.setup.stdin.clone();
+    child.stdout = plan.setup.stdout.clone();
+    child.stderr = plan.setup.stderr.clone();
     // The probe, if the program has one, writes its counts and phases there.
     let probe_file = record_probe::prepare(plan.dir)?;
     child

@@ -110,6 +110,15 @@ impl Recording {
 
     /// Writes the profile's files, the module table and record.json under `dir`.
     pub fn save(&self, dir: &Path) -> Result<RecordSummary<'_>, RunError> {
+        self.save_with_profile(dir).map(|(summary, _)| summary)
+    }
+
+    /// [`Recording::save`], with the profile's own files and rows (paths relative to
+    /// `dir`), as a suite lists them in results.json.
+    pub fn save_with_profile(
+        &self,
+        dir: &Path,
+    ) -> Result<(RecordSummary<'_>, SavedProfile), RunError> {
         let title = format!("{} (rtprof record)", self.command.join(" "));
         let saved: SavedProfile = save_profile_files(
             dir,
@@ -209,7 +218,7 @@ impl Recording {
         let json =
             serde_json::to_string_pretty(&summary).map_err(|e| RunError::Profile(e.to_string()))?;
         save(dir, "record.json", json.as_bytes())?;
-        Ok(summary)
+        Ok((summary, saved))
     }
 
     /// report.html and report.pdf: where the time goes, by phase and by function.

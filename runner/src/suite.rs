@@ -9,12 +9,12 @@ use std::path::Path;
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::time::Instant;
 
-use analysis::{Band, compare, difference_heat_map, gray_histogram};
+use analysis::{compare, difference_heat_map, gray_histogram};
 use hwmodel::device::FitState;
 use hwmodel::hw_scene::HwScene;
 use results::{
-    Calibration, CodeKind, F64Reference, FailedPart, Failure, MachinePeak, ProfileResult, Results,
-    SCHEMA, SceneHardware, SceneResult, Shard, SuiteInfo, VariantName, VariantResult, slug,
+    Calibration, CodeKind, F64Reference, FailedPart, Failure, MachinePeak, Results, SCHEMA,
+    SceneHardware, SceneResult, Shard, SuiteInfo, VariantName, VariantResult, slug,
 };
 use tracer::{BvhBuilder, RenderOptions, Sampling, Scene, ShadingMode, VariantSet, parse_nff};
 
@@ -27,7 +27,6 @@ use crate::machine::{build_info, command_line, machine, now_rfc3339};
 use crate::machine_peak::{PeakPlan, measure_peak};
 use crate::pixel_maps::{MapsContext, record_maps, write_maps};
 use crate::pool::thread_pool;
-use crate::profile_job::ProfileJob;
 use crate::progress::Progress;
 use crate::ray_rates::ray_rates;
 use crate::reference_job;
@@ -37,6 +36,7 @@ use crate::scenes::{SceneSpec, extra_scenes, resolve_scene};
 use crate::staging::save_png;
 use crate::variant_job::VariantMeasurement;
 
+mod profile;
 mod tracers;
 
 /// A suite ready to run: its definition and its resolved scenes.
@@ -53,6 +53,9 @@ pub struct Suite {
     pub tracers: Vec<crate::outside::TracerDef>,
     /// Built-in peers `--peers` asked for that are not installed.
     pub missing_peers: Vec<String>,
+    /// The outside tracers also recorded with perf on the profile scene (by name: the
+    /// definition's `[[tracers]]` entries with `record = true`).
+    pub recorded: Vec<String>,
 }
 
 /// Where a suite's work happens.
@@ -149,6 +152,10 @@ impl Suite {
             .enumerate()
             .map(|(i, entry)| entry.resolve(&def.name, base_dir, i))
             .collect::<Result<Vec<_>, _>>()?;
+        let recorded = (def.tracers.iter().zip(&tracers))
+            .filter(|(entry, _)| entry.record())
+            .map(|(_, t)| t.name.clone())
+            .collect();
         let suite = Suite {
             def,
             quick,
@@ -157,6 +164,7 @@ impl Suite {
             shard: None,
             tracers: Vec::new(),
             missing_peers: Vec::new(),
+            recorded,
         };
         suite.with_tracers(tracers)
     }
@@ -274,10 +282,6 @@ impl Suite {
             }
         }
         ctx.progress.end();
-        if tracer_dir.exists() {
-            // Scratch only: the pictures that matter were saved with the results.
-            let _ = std::fs::remove_dir_all(&tracer_dir);
-        }
 
         ctx.progress.begin("profile", 0);
         ctx.progress.message("heaviest scene");
@@ -286,16 +290,25 @@ impl Suite {
             Some(shard) if shard.index != 1 => None,
             _ => self.profile_scene.as_ref(),
         };
-        let profile = match runner.run_profile(&self.scenes, &scenes, named) {
-            Ok(p) => p,
-            Err(RunError::Stopped) => {
+        let chosen = runner.profile_choice(&self.scenes, &scenes, named);
+        let profiled = chosen
+            .as_ref()
+            .map(|(spec, best)| runner.profile_spec(spec, best.clone()));
+        // The outside tracers the suite records, on the same scene (failures recorded).
+        let recorded =
+            chosen.map(|(spec, _)| runner.record_tracers(spec, &self.recorded, &mut failures));
+        // Scratch only: the pictures and profiles that matter were saved with the results.
+        let _ = std::fs::remove_dir_all(&tracer_dir);
+        let (profile, outside_profiles) = match (profiled.transpose(), recorded.transpose()) {
+            (Err(RunError::Stopped), _) | (_, Err(_)) => {
                 ctx.progress.end();
                 return Err(RunError::StoppedAfter { done: total, total });
             }
-            Err(e) => {
+            (Err(e), Ok(o)) => {
                 failures.push(failure(None, FailedPart::Profile, &e));
-                None
+                (None, o.unwrap_or_default())
             }
+            (Ok(p), Ok(o)) => (p.flatten(), o.unwrap_or_default()),
         };
         ctx.progress.end();
 
@@ -329,6 +342,7 @@ impl Suite {
             criterion: Vec::new(),
             instructions: Vec::new(),
             peak: Some(peak),
+            outside_profiles,
         })
     }
 }
@@ -339,25 +353,6 @@ const BVH_STUDY_PIXELS: u64 = 128 * 128;
 
 /// The variants whose per-pixel maps the suite writes.
 const MAPPED_VARIANTS: [&str; 3] = ["baseline", "simd", "bvh"];
-
-/// The fastest variant of `scene` whose picture stays visually identical to the
-/// reference variant's.
-fn best_kept_picture(scene: &SceneResult) -> Option<VariantName> {
-    scene
-        .variants
-        .iter()
-        .filter(|v| !v.variant.is_reference())
-        .filter(|v| {
-            v.quality
-                .as_ref()
-                .is_some_and(|q| q.band == Band::VisuallyIdentical)
-        })
-        .max_by(|a, b| {
-            let s = |v: &VariantResult| v.speedup.unwrap_or(f64::NEG_INFINITY);
-            s(a).total_cmp(&s(b))
-        })
-        .map(|v| v.variant.clone())
-}
 
 fn failure(scene: Option<&str>, part: FailedPart, e: &RunError) -> Failure {
     Failure {
@@ -820,77 +815,5 @@ impl SceneRunner<'_> {
                 &m.software_image,
             )?),
         })
-    }
-
-    /// Profiles the named scene (`profile_scene`: in a shard other than the first,
-    /// nothing) or else the heaviest: the reference and the fastest variant whose
-    /// picture stays visually identical on the suite's run of the same scene.
-    fn run_profile(
-        &self,
-        specs: &[SceneSpec],
-        results: &[SceneResult],
-        named: Option<&SceneSpec>,
-    ) -> Result<Option<ProfileResult>, RunError> {
-        if !self.def.profile || (self.def.profile_scene.is_some() && named.is_none()) {
-            return Ok(None);
-        }
-        if let Some(spec) = named {
-            let small = format!("{}-small", spec.name);
-            let ran = results
-                .iter()
-                .filter(|s| s.name == spec.name || s.name == small)
-                .max_by_key(|s| s.variants.len());
-            return self.profile_spec(spec, ran.and_then(best_kept_picture));
-        }
-        let reference = |s: &SceneResult| {
-            let v = s.variants.iter().find(|v| v.variant.is_reference())?;
-            Some(v.time.median)
-        };
-        let candidate = |s: &&SceneResult| {
-            specs
-                .iter()
-                .any(|spec| spec.name == s.name && spec.profile_candidate)
-        };
-        let Some(heaviest) = results
-            .iter()
-            .filter(candidate)
-            .filter_map(|s| Some((s, reference(s)?)))
-            .max_by(|a, b| a.1.total_cmp(&b.1))
-            .map(|(s, _)| s)
-        else {
-            return Ok(None);
-        };
-        let best = best_kept_picture(heaviest);
-        let Some(spec) = specs.iter().find(|s| s.name == heaviest.name) else {
-            return Ok(None);
-        };
-        self.profile_spec(spec, best)
-    }
-
-    /// Profiles `spec` at the profile size: baseline and `best`.
-    fn profile_spec(
-        &self,
-        spec: &SceneSpec,
-        best: Option<VariantName>,
-    ) -> Result<Option<ProfileResult>, RunError> {
-        let scene = parse_nff(&spec.text, &spec.source).map_err(|e| RunError::Scene {
-            scene: spec.name.clone(),
-            message: e.to_string(),
-        })?;
-        let [w, h] = self.def.profile_size;
-        let pool = thread_pool(None)?;
-        let job = ProfileJob {
-            scene: &scene,
-            options: RenderOptions::new(w, h, Sampling::PixelCenters, ShadingMode::Color),
-            pool: &pool,
-            frequency: self.def.profile_frequency,
-            name: &spec.name,
-            min_samples: self.def.profile_samples,
-            stop: self.ctx.stop,
-        };
-        let base_set = VariantSet::default();
-        let best = best.map(|name| VariantSet::parse(&name)).transpose()?;
-        let report = job.report(&base_set, best.as_ref(), false, self.ctx.progress)?;
-        report.save(self.ctx.out, "profile/").map(Some)
     }
 }

@@ -260,6 +260,7 @@
     if (initial) {
       renderGenerators();
       renderVariants();
+      renderTracers();
       renderParts();
       applyLimits();
     }
@@ -435,6 +436,19 @@
     if (!variants.length) list.replaceChildren(el('p', { class: 'muted' }, 'No variants.'));
   }
 
+  /** The outside tracers the server loaded at start, each a checkbox by its name. */
+  function renderTracers() {
+    const tracers = state.catalog?.tracers ?? [];
+    $('tracers-fieldset').hidden = !tracers.length;
+    $('tracer-list').replaceChildren(...tracers.map((t) => el('label', { class: 'check' },
+      el('input', { type: 'checkbox', name: 'tracer', value: t.name }),
+      el('span', { class: 'check-body' },
+        el('span', { class: 'check-name' }, t.variant),
+        el('span', { class: 'check-summary' }, t.description || t.definition),
+        el('span', { class: 'check-summary' }, `${t.command} · its time covers ${t.time_covers}`),
+      ))));
+  }
+
   function renderParts() {
     const parts = state.catalog?.parts ?? [];
     const list = $('part-list');
@@ -501,7 +515,9 @@
       .map((b) => b.value).filter((v) => v !== 'baseline')];
     const width = readPositiveInt('width', 'The width');
     const height = readPositiveInt('height', 'The height');
+    const tracers = [...document.querySelectorAll('input[name="tracer"]:checked')].map((b) => b.value);
     const body = { scene, variants, size: [width, height], run };
+    if (tracers.length) body.tracers = tracers;
     if ($('threads').value.trim() !== '') body.threads = readPositiveInt('threads', 'Threads');
     return body;
   }
@@ -551,6 +567,7 @@
       generated: state.generated,
       variants: [...document.querySelectorAll('input[name="variant"]:checked')].map((b) => b.value),
       parts: [...document.querySelectorAll('input[name="part"]:checked')].map((b) => b.value),
+      tracers: [...document.querySelectorAll('input[name="tracer"]:checked')].map((b) => b.value),
       width: $('width').value,
       height: $('height').value,
       threads: $('threads').value,
@@ -578,6 +595,9 @@
       for (const box of document.querySelectorAll('input[name="variant"]')) {
         if (box.value !== 'baseline') box.checked = form.variants.includes(box.value);
       }
+    }
+    if (Array.isArray(form.tracers)) {
+      for (const box of document.querySelectorAll('input[name="tracer"]')) box.checked = form.tracers.includes(box.value);
     }
     if (Array.isArray(form.parts)) {
       for (const box of document.querySelectorAll('input[name="part"]')) box.checked = form.parts.includes(box.value);

@@ -1,10 +1,12 @@
 //! The scenes a job can name: the built-in scenes, the generators (SPD databases at a
 //! size factor, sphereflake, lattice) and the NFF files uploaded to this server; and
-//! the variants and parts ([`Part`]) a job can ask for, and the rule of an upload's name
-//! ([`check_name`]). `GET /api/scenes` is this, as JSON.
+//! the variants and parts ([`Part`]) a job can ask for, the outside tracers loaded when
+//! the server started (a job names one by its name, [`Catalogue::tracers_named`]), and
+//! the rule of an upload's name ([`check_name`]). `GET /api/scenes` is this, as JSON.
 
 use std::path::{Path, PathBuf};
 
+use runner::outside::TracerDef;
 use runner::scene_input::{SPD_PREFIX, SceneInput};
 use serde::{Deserialize, Serialize};
 use tracer::{Limits, VariantSet};
@@ -131,6 +133,24 @@ pub struct VariantEntry {
     pub summary: String,
 }
 
+/// An outside tracer a job may run (docs/tracers.md): one of the definitions given when
+/// the server started, shown as its definition says it.
+#[derive(Clone, Debug, Serialize)]
+pub struct OutsideEntry {
+    /// What a job names it by (`tachyon`).
+    pub name: String,
+    /// Its variant in results (`tracer:tachyon`).
+    pub variant: String,
+    /// Its definition's one line on what it is.
+    pub description: String,
+    /// Where its definition came from (a file, or `built-in NAME.toml`).
+    pub definition: String,
+    /// Its command as the definition writes it (placeholders unexpanded), for reading.
+    pub command: String,
+    /// What its time covers ("the whole process", "its own printout (…)").
+    pub time_covers: String,
+}
+
 #[derive(Clone, Debug, Serialize)]
 pub struct PartEntry {
     pub name: &'static str,
@@ -168,6 +188,8 @@ pub struct Listing {
     pub scenes: Vec<SceneEntry>,
     pub generators: Vec<GeneratorEntry>,
     pub variants: Vec<VariantEntry>,
+    /// The outside tracers loaded at start (`rtprof serve --tracer FILE`, `--peers`).
+    pub tracers: Vec<OutsideEntry>,
     pub parts: Vec<PartEntry>,
     pub bands: Vec<BandEntry>,
     pub limits: LimitsEntry,
@@ -181,14 +203,76 @@ const COMBINATIONS: [&str; 2] = ["bvh+simd", "bvh+simd+packets"];
 pub struct Catalogue {
     uploads: PathBuf,
     max_upload_bytes: u64,
+    /// The outside tracers' definitions, read and checked when the server started.
+    tracers: Vec<TracerDef>,
 }
+
+/// Longest tracer name a refusal quotes back.
+const QUOTED: usize = 80;
 
 impl Catalogue {
     pub fn new(uploads: PathBuf, max_upload_bytes: u64) -> Self {
         Catalogue {
             uploads,
             max_upload_bytes,
+            tracers: Vec::new(),
         }
+    }
+
+    /// The catalogue offering the outside tracers `defs` (loaded at start).
+    pub fn with_tracers(mut self, defs: Vec<TracerDef>) -> Self {
+        self.tracers = defs;
+        self
+    }
+
+    /// The definitions of the tracers `names` asks for (each a loaded tracer's name, or
+    /// `tracer:NAME`), in the catalogue's order. A request only ever selects among the
+    /// definitions loaded at start: anything else (a path, a command, an unknown name)
+    /// is refused with a 400 naming the tracers there are.
+    pub fn tracers_named(&self, names: &[String]) -> Result<Vec<TracerDef>, ApiError> {
+        let mut wanted: Vec<&str> = Vec::new();
+        for asked in names {
+            let name = asked.strip_prefix("tracer:").unwrap_or(asked);
+            if !self.tracers.iter().any(|t| t.name == name) {
+                return Err(self.unknown_tracer(asked));
+            }
+            if !wanted.contains(&name) {
+                wanted.push(name);
+            }
+        }
+        Ok(self
+            .tracers
+            .iter()
+            .filter(|t| wanted.contains(&t.name.as_str()))
+            .cloned()
+            .collect())
+    }
+
+    fn unknown_tracer(&self, asked: &str) -> ApiError {
+        let quoted: String = asked.chars().take(QUOTED).collect();
+        let quoted = match quoted.len() < asked.len() {
+            true => format!("{quoted}…"),
+            false => quoted,
+        };
+        let looks_like_command = asked
+            .chars()
+            .any(|c| c.is_whitespace() || "/\\{}$;|&<>`'\"".contains(c));
+        let why = match looks_like_command {
+            true => "a job names an outside tracer by its name only: this server never runs a command or a path from a request".to_string(),
+            false => "it is not one of the outside tracers this server loaded at start".to_string(),
+        };
+        let offered = match self.tracers.is_empty() {
+            true => "none were given (start the server with --tracer FILE or --peers)".to_string(),
+            false => format!(
+                "it runs: {}",
+                self.tracers
+                    .iter()
+                    .map(|t| t.name.as_str())
+                    .collect::<Vec<_>>()
+                    .join(", ")
+            ),
+        };
+        ApiError::bad_request(format!("tracer '{quoted}': {why}; {offered}"))
     }
 
     /// Where uploaded scenes are kept.
@@ -278,10 +362,23 @@ impl Catalogue {
             }
         }
         let limits = Limits::default();
+        let tracers = self
+            .tracers
+            .iter()
+            .map(|t| OutsideEntry {
+                name: t.name.clone(),
+                variant: format!("tracer:{}", t.name),
+                description: t.description.clone(),
+                definition: t.file.clone(),
+                command: t.command.join(" "),
+                time_covers: t.time.covers(),
+            })
+            .collect();
         Listing {
             scenes,
             generators,
             variants,
+            tracers,
             parts: Part::ALL
                 .iter()
                 .map(|p| PartEntry {

@@ -1,5 +1,7 @@
-//! How to serve: address, port, data directory and the upload limit. With the `clap`
-//! feature these are also `rtprof serve`'s flags, declared here once.
+//! How to serve: address, port, data directory, the upload limit and the outside
+//! tracers jobs may run (`--tracer FILE`, `--peers`: loaded and checked at start, never
+//! named by a request). With the `clap` feature these are also `rtprof serve`'s flags,
+//! declared here once.
 
 use std::net::{IpAddr, Ipv4Addr};
 use std::path::PathBuf;
@@ -34,6 +36,11 @@ pub struct Config {
         default_value_t = DEFAULT_MAX_UPLOAD_BYTES,
         value_parser = clap::value_parser!(u64).range(1..)))]
     pub max_upload_bytes: u64,
+    /// The outside tracers the page offers (docs/tracers.md): definition files and
+    /// built-in peers, read and checked when the server starts. A job names one of
+    /// them by its name; nothing a request sends is ever run as a command.
+    #[cfg_attr(feature = "clap", command(flatten))]
+    pub tracers: runner::outside::TracerFlags,
 }
 
 impl Default for Config {
@@ -43,6 +50,7 @@ impl Default for Config {
             port: 8080,
             data: PathBuf::from("rtprof-data"),
             max_upload_bytes: DEFAULT_MAX_UPLOAD_BYTES,
+            tracers: runner::outside::TracerFlags::default(),
         }
     }
 }

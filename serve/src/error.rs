@@ -83,6 +83,10 @@ pub enum ServeError {
         "cannot listen on {address}: {message} (choose another --port, or 0 for any free port)"
     )]
     Bind { address: String, message: String },
+    /// An outside tracer's definition (`--tracer FILE`, `--peers`) that cannot be used:
+    /// the file, line and column, and what is wrong.
+    #[error("{0}")]
+    Tracer(runner::RunError),
     #[error("{0}")]
     Other(String),
 }

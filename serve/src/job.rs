@@ -32,6 +32,11 @@ pub struct JobRequest {
     /// What to run (default: render).
     #[serde(default = "default_run")]
     pub run: Vec<Part>,
+    /// Outside tracers run beside the variants (docs/tracers.md), each by the name of
+    /// a definition the server loaded at start (`tachyon` or `tracer:tachyon`); never
+    /// a command or a path (refused with a 400).
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub tracers: Vec<String>,
 }
 
 fn default_size() -> [u32; 2] {
@@ -44,8 +49,10 @@ fn default_run() -> Vec<Part> {
 
 impl JobRequest {
     /// The request checked and normalized: a known scene, known variants (baseline
-    /// first, no repeats), a size within the tracer's limits, a sane thread count. Every
-    /// refusal is a 422 saying what to change; nothing is allocated for the size.
+    /// first, no repeats), a size within the tracer's limits, a sane thread count, and
+    /// outside tracers the server loaded at start. Every refusal is a 422 saying what to
+    /// change (a tracer that is not one of the loaded ones: a 400); nothing is allocated
+    /// for the size.
     pub fn checked(mut self, catalogue: &Catalogue) -> Result<Self, ApiError> {
         if !self.run.contains(&Part::Render) {
             self.run.insert(0, Part::Render);
@@ -100,6 +107,12 @@ impl JobRequest {
         if !suite {
             self.variants = variants;
         }
+        // Normalized to the loaded tracers' own names, each once, in the server's order.
+        self.tracers = catalogue
+            .tracers_named(&self.tracers)?
+            .into_iter()
+            .map(|t| t.name)
+            .collect();
         Ok(self)
     }
 
@@ -315,9 +328,16 @@ impl Job {
                 true => "the quick suite".to_string(),
                 false => request.scene.clone(),
             },
-            variants: match suite {
-                true => "every variant".to_string(),
-                false => request.variants.join(", "),
+            variants: {
+                let own = match suite {
+                    true => vec!["every variant".to_string()],
+                    false => request.variants.clone(),
+                };
+                let outside = request.tracers.iter().map(|t| format!("tracer:{t}"));
+                own.into_iter()
+                    .chain(outside)
+                    .collect::<Vec<_>>()
+                    .join(", ")
             },
             progress: match active {
                 true => self.progress.line(),
@@ -344,6 +364,7 @@ mod tests {
             size: [16, 12],
             threads: None,
             run: vec![Part::Profile],
+            tracers: Vec::new(),
         }
     }
 

@@ -385,6 +385,7 @@ fn definition(request: &JobRequest, catalogue: &Catalogue) -> Result<(SuiteDef, 
         profile_scene: None,
         pixel_stats: Vec::new(),
         spd: None,
+        // The job's outside tracers are added as loaded definitions, not entries.
         tracers: Vec::new(),
         quick: None,
     };
@@ -402,7 +403,14 @@ fn execute(
 ) -> Result<(), Ended> {
     let failed = |e: &dyn std::fmt::Display| Ended::Failed(e.to_string());
     let (def, quick) = definition(request, catalogue)?;
-    let mut suite = Suite::prepare(def, quick, Path::new(""), None).map_err(|e| failed(&e))?;
+    // The outside tracers: the definitions loaded at start that the request named
+    // (checked when it was queued; a name only ever selects one of them).
+    let tracers = catalogue
+        .tracers_named(&request.tracers)
+        .map_err(|e| Ended::Failed(e.message))?;
+    let mut suite = Suite::prepare(def, quick, Path::new(""), None)
+        .and_then(|s| s.with_tracers(tracers))
+        .map_err(|e| failed(&e))?;
     if request.runs(Part::PixelMaps) {
         suite.def.pixel_stats = suite.scenes.iter().map(|s| s.name.clone()).collect();
     }

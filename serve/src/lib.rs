@@ -49,6 +49,12 @@ pub struct Server {
     pub token: String,
     /// Directories under `jobs/` that were not readable jobs, skipped on start.
     pub skipped: Vec<String>,
+    /// The outside tracers jobs may run (`--tracer`, `--peers`), by name.
+    pub tracers: Vec<String>,
+    /// Built-in peers `--peers` asked for that are not installed (not offered).
+    pub missing_peers: Vec<String>,
+    /// The data directory, for [`Server::notes`].
+    data: std::path::PathBuf,
     jobs: Arc<jobs::Jobs>,
     _lock: store::DataLock,
     shutdown: Option<tokio::sync::watch::Sender<bool>>,
@@ -57,11 +63,19 @@ pub struct Server {
 
 impl Server {
     /// Opens the data directory (rebuilding the history), binds and starts serving.
+    /// The outside tracers' definitions are read and checked first: a bad one stops
+    /// the start ([`ServeError::Tracer`], naming its file, line and column).
     pub fn start(config: &Config) -> Result<Server, ServeError> {
+        let (tracers, missing_peers) = config
+            .tracers
+            .load_with_peers()
+            .map_err(ServeError::Tracer)?;
+        let tracer_names = tracers.iter().map(|t| t.name.clone()).collect();
         let store = store::Store::open(&config.data)?;
         let lock = store.lock()?;
         let history = store.history()?;
-        let catalogue = catalogue::Catalogue::new(store.scenes_dir(), config.max_upload_bytes);
+        let catalogue = catalogue::Catalogue::new(store.scenes_dir(), config.max_upload_bytes)
+            .with_tracers(tracers);
         let token = guard::new_token().map_err(ServeError::Other)?;
         let runtime = tokio::runtime::Builder::new_multi_thread()
             .worker_threads(2)
@@ -136,6 +150,9 @@ impl Server {
             url,
             token,
             skipped: history.skipped,
+            tracers: tracer_names,
+            missing_peers,
+            data: config.data.clone(),
             jobs,
             _lock: lock,
             shutdown: Some(shutdown),
@@ -160,6 +177,33 @@ impl Server {
         if let Some(thread) = self.thread.take() {
             let _ = thread.join();
         }
+    }
+
+    /// What is worth saying at start besides the address, one line each: the job
+    /// directories skipped, the outside tracers offered and the peers not installed.
+    pub fn notes(&self) -> Vec<String> {
+        let mut notes: Vec<String> = self
+            .skipped
+            .iter()
+            .map(|name| {
+                format!(
+                    "warning: {}/jobs/{name} is not a readable job; left alone",
+                    self.data.display()
+                )
+            })
+            .collect();
+        if !self.tracers.is_empty() {
+            notes.push(format!(
+                "outside tracers jobs may run: {}",
+                self.tracers.join(", ")
+            ));
+        }
+        for name in &self.missing_peers {
+            notes.push(format!(
+                "--peers: {name} is not installed, so it is not offered"
+            ));
+        }
+        notes
     }
 
     /// Whether a job is running now.

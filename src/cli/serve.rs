@@ -19,8 +19,8 @@ pub fn run(args: &ServeArgs) -> Result<()> {
         eprintln!("rtprof: warning: {warning}");
     }
     let server = serve::Server::start(&args.config)?;
-    for name in &server.skipped {
-        eprintln!("rtprof: warning: {data}/jobs/{name} is not a readable job; left alone");
+    for note in server.notes() {
+        eprintln!("rtprof: {note}");
     }
     eprintln!(
         "rtprof serve: {} (data in {data}; Ctrl-C stops)",

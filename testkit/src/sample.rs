@@ -880,6 +880,7 @@ pub fn sample_results() -> Results {
             },
         ],
         peak: Some(sample_peak()),
+        outside_profiles: Vec::new(),
     };
     // Speed-ups, intervals and verdicts by the one rule, from the samples above.
     results::change::fill_speedups(&mut results, results::NOISE_THRESHOLD);

@@ -464,6 +464,7 @@ fn roofline_points_sit_at_their_intensity_and_speed_under_their_own_roof() {
     // Without the peaks: the same points, no roof.
     let unmeasured = Results {
         peak: None,
+        outside_profiles: Vec::new(),
         ..r.clone()
     };
     let c = roofline_chart(&unmeasured).expect("chart");

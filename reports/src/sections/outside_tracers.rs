@@ -7,7 +7,7 @@
 
 use analysis::{Likeness, Mismatch};
 
-use crate::document::{Cell, Column, Table, Tone};
+use crate::document::{Block, Builder, Cell, Column, Table, Tone};
 use crate::findings::geometric_mean;
 use crate::format;
 use crate::results::{Band, Results, SceneResult, VariantName, VariantResult};
@@ -189,6 +189,61 @@ pub fn outside_tracers(r: &Results) -> Option<(String, Table)> {
         parts.join("; ")
     );
     Some((sentence, table))
+}
+
+/// The outside tracers recorded with perf on the profile scene (`record = true` in
+/// the suite's `[[tracers]]`): per tracer, a heading, what was sampled and the function
+/// with the most self time, the files by name (beside the report), its gprof-layout
+/// flat profile and its flamegraph.
+pub fn recorded(b: &mut Builder) -> Vec<Block> {
+    let r = b.results();
+    let mut blocks = Vec::new();
+    for p in &r.outside_profiles {
+        blocks.push(Block::heading(format!(
+            "{} recorded with perf on {}",
+            p.variant, p.scene
+        )));
+        let top = p
+            .profile
+            .flat
+            .iter()
+            .filter(|r| !r.noise)
+            .max_by(|a, b| a.percent.total_cmp(&b.percent))
+            .map_or_else(String::new, |r| {
+                format!(
+                    " Most self time: {} ({}).",
+                    r.name,
+                    format::percent(r.percent, 1)
+                )
+            });
+        blocks.push(Block::text(format!(
+            "Its run of {} at {}, sampled as rtprof record samples a program: {} in {} of CPU ({} wall; {} Hz asked, callers by {}).{top} Its files are beside this report in {}/: the flat profile {}, the call graph {}, the folded stacks {}, the flamegraph {}, and rtprof record's own report, record.json and perf.data.",
+            p.command.join(" "),
+            format::size(p.width, p.height),
+            format::plural(p.samples as usize, "sample"),
+            format::seconds(p.cpu_seconds),
+            format::seconds(p.wall_seconds),
+            format::count(u64::from(p.frequency)),
+            p.call_graph,
+            p.directory,
+            p.profile.flat_text,
+            p.profile.callgraph_text,
+            p.folded,
+            p.profile.flame_svg,
+        )));
+        blocks.push(super::profile::flat_text_block(
+            b,
+            &p.profile.flat_text,
+            &format!("{} flat profile", p.variant),
+        ));
+        blocks.push(super::profile::flame_block(
+            b,
+            &p.profile.flame_svg,
+            format!("Flamegraph of {} on {} (native symbols, perf)", p.variant, p.scene),
+            "The program's own functions as perf sampled them: each box a function, its width its share of the samples, its callees above it.".to_string(),
+        ));
+    }
+    blocks
 }
 
 /// What an outside tracer's picture was judged to be, in a line: its likeness to

@@ -202,7 +202,7 @@ pub fn sample_warning(profile: &Profile) -> Option<String> {
 }
 
 /// A flamegraph file as a block with its title and caption.
-fn flame_block(b: &mut Builder, svg: &str, title: String, caption: String) -> Block {
+pub(crate) fn flame_block(b: &mut Builder, svg: &str, title: String, caption: String) -> Block {
     let visual = b.flamegraph(svg, &title);
     Block::Flamegraph(Flamegraph {
         title,
@@ -212,7 +212,7 @@ fn flame_block(b: &mut Builder, svg: &str, title: String, caption: String) -> Bl
 }
 
 /// A flat profile's gprof-layout text, folded away, or a note that it is missing.
-fn flat_text_block(b: &Builder, path: &str, what: &str) -> Block {
+pub(crate) fn flat_text_block(b: &Builder, path: &str, what: &str) -> Block {
     match b.text_file(path) {
         Ok(text) => Block::Preformatted(Preformatted {
             text,

@@ -50,6 +50,8 @@ pub fn variants(b: &mut Builder) -> Section {
         s.text(sentence);
         s.blocks.push(Block::Table(table));
     }
+    let recorded = super::outside_tracers::recorded(b);
+    s.blocks.extend(recorded);
     s.blocks.push(Block::Paragraph {
         content: vec![
             Inline::text(format!(

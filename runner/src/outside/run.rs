@@ -110,6 +110,22 @@ pub fn command_line(plan: &RunPlan<'_>, workdir: &Path) -> Result<Vec<String>, F
         .collect()
 }
 
+/// The variables of `plan`'s definition, expanded for a run in `workdir`.
+pub fn environment(
+    plan: &RunPlan<'_>,
+    workdir: &Path,
+) -> Result<Vec<(std::ffi::OsString, std::ffi::OsString)>, Failure> {
+    let values = values(plan, workdir);
+    plan.def
+        .env
+        .iter()
+        .map(|(key, value)| {
+            let value = expand(value, &values).map_err(|m| Failure::new(FailureKind::Setup, m))?;
+            Ok((key.into(), value.into()))
+        })
+        .collect()
+}
+
 /// The image file `{output}` names.
 pub fn output_path(plan: &RunPlan<'_>, workdir: &Path) -> PathBuf {
     workdir.join(format!("image.{}", plan.def.image.extension()))
@@ -158,12 +174,7 @@ pub fn run_once(
         return Err(Failure::new(FailureKind::Setup, "no scene file was written for it").into());
     }
     let line = command_line(plan, &workdir)?;
-    let values = values(plan, &workdir);
-    let mut env = Vec::new();
-    for (key, value) in &plan.def.env {
-        let value = expand(value, &values).map_err(|m| Failure::new(FailureKind::Setup, m))?;
-        env.push((key.into(), value.into()));
-    }
+    let mut env = environment(plan, &workdir)?;
     let probe_path = workdir.join(crate::record_probe::PROBE_FILE);
     env.push((ENV_FILE.into(), probe_path.clone().into_os_string()));
     let (stdout, stderr) = (workdir.join("stdout.txt"), workdir.join("stderr.txt"));
@@ -339,7 +350,7 @@ fn probe_seconds(probe: &ProbeFile, phases: &[String]) -> Option<f64> {
 
 /// The last [`STDERR_LINES`] non-empty lines of the file (progress lines ending in
 /// carriage returns count as their last state).
-fn stderr_tail(path: &Path) -> Vec<String> {
+pub fn stderr_tail(path: &Path) -> Vec<String> {
     let Ok(bytes) = std::fs::read(path) else {
         return Vec::new();
     };

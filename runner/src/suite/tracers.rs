@@ -150,3 +150,164 @@ pub(crate) fn push_outside_results(
     }
     Ok(())
 }
+
+/// The profile's directory of tracer `name`, relative to the suite's output.
+fn profile_dir(name: &str) -> String {
+    format!("profile/tracer-{}", slug(name))
+}
+
+impl super::SceneRunner<'_> {
+    /// Records each outside tracer named in `recorded` with perf (`rtprof record`'s
+    /// recording) on `spec`, the suite's profile scene, at the profile size; its files
+    /// go to `profile/tracer-NAME/`. A recording that cannot be made (perf missing or
+    /// not permitted, the program failing) is one of `failures`, and the suite goes on;
+    /// the only error is the stop flag ([`RunError::Stopped`]).
+    pub(super) fn record_tracers(
+        &self,
+        spec: &crate::scenes::SceneSpec,
+        recorded: &[String],
+        failures: &mut Vec<Failure>,
+    ) -> Result<Vec<results::OutsideProfile>, RunError> {
+        let mut profiles = Vec::new();
+        for def in self.tracers.iter().filter(|t| recorded.contains(&t.name)) {
+            self.ctx.progress.message(&format!(
+                "{}: recording tracer:{} with perf",
+                spec.name, def.name
+            ));
+            match self.record_tracer(spec, def) {
+                Ok(p) => profiles.push(p),
+                Err(RunError::Stopped) => return Err(RunError::Stopped),
+                Err(e) => {
+                    let _ = std::fs::remove_dir_all(self.ctx.out.join(profile_dir(&def.name)));
+                    let message = match e {
+                        RunError::Outside { failure, .. } => failure.describe(),
+                        other => other.to_string(),
+                    };
+                    failures.push(Failure {
+                        scene: Some(spec.name.clone()),
+                        part: FailedPart::Profile,
+                        message: format!(
+                            "tracer:{} could not be recorded with perf: {message}",
+                            def.name
+                        ),
+                    });
+                }
+            }
+        }
+        Ok(profiles)
+    }
+
+    /// One tracer's run on `spec` under perf, its profile saved.
+    fn record_tracer(
+        &self,
+        spec: &crate::scenes::SceneSpec,
+        def: &crate::outside::TracerDef,
+    ) -> Result<results::OutsideProfile, RunError> {
+        use crate::outside::run::{RunPlan, command_line, environment, stderr_tail};
+        use crate::record::{CallGraph, DEFAULT_FREQUENCY, ProgramSetup, RecordPlan};
+        let outside = |failure| RunError::Outside {
+            tracer: def.name.clone(),
+            failure,
+        };
+        let scene = tracer::parse_nff(&spec.text, &spec.source).map_err(|e| RunError::Scene {
+            scene: spec.name.clone(),
+            message: e.to_string(),
+        })?;
+        let home = self.tracer_dir.join("record").join(&def.name);
+        let scene_file =
+            crate::outside::scene_file::write_scene(&scene, def.scene, &home).map_err(outside)?;
+        let workdir = home.join("run");
+        let _ = std::fs::remove_dir_all(&workdir);
+        std::fs::create_dir_all(&workdir).map_err(|e| RunError::io("create", &workdir, &e))?;
+        let workdir =
+            std::path::absolute(&workdir).map_err(|e| RunError::io("resolve", &workdir, &e))?;
+        let [width, height] = self.def.profile_size;
+        let plan = RunPlan {
+            def,
+            scene_file: scene_file.as_deref(),
+            width,
+            height,
+            // As the suite's own profile: every core.
+            threads: self.pool.current_num_threads(),
+            spp: def.spp.unwrap_or(1),
+        };
+        let command: Vec<std::ffi::OsString> = command_line(&plan, &workdir)
+            .map_err(outside)?
+            .into_iter()
+            .map(Into::into)
+            .collect();
+        let stderr = workdir.join("stderr.txt");
+        let rel = profile_dir(&def.name);
+        let dir = self.ctx.out.join(&rel);
+        let frequency = self
+            .def
+            .profile_frequency
+            .and_then(|f| u32::try_from(f).ok())
+            .unwrap_or(DEFAULT_FREQUENCY);
+        let recording = crate::record::record(&RecordPlan {
+            command: &command,
+            frequency,
+            call_graph: CallGraph::Fp,
+            dir: &dir,
+            stop: self.ctx.stop,
+            time_limit: Some(std::time::Duration::from_secs_f64(def.time_limit)),
+            phases: None,
+            baseline: None,
+            setup: ProgramSetup {
+                env: environment(&plan, &workdir).map_err(outside)?,
+                dir: Some(workdir.clone()),
+                stdin: launch::Stream::Null,
+                stdout: launch::Stream::File(workdir.join("stdout.txt")),
+                stderr: launch::Stream::File(stderr.clone()),
+            },
+        })?;
+        match recording.failure() {
+            Some(crate::record::Failure::Interrupted(_)) => return Err(RunError::Stopped),
+            Some(crate::record::Failure::CommandFailed(_)) => {
+                let kind = match recording.finished.end {
+                    launch::End::TimedOut => crate::outside::FailureKind::TimedOut,
+                    launch::End::Signalled(_) => crate::outside::FailureKind::Killed,
+                    _ => crate::outside::FailureKind::Exited,
+                };
+                return Err(outside(crate::outside::Failure {
+                    kind,
+                    reason: format!("{} {}", recording.name(), recording.finished.end),
+                    stderr_tail: stderr_tail(&stderr),
+                }));
+            }
+            // A probe file that cannot be read leaves the profile standing.
+            Some(crate::record::Failure::BadProbeFile(_)) | None => {}
+        }
+        let (summary, saved) = recording.save_with_profile(&dir)?;
+        let within = |f: &str| format!("{rel}/{f}");
+        let mut profile = saved.views.into_iter().next().ok_or_else(|| {
+            RunError::Profile(format!(
+                "tracer:{}: the recording wrote no profile",
+                def.name
+            ))
+        })?;
+        for path in [
+            &mut profile.flat_text,
+            &mut profile.callgraph_text,
+            &mut profile.flame_svg,
+        ] {
+            *path = within(path);
+        }
+        Ok(results::OutsideProfile {
+            variant: VariantName::outside(&def.name)?,
+            scene: spec.name.clone(),
+            width,
+            height,
+            command: recording.command.clone(),
+            samples: recording.samples(),
+            cpu_seconds: recording.cpu_seconds(),
+            wall_seconds: recording.finished.wall.as_secs_f64(),
+            frequency,
+            call_graph: recording.call_graph.describe().to_string(),
+            directory: rel.clone(),
+            profile,
+            folded: within(&format!("folded-{}.txt", slug(recording.name()))),
+            files: summary.files.iter().map(|f| within(f)).collect(),
+        })
+    }
+}
