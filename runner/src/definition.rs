@@ -247,21 +247,18 @@ impl SuiteDef {
         Ok(())
     }
 
-    /// The definition with Embree, the peer, in both its modes (`embree`, single rays;
-    /// `embree-packets`) added to every run: `rtprof suite --embree`. Refused when this
-    /// build has no Embree.
-    pub fn with_embree_peers(self) -> Result<Self, RunError> {
+    /// The definition with Embree inside rtprof's renderer, in both its modes (`embree`,
+    /// single rays; `embree-packets`), added to every run where this build has Embree:
+    /// `rtprof suite --embree`, which also runs the yardstick
+    /// ([`Suite::with_embree_yardstick`](crate::suite::Suite::with_embree_yardstick)).
+    pub fn with_embree_variants(self) -> Self {
         if !tracer::Variant::Embree.available() {
-            return Err(RunError::Input(
-                "--embree: this rtprof was built without Embree; install libembree-dev and \
-                 build with `cargo build --release --features embree`"
-                    .into(),
-            ));
+            return self;
         }
         let peers = [tracer::Variant::Embree, tracer::Variant::EmbreePackets];
-        Ok(peers
+        peers
             .into_iter()
-            .fold(self, |def, peer| def.with_variant(peer.name())))
+            .fold(self, |def, peer| def.with_variant(peer.name()))
     }
 
     /// The definition with `variant` (a peer such as `embree`) added to every run: the

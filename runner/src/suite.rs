@@ -95,7 +95,9 @@ impl Suite {
             text += &format!("  outside tracers: {}\n", names.join(", "));
         }
         for name in &self.missing_peers {
-            text += &format!("  --peers: {name} is not installed, so it did not run\n");
+            text += &format!(
+                "  {name} is not installed, so it did not run (docs/tracers.md: built-in peers)\n"
+            );
         }
         for f in &results.failures {
             text += &format!("  failed: {}: {}\n", f.place(), f.message);

@@ -32,9 +32,8 @@ pub struct SuiteArgs {
     /// Add every .nff file of this directory (e.g. ../shared/spd).
     #[arg(long, value_name = "DIR")]
     scenes: Option<PathBuf>,
-    /// Also run Intel Embree, the peer, on every scene in both its modes: single rays
-    /// (`embree`) and packets (`embree-packets`). Needs an rtprof built with
-    /// `--features embree`.
+    /// Also run Intel Embree, the peer: the yardstick as its users run it (rtprof-embree,
+    /// scripts/build-embree-peer.sh) and, built with `--features embree`, inside rtprof.
     #[arg(long)]
     embree: bool,
     /// Threads of the timed renders (default: the suite's `timing_threads`, one; the
@@ -56,7 +55,7 @@ pub fn run(args: &SuiteArgs) -> Result<()> {
     let started = Instant::now();
     let mut def = SuiteDef::load(args.suite.as_deref())?;
     if args.embree {
-        def = def.with_embree_peers()?;
+        def = def.with_embree_variants();
     }
     // Check the inputs first: a bad --baseline or --criterion should fail before the work.
     args.benchmarks.check()?;
@@ -71,7 +70,8 @@ pub fn run(args: &SuiteArgs) -> Result<()> {
         .unwrap_or_default();
     let suite = Suite::prepare(def, args.quick, &base_dir, args.scenes.as_deref())?
         .with_shard(args.shard)?
-        .with_tracer_flags(&args.tracers)?;
+        .with_tracer_flags(&args.tracers)?
+        .with_embree_yardstick(args.embree)?;
     let stop = terminal::interrupt::install();
     let pdf = args.pdf.choice();
     let run = DirRun {

@@ -124,6 +124,41 @@ impl Suite {
     }
 }
 
+/// The Embree yardstick's built-in definitions (peers/embree/): packets, single rays.
+pub const EMBREE_YARDSTICK: [&str; 2] = ["embree-yardstick", "embree-yardstick-single"];
+
+impl Suite {
+    /// `rtprof suite --embree` (when `on`): the Embree yardstick in both its modes added
+    /// where it is installed, named as missing where not. Refused when neither it nor
+    /// Embree inside rtprof (a build with `--features embree`) can run.
+    pub fn with_embree_yardstick(mut self, on: bool) -> Result<Self, RunError> {
+        if !on {
+            return Ok(self);
+        }
+        let mut found = Vec::new();
+        for (def, installed) in crate::outside::peers::peers()? {
+            if !EMBREE_YARDSTICK.contains(&def.name.as_str())
+                || self.tracers.iter().any(|t| t.name == def.name)
+            {
+                continue;
+            }
+            match installed {
+                true => found.push(def),
+                false => self.missing_peers.push(def.name),
+            }
+        }
+        if found.is_empty() && !tracer::Variant::Embree.available() {
+            return Err(RunError::Input(
+                "--embree: the Embree yardstick (rtprof-embree) is not installed: build it with \
+                 scripts/build-embree-peer.sh (it needs libembree-dev); this rtprof was also \
+                 built without Embree inside (`cargo build --release --features embree`)"
+                    .into(),
+            ));
+        }
+        self.with_tracers(found)
+    }
+}
+
 /// Each outside tracer's measurement of scene `scene` as a results entry in `variants`,
 /// or a failure in `failures`; `pictures` are the scene's reference variant's picture
 /// and the f64 reference's.
@@ -230,6 +265,8 @@ impl super::SceneRunner<'_> {
             // As the suite's own profile: every core.
             threads: self.pool.current_num_threads(),
             spp: def.spp.unwrap_or(1),
+            // As the suite renders every scene: Whitted colour at the SPD's depth.
+            shading: crate::outside::Shading::default(),
         };
         let command: Vec<std::ffi::OsString> = command_line(&plan, &workdir)
             .map_err(outside)?
