@@ -101,6 +101,11 @@ pub struct VariantValues {
     /// "faster", "within noise", "slower".
     pub verdict: Option<&'static str>,
     pub quality: Option<QualityValues>,
+    /// An outside tracer that drew another picture: why its time is no comparison
+    /// (the page shows this instead of the speed-up).
+    pub not_comparable: Option<&'static str>,
+    /// An outside tracer's time: what it covers ("the whole process", …).
+    pub time_covers: Option<String>,
 }
 
 /// A picture's difference from baseline's.
@@ -300,7 +305,7 @@ fn scene_values(r: &Results, s: &SceneResult) -> SceneValues {
     }
 }
 
-fn variant_values(v: &VariantResult) -> VariantValues {
+pub(crate) fn variant_values(v: &VariantResult) -> VariantValues {
     let time = format::estimate(v.time.median, v.time.low, v.time.high);
     let reference = v.variant.is_reference();
     let speedup = v.speedup.filter(|_| !reference).map(|x| {
@@ -322,6 +327,8 @@ fn variant_values(v: &VariantResult) -> VariantValues {
         faster: v.speedup.is_some_and(|x| x >= 1.0),
         verdict: v.verdict.map(|x| x.label()),
         quality: v.quality.as_ref().map(quality_values),
+        not_comparable: crate::sections::outside_tracers::not_comparable(v),
+        time_covers: v.outside.as_ref().map(|o| o.time_covers.clone()),
     }
 }
 

@@ -1117,10 +1117,16 @@
           el('span', { class: 'cap-line' },
             v.reference
               ? 'reference'
-              : v.speedup
-                ? el('span', { class: `speedup ${v.faster ? 'faster' : 'slower'}`, title: v.speedup_title }, `${v.speedup} vs baseline`)
-                : 'speed-up unknown',
-            v.verdict ? el('span', { class: 'muted' }, ` (${v.verdict})`) : null),
+              : v.not_comparable
+                // An outside tracer that drew another picture: its time is no comparison.
+                ? el('span', { class: 'muted', title: v.not_comparable }, `not comparable: ${v.not_comparable}`)
+                : v.speedup
+                  ? el('span', { class: `speedup ${v.faster ? 'faster' : 'slower'}`, title: v.speedup_title }, `${v.speedup} vs baseline`)
+                  : 'speed-up unknown',
+            v.verdict && !v.not_comparable ? el('span', { class: 'muted' }, ` (${v.verdict})`) : null),
+          v.time_covers
+            ? el('span', { class: 'cap-line muted' }, `its time covers ${v.time_covers}`)
+            : null,
           v.quality
             ? el('span', { class: 'cap-line' }, bandChip(v.quality.band), ` ${v.quality.rms}`)
             : el('span', { class: 'cap-line muted' }, v.reference ? 'the reference image' : 'no quality figures'))));

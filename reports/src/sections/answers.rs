@@ -101,7 +101,14 @@ pub fn three_answers(r: &Results) -> [Answer; 3] {
     let lines = own_variant_lines(r);
     let optimizations = Answer {
         question: "What each optimization buys and costs",
-        sentence: (!lines.is_empty()).then(|| optimization_sentence(&lines)),
+        // The outside tracers are no optimization; the answer sets rtprof beside them.
+        sentence: (!lines.is_empty()).then(|| {
+            let own = optimization_sentence(&lines);
+            match super::outside_tracers::answer_clause(r) {
+                Some(clause) => format!("{own} {clause}"),
+                None => own,
+            }
+        }),
         warning: None,
         table: (!lines.is_empty()).then(|| variants_table(&lines, &families_present(r))),
         why_none: "No variant ran beside the reference variant on any scene.",

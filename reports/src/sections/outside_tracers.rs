@@ -44,6 +44,27 @@ pub(crate) fn not_comparable(v: &VariantResult) -> Option<&'static str> {
 
 /// The sentence and the table; `None` without an outside tracer in the run.
 pub fn outside_tracers(r: &Results) -> Option<(String, Table)> {
+    let (parts, table) = tracer_figures(r)?;
+    let sentence = format!(
+        "Outside tracers (docs/tracers.md), each against rtprof's fastest variant that kept the picture on the scene, whose time covers {}, or, for a tracer timed as a whole process, against rtprof's own whole process where the peer rtprof ran: {}.",
+        super::summary::time_covers(r.suite.timing.covers),
+        parts.join("; ")
+    );
+    Some((sentence, table))
+}
+
+/// The answer's clause on the outside tracers (what rtprof's fastest kept variant takes
+/// of each tracer's time); `None` without one in the run.
+pub fn answer_clause(r: &Results) -> Option<String> {
+    let (parts, _) = tracer_figures(r)?;
+    Some(format!(
+        "Beside the outside tracers (their table is in the variants chapter): {}.",
+        parts.join("; ")
+    ))
+}
+
+/// Each tracer's figure in words, and the table of its times per scene.
+fn tracer_figures(r: &Results) -> Option<(Vec<String>, Table)> {
     let tracers: Vec<&VariantName> = r.suite.variants.iter().filter(|v| v.is_outside()).collect();
     if tracers.is_empty() {
         return None;
@@ -183,12 +204,7 @@ pub fn outside_tracers(r: &Results) -> Option<(String, Table)> {
         }
         parts.push(part);
     }
-    let sentence = format!(
-        "Outside tracers (docs/tracers.md), each against rtprof's fastest variant that kept the picture on the scene, whose time covers {}, or, for a tracer timed as a whole process, against rtprof's own whole process where the peer rtprof ran: {}.",
-        super::summary::time_covers(r.suite.timing.covers),
-        parts.join("; ")
-    );
-    Some((sentence, table))
+    Some((parts, table))
 }
 
 /// The outside tracers recorded with perf on the profile scene (`record = true` in
@@ -370,6 +386,31 @@ mod tests {
     }
 
     #[test]
+    fn the_optimization_answer_sets_rtprof_beside_the_tracers() {
+        let r = with_tracer(sample_results(), "t", [2.0, 4.0], false);
+        let best: Vec<f64> = r.scenes[..2]
+            .iter()
+            .map(|s| fastest_kept(s).unwrap().time.median)
+            .collect();
+        let mean = (best[0] / 2.0 * best[1] / 4.0).sqrt();
+        let [_, optimizations, _] = super::super::answers::three_answers(&r);
+        let text = optimizations.sentence.unwrap();
+        assert!(
+            text.contains(&format!(
+                "Beside the outside tracers (their table is in the variants chapter): rtprof takes {} of t's time",
+                format::speedup(mean)
+            )),
+            "{text}"
+        );
+        // Without a tracer, the answer is rtprof's own variants alone.
+        let plain = super::super::answers::three_answers(&sample_results())[1]
+            .sentence
+            .clone()
+            .unwrap();
+        assert!(!plain.contains("outside tracers"), "{plain}");
+    }
+
+    #[test]
     fn a_whole_process_is_set_against_rtprofs_own_whole_process() {
         // rtprof as a whole process took 0.5 s and 1 s; the peer 2 s and 4 s: a quarter.
         let r = with_tracer(sample_results(), "rtprof", [0.5, 1.0], false);
@@ -401,6 +442,21 @@ mod tests {
         assert!(sentence.contains("not comparable on"), "{sentence}");
         assert!(sentence.contains("its picture is flat"), "{sentence}");
         assert!(outside_tracers(&sample_results()).is_none());
+    }
+
+    #[test]
+    fn the_web_pages_values_mark_another_picture_instead_of_a_speed_up() {
+        let r = with_tracer(sample_results(), "white", [2.0, 4.0], true);
+        let tracer = |i: usize| {
+            let v = r.scenes[i].variants.last().unwrap();
+            assert_eq!(v.variant.outside_name(), Some("white"));
+            crate::page_values::variant_values(v)
+        };
+        assert_eq!(tracer(0).not_comparable, None);
+        assert_eq!(tracer(1).not_comparable, Some("its picture is flat"));
+        assert_eq!(tracer(1).time_covers.as_deref(), Some("the whole process"));
+        let own = crate::page_values::variant_values(&r.scenes[0].variants[0]);
+        assert_eq!((own.not_comparable, own.time_covers), (None, None));
     }
 
     #[test]
