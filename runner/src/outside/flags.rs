@@ -12,7 +12,8 @@ use crate::error::RunError;
 #[cfg_attr(feature = "clap", derive(clap::Args))]
 pub struct TracerFlags {
     /// An outside tracer's definition (TOML, docs/tracers.md), or a built-in peer's
-    /// name (povray, tachyon), run beside the variants; repeat for several.
+    /// name (povray, tachyon, embree-yardstick, embree-yardstick-single, rtprof), run
+    /// beside the variants; repeat for several.
     #[cfg_attr(feature = "clap", arg(long = "tracer", value_name = "FILE"))]
     pub tracers: Vec<PathBuf>,
     /// Samples per pixel of the outside tracers' timed runs ({spp}; default: each
@@ -22,8 +23,8 @@ pub struct TracerFlags {
         arg(long, value_name = "N", value_parser = clap::value_parser!(u32).range(1..=1_000_000))
     )]
     pub spp: Option<u32>,
-    /// Also run every built-in peer that is installed (POV-Ray, Tachyon); the others
-    /// are named as missing.
+    /// Also run every built-in peer that is installed (POV-Ray, Tachyon, the Embree
+    /// yardstick, rtprof itself); the others are named as missing.
     #[cfg_attr(feature = "clap", arg(long))]
     pub peers: bool,
 }
