@@ -398,30 +398,17 @@ impl<I: Intersector> PacketRow<'_, '_, I> {
             let mut logs = [RayLog::default(); PACKET];
             let mut colours = [Rgb::BLACK; PACKET];
             let (cs, ls, out) = (&mut counters[..n], &mut logs[..n], &mut colours[..n]);
-            let unused = Vec3::new(0.0, 0.0, 0.0);
             if let Some(base) = self.row_base {
-                let eye: [Ray<true>; PACKET] = std::array::from_fn(|i| match chunk.get(i) {
-                    Some(&column) => {
-                        let _phase = C::enter_phase(Phase::CameraRay);
-                        self.camera.ray_from_eye(column, base, &mut cs[i])
-                    }
-                    None => Ray {
-                        origin: unused,
-                        dir: unused,
-                    },
-                });
+                let eye: [Ray<true>; PACKET] = {
+                    let _phase = C::enter_phase(Phase::CameraRay);
+                    self.camera.packet_from_eye(chunk, base, cs)
+                };
                 self.shader.primaries_from_eye(&eye[..n], cs, ls, out);
             } else {
-                let plain: [Ray; PACKET] = std::array::from_fn(|i| match chunk.get(i) {
-                    Some(&column) => {
-                        let _phase = C::enter_phase(Phase::CameraRay);
-                        self.camera.ray(column, self.row, &mut cs[i])
-                    }
-                    None => Ray {
-                        origin: unused,
-                        dir: unused,
-                    },
-                });
+                let plain: [Ray; PACKET] = {
+                    let _phase = C::enter_phase(Phase::CameraRay);
+                    self.camera.packet(chunk, self.row, cs)
+                };
                 self.shader.primaries(&plain[..n], cs, ls, out);
             }
             let share = start.map(|s| s.elapsed() / n as u32);
