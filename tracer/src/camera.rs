@@ -21,6 +21,7 @@ use crate::nff::check_view_basis;
 use crate::ray::Ray;
 use crate::scene::View;
 use crate::vec3::Vec3;
+use glam::Vec4;
 
 /// Where eye rays are shot.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
@@ -173,6 +174,93 @@ impl Camera {
         }
     }
 
+    /// The eye rays through samples `columns` of row `row` (at most `N`; the lanes
+    /// beyond are unused), each [`Camera::ray`]'s bit for bit and counted as it counts,
+    /// ray `i` on `counters[i]`. Computed across the rays, lane by lane, so that the
+    /// square roots and divisions of the normalizations go four to an instruction
+    /// (one after another they were most of the camera's share of the packet loop;
+    /// lanes: 1.5 % fewer instructions in a tetra render, 2 % less time).
+    #[inline]
+    pub fn packet<C: Counter, const N: usize>(
+        &self,
+        columns: &[u32],
+        row: u32,
+        counters: &mut [C],
+    ) -> [Ray; N] {
+        if self.projection == Projection::Orthographic {
+            return std::array::from_fn(|i| match (columns.get(i), counters.get_mut(i)) {
+                (Some(&column), Some(c)) => self.ray(column, row, c),
+                _ => Ray {
+                    origin: self.eye,
+                    dir: self.forward,
+                },
+            });
+        }
+        let (_, y) = self.offsets(0, row);
+        // `forward + y·up`, the sum `ray` forms first: the same for the whole row.
+        let base = Vec3(self.forward.0 + self.up.0 * y);
+        for c in counters.iter_mut().take(columns.len().min(N)) {
+            c.tally_n(Stat::Scale, 2);
+            c.tally_n(Stat::Add, 2);
+            c.tally(Stat::Normalize);
+        }
+        self.directions::<C, N>(columns, base).map(|dir| Ray {
+            origin: self.eye,
+            dir,
+        })
+    }
+
+    /// [`Camera::packet`] for the bounded walk: [`Camera::ray_from_eye`] of each column
+    /// of the row whose base direction is `row_base`, counted as it counts.
+    #[inline]
+    pub fn packet_from_eye<C: Counter, const N: usize>(
+        &self,
+        columns: &[u32],
+        row_base: Vec3,
+        counters: &mut [C],
+    ) -> [Ray<true>; N] {
+        for c in counters.iter_mut().take(columns.len().min(N)) {
+            c.tally(Stat::Scale);
+            c.tally(Stat::Add);
+            c.tally(Stat::Normalize);
+        }
+        self.directions::<C, N>(columns, row_base).map(|dir| Ray {
+            origin: self.eye,
+            dir,
+        })
+    }
+
+    /// The normalized directions `row_base + x·right` of `columns`, four lanes at a
+    /// time: the operations of `scale`, `add` and `normalize` (glam's dot sums
+    /// `(x² + y²) + z²`) in their order, so the same floats.
+    #[inline(always)]
+    fn directions<C: Counter, const N: usize>(&self, columns: &[u32], row_base: Vec3) -> [Vec3; N] {
+        let centre = (self.columns - 1) as f32 * 0.5;
+        let mut x = [0.0f32; N];
+        for (x, &column) in x.iter_mut().zip(columns) {
+            *x = column as f32 - centre;
+        }
+        let (base, right) = (row_base.to_array(), self.right.to_array());
+        let mut out = [Vec3::ZERO; N];
+        for (x, out) in x.chunks_exact(4).zip(out.chunks_exact_mut(4)) {
+            let x = Vec4::from_slice(x);
+            let d = [0, 1, 2].map(|axis| Vec4::splat(base[axis]) + Vec4::splat(right[axis]) * x);
+            let length_sq = (d[0] * d[0] + d[1] * d[1]) + d[2] * d[2];
+            let inv = Vec4::ONE / C::sqrt_kernel4(length_sq);
+            let [x, y, z] = d.map(|d| (d * inv).to_array());
+            for (i, out) in out.iter_mut().enumerate() {
+                *out = Vec3::new(x[i], y[i], z[i]);
+            }
+        }
+        let done = N / 4 * 4;
+        for i in done..N {
+            let d = Vec3(row_base.0 + self.right.0 * x[i]);
+            // Counted by the caller: a counter of its own, dropped.
+            out[i] = C::default().normalize(d);
+        }
+        out
+    }
+
     /// The base direction of sample row `row`, `forward + y·up` (one `scale`, one
     /// `add`), for [`Camera::ray_from_eye`].
     #[inline]
@@ -317,6 +405,49 @@ mod tests {
         assert_eq!(c.get(Stat::Scale), 5 + 35);
         assert_eq!(c.get(Stat::Add), 5 + 35);
         assert_eq!(c.get(Stat::Normalize), 35);
+    }
+
+    #[test]
+    fn packets_of_eye_rays_are_each_rays_own_bit_for_bit_and_counted_alike() {
+        let v = view(37, 11);
+        for projection in [
+            Projection::Perspective,
+            Projection::Orthographic,
+            Projection::EyeRows,
+        ] {
+            let cam = Camera::new(
+                &v,
+                37,
+                11,
+                Sampling::SpdCorners,
+                projection,
+                None,
+                &mut NoCount,
+            )
+            .unwrap_or_else(|e| panic!("{e}"));
+            let (columns, rows) = cam.grid();
+            for row in 0..rows {
+                let all: Vec<u32> = (0..columns).collect();
+                for chunk in all.chunks(8) {
+                    let mut lanes = [Count::default(); 8];
+                    let packet: [Ray; 8] = cam.packet(chunk, row, &mut lanes);
+                    let base = cam.row_base(row, &mut NoCount);
+                    let from_eye: [Ray<true>; 8] =
+                        cam.packet_from_eye(chunk, base, &mut [Count::default(); 8]);
+                    for (i, &column) in chunk.iter().enumerate() {
+                        let mut alone = Count::default();
+                        let ray = cam.ray(column, row, &mut alone);
+                        let bits = |r: Ray| r.dir.to_array().map(f32::to_bits);
+                        assert_eq!(bits(packet[i]), bits(ray), "{projection:?} {column} {row}");
+                        assert_eq!(packet[i].origin, ray.origin);
+                        assert_eq!(lanes[i], alone);
+                        if projection != Projection::Orthographic {
+                            assert_eq!(bits(from_eye[i].plain()), bits(ray));
+                        }
+                    }
+                }
+            }
+        }
     }
 
     #[test]

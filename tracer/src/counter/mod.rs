@@ -103,6 +103,14 @@ pub trait Counter: Default + Clone + Send + Sync {
         x.sqrt()
     }
 
+    /// [`Counter::sqrt_kernel`] of four values, lane by lane the same roots (one
+    /// `sqrtps` for the standard root).
+    #[inline(always)]
+    fn sqrt_kernel4(x: glam::Vec4) -> glam::Vec4 {
+        #[allow(clippy::disallowed_methods)]
+        x.sqrt()
+    }
+
     /// Adds another counter's totals into this one (used after the parallel loop).
     fn merge(&mut self, other: &Self);
 

@@ -169,6 +169,11 @@ impl<C: Counter, S: SquareRoot> Counter for WithSqrt<C, S> {
     fn sqrt_kernel(x: f32) -> f32 {
         S::sqrt(x)
     }
+
+    #[inline(always)]
+    fn sqrt_kernel4(x: glam::Vec4) -> glam::Vec4 {
+        x.to_array().map(S::sqrt).into()
+    }
 }
 
 #[cfg(test)]
