@@ -55,6 +55,7 @@ pub mod ray;
 pub mod render;
 pub mod scene;
 pub mod shading;
+pub mod tachyon_writer;
 pub mod variants;
 pub mod vec3;
 pub mod work_model;
@@ -82,6 +83,7 @@ pub use render::{
 };
 pub use scene::{Light, Material, Scene, SurfaceTerms, View};
 pub use shading::{MAX_DEPTH, RayLog, ShadingMode};
+pub use tachyon_writer::{scene_to_tachyon, scene_to_tachyon_at};
 pub use variants::{
     Accelerator, DiffuseForm, RenderWith, SqrtMethod, Variant, VariantConfig, VariantError,
     VariantRender, VariantSet, render_variant, render_variant_until, render_variant_with,

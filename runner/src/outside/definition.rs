@@ -49,6 +49,9 @@ pub enum SceneFormat {
     Nff,
     /// POV-Ray's language, written by rtprof as the SPD's own POV-Ray output writes it.
     Pov,
+    /// Tachyon's own scene language, written by rtprof's Tachyon writer with a camera
+    /// that frames the picture rtprof renders at the run's size.
+    Tachyon,
     /// None: the program draws a scene of its own (its picture is judged only against
     /// its own runs).
     Own,

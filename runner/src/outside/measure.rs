@@ -78,10 +78,11 @@ pub fn prepare(
     stop: &AtomicBool,
 ) -> Result<Prepared, RunError> {
     let home = jobs.dir.join(&def.name);
-    let scene_file = write_scene(scene, def.scene, &home).map_err(|failure| RunError::Outside {
-        tracer: def.name.clone(),
-        failure,
-    })?;
+    let scene_file = write_scene(scene, def.scene, &home, (options.width, options.height))
+        .map_err(|failure| RunError::Outside {
+            tracer: def.name.clone(),
+            failure,
+        })?;
     let spp = jobs.spp.or(def.spp).unwrap_or(1);
     let runs = home.join("run");
     let (width, height) = (options.width, options.height);
@@ -149,6 +150,7 @@ impl Prepared {
             scene_format: match def.scene {
                 super::SceneFormat::Nff => "nff",
                 super::SceneFormat::Pov => "pov",
+                super::SceneFormat::Tachyon => "tachyon",
                 super::SceneFormat::Own => "own",
             }
             .to_string(),

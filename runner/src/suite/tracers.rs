@@ -249,14 +249,15 @@ impl super::SceneRunner<'_> {
             message: e.to_string(),
         })?;
         let home = self.tracer_dir.join("record").join(&def.name);
+        let [width, height] = self.def.profile_size;
         let scene_file =
-            crate::outside::scene_file::write_scene(&scene, def.scene, &home).map_err(outside)?;
+            crate::outside::scene_file::write_scene(&scene, def.scene, &home, (width, height))
+                .map_err(outside)?;
         let workdir = home.join("run");
         let _ = std::fs::remove_dir_all(&workdir);
         std::fs::create_dir_all(&workdir).map_err(|e| RunError::io("create", &workdir, &e))?;
         let workdir =
             std::path::absolute(&workdir).map_err(|e| RunError::io("resolve", &workdir, &e))?;
-        let [width, height] = self.def.profile_size;
         let plan = RunPlan {
             def,
             scene_file: scene_file.as_deref(),

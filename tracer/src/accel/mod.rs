@@ -11,7 +11,7 @@ mod bvh;
 #[cfg(feature = "embree")]
 mod embree;
 mod simd;
-mod triangulate;
+pub(crate) mod triangulate;
 
 pub use brute_force::BruteForce;
 use brute_force::occluded_by_cones_and_planars;
