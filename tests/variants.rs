@@ -100,6 +100,33 @@ fn wide_bvh_keeps_the_baseline_picture_and_ray_counts_on_all_twelve_spd_scenes()
 }
 
 #[test]
+fn secondary_ray_packets_keep_each_rays_picture_and_counts_in_every_mode_and_depth() {
+    // Reflection and refraction rays traced a level at a time in packets: mount has
+    // transmitters (refraction, total internal reflection), gears and balls mirrors. The
+    // gray mode takes the luminance of the whole sample only; a shallower tree stops the
+    // packets early. Each must give the single-ray picture and rays exactly.
+    for name in ["mount", "gears", "balls"] {
+        let scene = spd(name);
+        for (mode, depth) in [
+            (ShadingMode::Gray, 5),
+            (ShadingMode::Color, 2),
+            (ShadingMode::Color, 3),
+        ] {
+            let mut options = RenderOptions::new(32, 24, Sampling::PixelCenters, mode);
+            options.max_depth = depth;
+            let (frame, counts) = render(&scene, "bvh+simd", &options);
+            let (packet_frame, packets) = render(&scene, "bvh+simd+packets", &options);
+            assert_eq!(packet_frame, frame, "{name} {mode:?} depth {depth}");
+            assert_eq!(packets.rays, counts.rays, "{name} {mode:?} depth {depth}");
+            assert!(counts.rays.reflection > 0, "{name}: the scene has mirrors");
+            if name == "mount" && depth > 2 {
+                assert!(counts.rays.refraction > 0, "mount refracts");
+            }
+        }
+    }
+}
+
+#[test]
 fn every_accelerator_breaks_a_tie_in_scene_order_as_brute_force_does() {
     // This eye ray of gears at 256x256 (pixel 115, 128) meets a gear's face (polygon 1)
     // and a tooth's side (polygon 147) at the same distance, on their shared edge. Brute

@@ -33,6 +33,16 @@ pub enum Sampling {
     SpdCorners,
 }
 
+impl Sampling {
+    /// The sample grid (columns, rows) of a `width` × `height` image.
+    pub fn grid(self, width: u32, height: u32) -> (u32, u32) {
+        match self {
+            Sampling::PixelCenters => (width, height),
+            Sampling::SpdCorners => (width + 1, height + 1),
+        }
+    }
+}
+
 /// How eye rays leave the camera.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
 pub enum Projection {
@@ -96,10 +106,7 @@ impl Camera {
     ) -> Result<Self, String> {
         check_view_basis(view)?;
         c.tally(Stat::PrimaryRaySetup);
-        let (columns, rows) = match sampling {
-            Sampling::PixelCenters => (width, height),
-            Sampling::SpdCorners => (width + 1, height + 1),
-        };
+        let (columns, rows) = sampling.grid(width, height);
         let view_dir = c.sub(view.at, view.from);
         let w = c.normalize(view_dir);
         let side = c.cross(w, view.up);

@@ -204,13 +204,49 @@ pub fn render_until<C: Counter, I: Intersector>(
     progress: &(dyn Fn(u64) + Sync),
     stop: &AtomicBool,
 ) -> Result<Rendered<C>, RenderError> {
-    let limits = &options.limits;
-    limits
-        .check_size(u64::from(options.width), u64::from(options.height))
-        .map_err(RenderError::Size)?;
-    limits
-        .check_ray_depth(options.max_depth)
-        .map_err(RenderError::Depth)?;
+    let samples = SampleMemory::for_render(options)?;
+    render_into(scene, accel, options, method, progress, stop, samples)
+}
+
+/// The memory a render writes its samples into, taken and first touched before the
+/// render: its page faults (a 1024×1024 frame is 12 MiB) are setup, not tracing, as in
+/// the outside programs rtprof is set against, which allocate their frames before their
+/// clocks start. [`crate::variants`] takes it before its trace clock.
+pub struct SampleMemory(Vec<Rgb>);
+
+impl SampleMemory {
+    /// The samples of `options`' render, all black, after its size and depth limits
+    /// are checked (nothing is allocated for a render that would be refused).
+    pub fn for_render(options: &RenderOptions) -> Result<SampleMemory, RenderError> {
+        let limits = &options.limits;
+        limits
+            .check_size(u64::from(options.width), u64::from(options.height))
+            .map_err(RenderError::Size)?;
+        limits
+            .check_ray_depth(options.max_depth)
+            .map_err(RenderError::Depth)?;
+        let (columns, rows) = options.sampling.grid(options.width, options.height);
+        let len = columns as usize * rows as usize;
+        // Huge pages where allowed: a row's own vector, copied into the frame after the
+        // loop, and the frame's 4 KiB page faults were the pixel fill's 6 % of a tetra
+        // render.
+        let mut samples: Vec<Rgb> = huge_pages::vec_with_capacity(len);
+        samples.resize(len, Rgb::BLACK);
+        Ok(SampleMemory(samples))
+    }
+}
+
+/// [`render_until`] into memory taken beforehand ([`SampleMemory::for_render`] with the
+/// same options).
+pub fn render_into<C: Counter, I: Intersector>(
+    scene: &Scene,
+    accel: &I,
+    options: &RenderOptions,
+    method: &RenderMethod,
+    progress: &(dyn Fn(u64) + Sync),
+    stop: &AtomicBool,
+    samples: SampleMemory,
+) -> Result<Rendered<C>, RenderError> {
     let mut counter = C::default();
     let camera_phase = C::enter_phase(Phase::CameraRay);
     let camera = Camera::new(
@@ -230,11 +266,10 @@ pub fn render_until<C: Counter, I: Intersector>(
     let from_eye = method.projection == Projection::EyeRows;
 
     // Each row writes its samples straight into the frame (rows in parallel, each its
-    // own slice); huge pages where allowed. A row's own vector, copied into the frame
-    // after the loop, and the frame's 4 KiB page faults were the pixel fill's 6 % of a
-    // tetra render.
+    // own slice).
     let (width, height) = (columns as usize, rows as usize);
-    let mut samples: Vec<Rgb> = huge_pages::vec_with_capacity(width * height);
+    let SampleMemory(mut samples) = samples;
+    // Memory taken for other options is fitted (never the case from `render_until`).
     samples.resize(width * height, Rgb::BLACK);
     let trace_row = |(row, out): (usize, &mut [Rgb])| {
         let row = row as u32;

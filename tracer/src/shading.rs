@@ -26,13 +26,15 @@
 //! With [`DiffuseForm::Squared`] (variant `no-rsqrt-shading`) the Lambert term of
 //! spheres is the sqrt-free form of [`crate::variants::diffuse`].
 
-use crate::accel::{Intersector, PACKET};
+use crate::accel::Intersector;
 use crate::color::Rgb;
 use crate::counter::{Counter, Phase, RayCounts, Stat};
 use crate::ray::{Hit, PrimKind, Ray};
 use crate::scene::{Light, Material, Scene};
 use crate::variants::diffuse::{DiffuseForm, SpherePeaks};
 use crate::vec3::Vec3;
+
+mod packets;
 
 /// How surfaces are shaded.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
@@ -209,156 +211,6 @@ impl<'s, I: Intersector> Shader<'s, I> {
             self.accel.closest_hit_from_eye(ray, c)
         };
         self.primary_after(&ray.plain(), hit, c, rays)
-    }
-
-    /// The sample values of a packet of eye rays traced together (variant `packets`):
-    /// `out[i]` for `rays[i]`, each ray's work counted on `counters[i]` and `logs[i]`
-    /// as [`Shader::primary`] counts it.
-    pub fn primaries<C: Counter>(
-        &self,
-        rays: &[Ray],
-        counters: &mut [C],
-        logs: &mut [RayLog],
-        out: &mut [Rgb],
-    ) {
-        self.packet(rays, counters, logs, out, |hits, cs| {
-            self.accel.closest_hits(rays, hits, cs)
-        });
-    }
-
-    /// [`Shader::primaries`] for eye rays that start at the origin (`bounded`).
-    pub fn primaries_from_eye<C: Counter>(
-        &self,
-        rays: &[Ray<true>],
-        counters: &mut [C],
-        logs: &mut [RayLog],
-        out: &mut [Rgb],
-    ) {
-        self.packet(rays, counters, logs, out, |hits, cs| {
-            self.accel.closest_hits_from_eye(rays, hits, cs)
-        });
-    }
-
-    fn packet<C: Counter, const FROM_EYE: bool>(
-        &self,
-        rays: &[Ray<FROM_EYE>],
-        counters: &mut [C],
-        logs: &mut [RayLog],
-        out: &mut [Rgb],
-        query: impl FnOnce(&mut [Option<Hit>], &mut [C]),
-    ) {
-        let n = rays.len().min(PACKET);
-        for (c, log) in counters.iter_mut().zip(logs.iter_mut()).take(n) {
-            log.counts.primary += 1;
-            log.reached(1);
-            c.tally(Stat::Trace);
-        }
-        let mut hits = [None; PACKET];
-        {
-            let _phase = C::enter_phase(Phase::ClosestHit);
-            query(&mut hits[..n], &mut counters[..n]);
-        }
-        if self.mode == ShadingMode::DiffuseOnly {
-            // Inline, the background once per packet: a call per ray returning its
-            // colour through memory stalled on the reload (47 % of the row loop's own
-            // samples on tetra).
-            let background = self.background();
-            for i in 0..n {
-                out[i] = match &hits[i] {
-                    None => background,
-                    Some(hit) => {
-                        logs[i].counts.primary_hit += 1;
-                        self.diffuse_only(&rays[i].plain(), hit, &mut counters[i])
-                            .unwrap_or(background)
-                    }
-                };
-            }
-        } else {
-            self.shade_packet(rays, &hits[..n], counters, logs, out);
-        }
-    }
-
-    /// [`Shader::shade`] for a packet of eye-ray hits: each light's shadow rays go to
-    /// the intersector as one packet (they leave neighbouring points for one light);
-    /// the reflected and refracted rays are traced one by one.
-    fn shade_packet<C: Counter, const FROM_EYE: bool>(
-        &self,
-        rays: &[Ray<FROM_EYE>],
-        hits: &[Option<Hit>],
-        counters: &mut [C],
-        logs: &mut [RayLog],
-        out: &mut [Rgb],
-    ) {
-        let n = hits.len().min(rays.len());
-        if n == 0 {
-            return;
-        }
-        let _phase = C::enter_phase(Phase::Shading);
-        let plain: [Ray; PACKET] = std::array::from_fn(|i| rays[i.min(n - 1)].plain());
-        let mut lit: [Option<LitPoint>; PACKET] = std::array::from_fn(|_| None);
-        for i in 0..n {
-            match &hits[i] {
-                None => out[i] = self.background(),
-                Some(hit) => {
-                    logs[i].counts.primary_hit += 1;
-                    lit[i] = Some(self.lit_point(&plain[i], hit, &mut counters[i]));
-                }
-            }
-        }
-        for (light_index, light) in self.scene.lights.iter().enumerate() {
-            // The packet's shadow rays toward this light, gathered with their counters.
-            let mut shadows: [Option<ShadowRay>; PACKET] = std::array::from_fn(|_| None);
-            let mut from = [0usize; PACKET];
-            let mut shadow_rays = plain;
-            let mut reach = [0.0f32; PACKET];
-            let mut shadow_counters: [C; PACKET] = Default::default();
-            let mut k = 0;
-            for i in 0..n {
-                let Some(point) = &lit[i] else { continue };
-                let Some(shadow) = point.shadow_ray(light, &mut counters[i], &mut logs[i]) else {
-                    continue;
-                };
-                shadow_rays[k] = shadow.ray;
-                reach[k] = shadow.distance;
-                from[k] = i;
-                shadow_counters[k] = std::mem::take(&mut counters[i]);
-                shadows[i] = Some(shadow);
-                k += 1;
-            }
-            if k == 0 {
-                continue;
-            }
-            let mut blocked = [false; PACKET];
-            {
-                let _phase = C::enter_phase(Phase::ShadowQuery);
-                self.accel.occluded_packet(
-                    &shadow_rays[..k],
-                    &reach[..k],
-                    &mut blocked[..k],
-                    &mut shadow_counters[..k],
-                );
-            }
-            for j in 0..k {
-                let i = from[j];
-                counters[i] = std::mem::take(&mut shadow_counters[j]);
-                if blocked[j] {
-                    logs[i].counts.shadow_blocked += 1;
-                } else if let (Some(point), Some(shadow), Some(hit)) =
-                    (&mut lit[i], &shadows[i], &hits[i])
-                {
-                    self.add_light(point, hit, light_index, shadow, &mut counters[i]);
-                }
-            }
-        }
-        for i in 0..n {
-            if let Some(point) = lit[i].take() {
-                let color = self.add_secondary(point, &plain[i], 1, &mut counters[i], &mut logs[i]);
-                out[i] = match self.mode {
-                    ShadingMode::Gray => Rgb::gray(color.luminance()),
-                    _ => color,
-                };
-            }
-        }
     }
 
     /// What a ray that hits nothing shows, in the shading mode's colours.

@@ -7,7 +7,9 @@
 use crate::accel::{BruteForce, Bvh, BvhStats, Intersector, Simd, WideBvh};
 use crate::camera::Projection;
 use crate::counter::{Count, Counter, NoCount, Phased, QueryClock};
-use crate::render::{NEVER_STOP, RenderError, RenderMethod, RenderOptions, Rendered, render_until};
+use crate::render::{
+    NEVER_STOP, RenderError, RenderMethod, RenderOptions, Rendered, SampleMemory, render_into,
+};
 use crate::scene::Scene;
 use crate::variants::eye_space::with_eye_offsets;
 use crate::variants::fast_sqrt::{
@@ -275,15 +277,19 @@ impl Job<'_> {
         accel: &I,
         bvh: Option<BvhStats>,
     ) -> Result<VariantRender<C>, RenderError> {
+        // The frame's memory is setup (as the outside programs' frames are), taken
+        // before the trace clock starts.
+        let samples = SampleMemory::for_render(self.options)?;
         let preprocessing = self.start.elapsed();
         let start = Instant::now();
-        let rendered = render_until::<C, I>(
+        let rendered = render_into::<C, I>(
             self.scene,
             accel,
             self.options,
             self.method,
             self.progress,
             self.stop,
+            samples,
         )?;
         Ok(VariantRender {
             rendered,
