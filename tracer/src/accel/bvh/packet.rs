@@ -260,11 +260,7 @@ fn packet_search<C: Counter, const FROM_EYE: bool, const ANY: bool, const AVX2: 
             // SAFETY: entries below `top` were written (see above).
             let waiting = unsafe { stack[top].assume_init() };
             // Every ray's test at once (no branch per ray), then the entry's rays.
-            let mut reach = 0;
-            for (r, &t_max) in t_max.iter().enumerate() {
-                reach |= u32::from(waiting.t <= t_max) << r;
-            }
-            reach &= waiting.rays;
+            let reach = rays_reaching(waiting.t, &t_max) & waiting.rays;
             if reach != 0 {
                 current = Pending {
                     rays: reach,
@@ -273,6 +269,32 @@ fn packet_search<C: Counter, const FROM_EYE: bool, const ANY: bool, const AVX2: 
                 break;
             }
         }
+    }
+}
+
+/// The rays (bit per ray) whose reach `t_max` is at least `t`.
+#[inline(always)]
+fn rays_reaching(t: f32, t_max: &[f32; PACKET]) -> u32 {
+    #[cfg(target_arch = "x86_64")]
+    {
+        use std::arch::x86_64::{_mm_cmple_ps, _mm_loadu_ps, _mm_movemask_ps, _mm_set1_ps};
+        const _: () = assert!(PACKET == 8, "two SSE halves");
+        // SAFETY: SSE2 is part of x86-64; the loads read the 8 floats of `t_max`. The
+        // compare is the scalar `<=` (false on NaN).
+        unsafe {
+            let t = _mm_set1_ps(t);
+            let low = _mm_movemask_ps(_mm_cmple_ps(t, _mm_loadu_ps(t_max.as_ptr()))) as u32;
+            let high = _mm_movemask_ps(_mm_cmple_ps(t, _mm_loadu_ps(t_max.as_ptr().add(4))));
+            low | (high as u32) << 4
+        }
+    }
+    #[cfg(not(target_arch = "x86_64"))]
+    {
+        let mut reach = 0;
+        for (r, &t_max) in t_max.iter().enumerate() {
+            reach |= u32::from(t <= t_max) << r;
+        }
+        reach
     }
 }
 

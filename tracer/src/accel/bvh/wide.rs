@@ -543,6 +543,37 @@ pub(super) fn search_leaf<C: Counter, const FROM_EYE: bool, const ANY: bool>(
     best
 }
 
+/// The lanes of `t` below `bound` or, with `ties`, equal to it (bit per lane).
+#[inline(always)]
+fn lanes_within(t: &[f32; WIDTH], bound: f32, ties: bool) -> u32 {
+    #[cfg(target_arch = "x86_64")]
+    {
+        use std::arch::x86_64::{
+            _mm_and_ps, _mm_castsi128_ps, _mm_cmpeq_ps, _mm_cmplt_ps, _mm_loadu_ps,
+            _mm_movemask_ps, _mm_or_ps, _mm_set1_epi32, _mm_set1_ps,
+        };
+        const _: () = assert!(WIDTH == 8, "two SSE halves");
+        // SAFETY: SSE2 is part of x86-64; the loads read the 8 floats of `t`. The
+        // compares are the scalar ones (`<` and `==`, false on NaN).
+        unsafe {
+            let b = _mm_set1_ps(bound);
+            let tie = _mm_castsi128_ps(_mm_set1_epi32(-i32::from(ties)));
+            let half = |v| _mm_or_ps(_mm_cmplt_ps(v, b), _mm_and_ps(tie, _mm_cmpeq_ps(v, b)));
+            let low = _mm_movemask_ps(half(_mm_loadu_ps(t.as_ptr()))) as u32;
+            let high = _mm_movemask_ps(half(_mm_loadu_ps(t.as_ptr().add(4)))) as u32;
+            low | high << 4
+        }
+    }
+    #[cfg(not(target_arch = "x86_64"))]
+    {
+        let mut near = 0u32;
+        for (lane, &tl) in t.iter().enumerate() {
+            near |= u32::from((tl < bound) | (ties & (tl == bound))) << lane;
+        }
+        near
+    }
+}
+
 /// The lane of a pack's distances (infinite where a lane misses) that beats `bound`,
 /// as `(t, lane)`: the nearest, on equal distances the first primitive in scene order
 /// (see [`HitBound`]); with `any`, the first lane that beats it.
@@ -556,11 +587,7 @@ fn closest_lane(
     // The lanes at or within the bound first, without a branch per lane (most packs
     // have none or one): only those are looked at in turn.
     // A bound at an infinite reach has no primitive, so a missing lane never ties.
-    let ties = bound.prim.is_some();
-    let mut near = 0u32;
-    for (lane, &tl) in t.iter().enumerate() {
-        near |= u32::from((tl < bound.t) | (ties & (tl == bound.t))) << lane;
-    }
+    let mut near = lanes_within(t, bound.t, bound.prim.is_some());
     let mut best = None;
     while near != 0 {
         let lane = near.trailing_zeros() as usize;
