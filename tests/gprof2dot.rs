@@ -175,7 +175,7 @@ fn gprof2dot_reads_rtprofs_call_graphs() {
         ),
         (
             "callgraph-baseline-native.txt",
-            &["render::render_until"][..],
+            &["render::render_into"][..],
             &[][..],
         ),
     ] {

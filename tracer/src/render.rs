@@ -218,13 +218,7 @@ impl SampleMemory {
     /// The samples of `options`' render, all black, after its size and depth limits
     /// are checked (nothing is allocated for a render that would be refused).
     pub fn for_render(options: &RenderOptions) -> Result<SampleMemory, RenderError> {
-        let limits = &options.limits;
-        limits
-            .check_size(u64::from(options.width), u64::from(options.height))
-            .map_err(RenderError::Size)?;
-        limits
-            .check_ray_depth(options.max_depth)
-            .map_err(RenderError::Depth)?;
+        check_limits(options)?;
         let (columns, rows) = options.sampling.grid(options.width, options.height);
         let len = columns as usize * rows as usize;
         // Huge pages where allowed: a row's own vector, copied into the frame after the
@@ -234,6 +228,17 @@ impl SampleMemory {
         samples.resize(len, Rgb::BLACK);
         Ok(SampleMemory(samples))
     }
+}
+
+/// The render's size and depth against its limits, before anything is allocated.
+fn check_limits(options: &RenderOptions) -> Result<(), RenderError> {
+    let limits = &options.limits;
+    limits
+        .check_size(u64::from(options.width), u64::from(options.height))
+        .map_err(RenderError::Size)?;
+    limits
+        .check_ray_depth(options.max_depth)
+        .map_err(RenderError::Depth)
 }
 
 /// [`render_until`] into memory taken beforehand ([`SampleMemory::for_render`] with the
@@ -247,6 +252,8 @@ pub fn render_into<C: Counter, I: Intersector>(
     stop: &AtomicBool,
     samples: SampleMemory,
 ) -> Result<Rendered<C>, RenderError> {
+    // Checked again: memory taken for other options is fitted below.
+    check_limits(options)?;
     let mut counter = C::default();
     let camera_phase = C::enter_phase(Phase::CameraRay);
     let camera = Camera::new(
@@ -522,6 +529,31 @@ fn average_corners(samples: &[Rgb], width: u32, height: u32) -> Vec<Rgb> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn sample_memory_holds_the_camera_grid_and_refuses_what_the_limits_refuse() {
+        // Pixel centres: one sample a pixel; SPD corners: (W+1) x (H+1).
+        let centres = RenderOptions::new(5, 3, Sampling::PixelCenters, ShadingMode::Color);
+        let corners = RenderOptions::new(5, 3, Sampling::SpdCorners, ShadingMode::Color);
+        for (options, len) in [(&centres, 15), (&corners, 24)] {
+            let memory = SampleMemory::for_render(options).unwrap_or_else(|e| panic!("{e}"));
+            assert_eq!(memory.0.len(), len);
+            assert!(memory.0.iter().all(|&s| s == Rgb::BLACK));
+        }
+        // Beyond the largest side: refused before any allocation, as render_into does.
+        let mut wide = centres;
+        wide.limits.max_side = 4;
+        assert!(matches!(
+            SampleMemory::for_render(&wide),
+            Err(RenderError::Size(_))
+        ));
+        let mut deep = centres;
+        deep.max_depth = deep.limits.max_ray_depth + 1;
+        assert!(matches!(
+            SampleMemory::for_render(&deep),
+            Err(RenderError::Depth(_))
+        ));
+    }
 
     #[test]
     fn checkerboard_fill_takes_the_mean_of_traced_neighbours() {
