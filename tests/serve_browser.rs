@@ -11,6 +11,7 @@ mod serve;
 
 use std::io::{BufRead, BufReader};
 use std::net::TcpStream;
+use std::os::unix::process::CommandExt;
 use std::path::{Path, PathBuf};
 use std::process::{Child, Command, Stdio};
 use std::time::{Duration, Instant};
@@ -45,6 +46,9 @@ impl Browser {
             ])
             .arg(format!("--user-data-dir={}", profile.display()))
             .arg("about:blank")
+            // Its own process group, so that dropping the browser ends its helpers too:
+            // they write into the profile, and the test removes it afterwards.
+            .process_group(0)
             .stdout(Stdio::null())
             .stderr(Stdio::piped())
             .spawn()
@@ -193,9 +197,20 @@ impl Browser {
 }
 
 impl Drop for Browser {
+    /// Ends Chromium and every helper process it started (renderer, GPU, crash
+    /// handler), and waits until none is left, so that the profile can be removed.
     fn drop(&mut self) {
-        let _ = self.child.kill();
+        let group = self.child.id() as libc::pid_t;
+        // SAFETY: kill(2) with a negative pid signals the process group the browser
+        // leads (process_group(0) made it one); it touches no memory.
+        unsafe { libc::kill(-group, libc::SIGKILL) };
         let _ = self.child.wait();
+        let start = Instant::now();
+        // kill(-group, 0) fails with ESRCH once the group has no process left.
+        // SAFETY: as above; signal 0 only checks.
+        while unsafe { libc::kill(-group, 0) } == 0 && start.elapsed() < Duration::from_secs(10) {
+            std::thread::sleep(Duration::from_millis(20));
+        }
     }
 }
 
