@@ -12,9 +12,11 @@
 //! BVH the bottleneck moves from the primitive tests to this traversal: compare
 //! `tests.*` and `accel.*` between `baseline` and `bvh`.
 
+mod frustum;
 mod node;
 mod packet;
 mod quality;
+mod ray_lanes;
 mod triangles;
 mod wide;
 

@@ -194,7 +194,7 @@ impl Variant {
                 "Embree's packet API: eye rays 8 neighbours at a time by rtcIntersect8, their shadow rays light by light by rtcOccluded8 (coherent flag); spheres, cylinders and cones Embree's own (sphere points, open cone curves), a hit's distance then rtprof's test of the primitive Embree found (the baseline's rays); silhouette pixels can differ"
             }
             Variant::Packets => {
-                "with bvh+simd: eye rays traced 8 neighbours at a time, and so are the rays they spawn, level by level of the ray tree (shadow rays light by light, refraction rays, reflection rays): one walk of the wide tree per packet, each ray testing the boxes and primitives it reaches (counted per ray)"
+                "with bvh+simd: eye rays traced 8 neighbours at a time, and so are the rays they spawn, level by level of the ray tree (shadow rays light by light, refraction rays, reflection rays): one walk of the wide tree per packet; eye-ray packets walk it by their bounds (Embree's coherent traversal: one box step per node for all 8 rays, each ray's own box test only at leaves, a triangle tested against all the rays at once), other packets ray by ray; the same picture, work counted per ray"
             }
         }
     }

@@ -95,7 +95,14 @@ impl Slab {
             }
             origin[i] = ray.origin.to_array();
         }
-        let inv = dir.map(|row| row.map(|x| 1.0 / x));
+        // A plain loop, not `map`: a closure would not inherit the caller's AVX, and
+        // the divisions were then 24 scalar ones per packet.
+        let mut inv = [[0.0f32; N]; 3];
+        for axis in 0..3 {
+            for i in 0..N {
+                inv[axis][i] = 1.0 / dir[axis][i];
+            }
+        }
         std::array::from_fn(|i| Slab {
             origin: origin[i],
             inv_dir: [inv[0][i], inv[1][i], inv[2][i]],

@@ -1,6 +1,10 @@
-//! Packets of eye rays through the wide BVH (variant `packets`, with `bvh` + `simd`).
+//! Packets of rays through the wide BVH (variant `packets`, with `bvh` + `simd`).
 //!
-//! Neighbouring eye rays meet the same boxes, so up to [`PACKET`] of them walk the tree
+//! Eye rays of a pinhole camera (one origin, one octant) take the coherent traversal
+//! of [`coherent`]: one box step per node for the whole packet, by its bounds.
+//! Other packets (reflections, refractions, shadow rays) take the steps below.
+//!
+//! Neighbouring rays meet the same boxes, so up to [`PACKET`] of them walk the tree
 //! together: at each node every ray still in the packet tests the node's child boxes
 //! (one lane step per ray, with its own reach), the children any ray enters are visited
 //! nearest first by the packet's nearest entry, and each child carries the set of rays
@@ -16,12 +20,17 @@
 //! steps (`accel.nodes_visited` per live child, [`WIDTH`] `accel.lanes_issued`), leaves
 //! and primitive tests are added to that ray's own counter.
 
+use super::frustum::Frustum;
 use super::node::{LEAF, Slab, WideNode};
+use super::ray_lanes::RayLanes;
 use super::wide::{STACK, WideBvh, descend, search_leaf, visit_order};
 use crate::accel::BVH_WIDTH as WIDTH;
 use crate::counter::{Counter, Phase, Stat};
 use crate::ray::{Hit, HitBound, Ray};
+use coherent::coherent_search;
 use std::mem::MaybeUninit;
+
+mod coherent;
 
 /// Rays traced together: one bit each in a `u32` ray set.
 pub const PACKET: usize = 8;
@@ -29,10 +38,10 @@ pub const PACKET: usize = 8;
 /// A node or leaf waiting to be visited by the rays in `rays` (bit per ray), with the
 /// nearest distance at which one of them enters it.
 #[derive(Clone, Copy, Debug)]
-struct Pending {
-    child: u32,
-    rays: u32,
-    t: f32,
+pub(super) struct Pending {
+    pub(super) child: u32,
+    pub(super) rays: u32,
+    pub(super) t: f32,
 }
 
 impl super::wide::Waiting for Pending {
@@ -152,6 +161,25 @@ fn packet_search<C: Counter, const FROM_EYE: bool, const ANY: bool, const AVX2: 
     hits.iter_mut().for_each(|h| *h = None);
     if bvh.nodes.is_empty() || n == 0 {
         return;
+    }
+    if n > 1 {
+        // Eye rays of a pinhole sharing an octant: the packet walks by its bounds.
+        let lanes = RayLanes::of(&rays[..n]);
+        if lanes.one_origin()
+            && let Some(frustum) = Frustum::of::<AVX2>(&lanes)
+        {
+            coherent_search::<C, FROM_EYE, ANY, AVX2>(
+                bvh,
+                &rays[..n],
+                &lanes,
+                &frustum,
+                t_min,
+                t_max,
+                hits,
+                counters,
+            );
+            return;
+        }
     }
     let slabs: [Slab; PACKET] = Slab::packet(&rays[..n]);
     let reach = *t_max;
@@ -274,7 +302,7 @@ fn packet_search<C: Counter, const FROM_EYE: bool, const ANY: bool, const AVX2: 
 
 /// The rays (bit per ray) whose reach `t_max` is at least `t`.
 #[inline(always)]
-fn rays_reaching(t: f32, t_max: &[f32; PACKET]) -> u32 {
+pub(super) fn rays_reaching(t: f32, t_max: &[f32; PACKET]) -> u32 {
     #[cfg(target_arch = "x86_64")]
     {
         use std::arch::x86_64::{_mm_cmple_ps, _mm_loadu_ps, _mm_movemask_ps, _mm_set1_ps};

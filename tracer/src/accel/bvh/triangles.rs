@@ -26,6 +26,7 @@
 //! point (`scale`, `add`) and three `dot` (the edge functions); a lane inside its
 //! triangle is a `tests.triangle.hits`. A pack issues [`WIDTH`] lanes.
 
+use super::ray_lanes::RayLanes;
 use super::{Aabb, Lane};
 use crate::accel::BVH_WIDTH as WIDTH;
 use crate::accel::triangulate;
@@ -369,6 +370,131 @@ unsafe fn lanes_avx2<const FROM_EYE: bool>(
     }
 }
 
+/// Triangle `i` of `pack` against every ray of `rays` (a ray per lane), ray `r`
+/// within `(t_min, reach[r])`: each ray's hit distance (infinite where it misses), the
+/// rays whose plane hit is in range and the rays that hit (bits per ray). The same
+/// operations in the same order as [`lanes`], with the ray in the lane instead of the
+/// triangle, so each pair's distance is the one [`triangle_pack`] gives, bit for bit.
+#[inline(always)]
+pub(super) fn triangle_rays(
+    pack: &TrianglePack,
+    i: usize,
+    rays: &RayLanes,
+    t_min: f32,
+    reach: &[f32; WIDTH],
+) -> ([f32; WIDTH], u32, u32) {
+    let [nx, ny, nz] = pack.normal.map(|row| row[i]);
+    let [vx, vy, vz] = pack.v0.map(|row| row[i]);
+    let e = pack.edges.map(|edge| edge.map(|row| row[i]));
+    let mut hit = [f32::INFINITY; WIDTH];
+    let (mut ranged, mut hits) = (0u32, 0u32);
+    for r in 0..WIDTH {
+        let [ox, oy, oz] = [rays.origin[0][r], rays.origin[1][r], rays.origin[2][r]];
+        let [dx, dy, dz] = [rays.dir[0][r], rays.dir[1][r], rays.dir[2][r]];
+        let (wx, wy, wz) = (ox - vx, oy - vy, oz - vz);
+        let along = dx * nx + dy * ny + dz * nz;
+        let offset = wx * nx + wy * ny + wz * nz;
+        let t = -offset / along;
+        let in_range = t > t_min && t < reach[r];
+        let (px, py, pz) = (ox + dx * t, oy + dy * t, oz + dz * t);
+        let edge = |e: &[f32; 4]| e[0] * px + e[1] * py + e[2] * pz + e[3];
+        let inside = edge(&e[0]) >= 0.0 && edge(&e[1]) >= 0.0 && edge(&e[2]) >= 0.0;
+        ranged |= u32::from(in_range) << r;
+        if in_range && inside {
+            hit[r] = t;
+            hits |= 1 << r;
+        }
+    }
+    (hit, ranged, hits)
+}
+
+/// [`triangle_rays`] in AVX instructions, the same operations in the same order (no
+/// fused multiply-add), so the same floats; also the rays that hit at or within their
+/// `t_max` (bits per ray), and the distances are stored only when there are any. Written
+/// without closures: a closure would not inherit the caller's AVX and would call each
+/// intrinsic.
+///
+/// # Safety
+/// The CPU must have AVX2.
+#[cfg(target_arch = "x86_64")]
+#[inline(always)]
+pub(super) unsafe fn triangle_rays_avx2(
+    pack: &TrianglePack,
+    i: usize,
+    rays: &RayLanes,
+    t_min: f32,
+    reach: &[f32; WIDTH],
+    t_max: &[f32; WIDTH],
+) -> ([f32; WIDTH], u32, u32, u32) {
+    use std::arch::x86_64::{
+        _CMP_GE_OQ, _CMP_GT_OQ, _CMP_LE_OQ, _CMP_LT_OQ, _mm256_add_ps, _mm256_and_ps,
+        _mm256_blendv_ps, _mm256_cmp_ps, _mm256_div_ps, _mm256_load_ps, _mm256_loadu_ps,
+        _mm256_movemask_ps, _mm256_mul_ps, _mm256_set1_ps, _mm256_setzero_ps, _mm256_storeu_ps,
+        _mm256_sub_ps, _mm256_xor_ps,
+    };
+    // SAFETY: the caller guarantees AVX2; the ray rows are 32-byte aligned rows of 8
+    // floats, `reach` is 8 floats, and `i < WIDTH` indexes the pack's rows.
+    unsafe {
+        let ox = _mm256_load_ps(rays.origin[0].as_ptr());
+        let oy = _mm256_load_ps(rays.origin[1].as_ptr());
+        let oz = _mm256_load_ps(rays.origin[2].as_ptr());
+        let dx = _mm256_load_ps(rays.dir[0].as_ptr());
+        let dy = _mm256_load_ps(rays.dir[1].as_ptr());
+        let dz = _mm256_load_ps(rays.dir[2].as_ptr());
+        let nx = _mm256_set1_ps(pack.normal[0][i]);
+        let ny = _mm256_set1_ps(pack.normal[1][i]);
+        let nz = _mm256_set1_ps(pack.normal[2][i]);
+        let wx = _mm256_sub_ps(ox, _mm256_set1_ps(pack.v0[0][i]));
+        let wy = _mm256_sub_ps(oy, _mm256_set1_ps(pack.v0[1][i]));
+        let wz = _mm256_sub_ps(oz, _mm256_set1_ps(pack.v0[2][i]));
+        let along = _mm256_add_ps(
+            _mm256_add_ps(_mm256_mul_ps(dx, nx), _mm256_mul_ps(dy, ny)),
+            _mm256_mul_ps(dz, nz),
+        );
+        let offset = _mm256_add_ps(
+            _mm256_add_ps(_mm256_mul_ps(wx, nx), _mm256_mul_ps(wy, ny)),
+            _mm256_mul_ps(wz, nz),
+        );
+        let negated = _mm256_xor_ps(offset, _mm256_set1_ps(-0.0));
+        let t = _mm256_div_ps(negated, along);
+        let in_range = _mm256_and_ps(
+            _mm256_cmp_ps::<_CMP_GT_OQ>(t, _mm256_set1_ps(t_min)),
+            _mm256_cmp_ps::<_CMP_LT_OQ>(t, _mm256_loadu_ps(reach.as_ptr())),
+        );
+        let ranged = _mm256_movemask_ps(in_range) as u32;
+        let mut hit = [f32::INFINITY; WIDTH];
+        if ranged == 0 {
+            return (hit, 0, 0, 0);
+        }
+        let far = _mm256_set1_ps(f32::INFINITY);
+        let px = _mm256_add_ps(ox, _mm256_mul_ps(dx, t));
+        let py = _mm256_add_ps(oy, _mm256_mul_ps(dy, t));
+        let pz = _mm256_add_ps(oz, _mm256_mul_ps(dz, t));
+        let zero = _mm256_setzero_ps();
+        let mut inside = in_range;
+        for e in &pack.edges {
+            let value = _mm256_add_ps(
+                _mm256_add_ps(
+                    _mm256_add_ps(
+                        _mm256_mul_ps(_mm256_set1_ps(e[0][i]), px),
+                        _mm256_mul_ps(_mm256_set1_ps(e[1][i]), py),
+                    ),
+                    _mm256_mul_ps(_mm256_set1_ps(e[2][i]), pz),
+                ),
+                _mm256_set1_ps(e[3][i]),
+            );
+            inside = _mm256_and_ps(inside, _mm256_cmp_ps::<_CMP_GE_OQ>(value, zero));
+        }
+        let hits = _mm256_movemask_ps(inside) as u32;
+        let within = _mm256_cmp_ps::<_CMP_LE_OQ>(t, _mm256_loadu_ps(t_max.as_ptr()));
+        let near = _mm256_movemask_ps(_mm256_and_ps(inside, within)) as u32;
+        if near != 0 {
+            _mm256_storeu_ps(hit.as_mut_ptr(), _mm256_blendv_ps(far, t, inside));
+        }
+        (hit, ranged, hits, near)
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -504,6 +630,65 @@ mod tests {
             .map(|s| c.get(s)),
             [3, 3, 12, 2, 2, 1, 8, 3]
         );
+    }
+
+    #[test]
+    fn a_triangle_against_rays_in_lanes_gives_each_pairs_distance_bit_for_bit() {
+        // The U's 6 triangles (z = 1) and rays of one origin and of many, some out of
+        // reach: each ray-triangle pair as in the pack's lanes, on both code paths.
+        let s = scene("p 8\n0 0 1\n3 0 1\n3 3 1\n2 3 1\n2 1 1\n1 1 1\n1 3 1\n0 3 1\n");
+        let (pack, live) = pack_of(&s);
+        let mut compared = [0u32; 2];
+        for k in 0..40 {
+            let rays: Vec<Ray> = (0..WIDTH)
+                .map(|r| {
+                    let (x, y) = (
+                        -0.4 + 0.1 * (k + 3 * r) as f32,
+                        0.05 + 0.13 * (k % 23) as f32,
+                    );
+                    let origin = if k % 2 == 0 {
+                        Vec3::new(1.5, 1.5, 9.0)
+                    } else {
+                        Vec3::new(x, y, 10.0 - r as f32)
+                    };
+                    let d = NoCount.sub(Vec3::new(x, y, 1.0), origin);
+                    Ray {
+                        origin,
+                        dir: NoCount.normalize(d),
+                    }
+                })
+                .collect();
+            let in_lanes = RayLanes::of(&rays);
+            let reach: [f32; WIDTH] = std::array::from_fn(|r| [f32::INFINITY, 8.5, 3.0][r % 3]);
+            let t_max: [f32; WIDTH] = std::array::from_fn(|r| reach[r] - 0.5 * (r % 2) as f32);
+            for i in 0..live as usize {
+                let (t, ranged, inside) = triangle_rays(&pack, i, &in_lanes, 0.0, &reach);
+                for (r, ray) in rays.iter().enumerate() {
+                    let (pack_t, pack_ranged, pack_inside) = lanes(&pack, ray, 0.0, reach[r]);
+                    assert_eq!(t[r].to_bits(), pack_t[i].to_bits(), "{k} {i} {r}");
+                    assert_eq!(ranged >> r & 1, pack_ranged >> i & 1, "{k} {i} {r}");
+                    assert_eq!(inside >> r & 1, pack_inside >> i & 1, "{k} {i} {r}");
+                    compared[usize::from(inside >> r & 1 == 1)] += 1;
+                }
+                #[cfg(target_arch = "x86_64")]
+                if crate::accel::cpu_has_avx2_fma() {
+                    // SAFETY: the CPU has AVX2.
+                    let (wide_t, wide_ranged, wide_inside, near) =
+                        unsafe { triangle_rays_avx2(&pack, i, &in_lanes, 0.0, &reach, &t_max) };
+                    assert_eq!((wide_ranged, wide_inside), (ranged, inside));
+                    let mut expected = 0;
+                    for r in 0..WIDTH {
+                        expected |= u32::from(inside >> r & 1 == 1 && t[r] <= t_max[r]) << r;
+                        if near != 0 {
+                            assert_eq!(wide_t[r].to_bits(), t[r].to_bits());
+                        }
+                    }
+                    assert_eq!(near, expected);
+                }
+            }
+        }
+        // Hits and misses both compared in numbers.
+        assert!(compared[0] > 1000 && compared[1] > 100, "{compared:?}");
     }
 
     #[test]

@@ -42,13 +42,13 @@ pub(super) struct Leaf {
     /// Index into `packs`, or [`EMPTY`] when the leaf has no sphere.
     pack: u32,
     /// Spheres in the pack.
-    spheres: u32,
+    pub(super) spheres: u32,
     /// The leaf's triangles: `triangle_packs` packs from `first_triangle_pack`.
-    first_triangle_pack: u32,
-    triangle_packs: u32,
+    pub(super) first_triangle_pack: u32,
+    pub(super) triangle_packs: u32,
     /// The leaf's other primitives: `others` entries from `first`.
     first: u32,
-    others: u32,
+    pub(super) others: u32,
 }
 
 /// A leaf's spheres in structure-of-arrays form (unused lanes: radius² -inf, never hit).
@@ -86,7 +86,7 @@ pub struct WideBvh<'s> {
     pub(super) nodes: Vec<WideNode>,
     pub(super) leaves: Vec<Leaf>,
     packs: Vec<SpherePack>,
-    triangle_packs: Vec<TrianglePack>,
+    pub(super) triangle_packs: Vec<TrianglePack>,
     others: Vec<PrimRef>,
     stats: WideBvhStats,
     pub(super) avx2: bool,
@@ -486,6 +486,26 @@ pub(super) fn search_leaf<C: Counter, const FROM_EYE: bool, const ANY: bool>(
     ray: &Ray<FROM_EYE>,
     t_min: f32,
     reach: f32,
+    bound: HitBound,
+    c: &mut C,
+) -> Option<Hit> {
+    search_leaf_parts::<C, FROM_EYE, ANY, true>(bvh, leaf, ray, t_min, reach, bound, c)
+}
+
+/// [`search_leaf`], its triangle packs only with `TRIANGLES` (the coherent packets
+/// test those a triangle at a time against all their rays).
+#[inline(always)]
+pub(super) fn search_leaf_parts<
+    C: Counter,
+    const FROM_EYE: bool,
+    const ANY: bool,
+    const TRIANGLES: bool,
+>(
+    bvh: &WideBvh,
+    leaf: &Leaf,
+    ray: &Ray<FROM_EYE>,
+    t_min: f32,
+    reach: f32,
     mut bound: HitBound,
     c: &mut C,
 ) -> Option<Hit> {
@@ -511,7 +531,8 @@ pub(super) fn search_leaf<C: Counter, const FROM_EYE: bool, const ANY: bool>(
         }
     }
     let packs = leaf.first_triangle_pack as usize;
-    for pack in &bvh.triangle_packs[packs..packs + leaf.triangle_packs as usize] {
+    let triangle_packs = if TRIANGLES { leaf.triangle_packs } else { 0 };
+    for pack in &bvh.triangle_packs[packs..packs + triangle_packs as usize] {
         let lanes = triangle_pack(pack, ray, t_min, reach, bvh.avx2, c);
         let prim = |lane: usize| pack.owner[lane];
         if let Some((t, lane)) = lanes.and_then(|t| closest_lane(&t, prim, bound, ANY)) {
@@ -578,7 +599,7 @@ fn lanes_within(t: &[f32; WIDTH], bound: f32, ties: bool) -> u32 {
 /// as `(t, lane)`: the nearest, on equal distances the first primitive in scene order
 /// (see [`HitBound`]); with `any`, the first lane that beats it.
 #[inline(always)]
-fn closest_lane(
+pub(super) fn closest_lane(
     t: &[f32; WIDTH],
     prim: impl Fn(usize) -> PrimRef,
     mut bound: HitBound,

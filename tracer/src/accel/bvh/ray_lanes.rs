@@ -1,0 +1,66 @@
+//! A packet's rays in lanes (a ray per lane): what the coherent traversal
+//! (in [`super::packet`]) tests against one box or one triangle at a time, and what its
+//! bounds ([`super::frustum`]) are taken over.
+
+use super::node::{Slab, WIDTH};
+use crate::ray::Ray;
+
+/// Up to [`WIDTH`] rays, axis by axis; unused lanes repeat the first ray.
+#[derive(Clone, Copy, Debug)]
+#[repr(C, align(32))]
+pub(super) struct RayLanes {
+    pub(super) origin: [[f32; WIDTH]; 3],
+    pub(super) dir: [[f32; WIDTH]; 3],
+    /// `1 / dir`, lane by lane ([`Slab::new`]'s reciprocals).
+    pub(super) inv_dir: [[f32; WIDTH]; 3],
+}
+
+impl RayLanes {
+    /// The lanes of `rays` (at least one; at most [`WIDTH`] are taken).
+    #[inline(always)]
+    pub(super) fn of<const FROM_EYE: bool>(rays: &[Ray<FROM_EYE>]) -> Self {
+        let mut lanes = RayLanes {
+            origin: [[0.0; WIDTH]; 3],
+            dir: [[1.0; WIDTH]; 3],
+            inv_dir: [[1.0; WIDTH]; 3],
+        };
+        for lane in 0..WIDTH {
+            let Some(ray) = rays.get(lane).or(rays.first()) else {
+                break;
+            };
+            let (o, d) = (ray.origin.to_array(), ray.dir.to_array());
+            for axis in 0..3 {
+                lanes.origin[axis][lane] = o[axis];
+                lanes.dir[axis][lane] = d[axis];
+            }
+        }
+        // Plain loops (no closures), so that they run in the caller's vector lanes.
+        for axis in 0..3 {
+            for lane in 0..WIDTH {
+                lanes.inv_dir[axis][lane] = 1.0 / lanes.dir[axis][lane];
+            }
+        }
+        lanes
+    }
+
+    /// Whether every lane starts at the first lane's origin (eye rays of a pinhole).
+    #[inline(always)]
+    pub(super) fn one_origin(&self) -> bool {
+        let mut same = true;
+        for axis in 0..3 {
+            for lane in 0..WIDTH {
+                same &= self.origin[axis][lane] == self.origin[axis][0];
+            }
+        }
+        same
+    }
+
+    /// Lane `r`'s slab-test constants, the same as [`Slab::new`]'s of its ray.
+    #[inline(always)]
+    pub(super) fn slab(&self, r: usize) -> Slab {
+        Slab {
+            origin: [self.origin[0][r], self.origin[1][r], self.origin[2][r]],
+            inv_dir: [self.inv_dir[0][r], self.inv_dir[1][r], self.inv_dir[2][r]],
+        }
+    }
+}
