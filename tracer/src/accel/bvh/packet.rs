@@ -164,7 +164,7 @@ fn packet_search<C: Counter, const FROM_EYE: bool, const ANY: bool, const AVX2: 
     }
     if n > 1 {
         // Eye rays of a pinhole sharing an octant: the packet walks by its bounds.
-        let lanes = RayLanes::of(&rays[..n]);
+        let lanes = RayLanes::of::<FROM_EYE, AVX2>(&rays[..n]);
         if lanes.one_origin()
             && let Some(frustum) = Frustum::of::<AVX2>(&lanes)
         {

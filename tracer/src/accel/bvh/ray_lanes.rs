@@ -16,9 +16,10 @@ pub(super) struct RayLanes {
 }
 
 impl RayLanes {
-    /// The lanes of `rays` (at least one; at most [`WIDTH`] are taken).
+    /// The lanes of `rays` (at least one; at most [`WIDTH`] are taken), on the code
+    /// path `AVX2` names.
     #[inline(always)]
-    pub(super) fn of<const FROM_EYE: bool>(rays: &[Ray<FROM_EYE>]) -> Self {
+    pub(super) fn of<const FROM_EYE: bool, const AVX2: bool>(rays: &[Ray<FROM_EYE>]) -> Self {
         let mut lanes = RayLanes {
             origin: [[0.0; WIDTH]; 3],
             dir: [[1.0; WIDTH]; 3],
@@ -34,13 +35,35 @@ impl RayLanes {
                 lanes.dir[axis][lane] = d[axis];
             }
         }
-        // Plain loops (no closures), so that they run in the caller's vector lanes.
+        lanes.invert::<AVX2>();
+        lanes
+    }
+
+    /// `inv_dir = 1 / dir`, on the code path `AVX2` names (`vdivps` rounds each lane
+    /// as the scalar division does).
+    #[inline(always)]
+    fn invert<const AVX2: bool>(&mut self) {
+        #[cfg(target_arch = "x86_64")]
+        if AVX2 {
+            use std::arch::x86_64::{
+                _mm256_div_ps, _mm256_load_ps, _mm256_set1_ps, _mm256_store_ps,
+            };
+            // SAFETY: `AVX2` is set only on CPUs with AVX2 (see `packet_search_avx2`);
+            // the rows are 32-byte aligned rows of 8 floats.
+            unsafe {
+                for axis in 0..3 {
+                    let d = _mm256_load_ps(self.dir[axis].as_ptr());
+                    let inv = _mm256_div_ps(_mm256_set1_ps(1.0), d);
+                    _mm256_store_ps(self.inv_dir[axis].as_mut_ptr(), inv);
+                }
+            }
+            return;
+        }
         for axis in 0..3 {
             for lane in 0..WIDTH {
-                lanes.inv_dir[axis][lane] = 1.0 / lanes.dir[axis][lane];
+                self.inv_dir[axis][lane] = 1.0 / self.dir[axis][lane];
             }
         }
-        lanes
     }
 
     /// Whether every lane starts at the first lane's origin (eye rays of a pinhole).

@@ -658,7 +658,7 @@ mod tests {
                     }
                 })
                 .collect();
-            let in_lanes = RayLanes::of(&rays);
+            let in_lanes = RayLanes::of::<false, false>(&rays);
             let reach: [f32; WIDTH] = std::array::from_fn(|r| [f32::INFINITY, 8.5, 3.0][r % 3]);
             let t_max: [f32; WIDTH] = std::array::from_fn(|r| reach[r] - 0.5 * (r % 2) as f32);
             for i in 0..live as usize {

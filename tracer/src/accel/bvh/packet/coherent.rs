@@ -553,7 +553,7 @@ mod tests {
                     let rays = eye_rays(origin, 64, 24);
                     for size in [2, 3, 8] {
                         for group in rays.chunks(size) {
-                            let lanes = RayLanes::of(group);
+                            let lanes = RayLanes::of::<false, false>(group);
                             coherent += usize::from(
                                 lanes.one_origin() && Frustum::of::<false>(&lanes).is_some(),
                             );
@@ -611,7 +611,7 @@ mod tests {
         };
         for wide in both_paths(&scene) {
             let packet = [toward(2.0), toward(12.0)];
-            let lanes = RayLanes::of(&packet);
+            let lanes = RayLanes::of::<false, false>(&packet);
             assert!(lanes.one_origin() && Frustum::of::<false>(&lanes).is_some());
             let mut found = [None; 2];
             let mut counters = [Count::default(), Count::default()];
