@@ -79,36 +79,6 @@ impl Slab {
         }
     }
 
-    /// The constants of up to `N` rays (a packet; the rest unused), each the same as
-    /// [`Slab::new`]'s: the reciprocals are taken axis by axis across the rays, so that
-    /// they are computed in lanes, one division per axis.
-    #[inline(always)]
-    pub(super) fn packet<const FROM_EYE: bool, const N: usize>(
-        rays: &[Ray<FROM_EYE>],
-    ) -> [Self; N] {
-        let mut dir = [[1.0f32; N]; 3];
-        let mut origin = [[0.0f32; 3]; N];
-        for (i, ray) in rays.iter().take(N).enumerate() {
-            let d = ray.dir.to_array();
-            for axis in 0..3 {
-                dir[axis][i] = d[axis];
-            }
-            origin[i] = ray.origin.to_array();
-        }
-        // A plain loop, not `map`: a closure would not inherit the caller's AVX, and
-        // the divisions were then 24 scalar ones per packet.
-        let mut inv = [[0.0f32; N]; 3];
-        for axis in 0..3 {
-            for i in 0..N {
-                inv[axis][i] = 1.0 / dir[axis][i];
-            }
-        }
-        std::array::from_fn(|i| Slab {
-            origin: origin[i],
-            inv_dir: [inv[0][i], inv[1][i], inv[2][i]],
-        })
-    }
-
     /// Which children's boxes the ray enters inside `(t_min, t_max)` (bit per lane)
     /// and where. The same arithmetic as the binary tree's slab test, lane by lane;
     /// written so that a NaN (origin on a slab of a flat box: 0 × inf) drops out of

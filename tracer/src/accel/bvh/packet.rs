@@ -162,9 +162,9 @@ fn packet_search<C: Counter, const FROM_EYE: bool, const ANY: bool, const AVX2: 
     if bvh.nodes.is_empty() || n == 0 {
         return;
     }
+    let lanes = RayLanes::of::<FROM_EYE, AVX2>(&rays[..n]);
     if n > 1 {
         // Eye rays of a pinhole sharing an octant: the packet walks by its bounds.
-        let lanes = RayLanes::of::<FROM_EYE, AVX2>(&rays[..n]);
         if lanes.one_origin()
             && let Some(frustum) = Frustum::of::<AVX2>(&lanes)
         {
@@ -181,7 +181,7 @@ fn packet_search<C: Counter, const FROM_EYE: bool, const ANY: bool, const AVX2: 
             return;
         }
     }
-    let slabs: [Slab; PACKET] = Slab::packet(&rays[..n]);
+    let slabs: [Slab; PACKET] = std::array::from_fn(|r| lanes.slab(r));
     let reach = *t_max;
     let mut t_max = *t_max;
     let mut searching = (1u32 << n) - 1;

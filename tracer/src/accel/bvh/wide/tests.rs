@@ -1,5 +1,6 @@
 //! The wide BVH against brute force, and its counts by hand.
 
+use super::super::ray_lanes::RayLanes;
 use super::super::tests::{mixed_scene, rays};
 use super::*;
 use crate::accel::BruteForce;
@@ -221,12 +222,18 @@ fn a_packets_slabs_are_each_rays_own_bit_for_bit() {
         });
     }
     let bits = |s: &Slab| (s.origin.map(f32::to_bits), s.inv_dir.map(f32::to_bits));
-    // Packets of eight rays, as the packet traversal takes them, given 1 to 8.
+    // Packets of eight rays, as the packet traversal takes them, given 1 to 8, on
+    // both code paths.
     for n in 1..=8 {
         for group in all.chunks(n) {
-            let packet: [Slab; 8] = Slab::packet(group);
-            for (ray, slab) in group.iter().zip(&packet) {
-                assert_eq!(bits(slab), bits(&Slab::new(ray)), "{ray:?}");
+            let mut paths = vec![RayLanes::of::<false, false>(group)];
+            if crate::accel::cpu_has_avx2_fma() {
+                paths.push(RayLanes::of::<false, true>(group));
+            }
+            for lanes in paths {
+                for (r, ray) in group.iter().enumerate() {
+                    assert_eq!(bits(&lanes.slab(r)), bits(&Slab::new(ray)), "{ray:?}");
+                }
             }
         }
     }
