@@ -430,11 +430,19 @@ impl<I: Intersector> PacketRow<'_, '_, I> {
         } else {
             Vec::new()
         };
-        let traced: Vec<u32> = (0..self.columns)
-            .filter(|column| !(self.checkerboard && (column + self.row) % 2 == 1))
-            .collect();
-        for chunk in traced.chunks(PACKET) {
-            let n = chunk.len();
+        // The traced columns: all, or with the checkerboard those of the row's parity
+        // (computed, not collected: a vector of them cost a store per column).
+        let (first, step) = if self.checkerboard {
+            (self.row % 2, 2)
+        } else {
+            (0, 1)
+        };
+        let count = self.columns.saturating_sub(first).div_ceil(step);
+        for start in (0..count).step_by(PACKET) {
+            let n = (count - start).min(PACKET as u32) as usize;
+            let columns_of: [u32; PACKET] =
+                std::array::from_fn(|i| first + (start + i as u32) * step);
+            let chunk = &columns_of[..n];
             let start = keep.then(Instant::now);
             let mut counters: [C; PACKET] = Default::default();
             let mut logs = [RayLog::default(); PACKET];
