@@ -279,25 +279,36 @@ fn packet_search<C: Counter, const FROM_EYE: bool, const ANY: bool, const AVX2: 
                 continue;
             }
         }
-        // The nearest waiting entry with a ray that can still reach it.
-        loop {
-            if top == 0 {
-                return;
-            }
-            top -= 1;
-            // SAFETY: entries below `top` were written (see above).
-            let waiting = unsafe { stack[top].assume_init() };
-            // Every ray's test at once (no branch per ray), then the entry's rays.
-            let reach = rays_reaching(waiting.t, &t_max) & waiting.rays;
-            if reach != 0 {
-                current = Pending {
-                    rays: reach,
-                    ..waiting
-                };
-                break;
-            }
+        match next_waiting(&stack, &mut top, &t_max) {
+            Some(next) => current = next,
+            None => return,
         }
     }
+}
+
+/// The nearest waiting entry (the stack's top first) with a ray that can still reach
+/// it, its rays cut to those; `None` when the stack runs out. Entries below `top` must
+/// have been written.
+#[inline(always)]
+pub(super) fn next_waiting(
+    stack: &[MaybeUninit<Pending>],
+    top: &mut usize,
+    t_max: &[f32; PACKET],
+) -> Option<Pending> {
+    while *top > 0 {
+        *top -= 1;
+        // SAFETY: entries below `top` were written (the caller's promise).
+        let waiting = unsafe { stack[*top].assume_init() };
+        // Every ray's test at once (no branch per ray), then the entry's rays.
+        let reach = rays_reaching(waiting.t, t_max) & waiting.rays;
+        if reach != 0 {
+            return Some(Pending {
+                rays: reach,
+                ..waiting
+            });
+        }
+    }
+    None
 }
 
 /// The rays (bit per ray) whose reach `t_max` is at least `t`.
@@ -405,21 +416,13 @@ unsafe fn step_avx2(
 
 #[cfg(test)]
 mod tests {
-    use super::super::tests::{mixed_scene, rays};
+    use super::super::tests::{both_paths, mixed_scene, rays, traversal_work as get};
     use super::*;
-    use crate::accel::{BvhBuilder, Intersector};
+    use crate::accel::Intersector;
     use crate::counter::{Count, NoCount};
     use crate::nff::parse_nff;
     use crate::ray::Ray;
     use crate::vec3::Vec3;
-
-    /// The tree this CPU runs and its portable twin.
-    fn both_paths(scene: &crate::scene::Scene) -> [WideBvh<'_>; 2] {
-        let wide = WideBvh::build_with(scene, BvhBuilder::BinnedSah);
-        let mut portable = wide.clone();
-        portable.avx2 = false;
-        [wide, portable]
-    }
 
     #[test]
     fn packets_find_each_rays_own_closest_hit_bit_for_bit() {
@@ -574,17 +577,6 @@ mod tests {
         let along_y = |x: f32| Ray {
             origin: Vec3::new(x, -20.0, 0.0),
             dir: Vec3::new(0.0, 1.0, 0.0),
-        };
-        let get = |c: &Count| {
-            [
-                Stat::NodesVisited,
-                Stat::LanesIssued,
-                Stat::LanesActive,
-                Stat::LeavesVisited,
-                Stat::SphereTest,
-                Stat::Intersect,
-            ]
-            .map(|s| c.get(s))
         };
         for wide in both_paths(&scene) {
             // Each ray's hit (primitive, distance) and counts, traced as one packet.

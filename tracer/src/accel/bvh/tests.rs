@@ -26,6 +26,29 @@ pub(super) fn mixed_scene() -> Scene {
     parse_nff(&text, "mixed.nff").unwrap_or_else(|e| panic!("{e}"))
 }
 
+/// The wide tree of `scene` this CPU runs, and its portable twin (no AVX2).
+pub(super) fn both_paths(scene: &Scene) -> [super::WideBvh<'_>; 2] {
+    let wide = super::WideBvh::build_with(scene, super::BvhBuilder::BinnedSah);
+    let mut portable = wide.clone();
+    portable.avx2 = false;
+    [wide, portable]
+}
+
+/// A ray's traversal work: nodes visited, lanes issued and active, leaves visited,
+/// sphere tests, intersect calls.
+pub(super) fn traversal_work(c: &crate::counter::Count) -> [u64; 6] {
+    use crate::counter::Stat;
+    [
+        Stat::NodesVisited,
+        Stat::LanesIssued,
+        Stat::LanesActive,
+        Stat::LeavesVisited,
+        Stat::SphereTest,
+        Stat::Intersect,
+    ]
+    .map(|s| c.get(s))
+}
+
 pub(super) fn rays() -> Vec<Ray> {
     let mut out = Vec::new();
     let mut state = 12345u32;

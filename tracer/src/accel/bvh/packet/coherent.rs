@@ -25,7 +25,7 @@ use super::super::triangles::{TrianglePack, triangle_pack};
 use super::super::wide::{
     Leaf, STACK, WideBvh, closest_lane, descend, search_leaf_parts, visit_order,
 };
-use super::{PACKET, Pending, rays_reaching};
+use super::{PACKET, Pending, next_waiting};
 use crate::accel::BVH_WIDTH as WIDTH;
 use crate::counter::{Counter, Phase, Stat};
 use crate::ray::{Hit, HitBound, Ray};
@@ -184,21 +184,9 @@ pub(super) fn coherent_search<
         }
         // The nearest waiting entry with a ray that can still reach it (the bounds'
         // entry is no later than any ray's).
-        loop {
-            if top == 0 {
-                return;
-            }
-            top -= 1;
-            // SAFETY: entries below `top` were written (see above).
-            let waiting = unsafe { stack[top].assume_init() };
-            let reach = rays_reaching(waiting.t, &state.t_max) & waiting.rays;
-            if reach != 0 {
-                current = Pending {
-                    rays: reach,
-                    ..waiting
-                };
-                break;
-            }
+        match next_waiting(&stack, &mut top, &state.t_max) {
+            Some(next) => current = next,
+            None => return,
         }
     }
 }
@@ -485,20 +473,12 @@ fn count_triangle<C: Counter, const FROM_EYE: bool>(
 
 #[cfg(test)]
 mod tests {
-    use super::super::super::tests::mixed_scene;
+    use super::super::super::tests::{both_paths, mixed_scene, traversal_work as get};
     use super::*;
-    use crate::accel::{BvhBuilder, Intersector};
+    use crate::accel::Intersector;
     use crate::counter::{Count, NoCount};
     use crate::nff::parse_nff;
     use crate::vec3::Vec3;
-
-    /// The tree this CPU runs and its portable twin.
-    fn both_paths(scene: &crate::scene::Scene) -> [WideBvh<'_>; 2] {
-        let wide = WideBvh::build_with(scene, BvhBuilder::BinnedSah);
-        let mut portable = wide.clone();
-        portable.avx2 = false;
-        [wide, portable]
-    }
 
     /// Rays from one origin through a grid of points: eye rays of a pinhole.
     fn eye_rays(origin: Vec3, columns: usize, rows: usize) -> Vec<Ray> {
@@ -597,17 +577,6 @@ mod tests {
         let toward = |x: f32| Ray {
             origin,
             dir: NoCount.normalize(Vec3::new(x, 20.0, 1.0)),
-        };
-        let get = |c: &Count| {
-            [
-                Stat::NodesVisited,
-                Stat::LanesIssued,
-                Stat::LanesActive,
-                Stat::LeavesVisited,
-                Stat::SphereTest,
-                Stat::Intersect,
-            ]
-            .map(|s| c.get(s))
         };
         for wide in both_paths(&scene) {
             let packet = [toward(2.0), toward(12.0)];
