@@ -299,7 +299,10 @@ impl<'s, I: Intersector> Shader<'s, I> {
     }
 
     /// The start of a hit's shading: the surface, the ambient term, the lifted point
-    /// that secondary and shadow rays leave from, and the mirror direction.
+    /// that secondary and shadow rays leave from, and the mirror direction. Inlined:
+    /// called, it returned its 176 bytes through memory and a `memcpy` into the packet's
+    /// array (4 % of a teapot render).
+    #[inline(always)]
     fn lit_point<C: Counter>(&self, ray: &Ray, hit: &Hit, c: &mut C) -> LitPoint {
         c.tally(Stat::Shade);
         let s = self.surface(ray, hit, c);

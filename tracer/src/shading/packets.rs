@@ -27,6 +27,8 @@ struct Spawned {
 }
 
 impl Spawned {
+    /// Inlined, so built in place (returned, it was a `memcpy` each).
+    #[inline(always)]
     fn new(fill: Ray) -> Self {
         Spawned {
             rays: [fill; PACKET],
@@ -154,6 +156,17 @@ impl<I: Intersector> Shader<'_, I> {
             return;
         }
         let _phase = C::enter_phase(Phase::Shading);
+        if hits[..n].iter().all(Option::is_none) {
+            // All missed (most of an open scene's eye packets): no light or secondary
+            // packet to set up.
+            let background = if depth == 1 {
+                self.background()
+            } else {
+                self.scene.background
+            };
+            out[..n].fill(background);
+            return;
+        }
         let mut lit: [Option<LitPoint>; PACKET] = std::array::from_fn(|_| None);
         for i in 0..n {
             match &hits[i] {
@@ -262,6 +275,9 @@ impl<I: Intersector> Shader<'_, I> {
         let Some(&fill) = rays.first() else {
             return;
         };
+        if !lit.iter().flatten().any(|p| p.reflective) {
+            return;
+        }
         // The secondary rays' set-up; the rays they trace nest inside.
         let _phase = C::enter_phase(Phase::SecondaryRays);
         let mut refracted = Spawned::new(fill);
