@@ -96,8 +96,9 @@ impl WideBvh<'_> {
             .zip(blocked.chunks_mut(PACKET))
             .zip(counters.chunks_mut(PACKET))
         {
-            let mut reach = [f32::INFINITY; PACKET];
-            reach[..t_max.len()].copy_from_slice(t_max);
+            // Lane by lane: a slice copy of at most 8 floats was a `memcpy` call.
+            let reach: [f32; PACKET] =
+                std::array::from_fn(|i| t_max.get(i).copied().unwrap_or(f32::INFINITY));
             let n = rays.len();
             self.packet::<C, false, true>(rays, t_min, &reach, &mut hits[..n], counters);
             for (b, hit) in blocked.iter_mut().zip(&hits) {
@@ -162,9 +163,30 @@ fn packet_search<C: Counter, const FROM_EYE: bool, const ANY: bool, const AVX2: 
     if bvh.nodes.is_empty() || n == 0 {
         return;
     }
-    let lanes = RayLanes::of::<FROM_EYE, AVX2>(&rays[..n]);
-    if n > 1 {
-        // Eye rays of a pinhole sharing an octant: the packet walks by its bounds.
+    if n == 1 {
+        // One ray (a packet's lone reflection, or its only point facing a light): the
+        // single-ray loop, as the packet would hand it over, without the lanes' set-up.
+        hits[0] = descend::<C, FROM_EYE, ANY, AVX2>(
+            bvh,
+            &rays[0],
+            &Slab::new(&rays[0]),
+            0,
+            t_min,
+            t_max[0],
+            None,
+            &mut counters[0],
+        );
+        return;
+    }
+    let slabs: [Slab; PACKET] = if ANY {
+        // Shadow rays leave from different points: straight to each ray's slab
+        // constants (unused lanes repeat the first ray, as in the lanes).
+        std::array::from_fn(|r| Slab::new(&rays[if r < n { r } else { 0 }]))
+    } else {
+        let lanes = RayLanes::of::<FROM_EYE, AVX2>(&rays[..n]);
+        // Eye rays of a pinhole sharing an octant: the packet walks by its bounds. (Not
+        // shadow rays: a packet's leave from different points, and the bounds of those
+        // rays turned round from the light did not pay; see docs/benchmarks.md.)
         if lanes.one_origin()
             && let Some(frustum) = Frustum::of::<AVX2>(&lanes)
         {
@@ -180,8 +202,8 @@ fn packet_search<C: Counter, const FROM_EYE: bool, const ANY: bool, const AVX2: 
             );
             return;
         }
-    }
-    let slabs: [Slab; PACKET] = std::array::from_fn(|r| lanes.slab(r));
+        std::array::from_fn(|r| lanes.slab(r))
+    };
     let reach = *t_max;
     let mut t_max = *t_max;
     let mut searching = (1u32 << n) - 1;
