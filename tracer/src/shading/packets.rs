@@ -159,21 +159,13 @@ impl<I: Intersector> Shader<'_, I> {
         if hits[..n].iter().all(Option::is_none) {
             // All missed (most of an open scene's eye packets): no light or secondary
             // packet to set up.
-            let background = if depth == 1 {
-                self.background()
-            } else {
-                self.scene.background
-            };
-            out[..n].fill(background);
+            out[..n].fill(self.miss_colour(depth));
             return;
         }
         let mut lit: [Option<LitPoint>; PACKET] = std::array::from_fn(|_| None);
         for i in 0..n {
             match &hits[i] {
-                // The eye ray's background is in the shading mode's colours; a secondary
-                // ray's is the scene's, its luminance taken with the whole sample's.
-                None if depth == 1 => out[i] = self.background(),
-                None => out[i] = self.scene.background,
+                None => out[i] = self.miss_colour(depth),
                 Some(hit) => {
                     if depth == 1 {
                         logs[i].counts.primary_hit += 1;
@@ -197,6 +189,17 @@ impl<I: Intersector> Shader<'_, I> {
                     _ => color[i],
                 };
             }
+        }
+    }
+
+    /// What a ray at tree depth `depth` that hits nothing shows: the eye ray's
+    /// background is in the shading mode's colours; a secondary ray's is the scene's,
+    /// its luminance taken with the whole sample's.
+    fn miss_colour(&self, depth: u32) -> Rgb {
+        if depth == 1 {
+            self.background()
+        } else {
+            self.scene.background
         }
     }
 
