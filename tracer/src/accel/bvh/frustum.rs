@@ -36,16 +36,20 @@ pub(super) struct Frustum {
 }
 
 impl Frustum {
-    /// The frustum of `rays`, or `None` when they do not share one octant or a
-    /// direction has a zero component (an infinite reciprocal): then the bounds could
-    /// not be formed. Unused lanes repeat the first ray, so the bounds may be taken over
-    /// all lanes. On the code path `AVX2` names.
+    /// The frustum of `rays` when they start at one point (eye rays of a pinhole) and
+    /// share one octant; `None` otherwise, or when a direction has a zero component (an
+    /// infinite reciprocal): then the bounds could not be formed. Unused lanes repeat
+    /// the first ray, so the bounds may be taken over all lanes. On the code path
+    /// `AVX2` names.
     #[inline(always)]
-    pub(super) fn of<const AVX2: bool>(rays: &RayLanes) -> Option<Frustum> {
+    pub(super) fn of_one_origin<const AVX2: bool>(rays: &RayLanes) -> Option<Frustum> {
         #[cfg(target_arch = "x86_64")]
         if AVX2 {
             // SAFETY: `AVX2` is set only on CPUs with AVX2 (see `packet_search_avx2`).
-            return unsafe { Self::of_avx2(rays) };
+            return unsafe { Self::of_one_origin_avx2(rays) };
+        }
+        if !rays.one_origin() {
+            return None;
         }
         let mut f = Frustum {
             down: [false; 3],
@@ -77,17 +81,19 @@ impl Frustum {
         Some(f)
     }
 
-    /// [`Frustum::of`] in AVX instructions (the same turned values, compares and
-    /// extents: `vminps`/`vmaxps` of finite positive values are the scalar ones).
+    /// [`Frustum::of_one_origin`] in AVX instructions (the same compares, turned values
+    /// and extents: `vminps`/`vmaxps` of finite positive values are the scalar ones).
+    /// The origins are one point, so its turned coordinates are both their least and
+    /// greatest.
     ///
     /// # Safety
     /// The CPU must have AVX.
     #[cfg(target_arch = "x86_64")]
     #[inline(always)]
-    unsafe fn of_avx2(rays: &RayLanes) -> Option<Frustum> {
+    unsafe fn of_one_origin_avx2(rays: &RayLanes) -> Option<Frustum> {
         use std::arch::x86_64::{
-            __m256, _CMP_GT_OQ, _CMP_LT_OQ, _mm_cvtss_f32, _mm_max_ps, _mm_min_ps, _mm_movehdup_ps,
-            _mm_movehl_ps, _mm256_and_ps, _mm256_castps256_ps128, _mm256_cmp_ps,
+            __m256, _CMP_EQ_OQ, _CMP_GT_OQ, _CMP_LT_OQ, _mm_cvtss_f32, _mm_max_ps, _mm_min_ps,
+            _mm_movehdup_ps, _mm_movehl_ps, _mm256_and_ps, _mm256_castps256_ps128, _mm256_cmp_ps,
             _mm256_extractf128_ps, _mm256_load_ps, _mm256_movemask_ps, _mm256_mul_ps,
             _mm256_set1_ps, _mm256_setzero_ps,
         };
@@ -109,11 +115,18 @@ impl Frustum {
                     _mm_cvtss_f32($op(quarter, _mm_movehdup_ps(quarter)))
                 }};
             }
+            let mut same = true;
             for axis in 0..3 {
+                let first = rays.origin[axis][0];
+                let o = _mm256_load_ps(rays.origin[axis].as_ptr());
+                same &= _mm256_movemask_ps(_mm256_cmp_ps::<_CMP_EQ_OQ>(o, _mm256_set1_ps(first)))
+                    == 0xFF;
                 let down = rays.inv_dir[axis][0] < 0.0;
-                let sign = _mm256_set1_ps(if down { -1.0 } else { 1.0 });
-                let o = _mm256_mul_ps(sign, _mm256_load_ps(rays.origin[axis].as_ptr()));
-                let r = _mm256_mul_ps(sign, _mm256_load_ps(rays.inv_dir[axis].as_ptr()));
+                let sign = if down { -1.0 } else { 1.0 };
+                let r = _mm256_mul_ps(
+                    _mm256_set1_ps(sign),
+                    _mm256_load_ps(rays.inv_dir[axis].as_ptr()),
+                );
                 let usable = _mm256_and_ps(
                     _mm256_cmp_ps::<_CMP_GT_OQ>(r, _mm256_setzero_ps()),
                     _mm256_cmp_ps::<_CMP_LT_OQ>(r, _mm256_set1_ps(f32::INFINITY)),
@@ -122,13 +135,11 @@ impl Frustum {
                     return None;
                 }
                 f.down[axis] = down;
-                // Origins are finite (a scene's points), so min/max are the scalar ones.
-                (f.origin_min[axis], f.origin_max[axis]) =
-                    (reduce!(o, _mm_min_ps), reduce!(o, _mm_max_ps));
+                (f.origin_min[axis], f.origin_max[axis]) = (sign * first, sign * first);
                 (f.inv_min[axis], f.inv_max[axis]) =
                     (reduce!(r, _mm_min_ps), reduce!(r, _mm_max_ps));
             }
-            Some(f)
+            same.then_some(f)
         }
     }
 
@@ -389,3 +400,70 @@ static LANE_MASKS: [AlignedLanes; 256] = {
 #[derive(Clone, Copy)]
 #[repr(C, align(32))]
 struct AlignedLanes([f32; LANES]);
+
+#[cfg(test)]
+mod tests {
+    use super::super::tests::rays;
+    use super::*;
+    use crate::ray::Ray;
+    use crate::vec3::Vec3;
+
+    /// The frustum's fields, bit for bit (`None` when it has none).
+    fn bits(f: Option<Frustum>) -> Option<([bool; 3], [[u32; 3]; 4])> {
+        f.map(|f| {
+            let b = |v: [f32; 3]| v.map(f32::to_bits);
+            (
+                f.down,
+                [b(f.origin_min), b(f.origin_max), b(f.inv_min), b(f.inv_max)],
+            )
+        })
+    }
+
+    #[test]
+    fn a_frustum_is_formed_for_one_origin_and_octant_the_same_on_both_code_paths() {
+        // The shared test rays (mixed origins and octants, zero components) as they
+        // are, and again from one origin; packets of every length.
+        let mixed = rays();
+        let one_origin: Vec<Ray> = mixed
+            .iter()
+            .map(|r| Ray {
+                origin: Vec3::new(0.5, -7.0, 2.0),
+                dir: r.dir,
+            })
+            .collect();
+        let avx2 = crate::accel::cpu_has_avx2_fma();
+        let (mut formed, mut refused) = (0, 0);
+        for all in [&mixed, &one_origin] {
+            for n in 1..=LANES {
+                for start in 0..all.len().saturating_sub(n) {
+                    let group = &all[start..start + n];
+                    let lanes = RayLanes::of::<false, false>(group);
+                    let scalar = Frustum::of_one_origin::<false>(&lanes);
+                    // Formed exactly when the rays share the first one's origin and the
+                    // signs of its direction, with no zero component.
+                    let first = group[0];
+                    let expected = group.iter().all(|r| {
+                        r.origin == first.origin
+                            && (0..3).all(|a| {
+                                let (d, d0) = (r.dir.to_array()[a], first.dir.to_array()[a]);
+                                d != 0.0 && (d < 0.0) == (d0 < 0.0)
+                            })
+                    });
+                    assert_eq!(scalar.is_some(), expected, "{group:?}");
+                    if avx2 {
+                        // SAFETY: the CPU has AVX2 (checked above).
+                        let avx = unsafe { Frustum::of_one_origin_avx2(&lanes) };
+                        assert_eq!(bits(avx), bits(scalar), "{group:?}");
+                    }
+                    formed += usize::from(scalar.is_some());
+                    refused += usize::from(scalar.is_none());
+                }
+            }
+        }
+        // Both answers were compared in numbers.
+        assert!(
+            formed > 50 && refused > 50,
+            "{formed} formed, {refused} refused"
+        );
+    }
+}

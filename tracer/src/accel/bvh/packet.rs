@@ -187,9 +187,7 @@ fn packet_search<C: Counter, const FROM_EYE: bool, const ANY: bool, const AVX2: 
         // Eye rays of a pinhole sharing an octant: the packet walks by its bounds. (Not
         // shadow rays: a packet's leave from different points, and the bounds of those
         // rays turned round from the light did not pay; see docs/benchmarks.md.)
-        if lanes.one_origin()
-            && let Some(frustum) = Frustum::of::<AVX2>(&lanes)
-        {
+        if let Some(frustum) = Frustum::of_one_origin::<AVX2>(&lanes) {
             coherent_search::<C, FROM_EYE, ANY, AVX2>(
                 bvh,
                 &rays[..n],

@@ -20,6 +20,11 @@ impl RayLanes {
     /// path `AVX2` names.
     #[inline(always)]
     pub(super) fn of<const FROM_EYE: bool, const AVX2: bool>(rays: &[Ray<FROM_EYE>]) -> Self {
+        #[cfg(target_arch = "x86_64")]
+        if AVX2 && !rays.is_empty() {
+            // SAFETY: `AVX2` is set only on CPUs with AVX2 (see `packet_search_avx2`).
+            return unsafe { Self::of_avx(rays) };
+        }
         let mut lanes = RayLanes {
             origin: [[0.0; WIDTH]; 3],
             dir: [[1.0; WIDTH]; 3],
@@ -36,6 +41,66 @@ impl RayLanes {
             }
         }
         lanes.invert::<AVX2>();
+        lanes
+    }
+
+    /// [`RayLanes::of`] of at least one ray in AVX registers: each ray's origin and
+    /// direction loaded whole, turned into rows by a 4×4 transpose per half (rays 0-3
+    /// below, 4-7 above), and the rows stored whole. Stored lane by lane instead, the
+    /// rows' 256-bit loads waited for eight narrow stores each (a store cannot be
+    /// forwarded to a wider load).
+    ///
+    /// # Safety
+    /// The CPU must have AVX.
+    #[cfg(target_arch = "x86_64")]
+    #[inline(always)]
+    unsafe fn of_avx<const FROM_EYE: bool>(rays: &[Ray<FROM_EYE>]) -> Self {
+        use std::arch::x86_64::{
+            __m128, __m256, _mm256_div_ps, _mm256_set_m128, _mm256_set1_ps, _mm256_shuffle_ps,
+            _mm256_store_ps, _mm256_unpackhi_ps, _mm256_unpacklo_ps,
+        };
+        // Unused lanes repeat the first ray.
+        let ray = |lane: usize| rays.get(lane).unwrap_or(&rays[0]);
+        let mut lanes = RayLanes {
+            origin: [[0.0; WIDTH]; 3],
+            dir: [[0.0; WIDTH]; 3],
+            inv_dir: [[0.0; WIDTH]; 3],
+        };
+        // Macros, not closures: a closure would not inherit the caller's AVX.
+        macro_rules! rows {
+            ($field:ident) => {{
+                let pair = |lane: usize| -> (__m128, __m128) {
+                    (ray(lane + 4).$field.0.into(), ray(lane).$field.0.into())
+                };
+                let [a, b, c, d] = [0, 1, 2, 3].map(pair);
+                let (a, b, c, d): (__m256, __m256, __m256, __m256) = (
+                    _mm256_set_m128(a.0, a.1),
+                    _mm256_set_m128(b.0, b.1),
+                    _mm256_set_m128(c.0, c.1),
+                    _mm256_set_m128(d.0, d.1),
+                );
+                // Per half: (a.x b.x a.y b.y), (a.z b.z a.w b.w), likewise c and d.
+                let (ab_xy, ab_zw) = (_mm256_unpacklo_ps(a, b), _mm256_unpackhi_ps(a, b));
+                let (cd_xy, cd_zw) = (_mm256_unpacklo_ps(c, d), _mm256_unpackhi_ps(c, d));
+                [
+                    _mm256_shuffle_ps::<0x44>(ab_xy, cd_xy),
+                    _mm256_shuffle_ps::<0xEE>(ab_xy, cd_xy),
+                    _mm256_shuffle_ps::<0x44>(ab_zw, cd_zw),
+                ]
+            }};
+        }
+        // SAFETY: the caller guarantees AVX; the rows are 32-byte aligned rows of 8
+        // floats.
+        unsafe {
+            let origin = rows!(origin);
+            let dir = rows!(dir);
+            for axis in 0..3 {
+                _mm256_store_ps(lanes.origin[axis].as_mut_ptr(), origin[axis]);
+                _mm256_store_ps(lanes.dir[axis].as_mut_ptr(), dir[axis]);
+                let inv = _mm256_div_ps(_mm256_set1_ps(1.0), dir[axis]);
+                _mm256_store_ps(lanes.inv_dir[axis].as_mut_ptr(), inv);
+            }
+        }
         lanes
     }
 

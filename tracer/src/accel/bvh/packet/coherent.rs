@@ -534,9 +534,8 @@ mod tests {
                     for size in [2, 3, 8] {
                         for group in rays.chunks(size) {
                             let lanes = RayLanes::of::<false, false>(group);
-                            coherent += usize::from(
-                                lanes.one_origin() && Frustum::of::<false>(&lanes).is_some(),
-                            );
+                            coherent +=
+                                usize::from(Frustum::of_one_origin::<false>(&lanes).is_some());
                             let mut found = vec![None; group.len()];
                             let mut counters = vec![NoCount; group.len()];
                             wide.closest_hits(group, &mut found, &mut counters);
@@ -581,7 +580,7 @@ mod tests {
         for wide in both_paths(&scene) {
             let packet = [toward(2.0), toward(12.0)];
             let lanes = RayLanes::of::<false, false>(&packet);
-            assert!(lanes.one_origin() && Frustum::of::<false>(&lanes).is_some());
+            assert!(Frustum::of_one_origin::<false>(&lanes).is_some());
             let mut found = [None; 2];
             let mut counters = [Count::default(), Count::default()];
             wide.closest_hits(&packet, &mut found, &mut counters);

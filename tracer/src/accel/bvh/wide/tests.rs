@@ -231,8 +231,12 @@ fn a_packets_slabs_are_each_rays_own_bit_for_bit() {
                 paths.push(RayLanes::of::<false, true>(group));
             }
             for lanes in paths {
-                for (r, ray) in group.iter().enumerate() {
-                    assert_eq!(bits(&lanes.slab(r)), bits(&Slab::new(ray)), "{ray:?}");
+                // Every lane, the unused ones repeating the first ray; the directions too.
+                for lane in 0..WIDTH {
+                    let ray = group.get(lane).unwrap_or(&group[0]);
+                    assert_eq!(bits(&lanes.slab(lane)), bits(&Slab::new(ray)), "{ray:?}");
+                    let dir = [0, 1, 2].map(|axis| lanes.dir[axis][lane].to_bits());
+                    assert_eq!(dir, ray.dir.to_array().map(f32::to_bits), "{ray:?}");
                 }
             }
         }
