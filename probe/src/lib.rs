@@ -24,7 +24,7 @@
 //! samples per CPU second, default 1000, 0 = no phases). The recorder runs on Linux with
 //! glibc (x86-64, AArch64); elsewhere it stays off.
 //!
-//! [`format`] is the file format's one home: the writers' lines and the reader
+//! [`format`](mod@format) is the file format's one home: the writers' lines and the reader
 //! ([`format::read_file`], [`format::parse`]), which refuses a truncated or hostile file
 //! with the line and byte of the fault and never panics.
 

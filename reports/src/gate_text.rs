@@ -1,7 +1,7 @@
 //! The regression gate's report ([`results::gate::GateReport`]) as a document table and
 //! its plain forms: aligned text for a terminal, GitHub-flavoured Markdown for a
 //! pull-request comment or a CI job summary. The JSON form is the report's own serde.
-//! The report's comparison section shows the same verdicts ([`crate::sections::comparison`]).
+//! The report's comparison section shows the same verdicts (`sections::comparison`).
 
 use crate::document::{Cell, Column, Table, Tone};
 use crate::format;

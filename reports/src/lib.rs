@@ -4,7 +4,7 @@
 //! `rtprof.results/3`, the `results` crate); [`document::build`] turns the runs into
 //! one report [`document::Document`] (sections of paragraphs, tables of typed cells,
 //! charts, image grids, flamegraphs, notes), with the section builders of
-//! [`sections`], the charts of [`charts`] and the numbers written by [`format`].
+//! [`sections`], the charts of [`charts`] and the numbers written by [`format`](mod@format).
 //! Renderers only lay the document out: [`html`] (one self-contained file), [`pdf`]
 //! (typst, with the template `templates/report.typ`) and [`text`] (tables on a
 //! terminal). Per-pixel counter maps leave as NumPy arrays ([`npy`]) and as

@@ -4,7 +4,7 @@
 use crate::document::{Block, Document, Tone};
 
 impl Document {
-    /// The document as the PDF prints it: each [`Section::html_only`] section keeps
+    /// The document as the PDF prints it: each [`html_only`](crate::document::Section::html_only) section keeps
     /// its first paragraph and says where the rest is, and the flamegraphs lose their
     /// interface (paper cannot search or zoom: [`crate::flame_static`]).
     pub fn for_print(&self) -> Document {

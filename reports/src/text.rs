@@ -1,7 +1,7 @@
 //! Plain-text forms of a document [`Table`], for the places results go besides the
 //! reports: aligned columns for a terminal ([`table`]; `rtprof hw table`, `gate`,
 //! `compare`), a GitHub-flavoured Markdown table for a pull-request comment or a CI job
-//! summary ([`markdown`]), and CSV of plain values ([`csv`]).
+//! summary ([`markdown`]), and CSV of plain values ([`csv`](fn@csv)).
 
 use crate::document::{Align, Cell, Table};
 

@@ -272,6 +272,8 @@ fn target_dir() -> Option<PathBuf> {
 pub struct BenchmarkDirs {
     /// Add criterion's estimates (mean, median, 95 % intervals) from this directory,
     /// e.g. target/criterion [suite default: <target dir>/criterion when present].
+    // The angle brackets are for `--help` (clap reads this doc), not HTML.
+    #[allow(rustdoc::invalid_html_tags)]
     #[cfg_attr(feature = "clap", arg(long, value_name = "DIR"))]
     pub criterion: Option<std::path::PathBuf>,
     /// Add gungraun's instruction counts from this directory [default: `gungraun`

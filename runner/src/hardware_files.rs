@@ -16,7 +16,7 @@ pub fn hardware_scene(input: &SceneInput) -> Result<(tracer::Scene, HwScene), Ru
 }
 
 /// Renders `scene` with the emulator at `size` (default: the scene's resolution) into
-/// `output` (.png or .ppm) [default: `<scene>-hw.png`, here]; returns what was written,
+/// `output` (.png or .ppm; by default `<scene>-hw.png`, here); returns what was written,
 /// for the user.
 pub fn write_emulator_image(
     scene: &SceneInput,
@@ -38,7 +38,7 @@ pub fn write_emulator_image(
     ))
 }
 
-/// Writes the scene memory of `scene` to `output` [default: `<scene>.mif`, here];
+/// Writes the scene memory of `scene` to `output` (by default `<scene>.mif`, here);
 /// returns what was written.
 pub fn write_mif(scene: &SceneInput, output: Option<&Path>) -> Result<String, RunError> {
     let default = scene.named_after("", ".mif");

@@ -85,8 +85,8 @@ pub struct SimRequest<'a> {
     pub scene: &'a SceneInput,
     pub design: Design,
     pub size: Option<(u32, u32)>,
-    /// Where the simulated picture goes (.png or .ppm) [default: `<scene>-rtl.png`,
-    /// here].
+    /// Where the simulated picture goes (.png or .ppm; by default `<scene>-rtl.png`,
+    /// here).
     pub image: Option<&'a Path>,
     /// Where Verilator builds the model [default: [`sim::default_build_root`]].
     pub build_dir: Option<PathBuf>,

@@ -9,7 +9,7 @@
 //! machine can do, not what it did while busy. For the same reason the compute and L1
 //! kernels, which use each core's own units, are timed by the time their threads were
 //! on a core (the process's CPU time), not by the wall clock, which on a loaded machine
-//! counts the time other work held the cores ([`on_every_core`]).
+//! counts the time other work held the cores (`on_every_core`).
 //!
 //! The kernels are written in intrinsics, the triad unrolled by hand, so that what they
 //! measure does not depend on the optimiser: this crate is built at opt-level 1 (the

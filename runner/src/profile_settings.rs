@@ -38,6 +38,8 @@ pub struct ProfileSettings {
     /// Also time the render without the profiler (repeated) and report the overhead.
     #[arg(long)]
     pub measure_overhead: bool,
+    // The angle brackets are for `--help` (clap reads this doc), not HTML.
+    #[allow(rustdoc::invalid_html_tags)]
     /// Output directory [default: profile-<scene>]: flat-<variant>.txt,
     /// callgraph-<variant>.txt, flame-<variant>.svg (phase view; -native for native
     /// symbols), amdahl-<variant>.txt, profile-<variant>.pb.gz, speedscope-<variant>.json.

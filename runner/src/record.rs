@@ -79,6 +79,8 @@ impl CallGraph {
     .required(true).args(["command", "import"])),
     override_usage = "rtprof record [OPTIONS] -- <CMD>...\n       rtprof record --import <FILE> [-o <DIR>]"))]
 pub struct RecordSettings {
+    // The angle brackets are for `--help` (clap reads this doc), not HTML.
+    #[allow(rustdoc::invalid_html_tags)]
     /// Output directory [default: record-<program>]: perf.data, flat-<program>.txt,
     /// callgraph-, flame-, folded-, amdahl-, profile-…pb.gz, speedscope-, modules.txt,
     /// modules.json, phases-, report.html, report.pdf, record.json; with rtprof's

@@ -10,7 +10,7 @@ use std::time::Duration;
 /// be async-signal-safe: no allocation, no lock, no lazily initialised thread-local.
 pub type PhaseProbe = fn() -> u64;
 
-/// Least samples a profile gathers by default ([`sample_repeated`] repeats the work
+/// Least samples a profile gathers by default ([`sample_repeated`](super::sampler::sample_repeated) repeats the work
 /// until the signals reach it).
 pub const DEFAULT_MIN_SAMPLES: u64 = 1000;
 /// Most runs of the work per profile by default, however fast it is.
@@ -23,7 +23,7 @@ pub const DEFAULT_MAX_WALL: Duration = Duration::from_secs(120);
 #[derive(Clone, Copy, Debug)]
 pub struct SampleOptions<'a> {
     /// Sampling rate asked of the timer, Hz of CPU time; `None`: the timer's default
-    /// ([`Timer::default_frequency`]).
+    /// ([`Timer::default_frequency`](super::timer::Timer::default_frequency)).
     pub frequency: Option<i32>,
     /// Which timer; `None`: as `RTPROF_SAMPLER` says (auto when unset).
     pub timer: Option<TimerChoice>,
@@ -31,13 +31,13 @@ pub struct SampleOptions<'a> {
     /// event. `None`: the work runs on the calling thread (setitimer samples the whole
     /// process either way).
     pub threads: Option<WorkThreads<'a>>,
-    /// Repeat until at least this many signals were seen ([`sample_repeated`]).
+    /// Repeat until at least this many signals were seen ([`sample_repeated`](super::sampler::sample_repeated)).
     pub min_samples: u64,
     /// ... but at most this many runs,
     pub max_runs: u64,
     /// ... and no more runs once this much wall time has passed.
     pub max_wall: Duration,
-    /// Read at each signal for [`SampledRun::phase_keys`]; `None`: no phase view.
+    /// Read at each signal for [`SampledRun::phase_keys`](super::sampler::SampledRun::phase_keys); `None`: no phase view.
     pub probe: Option<PhaseProbe>,
 }
 

@@ -7,7 +7,7 @@ use super::{Block, Document, Visual};
 
 impl Document {
     /// This document with the assets at `gone` left out; each picture that used one
-    /// reads "<its name>: `why`" instead.
+    /// reads "`<its name>`: `why`" instead.
     pub fn without_assets(&self, gone: &BTreeSet<String>, why: &str) -> Document {
         let mut doc = self.clone();
         doc.assets.remove_all(gone);

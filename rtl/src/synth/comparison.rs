@@ -105,7 +105,7 @@ impl SynthPlan {
         })
     }
 
-    /// Runs Yosys ([`synthesize`]): the blocks' figures, and the longest path of
+    /// Runs Yosys ([`super::synthesize`]): the blocks' figures, and the longest path of
     /// each block and of the whole design.
     pub fn run(&self) -> Result<SynthReport, RtlError> {
         let blocks: Vec<&str> = self.blocks.iter().map(String::as_str).collect();

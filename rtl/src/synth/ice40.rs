@@ -20,7 +20,7 @@
 //! nextpnr places the I/O itself (no constraints file); the clock's Fmax is the last
 //! `Max frequency for clock` line of its log (the one after routing). An operator
 //! larger than the device is placed and routed stage by stage instead
-//! ([`super::stages`]), through the same [`synth_and_route`].
+//! ([`super::stages`]), through the same `synth_and_route`.
 
 use std::fs;
 use std::path::{Path, PathBuf};
@@ -88,7 +88,7 @@ pub fn place_and_route_ice40(
     })
 }
 
-/// What one run of [`synth_and_route`] measured.
+/// What one run of `synth_and_route` measured.
 #[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct Routed {
     /// The Fmax after routing, MHz.

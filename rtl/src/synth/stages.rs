@@ -6,7 +6,7 @@
 //! takes the same design [`super::ice40`] places whole (the operator at its library
 //! latency, every input registered), flattens it with Yosys (`proc; flatten;
 //! opt -nosdff -nodffe`, `flat.json`), finds every flip-flop's register level
-//! ([`super::stage_cut`]: level 1 is the input registers, level k + 1 the registers
+//! (`stage_cut`: level 1 is the input registers, level k + 1 the registers
 //! after stage k) and cuts it into pieces of `stages_per_piece` consecutive stages.
 //! Each piece goes through the whole-operator flow (`synth_ice40`, then nextpnr-ice40
 //! on the HX8K) inside a harness `pnr_top` that registers both sides:

@@ -264,7 +264,7 @@ pub struct BvhStats {
     pub bytes: usize,
     /// The tree's surface area heuristic cost: the expected cost of a ray that enters
     /// the root box, for random lines (a box is entered with probability its area over
-    /// the root's), each interior node costing [`TRAVERSAL_COST`] and each primitive
+    /// the root's), each interior node costing `TRAVERSAL_COST` and each primitive
     /// test 1: `Σ_interior 0.5 A(n)/A(root) + Σ_leaves N(l) A(l)/A(root)`.
     #[serde(default)]
     pub sah_cost: f64,

@@ -131,7 +131,7 @@ impl PlanarOutline {
     /// A ray from the point along +u toggles `inside` at each edge it crosses. Vertices
     /// with v ≥ 0 count as above the ray (a half-open rule), so a ray through a vertex
     /// counts exactly one crossing or none, never two. Outlines of many vertices walk
-    /// only the edges near the point ([`EdgeSlabs`]), with the same result.
+    /// only the edges near the point (`EdgeSlabs`), with the same result.
     #[inline]
     pub fn contains(&self, q: [f32; 2]) -> bool {
         match &self.slabs {

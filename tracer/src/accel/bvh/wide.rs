@@ -106,13 +106,13 @@ struct Entry {
 
 impl<'s> WideBvh<'s> {
     /// Builds the binary tree with `builder` over the scene's items (polygons and
-    /// patches as their triangles, [`triangles::items`]) and collapses it.
+    /// patches as their triangles, `triangles::items`) and collapses it.
     pub fn build_with(scene: &'s Scene, builder: BvhBuilder) -> Self {
         let (items, pieces) = triangles::items(scene);
         Self::collapse(&Bvh::build_over(scene, builder, items), &pieces)
     }
 
-    /// Collapses a binary tree built over [`triangles::items`] (whose polygon
+    /// Collapses a binary tree built over `triangles::items` (whose polygon
     /// references index `pieces`): each wide node takes the two children of a binary
     /// node and keeps opening its largest interior child (by surface area) until it has
     /// [`WIDTH`] children or only leaves.
