@@ -219,5 +219,16 @@ fn a_tracer_the_suite_records_has_its_hot_function_named_in_its_profile() {
     let report = std::fs::read_to_string(out.join("report.html")).unwrap_or_default();
     assert!(report.contains("tracer:hotc recorded with perf on one"));
     assert!(report.contains(p["profile"]["flat_text"].as_str().unwrap_or("?")));
+    // results.json reads back (its checks hold the recorded files' paths inside the
+    // results directory) and rebuilds the same part.
+    std::fs::remove_file(out.join("report.html")).unwrap_or_else(|e| panic!("{e}"));
+    let again = Command::new(env!("CARGO_BIN_EXE_rtprof"))
+        .args(["report", "--no-pdf"])
+        .arg(out.join("results.json"))
+        .output()
+        .unwrap_or_else(|e| panic!("{e}"));
+    assert!(again.status.success(), "{}", stderr(&again));
+    let report = std::fs::read_to_string(out.join("report.html")).unwrap_or_default();
+    assert!(report.contains("tracer:hotc recorded with perf on one"));
     std::fs::remove_dir_all(&dir).ok();
 }

@@ -497,6 +497,29 @@ fn check_profile_result(c: &mut Check, p: &ProfileResult) -> Checked {
     c.optional_file("diff_shrunk_flame_svg", p.diff_shrunk_flame_svg.as_deref())
 }
 
+/// An outside tracer recorded with perf: the report reads its flat profile and
+/// flamegraph from the paths here, so each must stay inside the results directory.
+fn check_outside_profile(c: &mut Check, p: &crate::OutsideProfile) -> Checked {
+    c.text("scene", &p.scene, MAX_NAME)?;
+    c.size(p.width, p.height)?;
+    c.each("command", &p.command, MAX_ROWS, |c, arg| {
+        c.text("arg", arg, MAX_TEXT)
+    })?;
+    c.count("samples", p.samples)?;
+    c.seconds("cpu_seconds", p.cpu_seconds)?;
+    c.seconds("wall_seconds", p.wall_seconds)?;
+    c.text("call_graph", &p.call_graph, MAX_NAME)?;
+    c.file("directory", &p.directory)?;
+    c.field("profile", |c| {
+        check_flat_rows(c, &p.profile.flat)?;
+        c.file("flat_text", &p.profile.flat_text)?;
+        c.file("callgraph_text", &p.profile.callgraph_text)?;
+        c.file("flame_svg", &p.profile.flame_svg)
+    })?;
+    c.file("folded", &p.folded)?;
+    c.each("files", &p.files, MAX_ROWS, |c, path| c.file("path", path))
+}
+
 fn check_figures(c: &mut Check, name: &str, f: &HwFigures) -> Checked {
     c.field(name, |c| {
         for (column, n) in f.columns() {
@@ -664,6 +687,12 @@ impl Results {
         if let Some(h) = &self.hardware {
             c.field("hardware", |c| check_hardware(c, h))?;
         }
+        c.each(
+            "outside_profiles",
+            &self.outside_profiles,
+            MAX_ROWS,
+            check_outside_profile,
+        )?;
         c.each("failures", &self.failures, MAX_ROWS, check_failure)?;
         // Criterion's estimates are nanoseconds.
         c.each("criterion", &self.criterion, MAX_ROWS, |c, e| {

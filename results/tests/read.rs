@@ -181,6 +181,75 @@ fn referenced_files_stay_inside_the_results_directory() {
 }
 
 #[test]
+fn an_outside_tracers_recorded_files_stay_inside_the_results_directory() {
+    // The report embeds the flat profile and the flamegraph it reads from these paths.
+    let outside = json!({
+        "variant": "tracer:rtiow",
+        "scene": "balls",
+        "width": 64,
+        "height": 48,
+        "command": ["./rtiow", "64"],
+        "samples": 1200,
+        "cpu_seconds": 0.3,
+        "wall_seconds": 0.31,
+        "frequency": 4000,
+        "call_graph": "frame pointers",
+        "directory": "profile/tracer-rtiow",
+        "profile": {
+            "view": "native",
+            "flat": [{"name": "hit", "percent": 40.0, "self_seconds": 0.12,
+                      "total_seconds": 0.2, "calls": null}],
+            "flat_text": "profile/tracer-rtiow/flat-rtiow.txt",
+            "callgraph_text": "profile/tracer-rtiow/callgraph-rtiow.txt",
+            "flame_svg": "profile/tracer-rtiow/flame-rtiow.svg"
+        },
+        "folded": "profile/tracer-rtiow/folded-rtiow.txt",
+        "files": ["profile/tracer-rtiow/record.json"]
+    });
+    let mut v = v2_value();
+    v["outside_profiles"] = json!([outside.clone()]);
+    read(&v).unwrap_or_else(|e| panic!("{e}"));
+    for (field, expected) in [
+        (&["directory"][..], "outside_profiles[0].directory: "),
+        (
+            &["profile", "flat_text"],
+            "outside_profiles[0].profile.flat_text: ",
+        ),
+        (
+            &["profile", "callgraph_text"],
+            "outside_profiles[0].profile.callgraph_text: ",
+        ),
+        (
+            &["profile", "flame_svg"],
+            "outside_profiles[0].profile.flame_svg: ",
+        ),
+        (&["folded"], "outside_profiles[0].folded: "),
+    ] {
+        let mut bad = outside.clone();
+        let mut at = &mut bad;
+        for key in field {
+            at = &mut at[*key];
+        }
+        *at = json!("../../etc/passwd");
+        let mut v = v2_value();
+        v["outside_profiles"] = json!([bad]);
+        let e = refused(&v);
+        assert!(
+            e.starts_with(expected) && e.contains("leaves the results directory"),
+            "{e}"
+        );
+    }
+    let mut bad = outside.clone();
+    bad["files"][0] = json!("/etc/passwd");
+    v["outside_profiles"] = json!([bad]);
+    assert!(refused(&v).starts_with("outside_profiles[0].files[0].path: "));
+    let mut bad = outside;
+    bad["profile"]["flat"][0]["percent"] = json!(140.0);
+    v["outside_profiles"] = json!([bad]);
+    assert!(refused(&v).starts_with("outside_profiles[0].profile.flat[0].percent: "));
+}
+
+#[test]
 fn lists_are_bounded() {
     let mut v = v2_value();
     v["scenes"][0]["variants"][0]["histogram"] = json!(vec![0u64; 300]);
