@@ -194,6 +194,43 @@ fn the_processes_a_command_starts_are_sampled() {
 
 #[test]
 #[ignore = "needs perf"]
+fn no_pdf_leaves_out_report_pdf_and_removes_an_earlier_one() {
+    let dir = scratch("no-pdf");
+    let exe = hot_program(&dir);
+    let out_dir = dir.join("r");
+    let listed = |out_dir: &std::path::Path| -> Vec<String> {
+        record_json(out_dir)["files"]
+            .as_array()
+            .map(|a| {
+                a.iter()
+                    .filter_map(|f| f.as_str().map(String::from))
+                    .collect()
+            })
+            .unwrap_or_default()
+    };
+    for (flags, pdf) in [(&[][..], true), (&["--no-pdf"][..], false)] {
+        let out = Command::new(env!("CARGO_BIN_EXE_rtprof"))
+            .arg("record")
+            .args(flags)
+            .arg("-o")
+            .arg(&out_dir)
+            .arg("--")
+            .arg(&exe)
+            .output()
+            .unwrap_or_else(|e| panic!("{e}"));
+        assert_eq!(out.status.code(), Some(0), "{}", stderr(&out));
+        assert!(out_dir.join("report.html").is_file());
+        // The second run's report.pdf would otherwise be the first run's.
+        assert_eq!(out_dir.join("report.pdf").is_file(), pdf, "{flags:?}");
+        let files = listed(&out_dir);
+        assert!(files.iter().any(|f| f == "report.html"), "{files:?}");
+        assert_eq!(files.iter().any(|f| f == "report.pdf"), pdf, "{files:?}");
+    }
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+#[test]
+#[ignore = "needs perf"]
 fn a_failing_command_keeps_its_profile_and_exits_4() {
     let dir = scratch("fails");
     let exe = hot_program(&dir);

@@ -16,6 +16,7 @@ use std::sync::mpsc;
 use std::time::{Duration, Instant};
 
 use crate::record_diff::{Baseline, read_baseline};
+use crate::report_files::Pdf;
 use analysis::profile::perf_data::coverage::ModuleCoverage;
 use analysis::profile::perf_data::{PerfProfile, read_perf_data};
 use analysis::profile::phase_rules::{PhaseBreakdown, PhaseRules};
@@ -83,7 +84,7 @@ pub struct RecordSettings {
     #[allow(rustdoc::invalid_html_tags)]
     /// Output directory [default: record-<program>]: perf.data, flat-<program>.txt,
     /// callgraph-, flame-, folded-, amdahl-, profile-…pb.gz, speedscope-, modules.txt,
-    /// modules.json, phases-, report.html, report.pdf, record.json; with rtprof's
+    /// modules.json, phases-, report.html, report.pdf (unless --no-pdf), record.json; with rtprof's
     /// probe in the program, probe.rtprof and counts-.
     #[cfg_attr(feature = "clap", arg(short, long, value_name = "DIR"))]
     pub output: Option<PathBuf>,
@@ -116,6 +117,8 @@ pub struct RecordSettings {
     #[cfg_attr(feature = "clap", arg(long, value_name = "FILE",
         conflicts_with_all = ["command", "freq", "call_graph", "time_limit"]))]
     pub import: Option<PathBuf>,
+    #[cfg_attr(feature = "clap", command(flatten))]
+    pub pdf: crate::report_files::PdfFlag,
 }
 
 /// A positive number of seconds.
@@ -151,6 +154,7 @@ impl RecordSettings {
             phases: self.phases.as_deref(),
             baseline: self.baseline.as_deref(),
             setup: ProgramSetup::default(),
+            pdf: self.pdf.choice(),
         }
     }
 }
@@ -187,6 +191,8 @@ pub struct RecordPlan<'a> {
     pub baseline: Option<&'a Path>,
     /// Where the program runs and where its streams go.
     pub setup: ProgramSetup,
+    /// Whether the recording's report.pdf is written.
+    pub pdf: Pdf,
 }
 
 /// The phase rules of a plan: its file's, or the built-in ones. Read before the
@@ -227,6 +233,8 @@ pub struct Recording {
     pub perf_data: PathBuf,
     /// What the program's probe file gave ([`crate::record_probe`]).
     pub probe: ProbeOutcome,
+    /// Whether its report.pdf is written.
+    pub pdf: Pdf,
 }
 
 impl Recording {
@@ -414,6 +422,7 @@ fn recording(
         baseline: None,
         perf_data,
         probe: ProbeOutcome::Absent,
+        pdf: plan.pdf,
     }
 }
 

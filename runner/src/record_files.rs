@@ -25,6 +25,7 @@ use crate::record::{CallGraph, Recording};
 use crate::record_diff::save_record_differential;
 use crate::record_phases::{comparison_table, phase_table, phases_text, probe_phases_text};
 use crate::record_probe::{PROBE_FILE, ProbeOutcome, ProbeSummary};
+use crate::report_files::Pdf;
 use crate::staging::save;
 use analysis::profile::phase_compare::PhaseComparison;
 use analysis::profile::phase_rules::{PhaseBreakdown, PhaseSource};
@@ -180,7 +181,10 @@ impl Recording {
             files.extend([grown, shrunk]);
         }
         files.extend(["perf.data".to_string(), "perf.log".to_string()]);
-        files.extend(["report.html".to_string(), "report.pdf".to_string()]);
+        files.push("report.html".to_string());
+        if self.pdf == Pdf::Write {
+            files.push("report.pdf".to_string());
+        }
         files.push("record.json".to_string());
         let flame = saved_flamegraph(dir, &saved);
         self.save_report(dir, flame, &files)?;
@@ -245,6 +249,7 @@ impl Recording {
         });
         write_report(
             dir,
+            self.pdf,
             &RecordReport {
                 program: self.name(),
                 command: &command,
@@ -411,13 +416,17 @@ pub fn saved_flamegraph(dir: &Path, saved: &SavedProfile) -> Option<(String, Str
     Some((svg, file.clone()))
 }
 
-/// Writes report.html and report.pdf of a recorded (or imported) run.
-pub fn write_report(dir: &Path, report: &RecordReport) -> Result<(), RunError> {
+/// Writes report.html and (unless `pdf` says to skip it, which removes an earlier
+/// run's) report.pdf of a recorded (or imported) run.
+pub fn write_report(dir: &Path, pdf: Pdf, report: &RecordReport) -> Result<(), RunError> {
     let doc = reports::record_report::build(report);
     save(dir, "report.html", reports::html::render(&doc).as_bytes())?;
-    let pdf = reports::pdf::render(&doc)
+    if pdf == Pdf::Skip {
+        return pdf.remove_stale(dir);
+    }
+    let typeset = reports::pdf::render(&doc)
         .map_err(|e| RunError::Report(format!("cannot build report.pdf: {e}")))?;
-    save(dir, "report.pdf", &pdf)?;
+    save(dir, "report.pdf", &typeset)?;
     Ok(())
 }
 

@@ -41,6 +41,7 @@ use crate::record_files::{
     dir_label, modules_text, phases_summary, save_phases, saved_flamegraph, top_functions_text,
     write_report,
 };
+use crate::report_files::Pdf;
 use crate::staging::save;
 use analysis::profile::phase_rules::{PhaseBreakdown, PhaseRules};
 use reports::record_report::RecordReport;
@@ -164,7 +165,7 @@ pub fn import_into(file: &Path, settings: &RecordSettings) -> Result<String, Run
         p.baseline = Some(b);
     }
     let dir = output.map_or_else(|| imported.default_dir(), Path::to_path_buf);
-    let summary = imported.save(&dir)?;
+    let summary = imported.save(&dir, settings.pdf.choice())?;
     Ok(imported.to_text(&dir, &summary))
 }
 
@@ -262,10 +263,11 @@ impl Imported {
         PathBuf::from(format!("record-{}", self.name()))
     }
 
-    /// Writes the files under `dir` and record.json.
-    pub fn save(&self, dir: &Path) -> Result<ImportSummary<'_>, RunError> {
+    /// Writes the files under `dir` and record.json; a perf.data's report.pdf as `pdf`
+    /// says (a gprof text gets no report).
+    pub fn save(&self, dir: &Path, pdf: Pdf) -> Result<ImportSummary<'_>, RunError> {
         let summary = match self {
-            Imported::Perf(p) => p.save(dir)?,
+            Imported::Perf(p) => p.save(dir, pdf)?,
             Imported::Gprof(g) => g.save(dir)?,
         };
         let json =
@@ -308,7 +310,7 @@ impl PerfImport {
         self.perf.sampled_seconds
     }
 
-    fn save(&self, dir: &Path) -> Result<ImportSummary<'_>, RunError> {
+    fn save(&self, dir: &Path, pdf: Pdf) -> Result<ImportSummary<'_>, RunError> {
         let title = format!("{} (imported from {})", self.name, self.source.display());
         let saved = save_profile_files(
             dir,
@@ -363,12 +365,16 @@ impl PerfImport {
             &self.phases,
             caveat.as_deref(),
         )?);
-        files.extend(["report.html".into(), "report.pdf".into()]);
+        files.push("report.html".into());
+        if pdf == Pdf::Write {
+            files.push("report.pdf".into());
+        }
         files.push("record.json".into());
         let end = format!("imported from {}", self.source.display());
         let samples = self.perf.samples.total();
         write_report(
             dir,
+            pdf,
             &RecordReport {
                 program: &self.name,
                 command: &self.perf.recording.perf_command.join(" "),
@@ -640,7 +646,7 @@ mod tests {
         };
         assert_eq!(imported.name(), "prof");
         let out = dir.join("out");
-        let summary = imported.save(&out).unwrap();
+        let summary = imported.save(&out, Pdf::Write).unwrap();
         assert_eq!(
             summary.files,
             ["flat-prof.txt", "amdahl-prof.txt", "record.json"]

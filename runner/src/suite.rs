@@ -68,6 +68,8 @@ pub struct RunContext<'a> {
     pub progress: &'a dyn Progress,
     /// Set when the user asks the run to stop; checked before every render.
     pub stop: &'a AtomicBool,
+    /// Whether report.pdf is written (the outside tracers' recordings' too).
+    pub pdf: crate::report_files::Pdf,
 }
 
 impl Suite {

@@ -59,13 +59,14 @@ pub fn run_into_dir(
             threads: run.threads,
             progress: run.progress,
             stop: run.stop,
+            pdf: run.pdf,
         };
         let mut results = suite.run(&ctx)?;
         stopped()?;
         amend(&mut results)?;
         run.progress.begin("reports", 0);
         run.progress
-            .message("writing results.json, report.html and report.pdf");
+            .message(&format!("writing results.json, {}", run.pdf.documents()));
         let pages = write_run(&results, staging.dir(), run.pdf);
         run.progress.end();
         let pages = pages?;

@@ -60,6 +60,7 @@ fn run_tiny_suite() -> (Results, PathBuf) {
         threads: Some(2),
         progress: &runner::progress::Silent,
         stop: &stop,
+        pdf: runner::report_files::Pdf::Write,
     };
     let results = suite.run(&ctx).unwrap();
     (results, out)

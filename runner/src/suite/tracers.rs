@@ -291,6 +291,7 @@ impl super::SceneRunner<'_> {
             time_limit: Some(std::time::Duration::from_secs_f64(def.time_limit)),
             phases: None,
             baseline: None,
+            pdf: self.ctx.pdf,
             setup: ProgramSetup {
                 env: environment(&plan, &workdir).map_err(outside)?,
                 dir: Some(workdir.clone()),
