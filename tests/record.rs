@@ -5,8 +5,21 @@
 mod record_common;
 
 use record_common::{folded, hot_program, leaf, record_json, rtprof, scratch, share, stderr};
-use std::path::PathBuf;
-use std::process::Command;
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
+
+/// `rtprof record FLAGS -o OUT_DIR -- EXE`.
+fn record_program(flags: &[&str], out_dir: &Path, exe: &Path) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_rtprof"))
+        .arg("record")
+        .args(flags)
+        .arg("-o")
+        .arg(out_dir)
+        .arg("--")
+        .arg(exe)
+        .output()
+        .unwrap_or_else(|e| panic!("{e}"))
+}
 
 #[test]
 fn a_missing_command_exits_2_and_is_named() {
@@ -120,13 +133,7 @@ fn the_hot_function_of_a_c_program_takes_its_share() {
     let dir = scratch("hot");
     let exe = hot_program(&dir);
     let out_dir = dir.join("r");
-    let out = Command::new(env!("CARGO_BIN_EXE_rtprof"))
-        .args(["record", "-o"])
-        .arg(&out_dir)
-        .arg("--")
-        .arg(&exe)
-        .output()
-        .unwrap_or_else(|e| panic!("{e}"));
+    let out = record_program(&[], &out_dir, &exe);
     assert_eq!(out.status.code(), Some(0), "{}", stderr(&out));
     let stacks = folded(&out_dir, "hot");
     // The leaf is `hot` or its inlined `step`, with a caller below it.
@@ -198,7 +205,7 @@ fn no_pdf_leaves_out_report_pdf_and_removes_an_earlier_one() {
     let dir = scratch("no-pdf");
     let exe = hot_program(&dir);
     let out_dir = dir.join("r");
-    let listed = |out_dir: &std::path::Path| -> Vec<String> {
+    let listed = |out_dir: &Path| -> Vec<String> {
         record_json(out_dir)["files"]
             .as_array()
             .map(|a| {
@@ -209,15 +216,7 @@ fn no_pdf_leaves_out_report_pdf_and_removes_an_earlier_one() {
             .unwrap_or_default()
     };
     for (flags, pdf) in [(&[][..], true), (&["--no-pdf"][..], false)] {
-        let out = Command::new(env!("CARGO_BIN_EXE_rtprof"))
-            .arg("record")
-            .args(flags)
-            .arg("-o")
-            .arg(&out_dir)
-            .arg("--")
-            .arg(&exe)
-            .output()
-            .unwrap_or_else(|e| panic!("{e}"));
+        let out = record_program(flags, &out_dir, &exe);
         assert_eq!(out.status.code(), Some(0), "{}", stderr(&out));
         assert!(out_dir.join("report.html").is_file());
         // The second run's report.pdf would otherwise be the first run's.
