@@ -2,7 +2,7 @@
 //! libembree-dev by scripts/build-embree-peer.sh into a temporary prefix, it must draw
 //! rtprof's own picture of an SPD scene (its camera and shading are rtprof's; only
 //! Embree's intersection tests differ), the same picture in its single-ray and its
-//! packet mode, refuse a malformed scene naming the line, and work as the built-in
+//! packet mode (but where Embree's two kernels part on a hit), refuse a malformed scene naming the line, and work as the built-in
 //! peer definitions run it.
 
 use std::path::{Path, PathBuf};
@@ -126,10 +126,18 @@ fn the_yardstick_draws_rtprofs_picture_in_both_modes_and_refuses_a_bad_scene() {
                 );
                 pictures.push(read_ppm(&path));
             }
-            // The two modes add each pixel's terms in the same order: the same bits.
+            // The two modes add each pixel's terms in the same order, so they differ
+            // only where Embree's single-ray and packet kernels part on a hit: where
+            // two primitives meet at about one distance. Held to the same bounds as
+            // rtprof's picture below. (Measured: identical on the machines of earlier
+            // runs; on an AVX2-only AMD Zen 3, tree diffuse-only 1 pixel by 6 levels,
+            // at a joint of its cones and spheres, where the single-ray mode agrees
+            // with rtprof.)
+            let (rms, differing) = difference(&pictures[0].2, &pictures[1].2);
+            eprintln!("{name} {shading:?}: the modes differ in {differing} pixels, RMS {rms:.3}");
             assert!(
-                pictures[0] == pictures[1],
-                "{name} {shading:?}: the modes differ"
+                rms <= 2.0 && differing <= 16,
+                "{name} {shading:?}: the modes differ in {differing} pixels, RMS {rms:.3}"
             );
             // rtprof's camera and shading: its picture but for pixels where Embree's
             // tests and rtprof's part on a silhouette or a shared edge. A pixel that

@@ -90,8 +90,7 @@ struct TimeArgs {
 struct RenderArgs {
     #[arg(value_name = "SCENE", value_parser = SceneInput::parse_arg, help = SceneInput::HELP)]
     scene: SceneInput,
-    #[allow(rustdoc::invalid_html_tags)] // `<scene>` is for --help
-    /// Output image, .png or .ppm [default: <scene>-hw.png, here].
+    /// Output image, .png or .ppm [default: the scene's name + -hw.png, here].
     #[arg(short, long, value_name = "IMG")]
     output: Option<PathBuf>,
     #[arg(long, value_name = "WxH", value_parser = parse_size, help = SIZE_HELP)]
@@ -102,8 +101,7 @@ struct RenderArgs {
 struct MifArgs {
     #[arg(value_name = "SCENE", value_parser = SceneInput::parse_arg, help = SceneInput::HELP)]
     scene: SceneInput,
-    #[allow(rustdoc::invalid_html_tags)] // `<scene>` is for --help
-    /// Output .mif file [default: <scene>.mif, here].
+    /// Output .mif file [default: the scene's name + .mif, here].
     #[arg(short, long, value_name = "FILE.mif")]
     output: Option<PathBuf>,
 }
@@ -135,8 +133,7 @@ struct SimArgs {
     design: DesignFlags,
     #[arg(long, value_name = "WxH", value_parser = parse_size, help = SIZE_HELP)]
     size: Option<(u32, u32)>,
-    #[allow(rustdoc::invalid_html_tags)] // `<scene>` is for --help
-    /// Output image, .png or .ppm [default: <scene>-rtl.png, here].
+    /// Output image, .png or .ppm [default: the scene's name + -rtl.png, here].
     #[arg(short, long, value_name = "IMG")]
     output: Option<PathBuf>,
     /// Where Verilator builds the model (reused per design) [default: the user's cache,
