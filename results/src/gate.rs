@@ -10,13 +10,14 @@
 //!   variant's time divided by a reference that does the same kind of work on the same
 //!   scene ([`references`]: baseline; bvh on a scene run without baseline; for the
 //!   scene's root variant itself, the f64 reference renderer on the same scene at a
-//!   smaller frame), each a median of per-round ratios
-//!   ([`crate::change::paired_ratios`]). A machine that is busier or slower on the
-//!   second run moves both alike. The change of a relative time between the runs, with
-//!   its bootstrap interval, is labelled by the one verdict rule
-//!   ([`analysis::verdict::judge`]) at a noise threshold calibrated from run-to-run
-//!   noise ([`analysis::verdict::NOISE_THRESHOLD`], docs/gate.md), widened for an entry
-//!   whose own intervals are wider ([`entry_threshold`]). Slower fails.
+//!   smaller frame), each a median of per-round ratios, or with too few shared
+//!   rounds a ratio of medians ([`crate::change::Ratio`]). A machine that is busier or
+//!   slower on the second run moves both alike. The change of a relative time
+//!   between the runs, with its bootstrap interval, is labelled by the one verdict
+//!   rule ([`analysis::verdict::judge`]) at a noise threshold calibrated from
+//!   run-to-run noise ([`analysis::verdict::NOISE_THRESHOLD`], docs/gate.md),
+//!   widened for an entry whose own intervals are wider ([`entry_threshold`]). Slower
+//!   fails.
 //!
 //! Times are process CPU times of each render when both runs recorded them (they do
 //! not grow while the machine runs other work), wall times otherwise.
@@ -38,7 +39,7 @@ use serde::Serialize;
 
 use analysis::verdict::judge;
 
-use crate::change::{of_medians, paired_ratios};
+use crate::change::{Ratio, of_medians};
 use crate::schema::{Estimate, InstructionCount, Results, SceneResult, VariantResult, Verdict};
 use crate::timing_policy::TimeCovers;
 use crate::variant_name::VariantName;
@@ -587,11 +588,10 @@ fn compare_entry(
     let shortest = median_of(&o_samples).min(median_of(&v_samples));
     let (measure, old, new, change) = match sticks {
         Some(((old_wall, old_cpu, measure), (new_wall, new_cpu, _))) => {
-            let old_ratios = paired_ratios(&o_samples, &pick(old_wall, old_cpu));
-            let new_ratios = paired_ratios(&v_samples, &pick(new_wall, new_cpu));
-            let old = of_medians(&[&old_ratios], |m| m[0]);
-            let new = of_medians(&[&new_ratios], |m| m[0]);
-            let change = of_medians(&[&new_ratios, &old_ratios], |m| m[0] / m[1]);
+            let old_ratio = Ratio::of(&o_samples, &pick(old_wall, old_cpu));
+            let new_ratio = Ratio::of(&v_samples, &pick(new_wall, new_cpu));
+            let (old, new) = (old_ratio.estimate(), new_ratio.estimate());
+            let change = Ratio::change(&new_ratio, &old_ratio);
             (measure, old, new, change)
         }
         _ => {

@@ -348,8 +348,9 @@ pub struct VariantResult {
     /// tracing, seconds: the median over the repeats. `None` in files whose times
     /// include it (`/1`).
     pub preprocessing_seconds: Option<f64>,
-    /// Baseline time / this time: the median of the per-round ratios (older files: the
-    /// ratio of the medians); None when baseline did not run on the scene.
+    /// Baseline time / this time: the median of the per-round ratios, or with too few
+    /// shared rounds (and in older files) the ratio of the medians
+    /// ([`crate::change::Ratio`]); None when baseline did not run on the scene.
     pub speedup: Option<f64>,
     /// 95 % bootstrap interval of `speedup`; `None` in older files.
     #[serde(default)]
