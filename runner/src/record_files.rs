@@ -181,10 +181,7 @@ impl Recording {
             files.extend([grown, shrunk]);
         }
         files.extend(["perf.data".to_string(), "perf.log".to_string()]);
-        files.push("report.html".to_string());
-        if self.pdf == Pdf::Write {
-            files.push("report.pdf".to_string());
-        }
+        files.extend(self.pdf.files().iter().map(|f| f.to_string()));
         files.push("record.json".to_string());
         let flame = saved_flamegraph(dir, &saved);
         self.save_report(dir, flame, &files)?;

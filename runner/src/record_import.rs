@@ -365,10 +365,7 @@ impl PerfImport {
             &self.phases,
             caveat.as_deref(),
         )?);
-        files.push("report.html".into());
-        if pdf == Pdf::Write {
-            files.push("report.pdf".into());
-        }
+        files.extend(pdf.files().iter().map(|f| f.to_string()));
         files.push("record.json".into());
         let end = format!("imported from {}", self.source.display());
         let samples = self.perf.samples.total();

@@ -61,12 +61,17 @@ impl PdfFlag {
 }
 
 impl Pdf {
-    /// The report documents written, for the messages that list a run's files.
-    pub fn documents(self) -> &'static str {
+    /// The report documents written, in the order a run's file list gives them.
+    pub fn files(self) -> &'static [&'static str] {
         match self {
-            Pdf::Write => "report.html, report.pdf",
-            Pdf::Skip => "report.html",
+            Pdf::Write => &["report.html", "report.pdf"],
+            Pdf::Skip => &["report.html"],
         }
+    }
+
+    /// The report documents written, for the messages that list a run's files.
+    pub fn documents(self) -> String {
+        self.files().join(", ")
     }
 
     /// With [`Pdf::Skip`], removes `output`'s report.pdf (an earlier run's) if there is one.
